@@ -1,0 +1,368 @@
+"""The scene: a rigid body hung from n >= 3 vertical crane ropes.
+
+Frozen dataclasses in the ``z-up`` frame (see :mod:`liftplan.model.frames`), referring to
+each other by lug name. Each object checks its own values where it is made, and
+:class:`Scene` checks what needs the whole picture (names, statics), so a scene built from
+Python is held to the same rules as one read from a file.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from .errors import InvalidScene
+
+MODELS = ("elastic", "paper-elastic", "rigid")
+
+# Plan-area test for collinear lugs: the support polygon's area over its diameter squared.
+# Below this the 3x3 statics matrix has a condition number above ~1e9: singular in t and m.
+_COLLINEAR_AREA = 1e-9
+
+
+def _finite(path, value):
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InvalidScene(f"{path} = {value!r}: expected a number") from None
+    if not math.isfinite(number):
+        raise InvalidScene(f"{path} = {value!r}: expected a finite number")
+    return number
+
+
+def _positive(path, value):
+    number = _finite(path, value)
+    if number <= 0.0:
+        raise InvalidScene(f"{path} = {value!r}: expected a number > 0")
+    return number
+
+
+def _point(path, value):
+    try:
+        items = tuple(value)
+    except TypeError:
+        raise InvalidScene(f"{path} = {value!r}: expected [x, y, z] in m") from None
+    if len(items) != 3:
+        raise InvalidScene(f"{path} = {value!r}: expected [x, y, z] in m")
+    return tuple(_finite(path, v) for v in items)
+
+
+def _set(obj, name, value):
+    object.__setattr__(obj, name, value)
+
+
+@dataclass(frozen=True)
+class Body:
+    """The lifted body.
+
+    Parameters
+    ----------
+    weight : float  [t]
+        Total weight W (in air, or in water when the scene says so).
+    cog : tuple of 3 float  [m]
+        Centre of gravity in the body frame.
+    """
+
+    weight: float
+    cog: tuple[float, float, float]
+
+    def __post_init__(self):
+        _set(self, "weight", _positive("body.weight", self.weight))
+        _set(self, "cog", _point("body.cog", self.cog))
+
+
+@dataclass(frozen=True)
+class Lug:
+    """A lifting point on the body.
+
+    Parameters
+    ----------
+    name : str
+        Unique label, e.g. ``"T1"``.
+    at : tuple of 3 float  [m]
+        Position in the body frame.
+    """
+
+    name: str
+    at: tuple[float, float, float]
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InvalidScene(f"lugs.name = {self.name!r}: expected a non-empty string")
+        _set(self, "at", _point(f"lugs[{self.name}].at", self.at))
+
+
+@dataclass(frozen=True)
+class Crane:
+    """A crane whose hook hangs vertically above one lug.
+
+    Parameters
+    ----------
+    lug : str
+        Name of the lug the rope is shackled to.
+    EA : float or None  [t]
+        Axial stiffness of the rope (modulus times metallic area).
+    boom_height : float or None  [m]
+        Height H of the boom tip (rope's upper end) above the datum z = 0.
+    rope_length : float or None  [m]
+        Unstretched rope length l0 between boom tip and lug (forward ``elastic`` model).
+    swl : float or None  [t]
+        Safe working load of the crane at its radius.
+    """
+
+    lug: str
+    EA: float | None = None
+    boom_height: float | None = None
+    rope_length: float | None = None
+    swl: float | None = None
+
+    def __post_init__(self):
+        where = f"cranes[{self.lug}]"
+        if self.EA is not None:
+            _set(self, "EA", _positive(f"{where}.EA", self.EA))
+        if self.boom_height is not None:
+            _set(self, "boom_height", _finite(f"{where}.boom_height", self.boom_height))
+        if self.rope_length is not None:
+            _set(self, "rope_length", _positive(f"{where}.rope_length", self.rope_length))
+        if self.swl is not None:
+            _set(self, "swl", _positive(f"{where}.swl", self.swl))
+
+
+@dataclass(frozen=True)
+class Attitude:
+    """Body attitude and height for the given-attitude models (initial guess for ``elastic``).
+
+    Parameters
+    ----------
+    heel : float  [deg]
+        > 0 starboard side down (psi in Choi & Shin).
+    trim : float  [deg]
+        > 0 bow down (-phi in Choi & Shin).
+    yaw : float  [deg]
+        > 0 bow to port (theta in Choi & Shin).
+    lift_height : float  [m]
+        Height a of the body-frame origin above the datum.
+    """
+
+    heel: float = 0.0
+    trim: float = 0.0
+    yaw: float = 0.0
+    lift_height: float = 0.0
+
+    def __post_init__(self):
+        for name in ("heel", "trim", "yaw", "lift_height"):
+            _set(self, name, _finite(f"attitude.{name}", getattr(self, name)))
+        for name in ("heel", "trim"):
+            if abs(getattr(self, name)) > 90.0:
+                raise InvalidScene(
+                    f"attitude.{name} = {getattr(self, name)!r}: expected a value in [-90, 90] deg"
+                )
+
+
+@dataclass(frozen=True)
+class Redundant:
+    """A tension set by the crane operators (the ``rigid`` model's redundant unknown).
+
+    Parameters
+    ----------
+    lug : str
+    tension : float  [t]
+    """
+
+    lug: str
+    tension: float
+
+    def __post_init__(self):
+        t = _finite(f"analysis.redundant[{self.lug}].tension", self.tension)
+        if t < 0.0:
+            raise InvalidScene(
+                f"analysis.redundant[{self.lug}].tension = {self.tension!r}: expected >= 0 t"
+            )
+        _set(self, "tension", t)
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """Which model to solve, and its extra data.
+
+    Parameters
+    ----------
+    model : str or None
+        ``"elastic"``, ``"paper-elastic"`` or ``"rigid"``; None lets the solver pick the
+        least model the scene supports (see :func:`liftplan.model.solve.pick_model`).
+    redundant : tuple of Redundant
+        n - 3 tensions held by the operators, for ``rigid``.
+    """
+
+    model: str | None = None
+    redundant: tuple[Redundant, ...] = ()
+
+    def __post_init__(self):
+        if self.model is not None and self.model not in MODELS:
+            raise InvalidScene(
+                f"analysis.model = {self.model!r}: expected one of {', '.join(MODELS)}"
+            )
+        _set(self, "redundant", tuple(self.redundant))
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A body on n >= 3 vertical crane ropes, in the ``z-up`` frame.
+
+    Parameters
+    ----------
+    body : Body
+    lugs : tuple of Lug
+    cranes : tuple of Crane
+        Exactly one per lug; stored in lug order.
+    attitude : Attitude
+    analysis : Analysis
+    name : str
+    """
+
+    body: Body
+    lugs: tuple[Lug, ...]
+    cranes: tuple[Crane, ...]
+    attitude: Attitude = field(default_factory=Attitude)
+    analysis: Analysis = field(default_factory=Analysis)
+    name: str = ""
+
+    def __post_init__(self):
+        lugs, cranes = tuple(self.lugs), tuple(self.cranes)
+        if len(lugs) < 3:
+            raise InvalidScene(
+                f"lugs: {len(lugs)} given: expected three or more (two ropes cannot hold a body)"
+            )
+        names = [lug.name for lug in lugs]
+        for name in names:
+            if names.count(name) > 1:
+                raise InvalidScene(f"lugs.name = {name!r}: duplicate, expected unique lug names")
+        by_lug = {}
+        for crane in cranes:
+            if crane.lug not in names:
+                raise InvalidScene(
+                    f"cranes.lug = {crane.lug!r}: unknown lug, expected one of {', '.join(names)}"
+                )
+            if crane.lug in by_lug:
+                raise InvalidScene(
+                    f"cranes.lug = {crane.lug!r}: two cranes on one lug, expected one crane per lug"
+                )
+            by_lug[crane.lug] = crane
+        for name in names:
+            if name not in by_lug:
+                raise InvalidScene(f"lugs[{name}]: no crane on it, expected one crane per lug")
+        _set(self, "lugs", lugs)
+        _set(self, "cranes", tuple(by_lug[name] for name in names))
+        for red in self.analysis.redundant:
+            if red.lug not in names:
+                raise InvalidScene(
+                    f"analysis.redundant.lug = {red.lug!r}: unknown lug, "
+                    f"expected one of {', '.join(names)}"
+                )
+        _check_support(self)
+
+    # -- look-ups ---------------------------------------------------------------
+    @cached_property
+    def lug_names(self):
+        """Lug names in scene order."""
+        return tuple(lug.name for lug in self.lugs)
+
+    @property
+    def n(self):
+        """Number of ropes."""
+        return len(self.lugs)
+
+    def lug_points(self):
+        """Lug positions, body frame, shape (n, 3)  [m]."""
+        return self._lug_array.copy()
+
+    @cached_property
+    def _lug_array(self):
+        return np.array([lug.at for lug in self.lugs], dtype=float)
+
+    @cached_property
+    def plan_diameter(self):
+        """Largest plan distance between two lugs  [m] (the moment residuals' length scale)."""
+        plan = self._lug_array[:, :2]
+        return float(np.max(np.linalg.norm(plan[:, None, :] - plan[None, :, :], axis=-1)))
+
+    def crane(self, lug):
+        """The crane on lug ``lug``."""
+        for crane in self.cranes:
+            if crane.lug == lug:
+                return crane
+        raise InvalidScene(f"lug = {lug!r}: unknown lug, expected one of {', '.join(self.lug_names)}")
+
+    # -- changed copies (the scene is frozen) ------------------------------------
+    def with_crane(self, lug, **changes):
+        """A copy with crane ``lug`` changed, e.g. ``scene.with_crane("T1", boom_height=41.0)``."""
+        old = self.crane(lug)
+        cranes = tuple(dataclasses.replace(c, **changes) if c is old else c for c in self.cranes)
+        return dataclasses.replace(self, cranes=cranes)
+
+    def with_attitude(self, **changes):
+        """A copy with the attitude changed, e.g. ``scene.with_attitude(heel=2.0)``."""
+        return dataclasses.replace(self, attitude=dataclasses.replace(self.attitude, **changes))
+
+    def with_body(self, **changes):
+        """A copy with the body changed, e.g. ``scene.with_body(weight=950.0)``."""
+        return dataclasses.replace(self, body=dataclasses.replace(self.body, **changes))
+
+    def with_analysis(self, **changes):
+        """A copy with the analysis changed, e.g. ``scene.with_analysis(model="rigid")``."""
+        return dataclasses.replace(self, analysis=dataclasses.replace(self.analysis, **changes))
+
+
+def _convex_hull(points):
+    """Counter-clockwise convex hull (Andrew's monotone chain); returns indices."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    def chain(indices):
+        out = []
+        for i in indices:
+            while len(out) >= 2 and cross(points[out[-2]], points[out[-1]], points[i]) <= 0:
+                out.pop()
+            out.append(i)
+        return out
+
+    lower, upper = chain(order), chain(reversed(order))
+    return lower[:-1] + upper[:-1]
+
+
+def _check_support(scene):
+    """Lugs must span a plan area, and the CG must lie over it (at level attitude)."""
+    plan = scene.lug_points()[:, :2]
+    diameter = scene.plan_diameter
+    hull = _convex_hull([tuple(p) for p in plan])
+    area = 0.0
+    for k, i in enumerate(hull):
+        j = hull[(k + 1) % len(hull)]
+        area += plan[i, 0] * plan[j, 1] - plan[j, 0] * plan[i, 1]
+    area *= 0.5
+    if diameter == 0.0 or len(hull) < 3 or area < _COLLINEAR_AREA * diameter**2:
+        raise InvalidScene(
+            f"lugs {', '.join(scene.lug_names)}: plan positions (x, y) are collinear, "
+            "so the statics are singular: expected lugs spanning an area in plan"
+        )
+    cx, cy = scene.body.cog[:2]
+    names = scene.lug_names
+    for k, i in enumerate(hull):
+        j = hull[(k + 1) % len(hull)]
+        edge = plan[j] - plan[i]
+        # signed distance of the CG from the edge, > 0 inside (hull is counter-clockwise)
+        dist = (edge[0] * (cy - plan[i, 1]) - edge[1] * (cx - plan[i, 0])) / np.hypot(*edge)
+        if dist < -1e-9 * diameter:
+            on_edge = {names[i], names[j]}
+            slack = [name for name in names if name not in on_edge]
+            raise InvalidScene(
+                f"body.cog = ({cx:g}, {cy:g}) m in plan lies {-dist:.3g} m outside the lugs' "
+                f"support polygon beyond edge {names[i]}-{names[j]}: rope(s) "
+                f"{', '.join(slack)} would go slack; expected the CG over the lugs"
+            )

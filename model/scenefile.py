@@ -1,0 +1,248 @@
+"""Read scene files (TOML, as fixed in CONTRACT.md) into :class:`~liftplan.model.scene.Scene`.
+
+The file's shape (tables, keys, types) is checked by pydantic: it reports unknown keys,
+missing keys and wrong types with their location, which a hand-made parser would have to
+re-implement. Values (finite, positive, names, statics) are checked by the scene's own
+dataclasses, so a scene built in Python obeys the same rules. Every failure is one
+:class:`~liftplan.model.errors.InvalidScene` line naming the key, the value and what is
+expected; nothing is returned half-read.
+"""
+
+from __future__ import annotations
+
+import tomllib
+import types
+import typing
+from pathlib import Path
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Strict, ValidationError
+
+from .errors import InvalidScene
+from .frames import choi_to_zup
+from .scene import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene
+
+# Strict scalars: a TOML string is never silently read as a number (ints still pass as
+# floats); arrays may still be read as tuples.
+Num = Annotated[float, Strict()]
+Text = Annotated[str, Strict()]
+Point = tuple[Num, Num, Num]
+
+
+class _Table(BaseModel):
+    # Non-finite numbers pass here and are refused by the dataclasses, which say which
+    # key held them.
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class _Body(_Table):
+    weight: Num
+    cog: Point
+
+
+class _Lug(_Table):
+    name: Text
+    at: Point
+
+
+class _Ropes(_Table):
+    EA: Num | None = None
+
+
+class _Crane(_Table):
+    lug: Text
+    boom_height: Num | None = None
+    rope_length: Num | None = None
+    swl: Num | None = None
+    EA: Num | None = None
+
+
+class _Attitude(_Table):
+    heel: Num = 0.0
+    trim: Num = 0.0
+    yaw: Num = 0.0
+    lift_height: Num = 0.0
+
+
+class _Redundant(_Table):
+    lug: Text
+    tension: Num
+
+
+class _Analysis(_Table):
+    model: Literal["elastic", "paper-elastic", "rigid"] | None = None
+    redundant: _Redundant | list[_Redundant] | None = None
+
+
+class _SceneFile(_Table):
+    name: Text = ""
+    frame: Literal["z-up", "choi"] = "z-up"
+    body: _Body
+    lugs: list[_Lug]
+    ropes: _Ropes = _Ropes()
+    cranes: list[_Crane]
+    attitude: _Attitude = _Attitude()
+    analysis: _Analysis = _Analysis()
+
+
+# Tables of CONTRACT.md that belong to capabilities this version does not model yet.
+_NOT_YET = {
+    "water": "hydrostatics",
+    "hull": "hydrostatics",
+    "ground": "ground contact",
+    "candidates": "lug planning (liftplan plan)",
+    "plan": "lug planning (liftplan plan)",
+    "crane": "lug planning (liftplan plan)",
+}
+
+
+def load_scene(path):
+    """Read and validate a scene file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        TOML scene file.
+
+    Returns
+    -------
+    Scene
+        In the ``z-up`` frame, whatever frame the file was written in.
+
+    Raises
+    ------
+    InvalidScene
+        One line naming the file, the key, the value and what is expected.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InvalidScene(f"{path}: no such scene file") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise InvalidScene(f"{path}: cannot read the scene file ({err})") from None
+    try:
+        return loads_scene(text)
+    except InvalidScene as err:
+        raise InvalidScene(f"{path}: {err}") from None
+
+
+def loads_scene(text):
+    """Validate a scene given as TOML text; see :func:`load_scene`."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise InvalidScene(f"TOML syntax error: {err}") from None
+    for key, what in _NOT_YET.items():
+        if key in raw:
+            raise InvalidScene(
+                f"[{key}]: {what} is not modelled by this version of liftplan; "
+                "expected a scene of a body on vertical crane ropes"
+            )
+    try:
+        data = _SceneFile.model_validate(raw)
+    except ValidationError as err:
+        raise InvalidScene(_one_line(err)) from None
+    return _to_scene(data)
+
+
+def _to_scene(data):
+    to_zup = choi_to_zup if data.frame == "choi" else tuple
+    lugs = [Lug(name=lug.name, at=to_zup(lug.at)) for lug in data.lugs]
+    cranes = [
+        Crane(
+            lug=c.lug,
+            EA=c.EA if c.EA is not None else data.ropes.EA,
+            boom_height=c.boom_height,
+            rope_length=c.rope_length,
+            swl=c.swl,
+        )
+        for c in data.cranes
+    ]
+    red = data.analysis.redundant
+    red = [] if red is None else [red] if isinstance(red, _Redundant) else red
+    return Scene(
+        name=data.name,
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog)),
+        lugs=tuple(lugs),
+        cranes=tuple(cranes),
+        attitude=Attitude(**data.attitude.model_dump()),
+        analysis=Analysis(
+            model=data.analysis.model,
+            redundant=tuple(Redundant(lug=r.lug, tension=r.tension) for r in red),
+        ),
+    )
+
+
+def _one_line(err):
+    """The first pydantic error as 'key = value: what is expected'."""
+    first = err.errors()[0]
+    loc = first["loc"]
+    path = _path(loc)
+    kind = first["type"]
+    if kind == "missing":
+        return f"{path}: missing, expected {_expected(loc)}"
+    if kind == "extra_forbidden":
+        allowed = _allowed_keys(loc[:-1])
+        hint = f"expected one of {', '.join(allowed)}" if allowed else "expected no such key"
+        return f"{path} = {first['input']!r}: unknown key, {hint}"
+    message = first["msg"][0].lower() + first["msg"][1:]
+    return f"{path} = {first['input']!r}: {message}"
+
+
+def _path(loc):
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        elif part in {"_Redundant", "list[_Redundant]"} or part.startswith(("tuple[", "list[")):
+            continue  # union branch labels that pydantic puts in the location
+        else:
+            out += f".{part}" if out else part
+    return out or "scene"
+
+
+def _resolve(loc):
+    """The schema type at a location, or None."""
+    node = _SceneFile
+    for part in loc:
+        node = _strip(node)
+        if isinstance(part, int):
+            args = typing.get_args(node)
+            node = args[0] if args else None
+        elif isinstance(node, type) and issubclass(node, BaseModel) and part in node.model_fields:
+            node = node.model_fields[part].annotation
+        else:
+            return None
+    return _strip(node)
+
+
+def _strip(node):
+    """Drop None from an Optional and pick the table branch of a union."""
+    if typing.get_origin(node) in (Union, types.UnionType):
+        args = [a for a in typing.get_args(node) if a is not type(None)]
+        tables = [a for a in args if isinstance(a, type) and issubclass(a, BaseModel)]
+        return tables[0] if tables else args[0]
+    return node
+
+
+def _allowed_keys(loc):
+    node = _resolve(loc)
+    if isinstance(node, type) and issubclass(node, BaseModel):
+        return list(node.model_fields)
+    return []
+
+
+def _expected(loc):
+    node = _resolve(loc)
+    if node in (float, Num):
+        return "a number"
+    if node in (str, Text):
+        return "a string"
+    if node == Point:
+        return "[x, y, z] in m"
+    if isinstance(node, type) and issubclass(node, BaseModel):
+        return f"a table with keys {', '.join(node.model_fields)}"
+    if typing.get_origin(node) is list:
+        return "an array of tables"
+    return "a value"

@@ -1,0 +1,317 @@
+"""Solvers of the three rope models, all generated from :mod:`liftplan.model.statics`.
+
+* ``rigid`` (Choi et al. 2000): attitude given, n - 3 tensions given by the operators; the
+  other three follow from the statics. Linear: solved exactly.
+* ``paper-elastic`` (Choi & Shin 2003): attitude given; elongations affine in the lugs'
+  plan coordinates close the statics. Linear: solved exactly.
+* ``elastic`` (forward): boom heights and unstretched lengths given; pose and tensions
+  found by casadi's Newton root-finder, with IPOPT on the potential energy as fallback.
+
+A result is returned only when its equilibrium residual is below tolerance; otherwise a
+typed error says why.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import casadi as ca
+import numpy as np
+
+from .errors import EquilibriumNotFound, InvalidScene
+from .results import Equilibrium, Pose, SolverInfo
+from .statics import rope_model
+
+# Equilibrium accepted when the residual is below this fraction of W (force, and moment
+# over the lugs' plan diameter): well above double-precision round-off (~1e-15 W) and well
+# below any physical meaning (1e-9 of 1000 t is 1 g).
+RESIDUAL_TOL = 1e-9
+
+
+def pick_model(scene):
+    """The model a scene asks for, or the least one its data supports.
+
+    Returns ``scene.analysis.model`` if set; otherwise ``"elastic"`` when every crane has a
+    boom height, rope length and EA, ``"rigid"`` when redundant tensions are given (or n = 3),
+    else ``"paper-elastic"``.
+    """
+    if scene.analysis.model:
+        return scene.analysis.model
+    cranes = scene.cranes
+    if all(c.boom_height is not None and c.rope_length is not None and c.EA for c in cranes):
+        return "elastic"
+    if scene.analysis.redundant or scene.n == 3:
+        return "rigid"
+    return "paper-elastic"
+
+
+def solve(scene, model=None):
+    """Solve a scene.
+
+    Parameters
+    ----------
+    scene : Scene
+    model : str, optional
+        Overrides :func:`pick_model`.
+
+    Returns
+    -------
+    Equilibrium
+
+    Raises
+    ------
+    InvalidScene
+        The scene lacks data the model needs.
+    EquilibriumNotFound
+        No equilibrium with all ropes in tension (given-attitude models), or the elastic
+        solve did not converge.
+    """
+    model = model or pick_model(scene)
+    if model == "rigid":
+        return solve_rigid(scene)
+    if model == "paper-elastic":
+        return solve_paper_elastic(scene)
+    if model == "elastic":
+        return solve_elastic(scene)
+    raise InvalidScene(f"model = {model!r}: expected one of elastic, paper-elastic, rigid")
+
+
+# -- parameters -----------------------------------------------------------------------------
+def _require(scene, field, model):
+    values = []
+    for crane in scene.cranes:
+        value = getattr(crane, field)
+        if value is None:
+            raise InvalidScene(
+                f"cranes[{crane.lug}].{field}: missing, the {model} model needs it for every crane"
+            )
+        values.append(value)
+    return values
+
+
+def pack_params(scene, model):
+    """The flat parameter vector of :class:`~liftplan.model.statics.Layout` for a scene."""
+    n = scene.n
+    ones = [1.0] * n
+    boom = _require(scene, "boom_height", model) if model != "rigid" else ones
+    stiffness = _require(scene, "EA", model) if model != "rigid" else ones
+    length = _require(scene, "rope_length", model) if model == "elastic" else ones
+    return np.concatenate([
+        [math.radians(scene.attitude.yaw)],
+        scene.lug_points().ravel(),
+        scene.body.cog,
+        [scene.body.weight],
+        boom,
+        length,
+        stiffness,
+        [scene.plan_diameter],
+    ])
+
+
+def _given_x(scene):
+    att = scene.attitude
+    return np.array([att.lift_height, math.radians(att.heel), math.radians(att.trim)])
+
+
+# -- result assembly ------------------------------------------------------------------------
+def _worst(scene, residual):
+    """Largest statics residual  [t]: force, and moments over the lugs' plan diameter."""
+    r0, r1, r2 = np.abs(np.asarray(residual, dtype=float).ravel())
+    scale = scene.plan_diameter
+    worst = max(r0, r1 / scale, r2 / scale)
+    return float(worst) if math.isfinite(worst) else math.inf
+
+
+def _small(scene, residual):
+    return _worst(scene, residual) <= RESIDUAL_TOL * scene.body.weight
+
+
+def _equilibrium(scene, model, x, tensions, residual, method, seconds, slack=()):
+    """Assemble the result, refusing it unless the statics residual (A T - b) is small."""
+    worst = _worst(scene, residual)
+    if not worst <= RESIDUAL_TOL * scene.body.weight:
+        raise EquilibriumNotFound(
+            f"{model}: equilibrium residual {worst:.3g} t exceeds "
+            f"{RESIDUAL_TOL:g} W = {RESIDUAL_TOL * scene.body.weight:.3g} t: no equilibrium found"
+        )
+    return Equilibrium(
+        model=model,
+        pose=Pose(
+            heel=math.degrees(x[1]),
+            trim=math.degrees(x[2]),
+            yaw=scene.attitude.yaw,
+            lift_height=float(x[0]),
+        ),
+        tensions=dict(zip(scene.lug_names, np.asarray(tensions, dtype=float).ravel().tolist())),
+        weight=scene.body.weight,
+        swl={c.lug: c.swl for c in scene.cranes},
+        slack=tuple(slack),
+        residual=worst,
+        solver=SolverInfo(method=method, converged=True, iterations=None, seconds=seconds),
+    )
+
+
+def _check_taut(scene, model, tensions):
+    negative = [(name, t) for name, t in zip(scene.lug_names, tensions) if t < 0.0]
+    if negative:
+        worst = ", ".join(f"{name} = {t:.2f} t" for name, t in negative)
+        att = scene.attitude
+        raise EquilibriumNotFound(
+            f"{model}: at heel {att.heel:g} deg, trim {att.trim:g} deg the statics need "
+            f"compression in {worst}: a rope would go slack, expected an attitude where "
+            "every rope pulls"
+        )
+
+
+# -- given-attitude models (linear, exact) ------------------------------------------------
+def solve_rigid(scene):
+    """Choi et al. (2000): tensions from the statics with n - 3 tensions given.
+
+    Parameters
+    ----------
+    scene : Scene
+        ``scene.analysis.redundant`` names n - 3 lugs and their tensions [t].
+
+    Returns
+    -------
+    Equilibrium
+    """
+    n, red = scene.n, scene.analysis.redundant
+    if len(red) != n - 3:
+        raise InvalidScene(
+            f"analysis.redundant: {len(red)} given, the rigid model with {n} ropes "
+            f"expected n - 3 = {n - 3} held tension(s)"
+        )
+    start = time.perf_counter()
+    x = _given_x(scene)
+    a_mat, b_vec, _, _ = rope_model(n).statics(x, pack_params(scene, "rigid"))
+    names = scene.lug_names
+    rows = [np.asarray(a_mat)] + [np.eye(n)[[names.index(r.lug)]] for r in red]
+    matrix = np.vstack(rows)
+    rhs = np.concatenate([np.asarray(b_vec).ravel(), [r.tension for r in red]])
+    if np.linalg.cond(matrix) > 1e12:
+        held = ", ".join(r.lug for r in red)
+        raise InvalidScene(
+            f"analysis.redundant = {held}: with these held, the other ropes' lugs are "
+            "collinear in plan and the statics are singular; expected other held lugs"
+        )
+    tensions = np.linalg.solve(matrix, rhs)
+    seconds = time.perf_counter() - start
+    _check_taut(scene, "rigid", tensions)
+    residual = np.asarray(a_mat) @ tensions - np.asarray(b_vec).ravel()
+    return _equilibrium(scene, "rigid", x, tensions, residual, "linear", seconds)
+
+
+def solve_paper_elastic(scene):
+    """Choi & Shin (2003): statics closed by coplanar lug elongations, attitude given.
+
+    Returns
+    -------
+    Equilibrium
+    """
+    start = time.perf_counter()
+    x = _given_x(scene)
+    p = pack_params(scene, "paper-elastic")
+    tensions, lengths, residual = rope_model(scene.n).paper_elastic.call([ca.DM(x), ca.DM(p)])
+    lengths = np.asarray(lengths).ravel()
+    seconds = time.perf_counter() - start
+    for name, length in zip(scene.lug_names, lengths):
+        if not length > 0.0:
+            raise InvalidScene(
+                f"cranes[{name}].boom_height: the boom tip is {-length:.3g} m below the lug "
+                "at this attitude and lift height; expected it above the lug"
+            )
+    tensions = np.asarray(tensions).ravel()
+    _check_taut(scene, "paper-elastic", tensions)
+    return _equilibrium(scene, "paper-elastic", x, tensions, residual, "linear", seconds)
+
+
+def paper_elastic_tensions(scene, heel, trim, threads=1):
+    """Batched ``paper-elastic`` tensions at many attitudes (one casadi ``map`` call).
+
+    Parameters
+    ----------
+    scene : Scene
+    heel, trim : array_like, shape (N,)  [deg]
+    threads : int
+        Threads for casadi's ``map``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, n)  [t]
+        Tensions in scene lug order. No slack or validity check: for screening.
+    """
+    heel = np.atleast_1d(np.asarray(heel, dtype=float))
+    trim = np.broadcast_to(np.asarray(trim, dtype=float), heel.shape)
+    count = heel.size
+    x = np.vstack([
+        np.full(count, scene.attitude.lift_height), np.radians(heel), np.radians(trim)
+    ])
+    mapped = rope_model(scene.n).paper_elastic_map(count, threads)
+    tensions = mapped.call([ca.DM(x), ca.DM(pack_params(scene, "paper-elastic"))])[0]
+    return np.asarray(tensions).T
+
+
+# -- forward elastic model (nonlinear) ------------------------------------------------------
+def solve_elastic(scene, method="auto"):
+    """Pose and tensions from boom heights, unstretched lengths and EA.
+
+    Parameters
+    ----------
+    scene : Scene
+    method : {"auto", "newton", "energy"}
+        ``"auto"``: Newton, and IPOPT on the potential energy if Newton fails.
+
+    Returns
+    -------
+    Equilibrium
+    """
+    if method not in ("auto", "newton", "energy"):
+        raise InvalidScene(f"method = {method!r}: expected auto, newton or energy")
+    model = rope_model(scene.n)
+    p = pack_params(scene, "elastic")
+    used = "newton"
+    start = time.perf_counter()
+    if method != "energy":
+        x, tensions, stretch, residual = model.elastic_solver(p)
+    if method == "energy" or not _small(scene, residual):
+        if method == "newton":
+            raise EquilibriumNotFound(
+                f"elastic: Newton did not converge (residual {_worst(scene, residual):.3g} t); "
+                "try method='energy'"
+            )
+        start = time.perf_counter()
+        x, tensions, stretch, residual = _energy_solve(model, p)
+        used = "energy"
+    seconds = time.perf_counter() - start
+    _check_pose(x)
+    slack = tuple(name for name, s in zip(scene.lug_names, stretch) if s <= 0.0)
+    if scene.n - len(slack) < 3:
+        raise EquilibriumNotFound(
+            f"elastic: only {scene.n - len(slack)} rope(s) taut ({', '.join(slack)} slack): "
+            "expected three or more to hold the body"
+        )
+    return _equilibrium(scene, "elastic", x, tensions, residual, used, seconds, slack=slack)
+
+
+def _energy_solve(model, p):
+    solver = model.energy_solver
+    p_dm = ca.DM(p)
+    result = solver(x0=model.elastic_start(p_dm), p=p_dm)
+    stats = solver.stats()
+    if not stats["success"]:
+        raise EquilibriumNotFound(
+            f"elastic: energy minimisation failed ({stats['return_status']}); check that the "
+            "boom heights and rope lengths can hold the body with three or more taut ropes"
+        )
+    return [np.asarray(v).ravel() for v in (result["x"], *model.elastic_tensions(result["x"], p_dm))]
+
+
+def _check_pose(x):
+    heel, trim = math.degrees(x[1]), math.degrees(x[2])
+    if not (abs(heel) < 90.0 and abs(trim) < 90.0):  # NaN fails too
+        raise EquilibriumNotFound(
+            f"elastic: the solve ended at heel {heel:.1f} deg, trim {trim:.1f} deg, beyond "
+            "90 deg: the boom heights cannot hold the body the right way up"
+        )

@@ -1,0 +1,237 @@
+"""The one casadi model: attitude kinematics, equilibrium of vertical ropes, rope elasticity.
+
+Everything numeric in :mod:`liftplan.model.solve` (linear systems, residuals, Jacobians,
+the Newton root-finder, the energy NLP, batched maps) is generated from the expressions
+built here, once per rope count n, and cached.
+
+Physics (``z-up`` frame, see :mod:`liftplan.model.frames`)
+---------------------------------------------------------
+Body pose: attitude R(heel, trim, yaw) and height ``a`` of the body-frame origin, which
+sits at world plan position (0, 0). A body point p is at world r = R p + (0, 0, a).
+
+Ropes hang vertically (each hook is above its lug), so the weight W (down, at the CG) and
+the tensions T_i (up, at the lugs) give three equations; the rest hold identically::
+
+    sum T_i            = W
+    sum T_i x_i        = W x_c        (x, y: world plan coordinates of lugs and CG)
+    sum T_i y_i        = W y_c
+
+Rope i, boom tip at height H_i, unstretched length l0_i, stiffness EA_i, lug at world
+height h_i: stretch s_i = H_i - h_i - l0_i and T_i = EA_i max(0, s_i) / l0_i (a slack
+rope carries nothing). The same forces derive from the potential
+V = W z_c + sum EA_i max(0, s_i)^2 / (2 l0_i), whose stationary points are the equilibria.
+
+Choi & Shin (2003) close the statics instead with elongations e_i = T_i l_i / EA_i that are
+affine in the lugs' plan coordinates (the lug points stay coplanar: no twist preload),
+with l_i = H_i - a - z'_i, z'_i the vertical coordinate of R p_i. Substituting
+T_i = k_i (c0 + c1 x_i + c2 y_i), k_i = EA_i / l_i, into the statics gives the 3x3 system
+(sum k_i phi_i phi_i^T) c = W phi_c with phi = (1, x, y): solved exactly here.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+from functools import cached_property, lru_cache
+
+import casadi as ca
+import numpy as np
+
+from .frames import rotation
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Offsets of each quantity in the flat parameter vector of an n-rope model.
+
+    The vector is ``[yaw, P (3n, column-major: x1 y1 z1 x2 ...), cog (3), W, H (n), l0 (n),
+    EA (n), L]``: yaw in rad, lengths in m, forces in t. ``L`` is a length scale [m] used
+    only to scale the moment residuals (the lugs' plan diameter).
+    """
+
+    n: int
+
+    @property
+    def size(self):
+        return 6 * self.n + 6
+
+    def split(self, p):
+        n = self.n
+        k = 0
+
+        def take(m):
+            nonlocal k
+            part = p[k : k + m]
+            k += m
+            return part
+
+        yaw = take(1)
+        points = ca.reshape(take(3 * n), 3, n)
+        cog = take(3)
+        weight = take(1)
+        boom = take(n)
+        length = take(n)
+        stiffness = take(n)
+        scale = take(1)
+        return yaw, points, cog, weight, boom, length, stiffness, scale
+
+
+def pose_points(points, cog, heel, trim, yaw, lift):
+    """World positions of the lugs (3 x n) and of the CG (3) at a pose."""
+    rot = rotation(heel, trim, yaw)
+    up = ca.vertcat(0, 0, lift)
+    lugs = ca.mtimes(rot, points) + ca.repmat(up, 1, points.shape[1])
+    return lugs, ca.mtimes(rot, cog) + up
+
+
+def statics_system(lugs, cog, weight):
+    """Equilibrium of vertical forces as A T = b.
+
+    Returns
+    -------
+    A : 3 x n  rows (1, x_i, y_i) of the lugs' world plan coordinates
+    b : 3      W (1, x_c, y_c)
+    """
+    n = lugs.shape[1]
+    a_mat = ca.vertcat(ca.DM.ones(1, n), lugs[0, :], lugs[1, :])
+    b_vec = weight * ca.vertcat(1, cog[0], cog[1])
+    return a_mat, b_vec
+
+
+def rope_tensions(boom, lug_height, length, stiffness):
+    """Tension of vertical elastic ropes; slack ropes carry nothing  [t]."""
+    stretch = boom - lug_height - length
+    return stiffness * ca.fmax(0, stretch) / length, stretch
+
+
+class FastCall:
+    """Call a casadi Function on numpy vectors through its zero-copy buffer interface.
+
+    ``Function.call`` converts every float between Python and casadi (about 0.4 us each);
+    the buffer binds numpy arrays once, so a 4-rope elastic solve costs about 14 us instead
+    of 35. One buffer per thread, because the bound arrays are shared state.
+    """
+
+    def __init__(self, function):
+        self.function = function
+        self._local = threading.local()
+
+    def _state(self):
+        state = getattr(self._local, "state", None)
+        if state is None:
+            fn = self.function
+            buffer, evaluate = fn.buffer()
+            inputs = [np.zeros(fn.nnz_in(i)) for i in range(fn.n_in())]
+            outputs = [np.zeros(fn.nnz_out(i)) for i in range(fn.n_out())]
+            for i, array in enumerate(inputs):
+                buffer.set_arg(i, memoryview(array))
+            for i, array in enumerate(outputs):
+                buffer.set_res(i, memoryview(array))
+            state = self._local.state = (buffer, evaluate, inputs, outputs)
+        return state
+
+    def __call__(self, *args):
+        """Evaluate; inputs are flat float arrays (column-major), outputs fresh copies."""
+        _, evaluate, inputs, outputs = self._state()
+        for target, value in zip(inputs, args, strict=True):
+            target[:] = value
+        evaluate()
+        return [out.copy() for out in outputs]
+
+
+class RopeModel:
+    """Symbolic model and generated functions for n vertical ropes. Use :func:`rope_model`."""
+
+    def __init__(self, n):
+        self.n = n
+        self.layout = Layout(n)
+        p = ca.SX.sym("p", self.layout.size)
+        x = ca.SX.sym("x", 3)  # lift a [m], heel [rad], trim [rad]
+        yaw, points, cog, weight, boom, length, stiffness, scale = self.layout.split(p)
+        lift, heel, trim = x[0], x[1], x[2]
+        lugs, cog_w = pose_points(points, cog, heel, trim, yaw, lift)
+        a_mat, b_vec = statics_system(lugs, cog_w, weight)
+        row_scale = ca.vertcat(weight, weight * scale, weight * scale)
+
+        # -- given attitude: statics matrix, and the paper's elastic closure ---------------
+        self.statics = ca.Function(
+            "statics", [x, p], [a_mat, b_vec, lugs, cog_w], ["x", "p"], ["A", "b", "lugs", "cog"]
+        )
+        rope_len = boom - lugs[2, :].T  # l_i = H_i - a - z'_i
+        k = stiffness / rope_len
+        phi = a_mat.T  # n x 3
+        normal = ca.mtimes(phi.T, ca.diag(k) @ phi)
+        coeff = ca.solve(normal, b_vec)
+        t_paper = k * ca.mtimes(phi, coeff)
+        self.paper_elastic = ca.Function(
+            "paper_elastic", [x, p], [t_paper, rope_len, ca.mtimes(a_mat, t_paper) - b_vec],
+            ["x", "p"], ["T", "l", "residual"],
+        )
+
+        # -- forward elastic model -----------------------------------------------------------
+        tension, stretch = rope_tensions(boom, lugs[2, :].T, length, stiffness)
+        residual = (ca.mtimes(a_mat, tension) - b_vec) / row_scale
+        self.elastic_tensions = ca.Function(
+            "elastic_tensions", [x, p], [tension, stretch, residual * row_scale],
+            ["x", "p"], ["T", "stretch", "residual"],
+        )
+        # Start: one Newton step on the all-taut residual from level, which is exact for the
+        # linearised kinematics (the residual is affine in the lift a).
+        taut = ca.mtimes(a_mat, stiffness * stretch / length) - b_vec
+        x_ref = ca.vertcat(0, 0, 0)
+        jac_taut = ca.substitute(ca.jacobian(taut, x), x, x_ref)
+        x_start = x_ref - ca.solve(jac_taut, ca.substitute(taut, x, x_ref))
+        self.elastic_start = ca.Function("elastic_start", [p], [x_start])
+        self.elastic_residual = ca.Function("elastic_residual", [x, p], [residual])
+
+        # Potential energy; its stationary points are the equilibria (for |heel| < 90 deg).
+        energy = weight * cog_w[2] + ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
+        self._energy = (x, p, energy / (weight * scale))
+        self._x, self._p, self._residual = x, p, residual
+
+    @cached_property
+    def elastic_solver(self):
+        """Newton root-finder on the scaled residual, started from :attr:`elastic_start`.
+
+        One MX function p -> (x, T, stretch, residual), called as one :class:`FastCall`.
+        Newton's own failure flag is off (with it on, casadi prints the inputs to stdout and
+        raises); the caller judges convergence by the returned residual instead, which also
+        catches a "converged" point that is not an equilibrium.
+        """
+        newton = ca.rootfinder(
+            "elastic_newton",
+            "newton",
+            {"x": self._x, "p": self._p, "g": self._residual},
+            {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False},
+        )
+        p = ca.MX.sym("p", self.layout.size)
+        x = newton(self.elastic_start(p), p)
+        tension, stretch, residual = self.elastic_tensions(x, p)
+        return FastCall(ca.Function(
+            "elastic_solve", [p], [x, tension, stretch, residual],
+            ["p"], ["x", "T", "stretch", "residual"],
+        ))
+
+    @cached_property
+    def energy_solver(self):
+        """IPOPT on the potential energy: the slower, more forgiving fallback."""
+        x, p, energy = self._energy
+        return ca.nlpsol(
+            "elastic_energy",
+            "ipopt",
+            {"x": x, "p": p, "f": energy},
+            {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
+             "ipopt.sb": "yes", "ipopt.max_iter": 500},
+        )
+
+    def paper_elastic_map(self, count, threads=1):
+        """``paper_elastic`` mapped over ``count`` attitudes (columns of x); p is broadcast."""
+        if threads > 1:
+            return self.paper_elastic.map(count, "thread", threads)
+        return self.paper_elastic.map(count)
+
+
+@lru_cache(maxsize=None)
+def rope_model(n):
+    """The cached :class:`RopeModel` for ``n`` ropes."""
+    return RopeModel(n)

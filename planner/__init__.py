@@ -1,0 +1,1 @@
+"""liftplan's optimisation, reports and command line, around :mod:`liftplan.model`."""
