@@ -274,15 +274,16 @@ def solve_elastic(scene, method="auto"):
     used = "newton"
     start = time.perf_counter()
     if method != "energy":
-        x, tensions, stretch, residual = model.elastic_solver(p)
-    if method == "energy" or not _small(scene, residual):
+        x, tensions, stretch, residual, minors = model.elastic_solver(p)
+    if method == "energy" or not (_acceptable(scene, x, residual) and min(minors) > 0.0):
         if method == "newton":
             raise EquilibriumNotFound(
-                f"elastic: Newton did not converge (residual {_worst(scene, residual):.3g} t); "
-                "try method='energy'"
+                f"elastic: Newton did not reach a stable upright equilibrium (residual "
+                f"{_worst(scene, residual):.3g} t, heel {math.degrees(x[1]):.1f} deg, trim "
+                f"{math.degrees(x[2]):.1f} deg); try method='energy'"
             )
         start = time.perf_counter()
-        x, tensions, stretch, residual = _energy_solve(model, p)
+        x, tensions, stretch, residual = _energy_solve(scene, model, p)
         used = "energy"
     seconds = time.perf_counter() - start
     _check_pose(x)
@@ -295,17 +296,31 @@ def solve_elastic(scene, method="auto"):
     return _equilibrium(scene, "elastic", x, tensions, residual, used, seconds, slack=slack)
 
 
-def _energy_solve(model, p):
+def _acceptable(scene, x, residual):
+    """An equilibrium with the body the right way up (Newton's also needs to be stable)."""
+    return _small(scene, residual) and abs(x[1]) < math.pi / 2 and abs(x[2]) < math.pi / 2
+
+
+def _energy_solve(scene, model, p):
+    """IPOPT on the potential energy from the linear start, then Newton to polish.
+
+    IPOPT's stopping test is on the energy gradient, which can stop short of the residual
+    tolerance (or report a tiny search direction at the minimum itself); Newton started
+    at its point converges quadratically there. The polished point is judged as any other.
+    """
     solver = model.energy_solver
     p_dm = ca.DM(p)
     result = solver(x0=model.elastic_start(p_dm), p=p_dm)
-    stats = solver.stats()
-    if not stats["success"]:
+    x_min = np.asarray(result["x"]).ravel()
+    x, tensions, stretch, residual, _ = model.elastic_polish(x_min, p)
+    if not _acceptable(scene, x, residual):
+        status = solver.stats()["return_status"]
         raise EquilibriumNotFound(
-            f"elastic: energy minimisation failed ({stats['return_status']}); check that the "
-            "boom heights and rope lengths can hold the body with three or more taut ropes"
+            f"elastic: no upright equilibrium found (energy minimisation: {status}, residual "
+            f"{_worst(scene, residual):.3g} t after Newton); check that the boom heights and "
+            "rope lengths can hold the body with three or more taut ropes"
         )
-    return [np.asarray(v).ravel() for v in (result["x"], *model.elastic_tensions(result["x"], p_dm))]
+    return x, tensions, stretch, residual
 
 
 def _check_pose(x):

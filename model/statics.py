@@ -184,33 +184,50 @@ class RopeModel:
         self.elastic_start = ca.Function("elastic_start", [p], [x_start])
         self.elastic_residual = ca.Function("elastic_residual", [x, p], [residual])
 
-        # Potential energy; its stationary points are the equilibria (for |heel| < 90 deg).
+        # Potential energy; its stationary points are the equilibria (for |heel| < 90 deg),
+        # and the stable ones are its minima: leading principal minors of the Hessian > 0.
         energy = weight * cog_w[2] + ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
-        self._energy = (x, p, energy / (weight * scale))
-        self._x, self._p, self._residual = x, p, residual
+        energy = energy / (weight * scale)
+        hess = ca.hessian(energy, x)[0]
+        minors = ca.vertcat(hess[0, 0], ca.det(hess[:2, :2]), ca.det(hess))
+        self._energy = (x, p, energy)
+        self._x, self._p, self._residual, self._minors = x, p, residual, minors
 
     @cached_property
-    def elastic_solver(self):
-        """Newton root-finder on the scaled residual, started from :attr:`elastic_start`.
-
-        One MX function p -> (x, T, stretch, residual), called as one :class:`FastCall`.
-        Newton's own failure flag is off (with it on, casadi prints the inputs to stdout and
-        raises); the caller judges convergence by the returned residual instead, which also
-        catches a "converged" point that is not an equilibrium.
-        """
-        newton = ca.rootfinder(
+    def _newton(self):
+        # Newton's own failure flag is off (with it on, casadi prints the inputs to stdout
+        # and raises); callers judge convergence by the returned residual and pose instead,
+        # which also catches a "converged" point that is not an acceptable equilibrium.
+        return ca.rootfinder(
             "elastic_newton",
             "newton",
             {"x": self._x, "p": self._p, "g": self._residual},
-            {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False},
+            {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
+             "show_eval_warnings": False},
         )
+
+    def _newton_function(self, name, with_start):
         p = ca.MX.sym("p", self.layout.size)
-        x = newton(self.elastic_start(p), p)
+        x0 = ca.MX.sym("x0", 3)
+        x = self._newton(self.elastic_start(p) if with_start else x0, p)
         tension, stretch, residual = self.elastic_tensions(x, p)
-        return FastCall(ca.Function(
-            "elastic_solve", [p], [x, tension, stretch, residual],
-            ["p"], ["x", "T", "stretch", "residual"],
-        ))
+        minors = ca.Function("minors", [self._x, self._p], [self._minors])(x, p)
+        inputs = [p] if with_start else [x0, p]
+        return FastCall(ca.Function(name, inputs, [x, tension, stretch, residual, minors]))
+
+    @cached_property
+    def elastic_solver(self):
+        """p -> (x, T, stretch, residual, minors): Newton from :attr:`elastic_start`.
+
+        ``minors`` are the energy Hessian's leading principal minors: all > 0 at a stable
+        equilibrium. One fast call.
+        """
+        return self._newton_function("elastic_solve", with_start=True)
+
+    @cached_property
+    def elastic_polish(self):
+        """(x0, p) -> (x, T, stretch, residual, minors): Newton from a given start."""
+        return self._newton_function("elastic_polish", with_start=False)
 
     @cached_property
     def energy_solver(self):
@@ -221,7 +238,7 @@ class RopeModel:
             "ipopt",
             {"x": x, "p": p, "f": energy},
             {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
-             "ipopt.sb": "yes", "ipopt.max_iter": 500},
+             "ipopt.sb": "yes", "ipopt.max_iter": 500, "show_eval_warnings": False},
         )
 
     def paper_elastic_map(self, count, threads=1):

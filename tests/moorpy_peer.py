@@ -1,0 +1,47 @@
+"""The same scene in MoorPy (NREL's quasi-static mooring solver), the outside peer.
+
+Ropes become MoorPy lines of negligible weight (1e-9 t/m, so their catenary is straight);
+the body is a free body with heave, roll and pitch DOFs. Crane tips are put vertically above
+the lugs' positions at the pose given, so the ropes are vertical there, as our model
+assumes; MoorPy then finds the equilibrium on its own from a disturbed start. Units: t for
+forces (MoorPy's N), m, with g = 9.80665 so that MoorPy's weight m g equals W.
+"""
+
+import numpy as np
+
+from liftplan.model import rotation_matrix
+
+G = 9.80665
+ROPE_WEIGHT = 1e-9  # t/m
+
+
+def moorpy_solve(scene, heel, trim, lift, start_offset=(0.05, 0.002, -0.002)):
+    """Solve in MoorPy; returns (tensions at the lugs [t], lug world heights [m])."""
+    import moorpy as mp
+
+    rot = rotation_matrix(heel, trim)
+    lugs = scene.lug_points()
+    world = lugs @ rot.T + np.array([0.0, 0.0, lift])
+    system = mp.System(depth=1000.0, rho=0.0, g=G)
+    body = system.addBody(
+        0, np.array([0.0, 0.0, lift + start_offset[0], start_offset[1], start_offset[2], 0.0]),
+        m=scene.body.weight / G, v=0.0, rCG=np.array(scene.body.cog), DOFs=[2, 3, 4],
+    )
+    for i, crane in enumerate(scene.cranes):
+        tip = system.addPoint(1, np.array([world[i, 0], world[i, 1], crane.boom_height]))
+        lug = system.addPoint(1, lugs[i], body=1)
+        rope = dict(name=f"rope{i}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=crane.EA,
+                    material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
+        system.addLine(crane.rope_length, rope, pointA=lug.number, pointB=tip.number)
+    system.initialize()
+    if not system.solveEquilibrium(tol=1e-10, maxIter=500):
+        raise RuntimeError("MoorPy did not converge")
+    tensions = np.array([line.TA for line in system.lineList])
+    heights = np.array([body.r6[2] + (rotation_of(body.r6) @ p)[2] for p in lugs])
+    return tensions, heights
+
+
+def rotation_of(r6):
+    from moorpy.helpers import rotationMatrix
+
+    return rotationMatrix(*r6[3:])
