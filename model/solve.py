@@ -21,7 +21,7 @@ import numpy as np
 
 from .errors import EquilibriumNotFound, InvalidScene
 from .results import Equilibrium, Pose, SolverInfo
-from .statics import rope_model
+from .statics import BLOCK, rope_model
 
 # Equilibrium accepted when the residual is below this fraction of W (force, and moment
 # over the lugs' plan diameter): well above double-precision round-off (~1e-15 W) and well
@@ -227,30 +227,36 @@ def solve_paper_elastic(scene):
     return _equilibrium(scene, "paper-elastic", x, tensions, residual, "linear", seconds)
 
 
-def paper_elastic_tensions(scene, heel, trim, threads=1):
-    """Batched ``paper-elastic`` tensions at many attitudes (one casadi ``map`` call).
+def paper_elastic_tensions(scene, heel, trim):
+    """Batched ``paper-elastic`` tensions at many attitudes (casadi ``map`` over blocks).
 
     Parameters
     ----------
     scene : Scene
     heel, trim : array_like, shape (N,)  [deg]
-    threads : int
-        Threads for casadi's ``map``.
 
     Returns
     -------
     numpy.ndarray, shape (N, n)  [t]
         Tensions in scene lug order. No slack or validity check: for screening.
     """
-    heel = np.atleast_1d(np.asarray(heel, dtype=float))
-    trim = np.broadcast_to(np.asarray(trim, dtype=float), heel.shape)
+    heel = np.atleast_1d(np.asarray(heel, dtype=float)).ravel()
+    trim = np.broadcast_to(np.asarray(trim, dtype=float), heel.shape).ravel()
     count = heel.size
-    x = np.vstack([
-        np.full(count, scene.attitude.lift_height), np.radians(heel), np.radians(trim)
-    ])
-    mapped = rope_model(scene.n).paper_elastic_map(count, threads)
-    tensions = mapped.call([ca.DM(x), ca.DM(pack_params(scene, "paper-elastic"))])[0]
-    return np.asarray(tensions).T
+    block = rope_model(scene.n).paper_elastic_block
+    p = pack_params(scene, "paper-elastic")
+    # x columns (lift, heel, trim), column-major, padded to whole blocks
+    padded = -(-count // BLOCK) * BLOCK
+    x = np.zeros((padded, 3))
+    x[:, 0] = scene.attitude.lift_height
+    x[:count, 1] = np.radians(heel)
+    x[:count, 2] = np.radians(trim)
+    flat = x.ravel()
+    out = np.empty((padded, scene.n))
+    for start in range(0, padded, BLOCK):
+        tensions = block(flat[3 * start : 3 * (start + BLOCK)], p)[0]
+        out[start : start + BLOCK] = tensions.reshape(BLOCK, scene.n)
+    return out[:count]
 
 
 # -- forward elastic model (nonlinear) ------------------------------------------------------

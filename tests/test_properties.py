@@ -6,12 +6,20 @@ import math
 import numpy as np
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
-from numpy.testing import assert_allclose
-
 from liftplan.model import (
-    Analysis, Attitude, Body, Crane, EquilibriumNotFound, InvalidScene, Lug, Redundant, Scene,
-    rotation_matrix, solve,
+    Analysis,
+    Attitude,
+    Body,
+    Crane,
+    EquilibriumNotFound,
+    InvalidScene,
+    Lug,
+    Redundant,
+    Scene,
+    rotation_matrix,
+    solve,
 )
+from numpy.testing import assert_allclose
 
 
 def residual(scene, eq):

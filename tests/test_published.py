@@ -4,12 +4,10 @@ import math
 
 import numpy as np
 import pytest
-from numpy.testing import assert_allclose
-
-from liftplan.model import Redundant, paper_elastic_tensions, solve
-
 import table3
 from helpers import example
+from liftplan.model import Redundant, paper_elastic_tensions, solve
+from numpy.testing import assert_allclose
 
 
 def tensions(eq):
