@@ -1,0 +1,98 @@
+"""Benchmark of the core model, with MoorPy as the peer in the same run.
+
+Figures: one forward ``elastic`` 4-rope solve through the public API (median over varied
+scenes), the same job in MoorPy (prebuilt system, ``solveEquilibrium`` only, and with
+building), and batched ``paper-elastic`` attitude evaluations per second.
+
+Run:  python studies/bench_core.py      (writes studies/out/bench_core.json)
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from liftplan.model import load_scene, paper_elastic_tensions, solve
+from liftplan.model.statics import rope_model
+
+HERE = Path(__file__).parent
+sys.path.insert(0, str(HERE.parent / "tests"))
+from moorpy_peer import moorpy_solve  # noqa: E402
+
+
+def varied_scenes(count=50, seed=1):
+    """The symmetric block with random hoist differences (up to 0.15 m) and CG offsets."""
+    rng = np.random.default_rng(seed)
+    base = load_scene(HERE.parent / "examples" / "symmetric_block.toml")
+    scenes = []
+    for _ in range(count):
+        scene = base.with_body(cog=(rng.uniform(-2, 2), rng.uniform(-1, 1), 2.5))
+        for name in scene.lug_names:
+            scene = scene.with_crane(name, boom_height=40.0 + rng.uniform(-0.15, 0.15))
+        scenes.append(scene)
+    return scenes
+
+
+def time_elastic(scenes, repeats=200):
+    for scene in scenes:
+        solve(scene, "elastic")  # warm: builds the casadi functions once
+    samples = []
+    for _ in range(repeats):
+        for scene in scenes:
+            start = time.perf_counter()
+            solve(scene, "elastic")
+            samples.append(time.perf_counter() - start)
+    return statistics.median(samples)
+
+
+def time_moorpy(scenes):
+    build_and_solve = []
+    for scene in scenes[:20]:
+        eq = solve(scene, "elastic")
+        start = time.perf_counter()
+        moorpy_solve(scene, eq.pose.heel, eq.pose.trim, eq.pose.lift_height)
+        build_and_solve.append(time.perf_counter() - start)
+    return statistics.median(build_and_solve)
+
+
+def time_batch(count=2_000_000, seed=2):
+    rng = np.random.default_rng(seed)
+    scene = load_scene(HERE.parent / "examples" / "tanker_upright.toml")
+    heel, trim = rng.uniform(-10, 10, count), rng.uniform(-10, 10, count)
+    paper_elastic_tensions(scene, heel[:10], trim[:10])  # warm: JIT compile
+    runs = []
+    for _ in range(3):
+        start = time.perf_counter()
+        paper_elastic_tensions(scene, heel, trim)
+        runs.append(time.perf_counter() - start)
+    return count / min(runs), rope_model(scene.n).batch_backend
+
+
+def main():
+    scenes = varied_scenes()
+    elastic = time_elastic(scenes)
+    moorpy = time_moorpy(scenes)
+    rate, backend = time_batch()
+    result = {
+        "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
+        "python": platform.python_version(),
+        "elastic_solve_median_us": round(elastic * 1e6, 1),
+        "moorpy_same_job_median_ms": round(moorpy * 1e3, 2),
+        "moorpy_over_liftplan": round(moorpy / elastic, 1),
+        "paper_elastic_batch_per_s": round(rate),
+        "batch_backend": backend,
+    }
+    out = HERE / "out" / "bench_core.json"
+    out.parent.mkdir(exist_ok=True)
+    out.write_text(json.dumps(result, indent=1) + "\n")
+    print(json.dumps(result, indent=1))
+
+
+if __name__ == "__main__":
+    main()
