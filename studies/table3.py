@@ -20,6 +20,7 @@ import csv
 from pathlib import Path
 
 import numpy as np
+
 from liftplan.model import load_scene, paper_elastic_tensions
 
 HERE = Path(__file__).parent

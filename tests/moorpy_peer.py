@@ -8,6 +8,7 @@ forces (MoorPy's N), m, with g = 9.80665 so that MoorPy's weight m g equals W.
 """
 
 import numpy as np
+
 from liftplan.model import rotation_matrix
 
 G = 9.80665

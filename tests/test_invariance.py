@@ -7,8 +7,9 @@ import math
 
 import numpy as np
 import pytest
-from liftplan.model import Body, Lug, Redundant, loads_scene, rotation_matrix, solve, zup_to_choi
 from numpy.testing import assert_allclose
+
+from liftplan.model import Body, Lug, Redundant, loads_scene, rotation_matrix, solve, zup_to_choi
 
 
 @pytest.fixture

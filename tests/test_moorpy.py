@@ -5,9 +5,10 @@ Tolerance 1e-6 relative (1e-6 W for a slack rope's zero): MoorPy's lines weigh 1
 
 import numpy as np
 import pytest
-from liftplan.model import rotation_matrix, solve
 from moorpy_peer import moorpy_solve
 from numpy.testing import assert_allclose
+
+from liftplan.model import rotation_matrix, solve
 
 CASES = {  # name: (change to the symmetric block, lugs expected slack)
     "level, even": (lambda s: s, ()),

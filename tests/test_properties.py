@@ -6,6 +6,8 @@ import math
 import numpy as np
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from numpy.testing import assert_allclose
+
 from liftplan.model import (
     Analysis,
     Attitude,
@@ -19,7 +21,6 @@ from liftplan.model import (
     rotation_matrix,
     solve,
 )
-from numpy.testing import assert_allclose
 
 
 def residual(scene, eq):

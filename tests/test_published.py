@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 import table3
 from helpers import example
-from liftplan.model import Redundant, paper_elastic_tensions, solve
 from numpy.testing import assert_allclose
+
+from liftplan.model import Redundant, paper_elastic_tensions, solve
 
 
 def tensions(eq):

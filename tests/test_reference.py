@@ -6,8 +6,9 @@ import json
 from pathlib import Path
 
 import pytest
-from liftplan.model import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, solve
 from numpy.testing import assert_allclose
+
+from liftplan.model import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, solve
 
 CASES = json.loads((Path(__file__).parent / "reference" / "linear_reference.json").read_text())
 

@@ -6,6 +6,7 @@ import pytest
 import tomli_w
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
 from liftplan.model import InvalidScene, Scene, loads_scene
 
 VALID = {
