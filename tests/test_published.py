@@ -57,16 +57,16 @@ def test_table3_published_rows_sum_to_zero():
 
 
 def test_table3_published_splits_follow_the_statics():
-    """Each published step moves the starboard pair (T1 + T2) by about W 3.5/12 dtan and the
-    aft pair (T1 + T4) by about W 3.5/49.4 dtan: both angles move at once. 0.1 t covers the
-    rounding of two values (0.01 t) and the trigonometric terms that the digest's
-    linear forms drop; the split between the 5 deg steps differs by more than that."""
+    """Each published step moves the starboard pair (T1 + T2) by about W 3.5/12 tan 5 deg
+    and the aft pair (T1 + T4) by about W 3.5/49.4 tan 5 deg: both angles move at once.
+    Measured deviation from these linear forms: 0.99 t and 0.09 t (the transverse one grows
+    at the 10 deg rows, where tan is no longer linear); bounds 1.1 t and 0.1 t."""
     pub = table3.PUBLISHED
     dtan = math.tan(math.radians(5.0))
     transverse = pub[..., 0] + pub[..., 1]
     longitudinal = pub[..., 0] + pub[..., 3]
-    assert np.abs(transverse - (-904 * 3.5 / 12 * dtan)).max() < 1.5
-    assert np.abs(longitudinal - (-904 * 3.5 / 49.4 * dtan)).max() < 0.6
+    assert np.abs(transverse - (-904 * 3.5 / 12 * dtan)).max() < 1.1
+    assert np.abs(longitudinal - (-904 * 3.5 / 49.4 * dtan)).max() < 0.1
 
 
 def test_table3_model_rows_sum_to_zero_and_splits_are_exact(tanker):
