@@ -187,7 +187,6 @@ class RopeModel:
         jac_taut = ca.substitute(ca.jacobian(taut, x), x, x_ref)
         x_start = x_ref - ca.solve(jac_taut, ca.substitute(taut, x, x_ref))
         self.elastic_start = ca.Function("elastic_start", [p], [x_start])
-        self.elastic_residual = ca.Function("elastic_residual", [x, p], [residual])
 
         # Potential energy; its stationary points are the equilibria (for |heel| < 90 deg),
         # and the stable ones are its minima: leading principal minors of the Hessian > 0.
