@@ -213,8 +213,7 @@ def solve_paper_elastic(scene):
     start = time.perf_counter()
     x = _given_x(scene)
     p = pack_params(scene, "paper-elastic")
-    tensions, lengths, residual = rope_model(scene.n).paper_elastic.call([ca.DM(x), ca.DM(p)])
-    lengths = np.asarray(lengths).ravel()
+    tensions, lengths, residual = rope_model(scene.n).paper_elastic_fast(x, p)
     seconds = time.perf_counter() - start
     for name, length in zip(scene.lug_names, lengths):
         if not length > 0.0:
@@ -222,7 +221,6 @@ def solve_paper_elastic(scene):
                 f"cranes[{name}].boom_height: the boom tip is {-length:.3g} m below the lug "
                 "at this attitude and lift height; expected it above the lug"
             )
-    tensions = np.asarray(tensions).ravel()
     _check_taut(scene, "paper-elastic", tensions)
     return _equilibrium(scene, "paper-elastic", x, tensions, residual, "linear", seconds)
 

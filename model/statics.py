@@ -168,6 +168,7 @@ class RopeModel:
         normal = ca.mtimes(phi.T, ca.diag(k) @ phi)
         coeff = ca.solve(normal, b_vec)
         t_paper = k * ca.mtimes(phi, coeff)
+        self.batch_backend = None  # "jit" or "casadi-vm", set when the batch map is built
         self.paper_elastic = ca.Function(
             "paper_elastic", [x, p], [t_paper, rope_len, ca.mtimes(a_mat, t_paper) - b_vec],
             ["x", "p"], ["T", "l", "residual"],
@@ -244,6 +245,11 @@ class RopeModel:
             {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
              "ipopt.sb": "yes", "ipopt.max_iter": 500, "show_eval_warnings": False},
         )
+
+    @cached_property
+    def paper_elastic_fast(self):
+        """``paper_elastic`` for one attitude as a :class:`FastCall`: (x, p) -> (T, l, residual)."""
+        return FastCall(self.paper_elastic)
 
     @cached_property
     def paper_elastic_block(self):
