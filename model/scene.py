@@ -24,7 +24,7 @@ MODELS = ("elastic", "paper-elastic", "rigid")
 _COLLINEAR_AREA = 1e-9
 
 
-def _finite(path, value):
+def finite(path, value):
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -34,21 +34,21 @@ def _finite(path, value):
     return number
 
 
-def _positive(path, value):
-    number = _finite(path, value)
+def positive(path, value):
+    number = finite(path, value)
     if number <= 0.0:
         raise InvalidScene(f"{path} = {value!r}: expected a number > 0")
     return number
 
 
-def _point(path, value):
+def point(path, value):
     try:
         items = tuple(value)
     except TypeError:
         raise InvalidScene(f"{path} = {value!r}: expected [x, y, z] in m") from None
     if len(items) != 3:
         raise InvalidScene(f"{path} = {value!r}: expected [x, y, z] in m")
-    return tuple(_finite(path, v) for v in items)
+    return tuple(finite(path, v) for v in items)
 
 
 def _set(obj, name, value):
@@ -71,8 +71,8 @@ class Body:
     cog: tuple[float, float, float]
 
     def __post_init__(self):
-        _set(self, "weight", _positive("body.weight", self.weight))
-        _set(self, "cog", _point("body.cog", self.cog))
+        _set(self, "weight", positive("body.weight", self.weight))
+        _set(self, "cog", point("body.cog", self.cog))
 
 
 @dataclass(frozen=True)
@@ -93,7 +93,7 @@ class Lug:
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise InvalidScene(f"lugs.name = {self.name!r}: expected a non-empty string")
-        _set(self, "at", _point(f"lugs[{self.name}].at", self.at))
+        _set(self, "at", point(f"lugs[{self.name}].at", self.at))
 
 
 @dataclass(frozen=True)
@@ -123,13 +123,13 @@ class Crane:
     def __post_init__(self):
         where = f"cranes[{self.lug}]"
         if self.EA is not None:
-            _set(self, "EA", _positive(f"{where}.EA", self.EA))
+            _set(self, "EA", positive(f"{where}.EA", self.EA))
         if self.boom_height is not None:
-            _set(self, "boom_height", _finite(f"{where}.boom_height", self.boom_height))
+            _set(self, "boom_height", finite(f"{where}.boom_height", self.boom_height))
         if self.rope_length is not None:
-            _set(self, "rope_length", _positive(f"{where}.rope_length", self.rope_length))
+            _set(self, "rope_length", positive(f"{where}.rope_length", self.rope_length))
         if self.swl is not None:
-            _set(self, "swl", _positive(f"{where}.swl", self.swl))
+            _set(self, "swl", positive(f"{where}.swl", self.swl))
 
 
 @dataclass(frozen=True)
@@ -155,7 +155,7 @@ class Attitude:
 
     def __post_init__(self):
         for name in ("heel", "trim", "yaw", "lift_height"):
-            _set(self, name, _finite(f"attitude.{name}", getattr(self, name)))
+            _set(self, name, finite(f"attitude.{name}", getattr(self, name)))
         for name in ("heel", "trim"):
             if abs(getattr(self, name)) > 90.0:
                 raise InvalidScene(
@@ -177,7 +177,7 @@ class Redundant:
     tension: float
 
     def __post_init__(self):
-        t = _finite(f"analysis.redundant[{self.lug}].tension", self.tension)
+        t = finite(f"analysis.redundant[{self.lug}].tension", self.tension)
         if t < 0.0:
             raise InvalidScene(
                 f"analysis.redundant[{self.lug}].tension = {self.tension!r}: expected >= 0 t"

@@ -29,27 +29,27 @@ Text = Annotated[str, Strict()]
 Point = tuple[Num, Num, Num]
 
 
-class _Table(BaseModel):
+class Table(BaseModel):
     # Non-finite numbers pass here and are refused by the dataclasses, which say which
     # key held them.
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class _Body(_Table):
+class _Body(Table):
     weight: Num
     cog: Point
 
 
-class _Lug(_Table):
+class _Lug(Table):
     name: Text
     at: Point
 
 
-class _Ropes(_Table):
+class _Ropes(Table):
     EA: Num | None = None
 
 
-class _Crane(_Table):
+class _Crane(Table):
     lug: Text
     boom_height: Num | None = None
     rope_length: Num | None = None
@@ -57,24 +57,24 @@ class _Crane(_Table):
     EA: Num | None = None
 
 
-class _Attitude(_Table):
+class _Attitude(Table):
     heel: Num = 0.0
     trim: Num = 0.0
     yaw: Num = 0.0
     lift_height: Num = 0.0
 
 
-class _Redundant(_Table):
+class _Redundant(Table):
     lug: Text
     tension: Num
 
 
-class _Analysis(_Table):
+class _Analysis(Table):
     model: Literal["elastic", "paper-elastic", "rigid"] | None = None
     redundant: _Redundant | list[_Redundant] | None = None
 
 
-class _SceneFile(_Table):
+class _SceneFile(Table):
     name: Text = ""
     frame: Literal["z-up", "choi"] = "z-up"
     body: _Body
@@ -90,10 +90,9 @@ _NOT_YET = {
     "water": "hydrostatics",
     "hull": "hydrostatics",
     "ground": "ground contact",
-    "candidates": "lug planning (liftplan plan)",
-    "plan": "lug planning (liftplan plan)",
-    "crane": "lug planning (liftplan plan)",
 }
+# Tables of a planning scene (read by liftplan.planner.problemfile).
+PLAN_TABLES = ("candidates", "plan", "crane")
 
 
 def load_scene(path):
@@ -133,6 +132,12 @@ def loads_scene(text):
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise InvalidScene(f"TOML syntax error: {err}") from None
+    for key in PLAN_TABLES:
+        if key in raw:
+            raise InvalidScene(
+                f"[{key}]: this is a planning scene (candidates, not fixed lugs); "
+                "expected `liftplan plan` / liftplan.planner.plan for it"
+            )
     for key, what in _NOT_YET.items():
         if key in raw:
             raise InvalidScene(
@@ -142,7 +147,7 @@ def loads_scene(text):
     try:
         data = _SceneFile.model_validate(raw)
     except ValidationError as err:
-        raise InvalidScene(_one_line(err)) from None
+        raise InvalidScene(one_line(err, _SceneFile)) from None
     return _to_scene(data)
 
 
@@ -174,16 +179,23 @@ def _to_scene(data):
     )
 
 
-def _one_line(err):
-    """The first pydantic error as 'key = value: what is expected'."""
+def one_line(err, root):
+    """The first pydantic error as 'key = value: what is expected'.
+
+    Parameters
+    ----------
+    err : pydantic.ValidationError
+    root : type
+        The schema that was validated (to name the keys and types expected).
+    """
     first = err.errors()[0]
     loc = first["loc"]
     path = _path(loc)
     kind = first["type"]
     if kind == "missing":
-        return f"{path}: missing, expected {_expected(loc)}"
+        return f"{path}: missing, expected {_expected(loc, root)}"
     if kind == "extra_forbidden":
-        allowed = _allowed_keys(loc[:-1])
+        allowed = _allowed_keys(loc[:-1], root)
         hint = f"expected one of {', '.join(allowed)}" if allowed else "expected no such key"
         return f"{path} = {first['input']!r}: unknown key, {hint}"
     message = first["msg"][0].lower() + first["msg"][1:]
@@ -202,9 +214,9 @@ def _path(loc):
     return out or "scene"
 
 
-def _resolve(loc):
+def _resolve(loc, root):
     """The schema type at a location, or None."""
-    node = _SceneFile
+    node = root
     for part in loc:
         node = _strip(node)
         if isinstance(part, int):
@@ -226,15 +238,15 @@ def _strip(node):
     return node
 
 
-def _allowed_keys(loc):
-    node = _resolve(loc)
+def _allowed_keys(loc, root):
+    node = _resolve(loc, root)
     if isinstance(node, type) and issubclass(node, BaseModel):
         return list(node.model_fields)
     return []
 
 
-def _expected(loc):
-    node = _resolve(loc)
+def _expected(loc, root):
+    node = _resolve(loc, root)
     if node in (float, Num):
         return "a number"
     if node in (str, Text):

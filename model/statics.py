@@ -174,6 +174,24 @@ class RopeModel:
             ["x", "p"], ["T", "l", "residual"],
         )
 
+        # -- held hoist: the boom heights set at level, the hooks then moved rigidly ---------
+        # A heel or trim deviation comes from hook motions that are a rigid-body motion of
+        # the level hook pattern: dH_i = c0 + c1 x0_i + c2 y0_i (x0, y0 the lugs' level plan
+        # positions). Such motions leave the twist (the redundant preload) unchanged. At a
+        # given pose the statics fix c: linear, exact. See :func:`held_tensions`.
+        level, _ = pose_points(points, cog, 0, 0, yaw, lift)
+        phi0 = ca.horzcat(ca.DM.ones(n, 1), level[0, :].T, level[1, :].T)
+        k0 = stiffness / length
+        s_set = boom - lugs[2, :].T - length
+        coupling = ca.mtimes(a_mat, ca.diag(k0) @ phi0)
+        c_hold = ca.solve(coupling, b_vec - ca.mtimes(a_mat, k0 * s_set))
+        hook_shift = ca.mtimes(phi0, c_hold)
+        t_held = k0 * (s_set + hook_shift)
+        self.held = ca.Function(
+            "held", [x, p], [t_held, hook_shift, ca.jacobian(t_held, boom)],
+            ["x", "p"], ["T", "dH", "dT_dH"],
+        )
+
         # -- forward elastic model -----------------------------------------------------------
         tension, stretch = rope_tensions(boom, lugs[2, :].T, length, stiffness)
         residual = (ca.mtimes(a_mat, tension) - b_vec) / row_scale
@@ -260,21 +278,35 @@ class RopeModel:
         on one core against 1.4 M/s in casadi's virtual machine, which is the fallback.
         (casadi's "thread" map was slower than serial here, so it is not used.)
         """
+        return self._block(self.paper_elastic, shared_p=True)
+
+    @cached_property
+    def held_block(self):
+        """``held`` over :data:`BLOCK` attitudes (columns of x), p shared: (T, dH, dT_dH)."""
+        return self._block(self.held, shared_p=True)
+
+    @cached_property
+    def held_columns(self):
+        """``held`` over :data:`BLOCK` columns of both x and p (many lug sets at once)."""
+        return self._block(self.held, shared_p=False)
+
+    def _block(self, function, shared_p):
         x = ca.SX.sym("x", 3)
         p = ca.SX.sym("p", self.layout.size)
-        outputs = self.paper_elastic(x, p)
+        outputs = function(x, p)
         try:
             column = ca.Function(
-                "paper_elastic_jit", [x, p], list(outputs),
+                f"{function.name()}_jit", [x, p], list(outputs),
                 {"jit": True, "compiler": "shell",
                  "jit_options": {"flags": ["-O2"], "verbose": False}},
             )
             self.batch_backend = "jit"
         except RuntimeError:  # no C compiler on this machine
-            column = self.paper_elastic
+            column = function
             self.batch_backend = "casadi-vm"
-        # input 1 (p) is shared by every column rather than repeated
-        return FastCall(column.map("paper_elastic_block", "serial", BLOCK, [1], []))
+        # with shared_p, input 1 (p) is shared by every column rather than repeated
+        shared = [1] if shared_p else []
+        return FastCall(column.map(f"{function.name()}_block", "serial", BLOCK, shared, []))
 
 
 @cache

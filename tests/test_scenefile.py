@@ -97,6 +97,11 @@ def test_hydrostatics_tables_are_refused_clearly():
     assert "not modelled by this version" in error_of(text)
 
 
+def test_planning_tables_point_to_the_planner():
+    text = tomli_w.dumps({**VALID, "plan": {"cranes": 4}})
+    assert "liftplan plan" in error_of(text)
+
+
 def test_choi_frame_converts_points():
     def to_choi(data):
         data["frame"] = "choi"

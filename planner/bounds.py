@@ -1,0 +1,263 @@
+"""Convex sub-study of the tensions (cvxpy, solved by Clarabel): linear programs.
+
+Two problems, each built once per rope count from ``cp.Parameter`` objects (DPP), checked
+with ``is_dcp(dpp=True)`` at build time, and re-solved by assigning parameter values:
+
+:class:`AdmissibleTensions`
+    At one attitude: every statically admissible tension set, ``A T = b`` with
+    ``lower <= T <= upper``. Gives the bounds [T_i min, T_i max] over that set and the least
+    achievable spread (max - min tension).
+:class:`PreloadMinimax`
+    The planner's convex core: tensions at each scenario k (attitude, CG) are affine in the
+    level preload T* (see :mod:`liftplan.planner.scenarios`): T_k = P_k T* + q_k. Choose T*
+    (level statics, boom-height range) to minimise the largest spread over the scenarios,
+    with every tension in [min_tension, SWL]. Its value over a finite set of scenarios is a
+    lower bound on the worst spread over the whole tolerance box.
+
+Solver statuses are mapped to typed errors: an infeasible problem raises
+:class:`~liftplan.model.errors.PlanInfeasible` (the caller words the physical reason); any
+other non-optimal status raises :class:`~liftplan.model.errors.SolverFailed`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import cvxpy as cp
+import numpy as np
+
+from liftplan.model.errors import PlanInfeasible, SolverFailed
+
+SOLVER = cp.CLARABEL
+_INFEASIBLE = (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE)
+
+
+def _run(problem, what):
+    """Solve with Clarabel; return the optimal value or raise a typed error."""
+    try:
+        problem.solve(solver=SOLVER)
+    except cp.error.SolverError as err:
+        raise SolverFailed(f"{what}: Clarabel failed ({err})") from None
+    if problem.status in _INFEASIBLE:
+        raise PlanInfeasible(f"{what}: no tension set satisfies the constraints")
+    if problem.status != cp.OPTIMAL:
+        raise SolverFailed(f"{what}: Clarabel ended with status {problem.status!r}")
+    return float(problem.value)
+
+
+def _checked(problem, name):
+    if not problem.is_dcp(dpp=True):  # a build error, not a user error
+        raise SolverFailed(f"{name}: the problem is not DPP-compliant; it would re-canonicalise")
+    return problem
+
+
+@dataclass(frozen=True)
+class TensionBounds:
+    """Bounds of each tension over the admissible set at one attitude.
+
+    Parameters
+    ----------
+    lower, upper : numpy.ndarray, shape (n,)  [t]
+        Smallest and largest value T_i takes over all statically admissible sets.
+    least_spread : float  [t]
+        The smallest max - min tension any admissible set achieves.
+    even : numpy.ndarray, shape (n,)  [t]
+        A tension set achieving it.
+    """
+
+    lower: np.ndarray
+    upper: np.ndarray
+    least_spread: float
+    even: np.ndarray
+
+
+class AdmissibleTensions:
+    """LPs over {T : A T = b, lower <= T <= upper} for n ropes, built once.
+
+    Parameters
+    ----------
+    n : int
+        Number of ropes.
+    """
+
+    def __init__(self, n):
+        self.n = n
+        self.a_mat = cp.Parameter((3, n), name="A")
+        self.b_vec = cp.Parameter(3, name="b")
+        self.lower = cp.Parameter(n, name="lower")
+        self.upper = cp.Parameter(n, name="upper")
+        self.direction = cp.Parameter(n, name="direction")
+        tension = cp.Variable(n, name="T")
+        admissible = [
+            self.a_mat @ tension == self.b_vec,
+            tension >= self.lower,
+            tension <= self.upper,
+        ]
+        self._extreme = _checked(
+            cp.Problem(cp.Minimize(self.direction @ tension), admissible), "tension bound"
+        )
+        low, high = cp.Variable(name="low"), cp.Variable(name="high")
+        self._even = _checked(
+            cp.Problem(cp.Minimize(high - low), [*admissible, tension >= low, tension <= high]),
+            "least spread",
+        )
+        self.tension = tension
+
+    def bounds(self, a_mat, b_vec, lower, upper):
+        """Bounds and least spread at one attitude.
+
+        Parameters
+        ----------
+        a_mat : array_like, shape (3, n)
+            Rows (1, x_i, y_i): the lugs' world plan coordinates [m].
+        b_vec : array_like, shape (3,)
+            W (1, x_c, y_c)  [t, t m].
+        lower, upper : array_like, shape (n,)  [t]
+            Tension limits (min_tension and SWL).
+
+        Returns
+        -------
+        TensionBounds
+
+        Raises
+        ------
+        PlanInfeasible
+            No admissible tension set within the limits.
+        """
+        self.a_mat.value = np.asarray(a_mat, dtype=float)
+        self.b_vec.value = np.asarray(b_vec, dtype=float)
+        self.lower.value = np.asarray(lower, dtype=float)
+        self.upper.value = np.asarray(upper, dtype=float)
+        spread = _run(self._even, "least spread")
+        even = np.array(self.tension.value)
+        low, high = np.empty(self.n), np.empty(self.n)
+        for i in range(self.n):
+            unit = np.zeros(self.n)
+            unit[i] = 1.0
+            self.direction.value = unit
+            low[i] = _run(self._extreme, f"lower bound of T{i + 1}")
+            self.direction.value = -unit
+            high[i] = -_run(self._extreme, f"upper bound of T{i + 1}")
+        return TensionBounds(lower=low, upper=high, least_spread=spread, even=even)
+
+
+@dataclass(frozen=True)
+class MinimaxResult:
+    """Optimal level preload of :class:`PreloadMinimax`.
+
+    Parameters
+    ----------
+    preload : numpy.ndarray, shape (n,)  [t]
+        Level tensions T* to dial in.
+    worst_spread : float  [t]
+        Largest spread over the scenarios given (a lower bound over the whole box).
+    nominal_spread : float  [t]
+        Spread of T* at the level attitude.
+    """
+
+    preload: np.ndarray
+    worst_spread: float
+    nominal_spread: float
+
+
+class PreloadMinimax:
+    """min over T* of max over scenarios of (max_i - min_i) of T_k = P_k T* + q_k.
+
+    Parameters
+    ----------
+    n : int
+        Number of ropes.
+    slots : int
+        Number of scenarios the problem holds. Fewer may be passed: the last is repeated,
+        which changes nothing (a scenario counted twice).
+
+    Notes
+    -----
+    The nominal spread enters the objective with weight :attr:`TIE_BREAK`, so among
+    preloads with the same worst spread the most even level state is chosen (the LP would
+    otherwise return an arbitrary vertex of the optimal face).
+    """
+
+    TIE_BREAK = 1e-3
+
+    def __init__(self, n, slots):
+        self.n, self.slots = n, slots
+        m = slots
+        self.gain = cp.Parameter((m * n, n), name="P")
+        self.offset = cp.Parameter(m * n, name="q")
+        self.a_level = cp.Parameter((3, n), name="A0")
+        self.b_level = cp.Parameter(3, name="b0")
+        self.preload_low = cp.Parameter(n, name="preload_low")
+        self.preload_high = cp.Parameter(n, name="preload_high")
+        self.tension_low = cp.Parameter(m * n, name="tension_low")
+        self.tension_high = cp.Parameter(m * n, name="tension_high")
+        preload = cp.Variable(n, name="T_star")
+        high, low = cp.Variable(m, name="high"), cp.Variable(m, name="low")
+        worst = cp.Variable(name="worst")
+        nominal_high, nominal_low = cp.Variable(), cp.Variable()
+        spread_of = np.kron(np.eye(m), np.ones((n, 1)))  # scenario k's bound on its n ropes
+        tensions = self.gain @ preload + self.offset
+        constraints = [
+            self.a_level @ preload == self.b_level,
+            preload >= self.preload_low,
+            preload <= self.preload_high,
+            tensions >= self.tension_low,
+            tensions <= self.tension_high,
+            tensions <= spread_of @ high,
+            tensions >= spread_of @ low,
+            high - low <= worst,
+            preload <= nominal_high,
+            preload >= nominal_low,
+        ]
+        objective = cp.Minimize(worst + self.TIE_BREAK * (nominal_high - nominal_low))
+        self.problem = _checked(cp.Problem(objective, constraints), "preload minimax")
+        self._preload, self._worst = preload, worst
+        self._nominal = (nominal_high, nominal_low)
+
+    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range):
+        """Solve for the scenarios given.
+
+        Parameters
+        ----------
+        gains : array_like, shape (k, n, n)
+            P_k, k <= slots  [-].
+        offsets : array_like, shape (k, n)
+            q_k  [t].
+        a_level, b_level : array_like, shapes (3, n) and (3,)
+            Level statics: A0 T* = b0  [-, m; t, t m].
+        preload_range : tuple of two arrays, shape (n,)  [t]
+            Bounds on T* (from the boom-height range).
+        tension_range : tuple of two arrays, shape (k, n)  [t]
+            min_tension and SWL per scenario and rope.
+
+        Returns
+        -------
+        MinimaxResult
+
+        Raises
+        ------
+        PlanInfeasible
+            No preload keeps every scenario's tensions within range.
+        """
+        gains = np.asarray(gains, dtype=float)
+        count = gains.shape[0]
+        if not 1 <= count <= self.slots:
+            raise ValueError(f"{count} scenarios given, expected 1 to {self.slots}")
+        pad = np.r_[np.arange(count), np.full(self.slots - count, count - 1)]
+        n = self.n
+        self.gain.value = gains[pad].reshape(self.slots * n, n)
+        self.offset.value = np.asarray(offsets, dtype=float)[pad].ravel()
+        self.tension_low.value = np.asarray(tension_range[0], dtype=float)[pad].ravel()
+        self.tension_high.value = np.asarray(tension_range[1], dtype=float)[pad].ravel()
+        self.a_level.value = np.asarray(a_level, dtype=float)
+        self.b_level.value = np.asarray(b_level, dtype=float)
+        self.preload_low.value = np.asarray(preload_range[0], dtype=float)
+        self.preload_high.value = np.asarray(preload_range[1], dtype=float)
+        _run(self.problem, "preload minimax")
+        preload = np.array(self._preload.value)
+        high, low = self._nominal
+        return MinimaxResult(
+            preload=preload,
+            worst_spread=float(self._worst.value),
+            nominal_spread=float(high.value - low.value),
+        )

@@ -1,0 +1,254 @@
+"""The planning problem: a body, candidate lug points, cranes and tolerances.
+
+Frozen dataclasses in the ``z-up`` frame (see :mod:`liftplan.model.frames`). Each checks its
+own values where it is made, with the same one-line :class:`InvalidScene` messages as the
+scene, so a problem built in Python obeys the same rules as one read from a file.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.scene import Body, finite, point, positive
+
+#: Crane-code capacity margin over the calculated share for cranes lifting together
+#: (2, 3, 4 or more cranes): 20 / 33 / 50 %.
+CODE_MARGIN = {2: 0.20, 3: 0.33}
+CODE_MARGIN_MANY = 0.50
+#: Noble Denton 0027/ND default skew load factor for indeterminate 4-sling lifts.
+DEFAULT_SKEW_FACTOR = 1.25
+
+MAX_CRANES = 8
+#: Lug sets the planner will enumerate; beyond this the search would take hours.
+MAX_SETS = 5_000_000
+
+
+def code_margin(cranes):
+    """Capacity margin a multi-crane lift code asks over each crane's share  [-]."""
+    return CODE_MARGIN.get(cranes, CODE_MARGIN_MANY)
+
+
+def _set(obj, name, value):
+    object.__setattr__(obj, name, value)
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A strong point the planner may put a lug on.
+
+    Parameters
+    ----------
+    name : str
+    at : tuple of 3 float  [m]
+        Body frame.
+    bulkhead : str
+        Grouping label (e.g. ``"BH2"``), may be empty.
+    """
+
+    name: str
+    at: tuple[float, float, float]
+    bulkhead: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InvalidScene(f"candidates.name = {self.name!r}: expected a non-empty string")
+        _set(self, "at", point(f"candidates[{self.name}].at", self.at))
+
+
+@dataclass(frozen=True)
+class CraneSpec:
+    """What every planned crane has (the papers' four equal cranes).
+
+    Parameters
+    ----------
+    EA : float  [t]
+        Rope axial stiffness.
+    rope_length : float  [m]
+        Unstretched rope length l0 between boom tip and lug.
+    swl : float  [t]
+        Safe working load at the working radius.
+    boom_min, boom_max : float  [m]
+        Range of the boom-tip height H above the datum.
+    """
+
+    EA: float
+    rope_length: float
+    swl: float
+    boom_min: float = -math.inf
+    boom_max: float = math.inf
+
+    def __post_init__(self):
+        _set(self, "EA", positive("crane.EA", self.EA))
+        _set(self, "rope_length", positive("crane.rope_length", self.rope_length))
+        _set(self, "swl", positive("crane.swl", self.swl))
+        for name in ("boom_min", "boom_max"):
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and math.isinf(value)):
+                _set(self, name, finite(f"crane.boom_height.{name[5:]}", value))
+        if self.boom_min > self.boom_max:
+            raise InvalidScene(
+                f"crane.boom_height = {{min = {self.boom_min:g}, max = {self.boom_max:g}}}: "
+                "expected min <= max"
+            )
+
+    @property
+    def stiffness(self):
+        """Rope spring rate EA / l0  [t/m]."""
+        return self.EA / self.rope_length
+
+
+@dataclass(frozen=True)
+class CogEnvelope:
+    """Where the CG may really be, around its nominal position.
+
+    Parameters
+    ----------
+    half_widths : tuple of 3 float  [m]
+        Uncertainty along x, y, z (body frame).
+    shape : {"box", "cross"}
+        ``"box"``: anywhere in the box; ``"cross"``: along one axis at a time.
+
+    Notes
+    -----
+    At a given attitude the tensions are affine in the CG position and the spread (max -
+    min) is convex in it, so its worst case over either envelope lies at a vertex: the
+    envelope is represented exactly by its vertices.
+    """
+
+    half_widths: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    shape: str = "box"
+
+    def __post_init__(self):
+        widths = point("plan.cog_tolerance", self.half_widths)
+        if min(widths) < 0.0:
+            raise InvalidScene(f"plan.cog_tolerance = {list(widths)}: expected half-widths >= 0 m")
+        _set(self, "half_widths", widths)
+        if self.shape not in ("box", "cross"):
+            raise InvalidScene(f"plan.cog_tolerance.shape = {self.shape!r}: expected box or cross")
+
+    def offsets(self):
+        """CG offsets to check, nominal first, shape (m, 3)  [m]."""
+        widths = np.array(self.half_widths)
+        if self.shape == "box":
+            corners = [widths * np.array(s) for s in itertools.product((-1.0, 1.0), repeat=3)]
+        else:
+            corners = [sign * widths[axis] * np.eye(3)[axis] for axis in range(3) for sign in (-1, 1)]
+        out = {(0.0, 0.0, 0.0): None}  # insertion-ordered, without repeats (zero widths)
+        out.update(dict.fromkeys(tuple(float(v) for v in c) for c in corners))
+        return np.array(list(out))
+
+
+@dataclass(frozen=True)
+class PlanProblem:
+    """Choose lugs among candidates and boom heights for the smallest worst spread.
+
+    Parameters
+    ----------
+    body : Body
+    candidates : tuple of Candidate
+    cranes : int
+        How many cranes (lugs) to use, 3 to 8.
+    crane : CraneSpec
+    heel_tolerance, trim_tolerance : float  [deg]
+        Half-widths of the attitude box around level.
+    min_tension : float  [t]
+        No rope may fall below this anywhere in the box.
+    lift_height : float  [m]
+        Height of the body-frame origin above the datum at which the plan holds the body
+        level.
+    yaw : float  [deg]
+    hook_tolerance : float  [m]
+        Hook-height tolerance of the operators (twist), for the skew load factors.
+    cog_envelope : CogEnvelope
+    top : int
+        How many lug sets to rank.
+    outline : tuple of (x, y) points  [m]
+        Hull outline in plan for the figures (empty: none drawn).
+    name : str
+    frame : str
+        Frame of the file the problem came from (``"z-up"`` or ``"choi"``), to echo the
+        inputs as the engineer wrote them.
+    """
+
+    body: Body
+    candidates: tuple[Candidate, ...]
+    cranes: int
+    crane: CraneSpec
+    heel_tolerance: float = 2.0
+    trim_tolerance: float = 2.0
+    min_tension: float = 0.0
+    lift_height: float = 0.0
+    yaw: float = 0.0
+    hook_tolerance: float = 0.05
+    cog_envelope: CogEnvelope = field(default_factory=CogEnvelope)
+    top: int = 5
+    outline: tuple[tuple[float, float], ...] = ()
+    name: str = ""
+    frame: str = "z-up"
+
+    def __post_init__(self):
+        candidates = tuple(self.candidates)
+        names = [c.name for c in candidates]
+        for name in names:
+            if names.count(name) > 1:
+                raise InvalidScene(f"candidates.name = {name!r}: duplicate, expected unique names")
+        _set(self, "candidates", candidates)
+        if not isinstance(self.cranes, int) or isinstance(self.cranes, bool):
+            raise InvalidScene(f"plan.cranes = {self.cranes!r}: expected an integer 3 to {MAX_CRANES}")
+        if not 3 <= self.cranes <= MAX_CRANES:
+            raise InvalidScene(f"plan.cranes = {self.cranes}: expected 3 to {MAX_CRANES}")
+        if len(candidates) < self.cranes:
+            raise InvalidScene(
+                f"candidates: {len(candidates)} given for plan.cranes = {self.cranes}: "
+                "expected at least as many candidates as cranes"
+            )
+        sets = math.comb(len(candidates), self.cranes)
+        if sets > MAX_SETS:
+            raise InvalidScene(
+                f"candidates: {len(candidates)} choose {self.cranes} = {sets} lug sets, more than "
+                f"{MAX_SETS}; expected fewer candidates (group them by bulkhead) or cranes"
+            )
+        for name in ("heel_tolerance", "trim_tolerance"):
+            value = finite(f"plan.tolerance.{name[:4]}", getattr(self, name))
+            if not 0.0 <= value < 90.0:
+                raise InvalidScene(f"plan.tolerance.{name[:4]} = {value!r}: expected 0 to 90 deg")
+            _set(self, name, value)
+        value = finite("plan.min_tension", self.min_tension)
+        if value < 0.0:
+            raise InvalidScene(f"plan.min_tension = {value!r}: expected >= 0 t")
+        _set(self, "min_tension", value)
+        _set(self, "lift_height", finite("attitude.lift_height", self.lift_height))
+        _set(self, "yaw", finite("attitude.yaw", self.yaw))
+        value = finite("plan.hook_tolerance", self.hook_tolerance)
+        if value < 0.0:
+            raise InvalidScene(f"plan.hook_tolerance = {value!r}: expected >= 0 m")
+        _set(self, "hook_tolerance", value)
+        if not isinstance(self.top, int) or self.top < 1:
+            raise InvalidScene(f"plan.top = {self.top!r}: expected an integer >= 1")
+        if self.min_tension * self.cranes > self.body.weight:
+            raise InvalidScene(
+                f"plan.min_tension = {self.min_tension:g} t: {self.cranes} ropes at that tension "
+                f"carry more than the weight {self.body.weight:g} t; expected a smaller value"
+            )
+        _set(self, "outline", tuple((finite("plan.outline", x), finite("plan.outline", y))
+                                    for x, y, *_ in self.outline))
+
+    @cached_property
+    def points(self):
+        """Candidate positions, body frame, shape (m, 3)  [m]."""
+        return np.array([c.at for c in self.candidates], dtype=float)
+
+    @property
+    def names(self):
+        return tuple(c.name for c in self.candidates)
+
+    @property
+    def set_count(self):
+        """Number of lug sets: candidates choose cranes."""
+        return math.comb(len(self.candidates), self.cranes)

@@ -1,0 +1,169 @@
+"""Read planning scene files (TOML, CONTRACT.md "Planning") into :class:`PlanProblem`.
+
+The file's shape is checked by pydantic, its values by the dataclasses, with the scene
+reader's one-line messages. Coordinates (candidates, CG, outline, CG tolerance) are read in
+the file's frame and converted to ``z-up``.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Annotated, Literal
+
+from pydantic import Field, Strict, ValidationError
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.frames import choi_to_zup
+from liftplan.model.scene import Body
+from liftplan.model.scenefile import Num, Point, Table, Text, one_line
+
+from .problem import Candidate, CogEnvelope, CraneSpec, PlanProblem
+
+Count = Annotated[int, Strict(), Field(ge=1)]
+
+
+class _Body(Table):
+    weight: Num
+    cog: Point
+
+
+class _Candidate(Table):
+    name: Text
+    at: Point
+    bulkhead: Text = ""
+
+
+class _Tolerance(Table):
+    heel: Num = 2.0
+    trim: Num = 2.0
+
+
+class _Plan(Table):
+    cranes: Count
+    tolerance: _Tolerance = _Tolerance()
+    min_tension: Num = 0.0
+    hook_tolerance: Num = 0.05
+    cog_tolerance: Point = (0.0, 0.0, 0.0)
+    cog_envelope: Literal["box", "cross"] = "box"
+    top: Count = 5
+    outline: list[Point] = []
+
+
+class _Range(Table):
+    min: Num
+    max: Num
+
+
+class _Crane(Table):
+    EA: Num | None = None
+    rope_length: Num
+    swl: Num
+    boom_height: _Range | None = None
+
+
+class _Ropes(Table):
+    EA: Num | None = None
+
+
+class _Attitude(Table):
+    lift_height: Num = 0.0
+    yaw: Num = 0.0
+
+
+class _PlanFile(Table):
+    name: Text = ""
+    frame: Literal["z-up", "choi"] = "z-up"
+    body: _Body
+    candidates: list[_Candidate]
+    plan: _Plan
+    crane: _Crane
+    ropes: _Ropes = _Ropes()
+    attitude: _Attitude = _Attitude()
+
+
+def load_problem(path):
+    """Read and validate a planning scene file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    PlanProblem
+        In the ``z-up`` frame.
+
+    Raises
+    ------
+    InvalidScene
+        One line naming the file, the key, the value and what is expected.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InvalidScene(f"{path}: no such scene file") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise InvalidScene(f"{path}: cannot read the scene file ({err})") from None
+    try:
+        return loads_problem(text)
+    except InvalidScene as err:
+        raise InvalidScene(f"{path}: {err}") from None
+
+
+def loads_problem(text):
+    """Validate a planning scene given as TOML text; see :func:`load_problem`."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise InvalidScene(f"TOML syntax error: {err}") from None
+    if "candidates" not in raw and "lugs" in raw:
+        raise InvalidScene(
+            "[[lugs]]: a scene with fixed lugs; expected [[candidates]] and [plan] for "
+            "planning (use `liftplan solve` for a fixed scene)"
+        )
+    try:
+        data = _PlanFile.model_validate(raw)
+    except ValidationError as err:
+        raise InvalidScene(one_line(err, _PlanFile)) from None
+    return _to_problem(data)
+
+
+def _to_problem(data):
+    choi = data.frame == "choi"
+    to_zup = choi_to_zup if choi else tuple
+    crane = data.crane
+    stiffness = crane.EA if crane.EA is not None else data.ropes.EA
+    if stiffness is None:
+        raise InvalidScene("crane.EA: missing, expected the rope stiffness EA in t "
+                           "(in [crane] or [ropes])")
+    boom = crane.boom_height
+    widths = data.plan.cog_tolerance
+    # half-widths are magnitudes: the frame change only permutes the axes
+    widths = (widths[0], widths[2], widths[1]) if choi else widths
+    return PlanProblem(
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog)),
+        candidates=tuple(
+            Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead) for c in data.candidates
+        ),
+        cranes=data.plan.cranes,
+        crane=CraneSpec(
+            EA=stiffness,
+            rope_length=crane.rope_length,
+            swl=crane.swl,
+            boom_min=boom.min if boom else float("-inf"),
+            boom_max=boom.max if boom else float("inf"),
+        ),
+        heel_tolerance=data.plan.tolerance.heel,
+        trim_tolerance=data.plan.tolerance.trim,
+        min_tension=data.plan.min_tension,
+        lift_height=data.attitude.lift_height,
+        yaw=data.attitude.yaw,
+        hook_tolerance=data.plan.hook_tolerance,
+        cog_envelope=CogEnvelope(half_widths=widths, shape=data.plan.cog_envelope),
+        top=data.plan.top,
+        outline=tuple(to_zup(p)[:2] for p in data.plan.outline),
+        name=data.name,
+        frame=data.frame,
+    )

@@ -1,0 +1,219 @@
+"""Tensions of a lug set across the tolerance box, as affine functions of the level preload.
+
+Formulation (the planner's physics; README "Planning")
+-----------------------------------------------------
+With n >= 4 cranes the differential hoist sets the n - 3 redundant tensions: any statically
+admissible set T* at the level attitude can be dialled in, through boom heights
+
+    H_i = a + z_i + l0_i + T*_i / k_i,        k_i = EA_i / l0_i,
+
+(a the lift height, z_i the lug's height in the body frame). A heel or trim deviation then
+comes from hook motions that move the level hook pattern as a rigid body,
+dH_i = c0 + c1 x_i + c2 y_i: they leave the twist (the preload) alone. At any pose the
+statics fix c (a 3x3 linear solve: ``held`` in :class:`liftplan.model.statics.RopeModel`),
+so with every rope taut the tensions at scenario k (attitude, CG position) are exactly
+
+    T_k = P_k T* + q_k.
+
+The worst spread over a set of scenarios is then a convex (piecewise-linear) function of
+T*, and choosing T* is a linear program (:class:`liftplan.planner.bounds.PreloadMinimax`).
+With n = 3 there is no preload to choose (P_k = 0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.statics import BLOCK, rope_model
+
+
+def run_block(block, n, attitudes, params):
+    """Evaluate ``held`` over many columns.
+
+    Parameters
+    ----------
+    block : FastCall
+        ``held_block`` (params shared) or ``held_columns`` (params per column).
+    n : int
+    attitudes : numpy.ndarray, shape (m, 3)
+        Columns (lift a [m], heel [rad], trim [rad]).
+    params : numpy.ndarray, shape (size,) or (m, size)
+
+    Returns
+    -------
+    tensions : (m, n)  [t]
+    hook_shift : (m, n)  [m]
+    gain : (m, n, n)  dT/dH  [t/m]
+    """
+    count = attitudes.shape[0]
+    shared = params.ndim == 1
+    tensions = np.empty((count, n))
+    shift = np.empty((count, n))
+    gain = np.empty((count, n, n))
+    for start in range(0, count, BLOCK):
+        stop = min(start + BLOCK, count)
+        size = stop - start
+        x = np.zeros((BLOCK, 3))
+        x[:size] = attitudes[start:stop]
+        x[size:, 0] = attitudes[start, 0]  # padding: any valid pose
+        if shared:
+            p = params
+        else:
+            p = np.empty((BLOCK, params.shape[1]))
+            p[:size] = params[start:stop]
+            p[size:] = params[start]
+            p = p.ravel()
+        t_out, d_out, j_out = block(x.ravel(), p)
+        tensions[start:stop] = t_out.reshape(BLOCK, n)[:size]
+        shift[start:stop] = d_out.reshape(BLOCK, n)[:size]
+        # dT/dH of column b is the b-th n x n block of an n x (n BLOCK) matrix, column-major
+        gain[start:stop] = j_out.reshape(BLOCK, n, n)[:size].transpose(0, 2, 1)
+    return tensions, shift, gain
+
+
+def pack(problem, points, cog, boom):
+    """Flat parameter vector (:class:`~liftplan.model.statics.Layout`) of a lug set.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    points : (n, 3)  [m]   lug positions, body frame
+    cog : (3,)  [m]
+    boom : (n,)  [m]   boom-tip heights H
+    """
+    n = points.shape[0]
+    spec = problem.crane
+    plan = points[:, :2]
+    diameter = float(np.max(np.linalg.norm(plan[:, None] - plan[None], axis=-1)))
+    return np.concatenate([
+        [math.radians(problem.yaw)],
+        points.ravel(),
+        cog,
+        [problem.body.weight],
+        boom,
+        np.full(n, spec.rope_length),
+        np.full(n, spec.EA),
+        [diameter],
+    ])
+
+
+def box_attitudes(problem, heel_count, trim_count):
+    """A heel x trim grid over the tolerance box, shape (m, 2)  [deg]."""
+    heel = np.linspace(-problem.heel_tolerance, problem.heel_tolerance, heel_count)
+    trim = np.linspace(-problem.trim_tolerance, problem.trim_tolerance, trim_count)
+    grid = np.array(np.meshgrid(heel, trim, indexing="ij")).reshape(2, -1).T
+    return np.unique(grid, axis=0) + 0.0  # a zero tolerance collapses the grid; no -0.0
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """One state the plan must hold: an attitude and a CG position.
+
+    Parameters
+    ----------
+    heel, trim : float  [deg]
+    cog_offset : tuple of 3 float  [m]   from the nominal CG, body frame
+    """
+
+    heel: float
+    trim: float
+    cog_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+class LugSet:
+    """One choice of lugs: its level statics and its tensions across scenarios.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    indices : sequence of int
+        Candidate indices, in candidate order.
+    """
+
+    def __init__(self, problem, indices):
+        self.problem = problem
+        self.indices = tuple(int(i) for i in indices)
+        self.n = len(self.indices)
+        self.points = problem.points[list(self.indices)]
+        self.names = tuple(problem.names[i] for i in self.indices)
+        spec = problem.crane
+        self.stiffness = np.full(self.n, spec.stiffness)
+        # boom heights with every rope just unstretched at the level pose
+        self.boom_zero = problem.lift_height + self.points[:, 2] + spec.rope_length
+        self._model = rope_model(self.n)
+
+    @cached_property
+    def level_statics(self):
+        """(A0, b0): level statics A0 T* = b0, rows (1, x, y)  [-, m], W (1, x_c, y_c)."""
+        rot = rotation_matrix(0.0, 0.0, self.problem.yaw)
+        plan = (self.points @ rot.T)[:, :2]
+        cog = rot @ np.array(self.problem.body.cog)
+        a_mat = np.vstack([np.ones(self.n), plan.T])
+        return a_mat, self.problem.body.weight * np.array([1.0, cog[0], cog[1]])
+
+    def preload_range(self):
+        """Bounds on T* from the boom-height range  [t]."""
+        spec = self.problem.crane
+        low = self.stiffness * (spec.boom_min - self.boom_zero)
+        high = self.stiffness * (spec.boom_max - self.boom_zero)
+        return low, high
+
+    def boom_heights(self, preload):
+        """Boom-tip heights that hold T* at the level pose  [m]."""
+        return self.boom_zero + np.asarray(preload) / self.stiffness
+
+    def _columns(self, scenarios):
+        attitudes = np.array([[s.heel, s.trim] for s in scenarios], dtype=float)
+        x = np.column_stack([
+            np.full(len(scenarios), self.problem.lift_height),
+            np.radians(attitudes[:, 0]),
+            np.radians(attitudes[:, 1]),
+        ])
+        offsets = np.array([s.cog_offset for s in scenarios], dtype=float)
+        return x, offsets
+
+    def _evaluate(self, scenarios, boom):
+        """``held`` at each scenario with the given boom heights, grouped by CG offset."""
+        x, offsets = self._columns(scenarios)
+        count = len(scenarios)
+        tensions = np.empty((count, self.n))
+        shift = np.empty((count, self.n))
+        gain = np.empty((count, self.n, self.n))
+        cog = np.array(self.problem.body.cog)
+        for offset in np.unique(offsets, axis=0):
+            rows = np.all(offsets == offset, axis=1)
+            p = pack(self.problem, self.points, cog + offset, boom)
+            t, d, g = run_block(self._model.held_block, self.n, x[rows], p)
+            tensions[rows], shift[rows], gain[rows] = t, d, g
+        return tensions, shift, gain
+
+    def affine(self, scenarios):
+        """P_k, q_k with T_k = P_k T* + q_k.
+
+        Returns
+        -------
+        gains : (m, n, n)  [-]
+        offsets : (m, n)  [t]
+        """
+        tensions, _, gain = self._evaluate(scenarios, self.boom_zero)
+        return gain / self.stiffness[None, None, :], tensions
+
+    def tensions(self, preload, scenarios):
+        """Tensions at each scenario with preload T* held, shape (m, n)  [t].
+
+        Exact while every rope is taut (a negative value means that rope went slack).
+        """
+        return self._evaluate(scenarios, self.boom_heights(preload))[0]
+
+    def hook_shifts(self, preload, scenarios):
+        """Rigid-body hook motions (dH, m) that bring the body to each scenario's attitude."""
+        return self._evaluate(scenarios, self.boom_heights(preload))[1]
+
+    def twist_gain(self, preload):
+        """dT/dH at the level pose with the pose held  [t/m]: the twist (skew) response."""
+        return self._evaluate([Scenario(0.0, 0.0)], self.boom_heights(preload))[2][0]

@@ -1,0 +1,329 @@
+"""Screening every lug set at once: feasibility and a lower bound on its worst spread.
+
+For all sets together (numpy, with the tensions from casadi's compiled ``held`` map), on
+the screening scenarios Theta0 (the 3 x 3 grid of the tolerance box: corners, edge
+midpoints, level, each with every vertex of the CG envelope):
+
+* n = 3: no preload to choose; the tensions are fixed and the bound is the worst spread
+  over Theta0 itself.
+* n = 4: the admissible level preloads form a line T* = T0 + t v (v spans the null space of
+  the level statics). Every constraint is an interval in t and the worst spread over Theta0
+  is convex piecewise-linear in t, so the least worst spread over Theta0 (the exact value
+  of the minimax LP on Theta0) is found by a vectorised golden-section search with a
+  rigorous error margin.
+* n >= 5: a bound that holds for any preload: for a rope pair (i, j) and two scenarios,
+  the spread is at least half the change of T_i - T_j between them. T* cancels from that
+  change except through Z = sum T*_i z_i (lug heights), a scalar; the bound is minimised
+  over Z's range by the same 1-D search.
+
+Every bound is over a subset of the box's scenarios, so it never exceeds the worst
+spread of any preload over the whole box: a valid bound for pruning.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from itertools import combinations
+
+import numpy as np
+
+from liftplan.model.statics import rope_model
+
+from .scenarios import box_attitudes, run_block
+
+# Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
+FEASIBLE = 0
+COLLINEAR = 7
+CG_OUTSIDE = 1
+LEVEL_SWL = 2
+LEVEL_MIN_TENSION = 3
+BOOM_RANGE = 4
+BOX_SLACK = 5
+BOX_OVERLOAD = 6
+REASONS = {
+    COLLINEAR: "the lugs are collinear in plan (the statics are singular)",
+    CG_OUTSIDE: "the CG lies outside the lugs' polygon in plan",
+    LEVEL_SWL: "level tensions need more than the crane SWL",
+    LEVEL_MIN_TENSION: "level tensions cannot all reach min_tension",
+    BOOM_RANGE: "the boom heights needed lie outside the crane's boom-height range",
+    BOX_SLACK: "a rope falls below min_tension somewhere in the tolerance box",
+    BOX_OVERLOAD: "a rope exceeds the crane SWL somewhere in the tolerance box",
+}
+
+CHUNK = 8192
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+_ITERATIONS = 80
+
+
+@dataclass(frozen=True)
+class Screening:
+    """Screening of every lug set.
+
+    Parameters
+    ----------
+    sets : numpy.ndarray, shape (N, n), int
+        Candidate indices of each set (ascending).
+    bound : numpy.ndarray, shape (N,)  [t]
+        Lower bound on the set's worst spread over the box; inf where infeasible.
+    reason : numpy.ndarray, shape (N,), int
+        :data:`FEASIBLE` or a key of :data:`REASONS`.
+    exact : bool
+        True when ``bound`` is the exact minimax over the screening scenarios (n <= 4).
+    """
+
+    sets: np.ndarray
+    bound: np.ndarray
+    reason: np.ndarray
+    exact: bool
+
+
+def all_sets(problem):
+    """Every lug set, shape (N, n), in lexicographic order."""
+    count = len(problem.candidates)
+    return np.array(list(combinations(range(count), problem.cranes)), dtype=np.int64).reshape(
+        -1, problem.cranes
+    )
+
+
+def screen(problem, sets=None):
+    """Screen lug sets (all of them by default).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    sets : numpy.ndarray, shape (N, n), optional
+
+    Returns
+    -------
+    Screening
+    """
+    sets = all_sets(problem) if sets is None else np.asarray(sets, dtype=np.int64)
+    bound = np.empty(len(sets))
+    reason = np.empty(len(sets), dtype=np.int64)
+    for start in range(0, len(sets), CHUNK):
+        part = sets[start : start + CHUNK]
+        # collinear sets give singular statics (inf, nan): they are marked, not used
+        with np.errstate(divide="ignore", invalid="ignore"):
+            bound[start : start + len(part)], reason[start : start + len(part)] = _screen_chunk(
+                problem, part
+            )
+    return Screening(sets=sets, bound=bound, reason=reason, exact=problem.cranes <= 4)
+
+
+def _screen_chunk(problem, sets):
+    count, n = sets.shape
+    spec = problem.crane
+    weight = problem.body.weight
+    points = problem.points[sets]  # (N, n, 3)
+    cog = np.array(problem.body.cog)
+    yaw = math.radians(problem.yaw)
+    stiffness = spec.stiffness
+    boom_zero = problem.lift_height + points[..., 2] + spec.rope_length
+
+    # level statics (yaw only)
+    c, s = math.cos(yaw), math.sin(yaw)
+    plan_x = c * points[..., 0] - s * points[..., 1]
+    plan_y = s * points[..., 0] + c * points[..., 1]
+    a_level = np.stack([np.ones((count, n)), plan_x, plan_y], axis=1)  # (N, 3, n)
+    b_level = weight * np.array([1.0, c * cog[0] - s * cog[1], s * cog[0] + c * cog[1]])
+
+    # tensions at the screening scenarios with zero preload, and their gains: the 3 x 3 box
+    # grid for each CG of the envelope (all at once: the CG is in the parameter vector)
+    grid = box_attitudes(problem, 3, 3)
+    offsets = problem.cog_envelope.offsets()
+    m = len(grid) * len(offsets)
+    x = np.tile(np.column_stack([
+        np.full(len(grid), problem.lift_height), np.radians(grid[:, 0]), np.radians(grid[:, 1]),
+    ]), (len(offsets), 1))
+    diameter = np.max(np.linalg.norm(points[:, :, None, :2] - points[:, None, :, :2], axis=-1),
+                      axis=(1, 2))
+    params = np.concatenate([
+        np.full((count, 1), yaw),
+        points.reshape(count, 3 * n),
+        np.zeros((count, 3)),  # CG: set per column below
+        np.full((count, 1), weight),
+        boom_zero,
+        np.full((count, n), spec.rope_length),
+        np.full((count, n), spec.EA),
+        diameter[:, None],
+    ], axis=1)
+    columns_x = np.tile(x, (count, 1))
+    columns_p = np.repeat(params, m, axis=0)
+    cog_at = 1 + 3 * n
+    columns_p[:, cog_at : cog_at + 3] = np.tile(np.repeat(cog + offsets, len(grid), axis=0),
+                                                (count, 1))
+    q, _, gain = run_block(rope_model(n).held_columns, n, columns_x, columns_p)
+    q = q.reshape(count, m, n)
+    gain = gain.reshape(count, m, n, n) / stiffness  # P_k
+
+    inside = _cog_inside(plan_x, plan_y, b_level[1] / weight, b_level[2] / weight)
+    preload_low = stiffness * (spec.boom_min - boom_zero)
+    preload_high = stiffness * (spec.boom_max - boom_zero)
+    limits = (problem.min_tension, spec.swl)
+    # particular level solution (least norm) and null space of the level statics
+    collinear = _collinear(plan_x, plan_y)
+    gram = a_level @ a_level.transpose(0, 2, 1)
+    gram[collinear] = np.eye(3)  # placeholder: these sets are ruled out below
+    rhs = np.broadcast_to(b_level, (count, 3))[..., None]
+    particular = np.einsum("kji,kj->ki", a_level, np.linalg.solve(gram, rhs)[..., 0])
+    if n == 3:
+        bound, reason = _screen_fixed(particular, q, gain, inside, limits,
+                                      (preload_low, preload_high))
+    elif n == 4:
+        bound, reason = _screen_line(particular, _null_vector(a_level), q, gain, inside, limits,
+                                     (preload_low, preload_high))
+    else:
+        bound, reason = _screen_pairs(particular, a_level, points[..., 2], q, gain, inside,
+                                      limits, weight)
+    bound[collinear] = np.inf
+    reason[collinear] = COLLINEAR
+    return bound, reason
+
+
+def _collinear(plan_x, plan_y):
+    """Sets whose lugs lie on a line in plan (relative plan area below 1e-9)."""
+    dx = plan_x - plan_x.mean(axis=1, keepdims=True)
+    dy = plan_y - plan_y.mean(axis=1, keepdims=True)
+    sxx, syy, sxy = (dx * dx).sum(1), (dy * dy).sum(1), (dx * dy).sum(1)
+    return sxx * syy - sxy**2 <= 1e-18 * (sxx + syy) ** 2
+
+
+def _cog_inside(plan_x, plan_y, cog_x, cog_y):
+    """CG strictly inside the convex hull of each set's lugs in plan (no angular gap >= pi)."""
+    angles = np.sort(np.arctan2(plan_y - cog_y, plan_x - cog_x), axis=1)
+    gaps = np.diff(angles, axis=1, append=angles[:, :1] + 2 * math.pi)
+    return gaps.max(axis=1) < math.pi - 1e-12
+
+
+def _null_vector(a_level):
+    """Null vector of each 3 x 4 matrix by cofactors, unit length."""
+    cols = [np.delete(a_level, j, axis=2) for j in range(4)]
+    v = np.stack([(-1) ** j * np.linalg.det(cols[j]) for j in range(4)], axis=1)
+    return v / np.linalg.norm(v, axis=1, keepdims=True)
+
+
+def _interval(alpha, beta, low, high, lo, hi):
+    """Narrow [lo, hi] to the t with low <= alpha + beta t <= high on every row.
+
+    alpha, beta: (N, r); low, high: broadcastable to (N, r). Empty rows get lo > hi.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        to_low = (low - alpha) / beta
+        to_high = (high - alpha) / beta
+    pos, neg, flat = beta > 0, beta < 0, beta == 0
+    lo = np.maximum(lo, np.max(np.where(pos, to_low, np.where(neg, to_high, -np.inf)), axis=1))
+    hi = np.minimum(hi, np.min(np.where(pos, to_high, np.where(neg, to_low, np.inf)), axis=1))
+    bad = np.any(flat & ((alpha < low) | (alpha > high)), axis=1)
+    lo = np.where(bad, np.inf, lo)
+    return lo, hi
+
+
+def _golden(f, lo, hi, lipschitz):
+    """Vectorised golden-section minimum of convex f on [lo, hi]; returns a lower bound."""
+    a, b = lo.copy(), hi.copy()
+    c = b - _GOLDEN * (b - a)
+    d = a + _GOLDEN * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(_ITERATIONS):
+        left = fc <= fd
+        b = np.where(left, d, b)
+        a = np.where(left, a, c)
+        new = np.where(left, b - _GOLDEN * (b - a), a + _GOLDEN * (b - a))
+        fn = f(new)
+        c, d = np.where(left, new, d), np.where(left, c, new)
+        fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
+    # the minimiser stays in [a, b]; f(x*) >= f(c) - L |c - x*|
+    return np.minimum(fc, fd) - lipschitz * (b - a)
+
+
+def _screen_fixed(preload, q, gain, inside, limits, preload_range):
+    tensions = np.einsum("kmij,kj->kmi", gain, preload) + q
+    reason = _classify_point(preload, tensions, inside, limits, preload_range)
+    bound = np.ptp(tensions, axis=2).max(axis=1)
+    return np.where(reason == FEASIBLE, bound, np.inf), reason
+
+
+def _classify_point(preload, tensions, inside, limits, preload_range):
+    low, high = limits
+    reason = np.full(len(preload), FEASIBLE)
+    checks = [
+        (~inside, CG_OUTSIDE),
+        (np.any(preload > high, axis=1), LEVEL_SWL),
+        (np.any(preload < low, axis=1), LEVEL_MIN_TENSION),
+        (np.any((preload < preload_range[0]) | (preload > preload_range[1]), axis=1), BOOM_RANGE),
+        (np.any(tensions < low, axis=(1, 2)), BOX_SLACK),
+        (np.any(tensions > high, axis=(1, 2)), BOX_OVERLOAD),
+    ]
+    for failed, code in reversed(checks):  # the first failing check wins
+        reason = np.where(failed, code, reason)
+    return reason
+
+
+def _screen_line(particular, null, q, gain, inside, limits, preload_range):
+    count, m, n = q.shape
+    low, high = limits
+    alpha = np.einsum("kmij,kj->kmi", gain, particular) + q  # T_k = alpha + t beta
+    beta = np.einsum("kmij,kj->kmi", gain, null)
+    lo = np.full(count, -np.inf)
+    hi = np.full(count, np.inf)
+    reason = np.full(count, FEASIBLE)
+    steps = [
+        (particular, null, 0.0, np.inf, CG_OUTSIDE),
+        (particular, null, -np.inf, high, LEVEL_SWL),
+        (particular, null, low, np.inf, LEVEL_MIN_TENSION),
+        (particular, null, preload_range[0], preload_range[1], BOOM_RANGE),
+        (alpha.reshape(count, -1), beta.reshape(count, -1), low, np.inf, BOX_SLACK),
+        (alpha.reshape(count, -1), beta.reshape(count, -1), -np.inf, high, BOX_OVERLOAD),
+    ]
+    for a_rows, b_rows, row_low, row_high, code in steps:
+        lo, hi = _interval(a_rows, b_rows, row_low, row_high, lo, hi)
+        reason = np.where((reason == FEASIBLE) & ~(lo <= hi), code, reason)
+    ok = reason == FEASIBLE
+    bound = np.full(count, np.inf)
+    if np.any(ok):
+        al, be = alpha[ok], beta[ok]
+
+        def worst(t):
+            values = al + t[:, None, None] * be
+            return np.ptp(values, axis=2).max(axis=1)
+
+        lipschitz = np.ptp(be, axis=2).max(axis=1)
+        bound[ok] = _golden(worst, lo[ok], hi[ok], lipschitz)
+    return bound, reason
+
+
+def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight):
+    count, m, n = q.shape
+    reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
+    reason = np.where(inside & (weight > n * limits[1]), LEVEL_SWL, reason)
+    ok = reason == FEASIBLE
+    bound = np.full(count, np.inf)
+    if not np.any(ok):
+        return bound, reason
+    part, P, qq, z = particular[ok], gain[ok], q[ok], heights[ok]
+    null = np.linalg.svd(a_level[ok])[2][:, 3:, :].transpose(0, 2, 1)  # (N, n, n-3)
+    alpha = np.einsum("kmij,kj->kmi", P, part) + qq
+    w = np.einsum("kij,ki->kj", null, z)  # Z = z . T* = z . T0 + w . t
+    ww = np.einsum("kj,kj->k", w, w)
+    change = np.einsum("kmij,kjr->kmir", P, null) - null[:, None]  # = E_k w^T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e_vec = np.einsum("kmir,kr->kmi", change, w) / ww[:, None, None]
+    coplanar = ww < 1e-18 * np.max(np.abs(z), axis=1) ** 2 + 1e-300
+    e_vec[coplanar] = 0.0
+    first, second = np.triu_indices(n, 1)
+    g = alpha[..., first] - alpha[..., second]  # (N, m, pairs)
+    h = e_vec[..., first] - e_vec[..., second]
+    z_fixed = np.einsum("ki,ki->k", z, part)
+    lo = weight * z.min(axis=1) - z_fixed
+    hi = weight * z.max(axis=1) - z_fixed
+    lo = np.where(coplanar, 0.0, lo)
+    hi = np.where(coplanar, 0.0, hi)
+
+    def half_range(u):
+        values = g + u[:, None, None] * h
+        return 0.5 * np.ptp(values, axis=1).max(axis=1)
+
+    lipschitz = 0.5 * np.ptp(h, axis=1).max(axis=1)
+    bound[ok] = np.maximum(_golden(half_range, lo, hi, lipschitz), 0.0)
+    return bound, reason
