@@ -245,6 +245,15 @@ class PreloadMinimax:
             raise ValueError(f"{count} scenarios given, expected 1 to {self.slots}")
         pad = np.r_[np.arange(count), np.full(self.slots - count, count - 1)]
         n = self.n
+        # "no limit" (inf) becomes 100 W: Clarabel needs finite data, and no admissible
+        # tension comes near 100 W
+        big = 100.0 * abs(float(b_level[0]))
+
+        def clip(values):
+            return np.clip(np.asarray(values, dtype=float), -big, big)
+
+        tension_range = (clip(tension_range[0]), clip(tension_range[1]))
+        preload_range = (clip(preload_range[0]), clip(preload_range[1]))
         self.gain.value = gains[pad].reshape(self.slots * n, n)
         self.offset.value = np.asarray(offsets, dtype=float)[pad].ravel()
         self.tension_low.value = np.asarray(tension_range[0], dtype=float)[pad].ravel()

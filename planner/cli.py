@@ -10,9 +10,17 @@ import argparse
 import json
 import sys
 
-from liftplan.model import EquilibriumNotFound, LiftPlanError, load_scene, solve
+from liftplan.model import (
+    EquilibriumNotFound,
+    LiftPlanError,
+    PlanInfeasible,
+    load_scene,
+    solve,
+)
 
-from .console import equilibrium_table
+from .console import equilibrium_table, plan_table
+from .plan import plan
+from .problemfile import load_problem
 
 # exit codes
 BAD_INPUT = 2
@@ -35,7 +43,31 @@ def _parser():
         choices=["elastic", "paper-elastic", "rigid"],
         help="override the scene's [analysis] model",
     )
+    plan_cmd = commands.add_parser("plan", help="choose lugs and boom heights for a lift")
+    plan_cmd.add_argument("scene", help="planning scene file (TOML with [[candidates]], [plan])")
+    plan_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    plan_cmd.add_argument("--report", metavar="DIR",
+                          help="write report.html (and report.pdf with WeasyPrint), "
+                               "plan_scene.toml and plan.json into DIR")
+    plan_cmd.add_argument("--top", type=int, metavar="K", help="rank the best K lug sets")
     return parser
+
+
+def _plan(args):
+    problem = load_problem(args.scene)
+    if args.top is not None and args.top < 1:
+        raise LiftPlanError(f"--top {args.top}: expected an integer >= 1")
+    result = plan(problem, top=args.top)
+    if args.report:
+        from .report import write_report  # matplotlib only when a report is asked for
+
+        files = write_report(result, args.report)
+        written = [files.html, files.pdf, files.scene, files.json]
+        print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
+    if args.json:
+        print(json.dumps(result.to_json()))
+    else:
+        print(plan_table(result))
 
 
 def _solve(args):
@@ -48,12 +80,16 @@ def _solve(args):
 
 
 def main(argv=None):
-    """Entry point; returns the exit code (0 converged, 1 no equilibrium, 2 bad input)."""
+    """Entry point; returns the exit code (0 success, 1 no equilibrium or no feasible plan,
+    2 bad input, 3 internal error)."""
     args = _parser().parse_args(argv)
     try:
-        _solve(args)
+        _plan(args) if args.command == "plan" else _solve(args)
     except EquilibriumNotFound as err:
         print(f"liftplan: no equilibrium: {err}", file=sys.stderr)
+        return NO_SOLUTION
+    except PlanInfeasible as err:
+        print(f"liftplan: no feasible plan: {err}", file=sys.stderr)
         return NO_SOLUTION
     except LiftPlanError as err:
         print(f"liftplan: error: {err}", file=sys.stderr)

@@ -39,3 +39,51 @@ def equilibrium_table(scene, eq):
     lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
     lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
     return "\n".join(lines)
+
+
+def plan_table(plan):
+    """A readable summary of a plan.
+
+    Parameters
+    ----------
+    plan : Plan
+
+    Returns
+    -------
+    str
+    """
+    problem, chosen = plan.problem, plan.chosen
+    worst = chosen.worst
+    stats = plan.stats
+    lines = [
+        problem.name or "lift plan",
+        f"{stats.sets} lug sets of {problem.cranes} among {len(problem.candidates)} candidates: "
+        f"{stats.screened_out} ruled out by screening, {stats.evaluated} evaluated, "
+        f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)",
+        f"tolerance box: heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g}"
+        f" deg; tensions {problem.min_tension:g} to {problem.crane.swl:g} t",
+        "",
+        f"{'lug':<6}{'candidate':<14}{'boom height H [m]':>19}{'level tension [t]':>19}"
+        f"{'worst in box [t]':>18}{'design load [t]':>17}{'SWL util. [%]':>15}",
+    ]
+    for cap in plan.capacity:
+        label = cap.label
+        lines.append(
+            f"{label:<6}{plan.lugs[label]:<14}{plan.boom_heights[label]:>19.3f}"
+            f"{plan.tensions[label]:>19.2f}{cap.worst:>18.2f}{cap.design:>17.2f}"
+            f"{100 * cap.utilisation:>15.1f}" + ("" if cap.ok else "  capacity margin NOT MET")
+        )
+    lines += [
+        "",
+        f"spread: nominal {plan.spread:.2f} t, worst {plan.worst_spread:.2f} t at heel "
+        f"{worst.heel:+.2f} deg, trim {worst.trim:+.2f} deg (convex bound {chosen.bound:.2f} t)",
+        "skew load factors (hook tolerance +-" f"{problem.hook_tolerance:g} m): "
+        + ", ".join(f"{'+'.join(s.lugs)} {s.factor:.3f}" for s in plan.skew)
+        + f" (Noble Denton default {plan.default_skew_factor:.2f})",
+        "",
+        f"{'rank':<6}{'lugs':<36}{'nominal spread [t]':>20}{'worst spread [t]':>18}",
+    ]
+    for k, r in enumerate(plan.ranking):
+        lines.append(f"{k + 1:<6}{' '.join(r.lugs):<36}{r.nominal_spread:>20.2f}"
+                     f"{r.worst_spread:>18.2f}")
+    return "\n".join(lines)

@@ -1,0 +1,365 @@
+"""The planner's Python API: ``plan(problem) -> Plan``.
+
+A :class:`Plan` holds the chosen lug set (labelled L1..Ln), the boom heights that dial in
+its level preload, the ranking of the best sets, and what an engineer hands over with it:
+crane capacity margins, skew load factors from the hook-height tolerance, and the
+operators' guidance table (tension change per step of heel and of trim).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
+
+from .problem import DEFAULT_SKEW_FACTOR, PlanProblem, code_margin
+from .scenarios import LugSet, Scenario, box_attitudes
+from .search import SearchStats, SetResult, search
+
+#: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
+GUIDANCE_STEP = 5.0
+GUIDANCE_STEPS = 2
+
+
+@dataclass(frozen=True)
+class CraneCapacity:
+    """One crane's load against its capacity.
+
+    Parameters
+    ----------
+    label : str
+        Planned lug label.
+    nominal : float  [t]   level tension, nominal CG
+    worst : float  [t]   largest tension over the box and CG envelope
+    twist : float  [t]   largest increase from hook-height errors within the tolerance
+    design : float  [t]   worst + twist
+    swl : float  [t]
+    required_margin : float  [-]   the multi-crane code margin over the share (0.2/0.33/0.5)
+    """
+
+    label: str
+    nominal: float
+    worst: float
+    twist: float
+    design: float
+    swl: float
+    required_margin: float
+
+    @property
+    def utilisation(self):
+        """Design load over SWL  [-]."""
+        return self.design / self.swl
+
+    @property
+    def margin(self):
+        """SWL over the nominal share, minus one  [-]: the code compares this with its margin."""
+        return self.swl / self.nominal - 1.0
+
+    @property
+    def ok(self):
+        return self.design <= self.swl and self.margin >= self.required_margin
+
+
+@dataclass(frozen=True)
+class SkewLoad:
+    """Skew load factor of a rope or a diagonal pair from the hook-height tolerance.
+
+    Parameters
+    ----------
+    lugs : tuple of str
+        One label (a rope) or two (a diagonal pair).
+    nominal : float  [t]
+    skewed : float  [t]   largest load with every hook within +-hook_tolerance
+    """
+
+    lugs: tuple[str, ...]
+    nominal: float
+    skewed: float
+
+    @property
+    def factor(self):
+        """Skewed over nominal load  [-] (Noble Denton's default is 1.25)."""
+        return self.skewed / self.nominal
+
+
+@dataclass(frozen=True)
+class GuidanceStep:
+    """Tension change for one step of heel or trim (the 2003 paper's Table 3).
+
+    Parameters
+    ----------
+    angle : str  ``"heel"`` or ``"trim"``
+    start, end : float  [deg]
+    change : dict of str to float  [t]   by lug label
+    within_model : bool
+        False where a rope would go slack inside the step (the numbers then no longer hold).
+    """
+
+    angle: str
+    start: float
+    end: float
+    change: dict[str, float]
+    within_model: bool
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A lift plan: chosen lugs, boom heights and the checks that go with them.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    ranking : list of SetResult
+        Best first; ``ranking[0]`` is the plan.
+    stats : SearchStats
+    """
+
+    problem: PlanProblem
+    ranking: list[SetResult]
+    stats: SearchStats
+
+    # -- the chosen set ------------------------------------------------------------------
+    @property
+    def chosen(self):
+        return self.ranking[0]
+
+    @cached_property
+    def labels(self):
+        """Planned lug labels L1..Ln, in candidate order."""
+        return tuple(f"L{i + 1}" for i in range(len(self.chosen.lugs)))
+
+    @property
+    def lugs(self):
+        """Planned label -> candidate name."""
+        return dict(zip(self.labels, self.chosen.lugs))
+
+    @property
+    def boom_heights(self):
+        """Planned label -> boom-tip height H  [m]."""
+        return dict(zip(self.labels, self.chosen.boom_heights.tolist()))
+
+    @property
+    def tensions(self):
+        """Planned label -> level tension with the nominal CG  [t]."""
+        return dict(zip(self.labels, self.chosen.preload.tolist()))
+
+    @property
+    def spread(self):
+        """Max - min of the level tensions  [t]."""
+        return float(np.ptp(self.chosen.preload))
+
+    @property
+    def worst_spread(self):
+        """Largest max - min tension over the tolerance box and CG envelope  [t]."""
+        return self.chosen.worst_spread
+
+    @cached_property
+    def lugset(self):
+        return LugSet(self.problem, self.chosen.indices)
+
+    def tensions_at(self, heel, trim, cog_offset=(0.0, 0.0, 0.0)):
+        """Tensions with the plan's preload held, at many attitudes.
+
+        Parameters
+        ----------
+        heel, trim : array_like  [deg]
+        cog_offset : tuple of 3 float  [m]
+
+        Returns
+        -------
+        numpy.ndarray, shape (m, n)  [t]
+            Negative values mean the rope went slack (the linear model no longer holds).
+        """
+        heel, trim = np.broadcast_arrays(np.atleast_1d(heel), np.atleast_1d(trim))
+        scenarios = [Scenario(float(h), float(t), tuple(cog_offset)) for h, t in zip(heel, trim)]
+        return self.lugset.tensions(self.chosen.preload, scenarios)
+
+    @cached_property
+    def scene(self):
+        """The chosen plan as a :class:`~liftplan.model.scene.Scene` for ``solve``.
+
+        Its ``elastic`` solve gives the plan's level tensions at the plan's lift height.
+        """
+        problem, spec = self.problem, self.problem.crane
+        lugs = tuple(Lug(name=label, at=tuple(problem.points[i]))
+                     for label, i in zip(self.labels, self.chosen.indices))
+        cranes = tuple(
+            Crane(lug=label, EA=spec.EA, boom_height=float(h), rope_length=spec.rope_length,
+                  swl=spec.swl)
+            for label, h in zip(self.labels, self.chosen.boom_heights)
+        )
+        return Scene(
+            body=problem.body,
+            lugs=lugs,
+            cranes=cranes,
+            attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
+            analysis=Analysis(model="elastic"),
+            name=f"{problem.name or 'plan'}: chosen lugs",
+        )
+
+    # -- checks to hand over ------------------------------------------------------------
+    @cached_property
+    def _twist_gain(self):
+        return self.lugset.twist_gain(self.chosen.preload)
+
+    @cached_property
+    def _box_extremes(self):
+        """Per-rope largest tension over the dense box and CG envelope  [t]."""
+        grid = box_attitudes(self.problem, 21, 21)
+        worst = np.full(len(self.labels), -np.inf)
+        for offset in self.problem.cog_envelope.offsets():
+            worst = np.maximum(worst, self.tensions_at(grid[:, 0], grid[:, 1], offset).max(0))
+        return worst
+
+    @cached_property
+    def capacity(self):
+        """Per crane: nominal, worst, twist, design load against SWL and the code margin."""
+        spec = self.problem.crane
+        twist = self.problem.hook_tolerance * np.abs(self._twist_gain).sum(axis=1)
+        required = code_margin(len(self.labels))
+        return [
+            CraneCapacity(label=label, nominal=float(t0), worst=float(tw), twist=float(dt),
+                          design=float(tw + dt), swl=spec.swl, required_margin=required)
+            for label, t0, tw, dt in zip(self.labels, self.chosen.preload, self._box_extremes,
+                                         twist)
+        ]
+
+    @cached_property
+    def skew(self):
+        """Skew loads: each rope, and for four lugs each diagonal pair (plan order)."""
+        delta = self.problem.hook_tolerance
+        gain, preload = self._twist_gain, self.chosen.preload
+        out = [
+            SkewLoad((label, ), float(t), float(t + delta * np.abs(gain[i]).sum()))
+            for i, (label, t) in enumerate(zip(self.labels, preload))
+        ]
+        for i, j in self.diagonals:
+            out.append(SkewLoad(
+                (self.labels[i], self.labels[j]),
+                float(preload[i] + preload[j]),
+                float(preload[i] + preload[j] + delta * np.abs(gain[i] + gain[j]).sum()),
+            ))
+        return out
+
+    @cached_property
+    def diagonals(self):
+        """Index pairs of the diagonals of a four-lug plan (lugs ordered round the CG)."""
+        if len(self.labels) != 4:
+            return []
+        plan = self.lugset.points[:, :2] - np.array(self.problem.body.cog[:2])
+        order = np.argsort(np.arctan2(plan[:, 1], plan[:, 0]))
+        return [tuple(sorted((int(order[0]), int(order[2])))),
+                tuple(sorted((int(order[1]), int(order[3]))))]
+
+    @property
+    def default_skew_factor(self):
+        return DEFAULT_SKEW_FACTOR
+
+    @cached_property
+    def guidance(self):
+        """Tension change per :data:`GUIDANCE_STEP` of heel (trim 0) and of trim (heel 0)."""
+        edges = GUIDANCE_STEP * np.arange(-GUIDANCE_STEPS, GUIDANCE_STEPS + 1)
+        fine = np.linspace(edges[0], edges[-1], 8 * len(edges) + 1)
+        rows = []
+        for angle in ("heel", "trim"):
+            heel, trim = (edges, 0 * edges) if angle == "heel" else (0 * edges, edges)
+            tensions = self.tensions_at(heel, trim)
+            heel_f, trim_f = (fine, 0 * fine) if angle == "heel" else (0 * fine, fine)
+            slack_at = fine[np.any(self.tensions_at(heel_f, trim_f) < 0.0, axis=1)]
+            for k in range(len(edges) - 1):
+                lo, hi = edges[k], edges[k + 1]
+                rows.append(GuidanceStep(
+                    angle=angle, start=float(lo), end=float(hi),
+                    change=dict(zip(self.labels, (tensions[k + 1] - tensions[k]).tolist())),
+                    within_model=not np.any((slack_at >= lo) & (slack_at <= hi)),
+                ))
+        return rows
+
+    def spread_map(self, count=41):
+        """Spread over a heel x trim grid, worst over the CG envelope.
+
+        Returns
+        -------
+        heel : (count,)  [deg]
+        trim : (count,)  [deg]
+        spread : (count, count)  [t], indexed [heel, trim]
+        """
+        heel = np.linspace(-self.problem.heel_tolerance, self.problem.heel_tolerance, count)
+        trim = np.linspace(-self.problem.trim_tolerance, self.problem.trim_tolerance, count)
+        hh, tt = np.meshgrid(heel, trim, indexing="ij")
+        spread = np.zeros(hh.size)
+        for offset in self.problem.cog_envelope.offsets():
+            values = np.ptp(self.tensions_at(hh.ravel(), tt.ravel(), offset), axis=1)
+            spread = np.maximum(spread, values)
+        return heel, trim, spread.reshape(hh.shape)
+
+    # -- output -------------------------------------------------------------------------
+    def to_json(self):
+        """The JSON object of ``liftplan plan --json`` (keys fixed by CONTRACT.md first)."""
+        spec = self.problem.crane
+        worst = self.chosen.worst
+        return {
+            "lugs": self.lugs,
+            "boom_heights": self.boom_heights,
+            "tensions": self.tensions,
+            "spread": self.spread,
+            "worst_spread": self.worst_spread,
+            "ranking": [_ranking_entry(r, spec.swl) for r in self.ranking],
+            "worst_attitude": {"heel": worst.heel, "trim": worst.trim,
+                               "cog_offset": list(worst.cog_offset)},
+            "bound": self.chosen.bound,
+            "capacity": [
+                {"lug": c.label, "nominal": c.nominal, "worst": c.worst, "twist": c.twist,
+                 "design": c.design, "swl": c.swl, "utilisation": c.utilisation,
+                 "margin": c.margin, "required_margin": c.required_margin, "ok": c.ok}
+                for c in self.capacity
+            ],
+            "skew": [{"lugs": list(s.lugs), "nominal": s.nominal, "skewed": s.skewed,
+                      "factor": s.factor} for s in self.skew],
+            "guidance": [{"angle": g.angle, "from": g.start, "to": g.end, "change": g.change,
+                          "within_model": g.within_model} for g in self.guidance],
+            "search": {"sets": self.stats.sets, "screened_out": self.stats.screened_out,
+                       "evaluated": self.stats.evaluated, "pruned": self.stats.pruned,
+                       "infeasible": self.stats.infeasible, "seconds": self.stats.seconds},
+        }
+
+
+def _ranking_entry(result, swl):
+    return {
+        "lugs": list(result.lugs),
+        "nominal_spread": result.nominal_spread,
+        "worst_spread": result.worst_spread,
+        "worst_attitude": {"heel": result.worst.heel, "trim": result.worst.trim,
+                           "cog_offset": list(result.worst.cog_offset)},
+        "bound": result.bound,
+        "max_utilisation": result.utilisation(swl),
+        "boom_heights": result.boom_heights.tolist(),
+        "preload": result.preload.tolist(),
+        "converged": result.converged,
+    }
+
+
+def plan(problem, top=None):
+    """Plan a lift: lugs among the candidates and boom heights.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    top : int, optional
+        How many lug sets to rank (default ``problem.top``).
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    PlanInfeasible
+        No lug set can hold the body within the tolerances and limits; the message names
+        the causes and how many sets each ruled out.
+    """
+    ranking, stats = search(problem, top)
+    return Plan(problem=problem, ranking=ranking, stats=stats)

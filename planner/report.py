@@ -1,0 +1,290 @@
+"""The recommendation report: one self-contained HTML file (and a PDF when WeasyPrint is
+installed), plus the chosen plan as a scene file that ``liftplan solve`` reads back.
+
+Figures are embedded as base64 PNG, so the HTML file can be mailed on its own. Every
+table states its units in its header; inputs are echoed in the frame of the scene file.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+from dataclasses import dataclass
+from datetime import date
+from pathlib import Path
+
+from liftplan.model.frames import zup_to_choi
+
+from . import figures
+
+ASSUMPTIONS = (
+    "Ropes hang vertically (each hook above its lug) and the body is rigid.",
+    "With four or more cranes the differential hoist dials in any admissible level preload; "
+    "a heel or trim deviation comes from hook motions that move the level hook pattern "
+    "rigidly, so the twist (preload) is held and the tensions follow the elastic model.",
+    "Rope stiffness is EA / l0 (unstretched length); a rope never goes slack inside the "
+    "tolerance box (every tension stays above min_tension, checked densely).",
+    "The worst spread is searched on a 21 x 21 heel-trim grid for every CG-envelope vertex, "
+    "then on finer grids around the worst point; the CG envelope is exact at its vertices "
+    "(the spread is convex in the CG position).",
+    "Skew loads: every hook within +-hook_tolerance of its planned height, the pose held; "
+    "the worst combination per rope and per diagonal pair (a rigid body: hull flexibility, "
+    "which lowers skew loads, is ignored).",
+    "Design load = worst tension in the box + worst twist increase (both at once: "
+    "conservative). Code margin: 20 / 33 / 50 % over the nominal share for 2 / 3 / 4+ cranes.",
+)
+
+
+@dataclass(frozen=True)
+class ReportFiles:
+    """Files written by :func:`write_report`.
+
+    Parameters
+    ----------
+    html : Path
+    pdf : Path or None
+        None when WeasyPrint is not installed.
+    scene : Path
+        The chosen plan as a scene file (``liftplan solve`` reproduces the tensions).
+    json : Path
+    """
+
+    html: Path
+    pdf: Path | None
+    scene: Path
+    json: Path
+
+
+def write_report(plan, directory):
+    """Write the report of a plan into ``directory`` (created if needed).
+
+    Parameters
+    ----------
+    plan : Plan
+    directory : str or os.PathLike
+
+    Returns
+    -------
+    ReportFiles
+    """
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    page = render_html(plan)
+    html_path = out / "report.html"
+    html_path.write_text(page, encoding="utf-8")
+    scene_path = out / "plan_scene.toml"
+    scene_path.write_text(scene_toml(plan), encoding="utf-8")
+    json_path = out / "plan.json"
+    json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
+    pdf_path = None
+    try:
+        import weasyprint  # optional: pip install "liftplan[pdf]"
+    except ImportError:
+        pass
+    else:
+        pdf_path = out / "report.pdf"
+        weasyprint.HTML(string=page).write_pdf(pdf_path)
+    return ReportFiles(html=html_path, pdf=pdf_path, scene=scene_path, json=json_path)
+
+
+# -- HTML ---------------------------------------------------------------------------------
+def _png(fig, alt):
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=110)
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    return f'<img alt="{html.escape(alt)}" src="data:image/png;base64,{data}">'
+
+
+def _table(headers, rows, caption):
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows
+    )
+    return f"<table><caption>{html.escape(caption)}</caption><tr>{head}</tr>{body}</table>"
+
+
+def _shown(problem, point):
+    """A body-frame point as the scene file wrote it."""
+    return zup_to_choi(point) if problem.frame == "choi" else tuple(point)
+
+
+def _xyz(problem, point):
+    return ", ".join(f"{v:.2f}" for v in _shown(problem, point))
+
+
+def render_html(plan):
+    """The report as one HTML string."""
+    problem, chosen, spec = plan.problem, plan.chosen, plan.problem.crane
+    frame = ("the papers' frame (x forward, y up, z to starboard)" if problem.frame == "choi"
+             else "z-up (x forward, y to port, z up)")
+    candidates = dict(zip(problem.names, problem.candidates))
+    sections = []
+    sections.append(_table(
+        ["quantity", "value", "unit"],
+        [
+            ("weight W", f"{problem.body.weight:.2f}", "t"),
+            ("CG (file frame)", _xyz(problem, problem.body.cog), "m"),
+            ("CG envelope half-widths (z-up x, y, z)",
+             ", ".join(f"{v:.2f}" for v in problem.cog_envelope.half_widths), "m"),
+            ("CG envelope shape", problem.cog_envelope.shape, "-"),
+            ("cranes", problem.cranes, "-"),
+            ("rope EA", f"{spec.EA:.0f}", "t"),
+            ("rope length l0", f"{spec.rope_length:.2f}", "m"),
+            ("crane SWL", f"{spec.swl:.1f}", "t"),
+            ("boom height range", f"{spec.boom_min:g} to {spec.boom_max:g}", "m"),
+            ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
+            ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
+            ("min tension", f"{problem.min_tension:g}", "t"),
+            ("hook-height tolerance", f"+-{problem.hook_tolerance:g}", "m"),
+            ("lift height (body origin above datum)", f"{problem.lift_height:g}", "m"),
+            ("candidates", len(problem.candidates), "-"),
+        ],
+        f"Inputs (coordinates in {frame})",
+    ))
+    sections.append(_table(
+        ["lug", "candidate", "bulkhead", "position x, y, z [m]", "boom height H [m]",
+         "level tension [t]", "share of W [%]"],
+        [
+            (label, name, candidates[name].bulkhead, _xyz(problem, candidates[name].at),
+             f"{plan.boom_heights[label]:.3f}", f"{plan.tensions[label]:.2f}",
+             f"{100 * plan.tensions[label] / problem.body.weight:.2f}")
+            for label, name in plan.lugs.items()
+        ],
+        "Recommended lugs and boom heights",
+    ))
+    worst = chosen.worst
+    sections.append(_table(
+        ["quantity", "value", "unit"],
+        [
+            ("nominal spread (level, nominal CG)", f"{plan.spread:.2f}", "t"),
+            ("worst spread over the box", f"{plan.worst_spread:.2f}", "t"),
+            ("... at heel, trim", f"{worst.heel:+.2f}, {worst.trim:+.2f}", "deg"),
+            ("... with CG offset (z-up x, y, z)",
+             ", ".join(f"{v:+.2f}" for v in worst.cog_offset), "m"),
+            ("convex bound (LP optimum for this set)", f"{chosen.bound:.2f}", "t"),
+            ("tension range over the box", f"{chosen.tension_range[0]:.2f} to "
+                                           f"{chosen.tension_range[1]:.2f}", "t"),
+        ],
+        "Plan summary",
+    ))
+    sections.append(_table(
+        ["rank", "lugs", "nominal spread [t]", "worst spread [t]", "worst at heel, trim [deg]",
+         "convex bound [t]", "max SWL utilisation [%]", "boom heights H [m]"],
+        [
+            (k + 1, " ".join(r.lugs), f"{r.nominal_spread:.2f}", f"{r.worst_spread:.2f}",
+             f"{r.worst.heel:+.2f}, {r.worst.trim:+.2f}", f"{r.bound:.2f}",
+             f"{100 * r.utilisation(spec.swl):.1f}",
+             " ".join(f"{h:.3f}" for h in r.boom_heights))
+            for k, r in enumerate(plan.ranking)
+        ],
+        f"Ranking of lug sets (best {len(plan.ranking)} of {plan.stats.sets})",
+    ))
+    sections.append(_table(
+        ["lug", "nominal [t]", "worst in box [t]", "twist increase [t]", "design load [t]",
+         "SWL [t]", "utilisation [%]", "margin over share [%]", "code margin [%]", "check"],
+        [
+            (c.label, f"{c.nominal:.2f}", f"{c.worst:.2f}", f"{c.twist:.2f}",
+             f"{c.design:.2f}", f"{c.swl:.1f}", f"{100 * c.utilisation:.1f}",
+             f"{100 * c.margin:.1f}", f"{100 * c.required_margin:.0f}",
+             "ok" if c.ok else "NOT MET")
+            for c in plan.capacity
+        ],
+        "Crane capacity (multi-crane lift)",
+    ))
+    sections.append(_table(
+        ["rope or diagonal pair", "nominal load [t]", "skewed load [t]",
+         "skew load factor [-]", "Noble Denton default [-]"],
+        [
+            (" + ".join(s.lugs), f"{s.nominal:.2f}", f"{s.skewed:.2f}", f"{s.factor:.3f}",
+             f"{plan.default_skew_factor:.2f}" if len(s.lugs) == 2 else "-")
+            for s in plan.skew
+        ],
+        f"Skew loads for hook heights within +-{problem.hook_tolerance:g} m",
+    ))
+    sections.append(_table(
+        ["step", "from [deg]", "to [deg]", *(f"dT {label} [t]" for label in plan.labels),
+         "note"],
+        [
+            (g.angle, f"{g.start:+.0f}", f"{g.end:+.0f}",
+             *(f"{v:+.2f}" for v in g.change.values()),
+             "" if g.within_model else "a rope goes slack: beyond the model")
+            for g in plan.guidance
+        ],
+        "Operator guidance: tension change per step of heel (trim 0) and of trim (heel 0)",
+    ))
+    stats = plan.stats
+    sections.append(_table(
+        ["quantity", "value", "unit"],
+        [
+            ("lug sets", stats.sets, "-"),
+            ("ruled out by screening", stats.screened_out, "-"),
+            ("evaluated (LP + dense search)", stats.evaluated, "-"),
+            ("pruned by the bound", stats.pruned, "-"),
+            *((f"infeasible: {text}", n, "sets") for text, n in stats.infeasible.items()),
+            ("search time", f"{stats.seconds:.2f}", "s"),
+        ],
+        "Search",
+    ))
+    figs = [
+        _png(figures.plan_view(plan), "plan view"),
+        _png(figures.tension_curves(plan), "tension against heel and trim"),
+        _png(figures.spread_map(plan), "spread over the tolerance box"),
+    ]
+    body = "\n".join(
+        [f"<h1>{html.escape(problem.name or 'Lift plan')}</h1>",
+         f"<p>liftplan recommendation, {date.today().isoformat()}. Angles: heel &gt; 0 "
+         "starboard down, trim &gt; 0 bow down.</p>",
+         sections[1], sections[2], "<h2>Figures</h2>", *figs,
+         "<h2>Checks to hand over</h2>", sections[4], sections[5], sections[6],
+         "<h2>Alternatives</h2>", sections[3], "<h2>Inputs</h2>", sections[0],
+         "<h2>Assumptions</h2>",
+         "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in ASSUMPTIONS) + "</ul>",
+         sections[7]]
+    )
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>{html.escape(problem.name or 'Lift plan')}</title>
+<style>
+body {{ font-family: sans-serif; max-width: 1100px; margin: 2em auto; color: #222; }}
+table {{ border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }}
+caption {{ text-align: left; font-weight: bold; padding: 0.3em 0; }}
+th, td {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}
+th {{ background: #eee; }}
+img {{ max-width: 100%; display: block; margin: 1em 0; }}
+</style></head>
+<body>
+{body}
+</body></html>
+"""
+
+
+# -- scene file of the chosen plan ---------------------------------------------------------
+def scene_toml(plan):
+    """The chosen plan as a scene file (z-up frame) for ``liftplan solve``."""
+    scene = plan.scene
+
+    def vec(values):
+        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
+
+    lines = [
+        f"# Written by liftplan plan: the chosen lugs of {json.dumps(plan.problem.name)}.",
+        "# `liftplan solve` on this file gives the plan's level tensions.",
+        f"name = {json.dumps(scene.name)}",
+        'frame = "z-up"',
+        "",
+        "[body]",
+        f"weight = {scene.body.weight!r}",
+        f"cog = {vec(scene.body.cog)}",
+    ]
+    for lug in scene.lugs:
+        lines += ["", "[[lugs]]", f"name = {json.dumps(lug.name)}", f"at = {vec(lug.at)}"]
+    for crane in scene.cranes:
+        lines += ["", "[[cranes]]", f"lug = {json.dumps(crane.lug)}",
+                  f"boom_height = {crane.boom_height!r}", f"rope_length = {crane.rope_length!r}",
+                  f"EA = {crane.EA!r}", f"swl = {crane.swl!r}"]
+    att = scene.attitude
+    lines += ["", "[attitude]", f"lift_height = {att.lift_height!r}", f"yaw = {att.yaw!r}",
+              "", "[analysis]", 'model = "elastic"', ""]
+    return "\n".join(lines)
