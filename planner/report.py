@@ -81,7 +81,7 @@ def write_report(plan, directory):
     pdf_path = None
     try:
         import weasyprint  # optional: pip install "liftplan[pdf]"
-    except ImportError:
+    except (ImportError, OSError):  # OSError: installed, but the system's Pango is missing
         pass
     else:
         pdf_path = out / "report.pdf"

@@ -1,0 +1,138 @@
+"""`liftplan plan` as a user drives it, and the report as a person sees it."""
+
+import html.parser
+import json
+import re
+import shutil
+import subprocess
+
+import pytest
+from helpers import EXAMPLES
+from test_cli import run
+
+TANKER = str(EXAMPLES / "tanker_plan.toml")
+
+
+@pytest.fixture(scope="module")
+def report_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    result = run("plan", TANKER, "--json", "--report", str(out))
+    assert result.returncode == 0, result.stderr
+    return out, json.loads(result.stdout)
+
+
+def test_plan_json_has_the_contract_keys(report_dir):
+    _, data = report_dir
+    for key in ("lugs", "boom_heights", "tensions", "spread", "worst_spread", "ranking"):
+        assert key in data
+    labels = set(data["lugs"])
+    assert labels == set(data["boom_heights"]) == set(data["tensions"])
+    tensions = list(data["tensions"].values())
+    assert data["spread"] == pytest.approx(max(tensions) - min(tensions), abs=1e-9)
+    assert data["worst_spread"] >= data["spread"]
+    assert data["ranking"][0]["lugs"] == list(data["lugs"].values())
+    assert sum(tensions) == pytest.approx(904.0, abs=1e-4)
+
+
+def test_written_scene_solves_to_the_plan_tensions(report_dir):
+    out, data = report_dir
+    result = run("solve", str(out / "plan_scene.toml"), "--json")
+    assert result.returncode == 0, result.stderr
+    solved = json.loads(result.stdout)
+    assert solved["tensions"] == pytest.approx(data["tensions"], abs=1e-6)
+
+
+class _Tables(html.parser.HTMLParser):
+    """Collects each table's header cells and the images."""
+
+    def __init__(self):
+        super().__init__()
+        self.tables, self.images, self._cell = [], [], None
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "table":
+            self.tables.append([])
+        elif tag == "th":
+            self._cell = ""
+        elif tag == "img":
+            self.images.append(dict(attrs)["src"])
+
+    def handle_endtag(self, tag):
+        if tag == "th":
+            self.tables[-1].append(self._cell)
+            self._cell = None
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell += data
+
+
+def test_report_embeds_figures_and_every_table_has_units(report_dir):
+    out, _ = report_dir
+    page = (out / "report.html").read_text(encoding="utf-8")
+    parsed = _Tables()
+    parsed.feed(page)
+    assert len(parsed.images) == 3
+    assert all(src.startswith("data:image/png;base64,") for src in parsed.images)
+    assert "src=\"http" not in page and "<link" not in page  # self-contained
+    assert len(parsed.tables) >= 7
+    for headers in parsed.tables:
+        # a units column, or a unit in brackets on every numeric column's header
+        has_unit_column = "unit" in headers
+        with_units = [h for h in headers if re.search(r"\[[^\]]+\]", h)]
+        assert has_unit_column or len(with_units) >= len(headers) - 3, headers
+    for text in ("Assumptions", "Operator guidance", "Skew loads", "Crane capacity"):
+        assert text in page
+
+
+def test_report_pdf_when_weasyprint_is_installed(report_dir):
+    pytest.importorskip("weasyprint")
+    out, _ = report_dir
+    pdf = (out / "report.pdf").read_bytes()
+    assert pdf[:5] == b"%PDF-" and len(pdf) > 50_000
+
+
+@pytest.mark.skipif(shutil.which("chromium") is None, reason="Debian chromium not installed")
+def test_report_renders_in_headless_chromium(report_dir, tmp_path):
+    out, _ = report_dir
+    shot = tmp_path / "report.png"
+    result = subprocess.run(
+        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", f"--user-data-dir={tmp_path / 'profile'}", "--hide-scrollbars",
+         "--window-size=1200,1600", f"--screenshot={shot}", (out / "report.html").as_uri()],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert result.returncode == 0, result.stderr[-500:]
+    data = shot.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    assert len(data) > 50_000  # a blank page compresses to a few kB
+
+
+@pytest.mark.parametrize(
+    ("change", "fragment"),
+    [
+        ("swl = 400.0", "more than the crane SWL"),
+        ("heel = 2.0, trim = 2.0", "falls below min_tension"),
+    ],
+)
+def test_infeasible_plan_exits_non_zero_with_one_line(tmp_path, change, fragment):
+    text = open(TANKER, encoding="utf-8").read()
+    replacement = {"swl = 400.0": "swl = 150.0",
+                   "heel = 2.0, trim = 2.0": "heel = 80.0, trim = 2.0"}[change]
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text.replace(change, replacement), encoding="utf-8")
+    result = run("plan", str(scene), "--json")
+    assert result.returncode == 1
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "no feasible plan" in lines[0] and fragment in lines[0]
+
+
+def test_bad_plan_file_is_one_line_exit_2(tmp_path):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(open(TANKER, encoding="utf-8").read().replace("cranes = 4", "cranes = 9"))
+    result = run("plan", str(scene))
+    assert result.returncode == 2
+    assert "plan.cranes = 9: expected 3 to 8" in result.stderr
+    assert "Traceback" not in result.stderr
