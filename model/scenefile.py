@@ -113,6 +113,11 @@ def load_scene(path):
     InvalidScene
         One line naming the file, the key, the value and what is expected.
     """
+    return load_with(path, loads_scene)
+
+
+def load_with(path, loads):
+    """Read a TOML file and validate it with ``loads``; errors start with the path."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -121,17 +126,22 @@ def load_scene(path):
     except (OSError, UnicodeDecodeError) as err:
         raise InvalidScene(f"{path}: cannot read the scene file ({err})") from None
     try:
-        return loads_scene(text)
+        return loads(text)
     except InvalidScene as err:
         raise InvalidScene(f"{path}: {err}") from None
 
 
-def loads_scene(text):
-    """Validate a scene given as TOML text; see :func:`load_scene`."""
+def parse_toml(text):
+    """TOML text to a dict; a syntax error is an InvalidScene naming the line."""
     try:
-        raw = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise InvalidScene(f"TOML syntax error: {err}") from None
+
+
+def loads_scene(text):
+    """Validate a scene given as TOML text; see :func:`load_scene`."""
+    raw = parse_toml(text)
     for key in PLAN_TABLES:
         if key in raw:
             raise InvalidScene(

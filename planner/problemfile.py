@@ -7,8 +7,6 @@ the file's frame and converted to ``z-up``.
 
 from __future__ import annotations
 
-import tomllib
-from pathlib import Path
 from typing import Annotated, Literal
 
 from pydantic import Field, Strict, ValidationError
@@ -16,7 +14,7 @@ from pydantic import Field, Strict, ValidationError
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene import Body
-from liftplan.model.scenefile import Num, Point, Table, Text, one_line
+from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
 
 from .problem import Candidate, CogEnvelope, CraneSpec, PlanProblem
 
@@ -99,25 +97,12 @@ def load_problem(path):
     InvalidScene
         One line naming the file, the key, the value and what is expected.
     """
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InvalidScene(f"{path}: no such scene file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise InvalidScene(f"{path}: cannot read the scene file ({err})") from None
-    try:
-        return loads_problem(text)
-    except InvalidScene as err:
-        raise InvalidScene(f"{path}: {err}") from None
+    return load_with(path, loads_problem)
 
 
 def loads_problem(text):
     """Validate a planning scene given as TOML text; see :func:`load_problem`."""
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise InvalidScene(f"TOML syntax error: {err}") from None
+    raw = parse_toml(text)
     if "candidates" not in raw and "lugs" in raw:
         raise InvalidScene(
             "[[lugs]]: a scene with fixed lugs; expected [[candidates]] and [plan] for "
