@@ -73,6 +73,10 @@ def plan_table(plan):
             f"{plan.tensions[label]:>19.2f}{cap.worst:>18.2f}{cap.design:>17.2f}"
             f"{100 * cap.utilisation:>15.1f}" + ("" if cap.ok else "  capacity margin NOT MET")
         )
+    if not chosen.converged:
+        lines.append(f"WARNING: the worst-case search still exceeded the LP bound by "
+                     f"{chosen.worst_spread - chosen.bound:.3f} t after {chosen.rounds} rounds; "
+                     "the worst spread shown is the largest found")
     lines += [
         "",
         f"spread: nominal {plan.spread:.2f} t, worst {plan.worst_spread:.2f} t at heel "
