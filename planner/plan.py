@@ -13,8 +13,10 @@ from functools import cached_property
 
 import numpy as np
 
+from liftplan.model.errors import PlanInfeasible
 from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 
+from .bounds import AdmissibleTensions
 from .problem import DEFAULT_SKEW_FACTOR, PlanProblem, code_margin
 from .scenarios import LugSet, Scenario, box_attitudes
 from .search import SearchStats, SetResult, search
@@ -253,6 +255,32 @@ class Plan:
         order = np.argsort(np.arctan2(plan[:, 1], plan[:, 0]))
         return [tuple(sorted((int(order[0]), int(order[2])))),
                 tuple(sorted((int(order[1]), int(order[3]))))]
+
+    @cached_property
+    def admissible(self):
+        """Convex sub-study at level and at the box corners (nominal CG): for each, the
+        bounds of every tension over all statically admissible sets within
+        [min_tension, SWL], and the least spread any of them achieves.
+
+        Returns
+        -------
+        list of (Scenario, TensionBounds or None)
+            None where no admissible set exists at that attitude.
+        """
+        problem = self.problem
+        lp = AdmissibleTensions(len(self.labels))
+        lower = np.full(len(self.labels), problem.min_tension)
+        upper = np.full(len(self.labels), problem.crane.swl)
+        out = []
+        for heel, trim in [(0.0, 0.0)] + [(h, t) for h in (-1, 1) for t in (-1, 1)]:
+            scenario = Scenario(heel * problem.heel_tolerance + 0.0,
+                                trim * problem.trim_tolerance + 0.0)
+            a_mat, b_vec = self.lugset.statics_at(scenario)
+            try:
+                out.append((scenario, lp.bounds(a_mat, b_vec, lower, upper)))
+            except PlanInfeasible:
+                out.append((scenario, None))
+        return out
 
     @property
     def default_skew_factor(self):

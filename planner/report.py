@@ -214,6 +214,19 @@ def render_html(plan):
         ],
         "Operator guidance: tension change per step of heel (trim 0) and of trim (heel 0)",
     ))
+    sections.append(_table(
+        ["heel [deg]", "trim [deg]", "least spread [t]",
+         *(f"{label} range [t]" for label in plan.labels)],
+        [
+            (f"{s.heel:+.2f}", f"{s.trim:+.2f}",
+             *((f"{b.least_spread:.2f}", *(f"{lo:.1f} to {hi:.1f}"
+                                            for lo, hi in zip(b.lower, b.upper)))
+               if b is not None else ["no admissible set"] + [""] * len(plan.labels)))
+            for s, b in plan.admissible
+        ],
+        "Convex bounds: every statically admissible tension set within min_tension and SWL "
+        "(nominal CG)",
+    ))
     stats = plan.stats
     sections.append(_table(
         ["quantity", "value", "unit"],
@@ -238,10 +251,10 @@ def render_html(plan):
          "starboard down, trim &gt; 0 bow down.</p>",
          sections[1], sections[2], "<h2>Figures</h2>", *figs,
          "<h2>Checks to hand over</h2>", sections[4], sections[5], sections[6],
-         "<h2>Alternatives</h2>", sections[3], "<h2>Inputs</h2>", sections[0],
+         "<h2>Alternatives</h2>", sections[3], sections[7], "<h2>Inputs</h2>", sections[0],
          "<h2>Assumptions</h2>",
          "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in ASSUMPTIONS) + "</ul>",
-         sections[7]]
+         sections[8]]
     )
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">

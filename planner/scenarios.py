@@ -150,11 +150,16 @@ class LugSet:
     @cached_property
     def level_statics(self):
         """(A0, b0): level statics A0 T* = b0, rows (1, x, y)  [-, m], W (1, x_c, y_c)."""
-        rot = rotation_matrix(0.0, 0.0, self.problem.yaw)
+        return self.statics_at(Scenario(0.0, 0.0))
+
+    def statics_at(self, scenario):
+        """(A, b) of the statics at a scenario's attitude and CG: A T = b  [-, m; t, t m]."""
+        problem = self.problem
+        rot = rotation_matrix(scenario.heel, scenario.trim, problem.yaw)
         plan = (self.points @ rot.T)[:, :2]
-        cog = rot @ np.array(self.problem.body.cog)
+        cog = rot @ (np.array(problem.body.cog) + np.array(scenario.cog_offset))
         a_mat = np.vstack([np.ones(self.n), plan.T])
-        return a_mat, self.problem.body.weight * np.array([1.0, cog[0], cog[1]])
+        return a_mat, problem.body.weight * np.array([1.0, cog[0], cog[1]])
 
     def preload_range(self):
         """Bounds on T* from the boom-height range  [t]."""

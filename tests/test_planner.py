@@ -264,3 +264,14 @@ def test_boom_range_too_low():
 
 def test_all_sets_count(tanker_problem):
     assert len(all_sets(tanker_problem)) == 1820 == tanker_problem.set_count
+
+
+def test_admissible_bounds_contain_the_plan_and_bound_its_spread(tanker_plan):
+    """At level and at the box corners, the plan's tensions are one admissible set: they lie
+    inside the convex bounds, and the least spread is never above the plan's spread."""
+    assert len(tanker_plan.admissible) == 5
+    for scenario, bounds in tanker_plan.admissible:
+        tensions = tanker_plan.tensions_at(scenario.heel, scenario.trim)[0]
+        assert np.all(tensions >= bounds.lower - 1e-4)
+        assert np.all(tensions <= bounds.upper + 1e-4)
+        assert bounds.least_spread <= np.ptp(tensions) + 1e-4
