@@ -18,7 +18,7 @@ from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 
 from .bounds import AdmissibleTensions
 from .problem import DEFAULT_SKEW_FACTOR, PlanProblem, code_margin
-from .scenarios import LugSet, Scenario, box_attitudes
+from .scenarios import LugSet, Scenario
 from .search import SearchStats, SetResult, search
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
@@ -208,15 +208,6 @@ class Plan:
         return self.lugset.twist_gain(self.chosen.preload)
 
     @cached_property
-    def _box_extremes(self):
-        """Per-rope largest tension over the dense box and CG envelope  [t]."""
-        grid = box_attitudes(self.problem, 21, 21)
-        worst = np.full(len(self.labels), -np.inf)
-        for offset in self.problem.cog_envelope.offsets():
-            worst = np.maximum(worst, self.tensions_at(grid[:, 0], grid[:, 1], offset).max(0))
-        return worst
-
-    @cached_property
     def capacity(self):
         """Per crane: nominal, worst, twist, design load against SWL and the code margin."""
         spec = self.problem.crane
@@ -225,7 +216,7 @@ class Plan:
         return [
             CraneCapacity(label=label, nominal=float(t0), worst=float(tw), twist=float(dt),
                           design=float(tw + dt), swl=spec.swl, required_margin=required)
-            for label, t0, tw, dt in zip(self.labels, self.chosen.preload, self._box_extremes,
+            for label, t0, tw, dt in zip(self.labels, self.chosen.preload, self.chosen.rope_max,
                                          twist)
         ]
 

@@ -77,29 +77,42 @@ def run_block(block, n, attitudes, params):
 
 
 def pack(problem, points, cog, boom):
-    """Flat parameter vector (:class:`~liftplan.model.statics.Layout`) of a lug set.
+    """Parameter vectors (:class:`~liftplan.model.statics.Layout`) of lug sets.
 
     Parameters
     ----------
     problem : PlanProblem
-    points : (n, 3)  [m]   lug positions, body frame
-    cog : (3,)  [m]
-    boom : (n,)  [m]   boom-tip heights H
+    points : (..., n, 3)  [m]   lug positions, body frame (one set, or a batch of sets)
+    cog : (..., 3)  [m]
+    boom : (..., n)  [m]   boom-tip heights H
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6 n + 6)
     """
-    n = points.shape[0]
+    points, cog, boom = (np.asarray(v, dtype=float) for v in (points, cog, boom))
+    n = points.shape[-2]
+    batch = np.broadcast_shapes(points.shape[:-2], cog.shape[:-1], boom.shape[:-1])
+    points = np.broadcast_to(points, (*batch, n, 3))
     spec = problem.crane
-    plan = points[:, :2]
-    diameter = float(np.max(np.linalg.norm(plan[:, None] - plan[None], axis=-1)))
+    plan = points[..., :2]
+    diameter = np.max(np.linalg.norm(plan[..., :, None, :] - plan[..., None, :, :], axis=-1),
+                      axis=(-2, -1))
+
+    def column(value, width):
+        value = np.asarray(value, dtype=float)
+        return np.broadcast_to(value[..., None] if width == 1 else value, (*batch, width))
+
     return np.concatenate([
-        [math.radians(problem.yaw)],
-        points.ravel(),
-        cog,
-        [problem.body.weight],
-        boom,
-        np.full(n, spec.rope_length),
-        np.full(n, spec.EA),
-        [diameter],
-    ])
+        column(math.radians(problem.yaw), 1),
+        points.reshape(*batch, 3 * n),
+        column(cog, 3),
+        column(problem.body.weight, 1),
+        column(boom, n),
+        column(spec.rope_length, n),
+        column(spec.EA, n),
+        column(diameter, 1),
+    ], axis=-1)
 
 
 def box_attitudes(problem, heel_count, trim_count):

@@ -30,7 +30,7 @@ import numpy as np
 
 from liftplan.model.statics import rope_model
 
-from .scenarios import box_attitudes, run_block
+from .scenarios import box_attitudes, pack, run_block
 
 # Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
 FEASIBLE = 0
@@ -136,23 +136,10 @@ def _screen_chunk(problem, sets):
     x = np.tile(np.column_stack([
         np.full(len(grid), problem.lift_height), np.radians(grid[:, 0]), np.radians(grid[:, 1]),
     ]), (len(offsets), 1))
-    diameter = np.max(np.linalg.norm(points[:, :, None, :2] - points[:, None, :, :2], axis=-1),
-                      axis=(1, 2))
-    params = np.concatenate([
-        np.full((count, 1), yaw),
-        points.reshape(count, 3 * n),
-        np.zeros((count, 3)),  # CG: set per column below
-        np.full((count, 1), weight),
-        boom_zero,
-        np.full((count, n), spec.rope_length),
-        np.full((count, n), spec.EA),
-        diameter[:, None],
-    ], axis=1)
+    # one parameter vector per (set, scenario) column: the CG moves with the envelope
+    cogs = np.repeat(cog + offsets, len(grid), axis=0)  # (m, 3)
+    columns_p = pack(problem, points[:, None], cogs[None], boom_zero[:, None]).reshape(-1, 6 * n + 6)
     columns_x = np.tile(x, (count, 1))
-    columns_p = np.repeat(params, m, axis=0)
-    cog_at = 1 + 3 * n
-    columns_p[:, cog_at : cog_at + 3] = np.tile(np.repeat(cog + offsets, len(grid), axis=0),
-                                                (count, 1))
     q, _, gain = run_block(rope_model(n).held_columns, n, columns_x, columns_p)
     q = q.reshape(count, m, n)
     gain = gain.reshape(count, m, n, n) / stiffness  # P_k

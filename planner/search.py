@@ -81,6 +81,8 @@ class SetResult:
         The screening bound used to order and prune.
     tension_range : tuple of float  [t]
         Smallest and largest tension anywhere in the box.
+    rope_max : numpy.ndarray  [t]
+        Each rope's largest tension over the dense box grid and the CG envelope.
     rounds : int
         Cutting-plane rounds.
     converged : bool
@@ -97,6 +99,7 @@ class SetResult:
     bound: float
     screen_bound: float
     tension_range: tuple[float, float]
+    rope_max: np.ndarray
     rounds: int
     converged: bool
 
@@ -177,7 +180,7 @@ class SetEvaluator:
                                             lugset.preload_range(), self._limits(len(scenarios)))
             except PlanInfeasible:
                 raise SetInfeasible(self.diagnose(lugset, scenarios)) from None
-            worst, low, high = self._search(lugset, result.preload)
+            worst, low, high, rope_max = self._search(lugset, result.preload)
             violated = low[0] < self.problem.min_tension - self.tol or \
                 high[0] > self.problem.crane.swl + self.tol
             if worst[0] <= result.worst_spread + self.tol and not violated:
@@ -206,12 +209,14 @@ class SetEvaluator:
             bound=result.worst_spread,
             screen_bound=screen_bound,
             tension_range=(low[0], high[0]),
+            rope_max=rope_max,
             rounds=rounds,
             converged=converged,
         )
 
     def _search(self, lugset, preload):
-        """Worst spread, lowest and highest tension over the box, with their scenarios."""
+        """Worst spread, lowest and highest tension over the box (with their scenarios), and
+        each rope's largest tension on the dense grid."""
         tensions = lugset.tensions(preload, self.dense)
         spread = np.ptp(tensions, axis=1)
         k = int(np.argmax(spread))
@@ -226,7 +231,7 @@ class SetEvaluator:
         highest = np.unravel_index(np.argmax(tensions), tensions.shape)[0]
         low = (float(tensions.min()), self.dense[lowest])
         high = (float(tensions.max()), self.dense[highest])
-        return worst, low, high
+        return worst, low, high, tensions.max(axis=0)
 
     def _around(self, scenario):
         """A ZOOM x ZOOM grid of one dense cell either side of a scenario, inside the box."""
