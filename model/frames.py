@@ -110,3 +110,37 @@ def rotation_matrix(heel, trim, yaw=0.0):
     numpy.ndarray, shape (3, 3)
     """
     return np.array(ca.DM(rotation(math.radians(heel), math.radians(trim), math.radians(yaw))))
+
+
+def tilt(about_x, about_y):
+    """Rotation Ry(about_y) Rx(about_x) about the world's horizontal axes (rad; casadi or
+    float). The hydrostatic models' unknown tilts act on a start attitude R0 as
+    R = tilt(a, b) R0, so they stay well defined at any start attitude, heel 90 deg
+    included (where the body's own trim axis is vertical)."""
+    ca_, sa = ca.cos(about_x), ca.sin(about_x)
+    cb, sb = ca.cos(about_y), ca.sin(about_y)
+    rx = ca.vertcat(ca.horzcat(1, 0, 0), ca.horzcat(0, ca_, -sa), ca.horzcat(0, sa, ca_))
+    ry = ca.vertcat(ca.horzcat(cb, 0, sb), ca.horzcat(0, 1, 0), ca.horzcat(-sb, 0, cb))
+    return ca.mtimes(ry, rx)
+
+
+def attitude_angles(matrix):
+    """Heel, trim and yaw of an attitude matrix, inverse of :func:`rotation_matrix`.
+
+    R = Rx(heel) Rz(yaw) Ry(trim) has first row (cos yaw cos trim, -sin yaw,
+    cos yaw sin trim) and second column (-sin yaw, cos heel cos yaw, sin heel cos yaw).
+
+    Parameters
+    ----------
+    matrix : array_like, shape (3, 3)
+
+    Returns
+    -------
+    tuple (heel, trim, yaw)  [deg]
+        heel and trim in (-180, 180], yaw in [-90, 90].
+    """
+    r = np.asarray(matrix, dtype=float)
+    yaw = math.asin(max(-1.0, min(1.0, -r[0, 1])))
+    trim = math.atan2(r[0, 2], r[0, 0])
+    heel = math.atan2(r[2, 1], r[1, 1])
+    return math.degrees(heel), math.degrees(trim), math.degrees(yaw)

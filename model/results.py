@@ -30,8 +30,9 @@ class SolverInfo:
     Parameters
     ----------
     method : str
-        ``"linear"`` (exact solve of the linear statics), ``"newton"`` (casadi root-finder)
-        or ``"energy"`` (IPOPT on the potential energy).
+        ``"linear"`` (exact solve of the linear statics), ``"newton"`` (casadi root-finder),
+        ``"energy"`` (IPOPT on the potential energy) or ``"paper-newton"`` (the stranded-ship
+        paper's J^T D J iteration).
     converged : bool
     iterations : int or None
         Iterations, where the method reports them.
@@ -43,6 +44,42 @@ class SolverInfo:
     converged: bool
     iterations: int | None
     seconds: float
+
+
+@dataclass(frozen=True)
+class Afloat:
+    """Water and ground forces of an equilibrium (world frame, ``z-up``).
+
+    Parameters
+    ----------
+    state : str
+        ``"grounded"`` (resting on the ground contact, which carries F_R > 0),
+        ``"afloat"`` (free of the ground; floating or hanging in the water) or ``"clear"``
+        (hanging clear of the water).
+    buoyancy : float  [t]
+        Net upward water force (displaced water less trapped water's lift; see
+        :mod:`liftplan.model.hull`).
+    volume : float  [m3]
+        Envelope volume below the water plane.
+    ground_reaction : float or None  [t]
+        F_R at the contact (None when no ground is modelled; 0 when afloat).
+    freeing_force : float or None  [t]
+        friction x F_R (None without a friction coefficient).
+    centre_of_buoyancy : tuple of 3 float or None  [m]
+        Centre of the displaced envelope volume (None when clear of the water).
+    centre_of_gravity : tuple of 3 float  [m]
+    contact : tuple of 3 float or None  [m]
+        The ground contact point.
+    """
+
+    state: str
+    buoyancy: float
+    volume: float
+    ground_reaction: float | None
+    freeing_force: float | None
+    centre_of_buoyancy: tuple[float, float, float] | None
+    centre_of_gravity: tuple[float, float, float]
+    contact: tuple[float, float, float] | None
 
 
 @dataclass(frozen=True)
@@ -64,6 +101,8 @@ class Equilibrium:
     residual : float  [t]
         Largest equilibrium error: force, and moments divided by the lugs' plan diameter.
     solver : SolverInfo
+    afloat : Afloat or None
+        Buoyancy and ground reaction, for a hull in water.
     """
 
     model: str
@@ -74,6 +113,7 @@ class Equilibrium:
     slack: tuple[str, ...]
     residual: float
     solver: SolverInfo
+    afloat: Afloat | None = None
 
     @property
     def share(self):
@@ -92,11 +132,11 @@ class Equilibrium:
     def spread(self):
         """Largest minus smallest tension  [t]."""
         values = list(self.tensions.values())
-        return max(values) - min(values)
+        return max(values) - min(values) if values else 0.0
 
     def to_json(self):
         """The JSON object of ``liftplan solve --json`` (keys fixed by CONTRACT.md)."""
-        return {
+        out = {
             "model": self.model,
             "converged": self.solver.converged,
             "tensions": dict(self.tensions),
@@ -116,3 +156,16 @@ class Equilibrium:
                 "seconds": self.solver.seconds,
             },
         }
+        if self.afloat is not None:
+            a = self.afloat
+            out.update({
+                "state": a.state,
+                "buoyancy": a.buoyancy,
+                "ground_reaction": a.ground_reaction,
+                "freeing_force": a.freeing_force,
+                "displaced_volume": a.volume,
+                "centre_of_buoyancy": a.centre_of_buoyancy,
+                "centre_of_gravity": a.centre_of_gravity,
+                "contact": a.contact,
+            })
+        return out

@@ -17,7 +17,7 @@ import numpy as np
 
 from .errors import InvalidScene
 
-MODELS = ("elastic", "paper-elastic", "rigid")
+MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic")
 
 # Plan-area test for collinear lugs: the support polygon's area over its diameter squared.
 # Below this the 3x3 statics matrix has a condition number above ~1e9: singular in t and m.
@@ -210,6 +210,51 @@ class Analysis:
 
 
 @dataclass(frozen=True)
+class Water:
+    """Sea water.
+
+    Parameters
+    ----------
+    density : float  [t/m3]
+        Mass density; buoyancy in t is density x displaced volume.
+    level : float  [m]
+        Height of the free surface (world z).
+    """
+
+    density: float = 1.025
+    level: float = 0.0
+
+    def __post_init__(self):
+        _set(self, "density", positive("water.density", self.density))
+        _set(self, "level", finite("water.level", self.level))
+
+
+@dataclass(frozen=True)
+class Ground:
+    """A point of the body resting on the ground; the body pivots about it.
+
+    Parameters
+    ----------
+    contact : tuple of 3 float  [m]
+        Body-frame point on the ground. At zero attitude it is at its body-frame position
+        (raised by ``attitude.lift_height``), and the ground holds it there.
+    friction : float or None  [-]
+        Friction coefficient mu: freeing force = mu x ground reaction.
+    """
+
+    contact: tuple[float, float, float]
+    friction: float | None = None
+
+    def __post_init__(self):
+        _set(self, "contact", point("ground.contact", self.contact))
+        if self.friction is not None:
+            mu = finite("ground.friction", self.friction)
+            if mu < 0.0:
+                raise InvalidScene(f"ground.friction = {self.friction!r}: expected a number >= 0")
+            _set(self, "friction", mu)
+
+
+@dataclass(frozen=True)
 class Scene:
     """A body on n >= 3 vertical crane ropes, in the ``z-up`` frame.
 
@@ -222,17 +267,34 @@ class Scene:
     attitude : Attitude
     analysis : Analysis
     name : str
+    water : Water or None
+    hull : liftplan.model.hull.Hull or None
+        Needed with ``water`` (buoyancy acts on the hull).
+    ground : Ground or None
     """
 
     body: Body
-    lugs: tuple[Lug, ...]
-    cranes: tuple[Crane, ...]
+    lugs: tuple[Lug, ...] = ()
+    cranes: tuple[Crane, ...] = ()
     attitude: Attitude = field(default_factory=Attitude)
     analysis: Analysis = field(default_factory=Analysis)
     name: str = ""
+    water: Water | None = None
+    hull: object | None = None
+    ground: Ground | None = None
 
     def __post_init__(self):
         lugs, cranes = tuple(self.lugs), tuple(self.cranes)
+        if (self.water is None) != (self.hull is None):
+            raise InvalidScene(
+                "scene: [water] and [hull] go together (buoyancy needs both); expected both or neither"
+            )
+        if self.ground is not None and self.hull is None:
+            raise InvalidScene("ground: a ground contact needs [hull] and [water]; expected them too")
+        if not lugs and self.hull is not None:
+            _set(self, "lugs", ())
+            _set(self, "cranes", ())
+            return
         if len(lugs) < 3:
             raise InvalidScene(
                 f"lugs: {len(lugs)} given: expected three or more (two ropes cannot hold a body)"
@@ -263,7 +325,8 @@ class Scene:
                     f"analysis.redundant.lug = {red.lug!r}: unknown lug, "
                     f"expected one of {', '.join(names)}"
                 )
-        _check_support(self)
+        if self.hull is None:
+            _check_support(self)
 
     # -- look-ups ---------------------------------------------------------------
     @cached_property
@@ -282,11 +345,18 @@ class Scene:
 
     @cached_property
     def _lug_array(self):
-        return np.array([lug.at for lug in self.lugs], dtype=float)
+        return np.array([lug.at for lug in self.lugs], dtype=float).reshape(-1, 3)
+
+    @property
+    def hydrostatic(self):
+        """True when the body is in water (buoyancy acts)."""
+        return self.hull is not None
 
     @cached_property
     def plan_diameter(self):
         """Largest plan distance between two lugs  [m] (the moment residuals' length scale)."""
+        if not self.lugs:
+            return 0.0
         plan = self._lug_array[:, :2]
         return float(np.max(np.linalg.norm(plan[:, None, :] - plan[None, :, :], axis=-1)))
 

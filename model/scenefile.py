@@ -16,11 +16,13 @@ import typing
 from pathlib import Path
 from typing import Annotated, Literal, Union
 
+import numpy as np
 from pydantic import BaseModel, ConfigDict, Strict, ValidationError
 
 from .errors import InvalidScene
 from .frames import choi_to_zup
-from .scene import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene
+from .hull import Compartment, Hull
+from .scene import Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Water
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -70,27 +72,53 @@ class _Redundant(Table):
 
 
 class _Analysis(Table):
-    model: Literal["elastic", "paper-elastic", "rigid"] | None = None
+    model: Literal["elastic", "paper-elastic", "rigid", "hydrostatic"] | None = None
     redundant: _Redundant | list[_Redundant] | None = None
+
+
+class _Water(Table):
+    density: Num = 1.025
+    level: Num = 0.0
+
+
+class _Box(Table):
+    min: Point
+    max: Point
+
+
+class _Compartment(Table):
+    name: Text
+    box: _Box
+    contents: Literal["air", "water"] = "air"
+
+
+class _Hull(Table):
+    box: _Box | None = None
+    mesh: Text | None = None
+    flooding: Literal["intact", "flooded"] = "intact"
+    steel_density: Num | None = None
+    weight_in_water: Num | None = None
+    compartments: list[_Compartment] = []
+
+
+class _Ground(Table):
+    contact: Point
+    friction: Num | None = None
 
 
 class _SceneFile(Table):
     name: Text = ""
     frame: Literal["z-up", "choi"] = "z-up"
     body: _Body
-    lugs: list[_Lug]
+    lugs: list[_Lug] = []
     ropes: _Ropes = _Ropes()
-    cranes: list[_Crane]
+    cranes: list[_Crane] = []
     attitude: _Attitude = _Attitude()
     analysis: _Analysis = _Analysis()
+    water: _Water | None = None
+    hull: _Hull | None = None
+    ground: _Ground | None = None
 
-
-# Tables of CONTRACT.md that belong to capabilities this version does not model yet.
-_NOT_YET = {
-    "water": "hydrostatics",
-    "hull": "hydrostatics",
-    "ground": "ground contact",
-}
 # Tables of a planning scene (read by liftplan.planner.problemfile).
 PLAN_TABLES = ("candidates", "plan", "crane")
 
@@ -113,7 +141,7 @@ def load_scene(path):
     InvalidScene
         One line naming the file, the key, the value and what is expected.
     """
-    return load_with(path, loads_scene)
+    return load_with(path, lambda text: loads_scene(text, base=Path(path).parent))
 
 
 def load_with(path, loads):
@@ -139,8 +167,12 @@ def parse_toml(text):
         raise InvalidScene(f"TOML syntax error: {err}") from None
 
 
-def loads_scene(text):
-    """Validate a scene given as TOML text; see :func:`load_scene`."""
+def loads_scene(text, base=None):
+    """Validate a scene given as TOML text; see :func:`load_scene`.
+
+    ``base`` is the folder that a relative ``hull.mesh`` path is read from (default: the
+    working directory).
+    """
     raw = parse_toml(text)
     for key in PLAN_TABLES:
         if key in raw:
@@ -148,20 +180,43 @@ def loads_scene(text):
                 f"[{key}]: this is a planning scene (candidates, not fixed lugs); "
                 "expected `liftplan plan` / liftplan.planner.plan for it"
             )
-    for key, what in _NOT_YET.items():
-        if key in raw:
-            raise InvalidScene(
-                f"[{key}]: {what} is not modelled by this version of liftplan; "
-                "expected a scene of a body on vertical crane ropes"
-            )
     try:
         data = _SceneFile.model_validate(raw)
     except ValidationError as err:
         raise InvalidScene(one_line(err, _SceneFile)) from None
-    return _to_scene(data)
+    return _to_scene(data, Path(base) if base is not None else Path.cwd())
 
 
-def _to_scene(data):
+def _to_hull(data, to_zup, base):
+    spec = data.hull
+    if (spec.box is None) == (spec.mesh is None):
+        raise InvalidScene("hull: expected exactly one of box = {min, max} or mesh = \"file.stl\"")
+    options = dict(flooding=spec.flooding, steel_density=spec.steel_density,
+                   weight_in_water=spec.weight_in_water,
+                   compartments=tuple(
+                       Compartment(name=c.name, box=_zup_box(c.box, to_zup), contents=c.contents)
+                       for c in spec.compartments))
+    if spec.box is not None:
+        box = _zup_box(spec.box, to_zup)
+        return Hull.box(box["min"], box["max"], **options)
+    hull = Hull.from_stl(base / spec.mesh, **options)
+    if data.frame == "choi":
+        tris = np.array([[choi_to_zup(v) for v in tri] for tri in hull.triangles])
+        hull = Hull(tris, source=hull.source, **options)
+    return hull
+
+
+def _zup_box(box, to_zup):
+    """A box's corners in z-up (the frame change can swap which corner is lower)."""
+    if not all(lo < hi for lo, hi in zip(box.min, box.max)):
+        raise InvalidScene(
+            f"hull box = {{min = {list(box.min)}, max = {list(box.max)}}}: expected min < max on every axis"
+        )
+    a, b = np.array(to_zup(box.min)), np.array(to_zup(box.max))
+    return {"min": tuple(np.minimum(a, b).tolist()), "max": tuple(np.maximum(a, b).tolist())}
+
+
+def _to_scene(data, base):
     to_zup = choi_to_zup if data.frame == "choi" else tuple
     lugs = [Lug(name=lug.name, at=to_zup(lug.at)) for lug in data.lugs]
     cranes = [
@@ -186,6 +241,10 @@ def _to_scene(data):
             model=data.analysis.model,
             redundant=tuple(Redundant(lug=r.lug, tension=r.tension) for r in red),
         ),
+        water=Water(**data.water.model_dump()) if data.water is not None else None,
+        hull=_to_hull(data, to_zup, base) if data.hull is not None else None,
+        ground=(Ground(contact=to_zup(data.ground.contact), friction=data.ground.friction)
+                if data.ground is not None else None),
     )
 
 

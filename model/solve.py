@@ -22,6 +22,7 @@ import numpy as np
 from .errors import EquilibriumNotFound, InvalidScene
 from .results import Equilibrium, Pose, SolverInfo
 from .statics import BLOCK, rope_model
+from .water import solve_hydrostatic
 
 # Equilibrium accepted when the residual is below this fraction of W (force, and moment
 # over the lugs' plan diameter): well above double-precision round-off (~1e-15 W) and well
@@ -32,12 +33,15 @@ RESIDUAL_TOL = 1e-9
 def pick_model(scene):
     """The model a scene asks for, or the least one its data supports.
 
-    Returns ``scene.analysis.model`` if set; otherwise ``"elastic"`` when every crane has a
+    Returns ``scene.analysis.model`` if set; otherwise ``"hydrostatic"`` for a hull in water
+    (which then picks constant or clipped buoyancy itself), ``"elastic"`` when every crane has a
     boom height, rope length and EA, ``"rigid"`` when redundant tensions are given (or n = 3),
     else ``"paper-elastic"``.
     """
     if scene.analysis.model:
         return scene.analysis.model
+    if scene.hull is not None:
+        return "hydrostatic"
     cranes = scene.cranes
     if all(c.boom_height is not None and c.rope_length is not None and c.EA for c in cranes):
         return "elastic"
@@ -46,7 +50,7 @@ def pick_model(scene):
     return "paper-elastic"
 
 
-def solve(scene, model=None):
+def solve(scene, model=None, method="newton"):
     """Solve a scene.
 
     Parameters
@@ -54,6 +58,9 @@ def solve(scene, model=None):
     scene : Scene
     model : str, optional
         Overrides :func:`pick_model`.
+    method : {"newton", "paper-newton"}
+        For a stranded hull: casadi Newton or the paper's iteration
+        (:mod:`liftplan.model.water`).
 
     Returns
     -------
@@ -68,13 +75,22 @@ def solve(scene, model=None):
         solve did not converge.
     """
     model = model or pick_model(scene)
+    if method != "newton" and model != "hydrostatic":
+        raise InvalidScene(f"method = {method!r}: only for a stranded hull; expected 'newton'")
+    if scene.hull is not None and model != "hydrostatic":
+        raise InvalidScene(
+            f"model = {model!r} leaves out the scene's [water] and [hull]; expected 'hydrostatic' "
+            "(or no model: the least model the scene needs is picked)"
+        )
+    if model == "hydrostatic":
+        return solve_hydrostatic(scene, method=method)
     if model == "rigid":
         return solve_rigid(scene)
     if model == "paper-elastic":
         return solve_paper_elastic(scene)
     if model == "elastic":
         return solve_elastic(scene)
-    raise InvalidScene(f"model = {model!r}: expected one of elastic, paper-elastic, rigid")
+    raise InvalidScene(f"model = {model!r}: expected one of elastic, paper-elastic, rigid, hydrostatic")
 
 
 # -- parameters -----------------------------------------------------------------------------

@@ -40,8 +40,12 @@ def _parser():
     solve_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     solve_cmd.add_argument(
         "--model",
-        choices=["elastic", "paper-elastic", "rigid"],
+        choices=["elastic", "paper-elastic", "rigid", "hydrostatic"],
         help="override the scene's [analysis] model",
+    )
+    solve_cmd.add_argument(
+        "--method", choices=["newton", "paper-newton"], default="newton",
+        help="stranded hull: casadi Newton (default) or the paper's J^T D J iteration",
     )
     plan_cmd = commands.add_parser("plan", help="choose lugs and boom heights for a lift")
     plan_cmd.add_argument("scene", help="planning scene file (TOML with [[candidates]], [plan])")
@@ -72,7 +76,7 @@ def _plan(args):
 
 def _solve(args):
     scene = load_scene(args.scene)
-    eq = solve(scene, model=args.model)
+    eq = solve(scene, model=args.model, method=args.method)
     if args.json:
         print(json.dumps(eq.to_json()))
     else:

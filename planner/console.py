@@ -23,9 +23,10 @@ def equilibrium_table(scene, eq):
         f"pose: heel {pose.heel:+.3f} deg (+ starboard down), trim {pose.trim:+.3f} deg "
         f"(+ bow down), lift height {pose.lift_height:.3f} m",
         "",
-        f"{'lug':<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
-        f"{'utilisation [%]':>17}",
     ]
+    if eq.tensions:
+        lines.append(f"{'lug':<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
+                     f"{'utilisation [%]':>17}")
     for name, tension in eq.tensions.items():
         swl = eq.swl[name]
         util = eq.utilisation[name]
@@ -35,10 +36,34 @@ def equilibrium_table(scene, eq):
             f"{(f'{100 * util:.1f}' if util is not None else '-'):>17}"
             + ("  slack" if name in eq.slack else "")
         )
-    total = sum(eq.tensions.values())
-    lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
-    lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
+    if eq.tensions:
+        total = sum(eq.tensions.values())
+        lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
+        lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
+    if eq.afloat is not None:
+        lines += _afloat_lines(eq)
     return "\n".join(lines)
+
+
+def _afloat_lines(eq):
+    a = eq.afloat
+
+    def xyz(point):
+        return "-" if point is None else "({:.2f}, {:.2f}, {:.2f}) m".format(*point)
+
+    lines = [
+        f"state: {a.state}; weight W = {eq.weight:.1f} t",
+        f"buoyancy: {a.buoyancy:.1f} t (displaced volume {a.volume:.1f} m3), "
+        f"centre of buoyancy {xyz(a.centre_of_buoyancy)}",
+        f"centre of gravity: {xyz(a.centre_of_gravity)} (world)",
+    ]
+    if a.ground_reaction is not None:
+        lines.append(f"ground reaction: {a.ground_reaction:.1f} t at {xyz(a.contact)}")
+    if a.freeing_force is not None:
+        lines.append(f"freeing force (friction x ground reaction): {a.freeing_force:.1f} t")
+    if eq.solver.iterations is not None:
+        lines.append(f"{eq.solver.iterations} iterations, {1e3 * eq.solver.seconds:.1f} ms")
+    return lines
 
 
 def plan_table(plan):

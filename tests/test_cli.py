@@ -36,7 +36,7 @@ def test_solve_table_has_units_and_every_lug():
     ("content", "code", "fragment"),
     [
         ("[body\nweight = 1", 2, "TOML syntax error"),
-        ('[body]\nweight = -3.0\ncog = [0, 0, 0]\n', 2, "lugs: missing"),
+        ('[body]\nweight = 3.0\ncog = [0, 0, 0]\n', 2, "lugs: 0 given"),
         (None, 2, "no such scene file"),
     ],
 )

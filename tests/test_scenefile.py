@@ -92,9 +92,37 @@ def test_toml_syntax_error_names_the_line():
     assert f"line {line}" in error_of(text)
 
 
-def test_hydrostatics_tables_are_refused_clearly():
+def test_water_without_hull_is_refused_clearly():
     text = tomli_w.dumps({**VALID, "water": {"density": 1.025}})
-    assert "not modelled by this version" in error_of(text)
+    assert "[water] and [hull] go together" in error_of(text)
+
+
+@pytest.mark.parametrize(
+    "hull, expected",
+    [
+        ({"box": {"min": [0, 0, 0], "max": [1, 1, 1]}, "mesh": "a.stl"}, "exactly one of box"),
+        ({}, "exactly one of box"),
+        ({"box": {"min": [0, 0, 0], "max": [1, -1, 1]}}, "min < max"),
+        ({"mesh": "missing.stl"}, "no such file"),
+        ({"box": {"min": [0, 0, 0], "max": [1, 1, 1]}, "steel_density": 7.85}, "flooded hull"),
+        ({"box": {"min": [0, 0, 0], "max": [1, 1, 1]}, "flooding": "sunk"}, "hull.flooding"),
+    ],
+)
+def test_bad_hulls(hull, expected):
+    text = tomli_w.dumps({**VALID, "water": {}, "hull": hull})
+    assert expected in error_of(text)
+
+
+def test_choi_frame_hull_box_and_ground_are_converted():
+    from liftplan.model import loads_scene
+
+    raw = {"frame": "choi", "body": {"weight": 100.0, "cog": [2.0, 1.0, 3.0]}, "water": {},
+           "hull": {"box": {"min": [0, 0, 0], "max": [4, 2, 6]}},
+           "ground": {"contact": [1.0, 0.0, 5.0]}}
+    scene = loads_scene(tomli_w.dumps(raw))
+    assert scene.hull.bounds[0].tolist() == [0, -6, 0] and scene.hull.bounds[1].tolist() == [4, 0, 2]
+    assert scene.ground.contact == (1.0, -5.0, 0.0)
+    assert scene.body.cog == (2.0, -3.0, 1.0)
 
 
 def test_planning_tables_point_to_the_planner():

@@ -1,0 +1,441 @@
+"""Equilibrium of a hull in water: stranded on a ground contact, afloat, or hanging from
+vertical crane ropes, with exact (clipped-mesh) buoyancy.
+
+Two methods for the stranded ship:
+
+* ``"newton"`` (default): casadi's Newton root-finder on the exact residual of
+  :class:`~liftplan.model.afloat.AfloatModel`; its Jacobian is the exact derivative of the
+  clipped-mesh sums, so it converges quadratically.
+* ``"paper-newton"``: the stranded-ship paper's iteration. The hydrostatic derivative
+  matrix D of (F, M_T, M_L) with respect to (immersion, heel, trim) about the body origin
+  is built from the waterplane (area, centre, second moments) and the displacement; the
+  pivot constraint delta_zo = -y_R delta_heel + x_R delta_trim gives J, and each step solves
+  (J^T D J) delta = -J^T f. D leaves out the change of the ground reaction's arm, so the
+  convergence is linear, as the paper's 5 and 20 iterations show. Here zo is recomputed
+  from the pivot after each step (the pivot stays on the ground exactly).
+
+When the ground reaction of the grounded solution is <= 0 the hull floats free: the
+free-floating equilibrium (or hanging, with ropes) is solved instead and ``state`` says so.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from .afloat import AfloatModel, Layout, buoyancy_weights
+from .errors import EquilibriumNotFound, InvalidScene
+from .frames import attitude_angles, rotation_matrix, tilt
+from .hydrostatics import MeshHydrostatics
+from .results import Afloat, Equilibrium, Pose, SolverInfo
+
+# Accepted when the scaled residual (force / W, moments / (W L)) is below this: 1e-9 of a
+# 20 000 t barge is 20 g; round-off of the clipped sums is ~1e-13.
+RESIDUAL_TOL = 1e-9
+# The paper's stopping tolerance: 1 t and 1 t m.
+PAPER_TOL = 1.0
+PAPER_MAX_ITER = 500
+METHODS = ("newton", "paper-newton")
+# Largest turn about the vertical used to report an equilibrium at the scene's yaw (deg);
+# near upright the needed turn is second order in the tilts (0.016 deg on the barge).
+MAX_TURN = 5.0
+
+
+@dataclass(frozen=True)
+class Start:
+    """A pose to start from: the body origin's height over the water and the attitude.
+
+    Parameters
+    ----------
+    zo : float  [m]
+    rotation : numpy.ndarray, shape (3, 3)
+    """
+
+    zo: float
+    rotation: np.ndarray
+
+
+class WaterSetup:
+    """The casadi model and parameter vector of a scene with a hull in water (built once).
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``hull`` and ``water``; ropes (vertical, above their lugs) and ``ground``
+        optional.
+    """
+
+    def __init__(self, scene):
+        if scene.hull is None:
+            raise InvalidScene("scene: no [hull] and [water]; expected them for a solve in water")
+        self.scene = scene
+        water, hull, body = scene.water, scene.hull, scene.body
+        tris, kappa, trapped = buoyancy_weights(hull, body.weight, water.density)
+        self.trapped = sum(w for w, _ in trapped)
+        gravity = body.weight + self.trapped
+        cog = (body.weight * np.asarray(body.cog) + sum(w * np.asarray(c) for w, c in trapped)) / gravity
+        self.gravity, self.cog = gravity, cog
+        self.model = AfloatModel(tris, kappa, scene.n)
+        self.envelope = MeshHydrostatics(hull.triangles)
+        a = scene.attitude
+        ground = scene.ground
+        if ground is not None:
+            self.contact_world = np.asarray(ground.contact) + [0.0, 0.0, a.lift_height]
+            pivot, self.ground_height = np.asarray(ground.contact), self.contact_world[2] - water.level
+        else:
+            self.contact_world = None
+            pivot, self.ground_height = cog, 0.0
+        ropes = []
+        if scene.n:
+            for name in ("boom_height", "rope_length", "EA"):
+                missing = [c.lug for c in scene.cranes if getattr(c, name) is None]
+                if missing:
+                    raise InvalidScene(
+                        f"cranes[{missing[0]}].{name}: missing, a hull hanging from ropes in water "
+                        "needs boom_height, rope_length and EA for every crane"
+                    )
+            hook = [c.boom_height - water.level for c in scene.cranes]
+            ropes = [scene.lug_points().ravel(), hook,
+                     [c.rope_length for c in scene.cranes], [c.EA for c in scene.cranes]]
+        self.start = Start(a.lift_height - water.level, rotation_matrix(a.heel, a.trim, a.yaw))
+        self.base = np.concatenate([
+            self.start.rotation.ravel(order="F"), [gravity], cog, pivot,
+            [self.ground_height, hull.size], *ropes,
+        ])
+
+    def params(self, rotation, hoist=0.0):
+        """Parameter vector with start attitude ``rotation`` and every hook raised by
+        ``hoist``  [m]."""
+        p = self.base.copy()
+        p[:9] = np.asarray(rotation, dtype=float).ravel(order="F")
+        if self.scene.n:
+            n = self.scene.n
+            first = Layout.HOOKS + 3 * n
+            p[first : first + n] += hoist
+        return p
+
+
+def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, paper_tol=None):
+    """Equilibrium of a hull in water (stranded, afloat, or hanging from vertical ropes).
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``hull`` and ``water``.
+    method : {"newton", "paper-newton"}
+        ``paper-newton`` is the stranded-ship paper's iteration (ground contact, no ropes).
+    setup : WaterSetup, optional
+        Reuse a built model (load curves).
+    start : Start, optional
+        Pose to start from; default the scene's attitude and lift height.
+    hoist : float  [m]
+        Every hook raised by this much over the scene's boom heights.
+    paper_tol : float, optional  [t m]
+        ``paper-newton``'s stopping tolerance on the pivot moments; default the same
+        acceptance as Newton's (``RESIDUAL_TOL`` W L). The paper used 1 t m.
+
+    Returns
+    -------
+    Equilibrium
+        With ``afloat`` filled in.
+
+    Raises
+    ------
+    EquilibriumNotFound
+        No equilibrium found (with the reason), never a number from an unconverged solve.
+    """
+    if method not in METHODS:
+        raise InvalidScene(f"method = {method!r}: expected one of {', '.join(METHODS)}")
+    setup = setup or WaterSetup(scene)
+    if method == "paper-newton" and (scene.ground is None or scene.n):
+        raise InvalidScene(
+            "method = 'paper-newton': the paper's iteration is for a stranded hull "
+            "(a [ground] contact and no ropes); expected method 'newton' for this scene"
+        )
+    start = start or setup.start
+    p = setup.params(start.rotation, hoist)
+    zo_start = start.zo
+    if scene.ground is not None:
+        begin = time.perf_counter()
+        if method == "paper-newton":
+            tol = paper_tol if paper_tol is not None else RESIDUAL_TOL * setup.gravity * scene.hull.size
+            rot, iterations = paper_newton(setup, start.rotation, tol=tol)
+            start, p = Start(start.zo, rot), setup.params(rot, hoist)
+            tilts = np.zeros(2)
+        else:
+            tilts, iterations = _root(setup.model.grounded_root, [0.0, 0.0], p)
+        seconds = time.perf_counter() - begin
+        residual, force, zo, _ = (np.asarray(v).ravel() for v in setup.model.grounded(tilts, p))
+        tol = RESIDUAL_TOL if paper_tol is None else paper_tol / (setup.gravity * scene.hull.size)
+        rot = _rotation(tilts, start.rotation)
+        if _converged(residual, rot, tol):
+            reaction = -float(force[0]) * setup.gravity
+            if reaction > 0.0:
+                info = SolverInfo(method, True, iterations, seconds)
+                return _result(setup, float(zo[0]), rot, hoist, info, grounded=True)
+            start, p, zo_start = Start(float(zo[0]), rot), setup.params(rot, hoist), float(zo[0])
+        elif method == "paper-newton":
+            raise EquilibriumNotFound(
+                f"paper-newton: no grounded equilibrium after {iterations} iterations "
+                f"(moment residual {np.max(np.abs(residual)) * setup.gravity * scene.hull.size:.3g} t m)"
+            )
+    begin = time.perf_counter()
+    x, iterations = _root(setup.model.free_root, [zo_start, 0.0, 0.0], p)
+    seconds = time.perf_counter() - begin
+    residual = np.asarray(setup.model.free(x, p)[0]).ravel()
+    rot = _rotation(x[1:], start.rotation)
+    if not _converged(residual, rot):
+        what = "floating or hanging" if scene.ground is None else "grounded or afloat"
+        heel, trim, _ = attitude_angles(rot) if np.all(np.isfinite(rot)) else (math.nan,) * 3
+        raise EquilibriumNotFound(
+            f"{_label(scene)}: no {what} equilibrium found (residual {np.max(np.abs(residual)):.3g} W, "
+            f"heel {heel:.1f} deg, trim {trim:.1f} deg); " + _hint(setup)
+        )
+    if scene.ground is not None:
+        # free of the ground only if the contact point is not pushed below it
+        below = setup.ground_height - (float((rot @ scene.ground.contact)[2]) + x[0])
+        if below > 1e-6 * scene.hull.size:
+            raise EquilibriumNotFound(
+                f"{_label(scene)}: the grounded solve found no equilibrium and the afloat one puts "
+                f"the contact {below:.3g} m below the ground; expected a reachable resting pose"
+            )
+    info = SolverInfo("newton" if method == "newton" else "newton (afloat after paper-newton)",
+                      True, iterations, seconds)
+    return _result(setup, float(x[0]), rot, hoist, info, grounded=False)
+
+
+def _rotation(tilts, start):
+    """R = tilt(a, b) R0, numeric."""
+    a, b = (float(v) for v in np.asarray(tilts).ravel())
+    return np.asarray(ca.DM(tilt(a, b))) @ start
+
+
+def _label(scene):
+    return "stranded" if scene.ground is not None and not scene.n else "in water"
+
+
+def _hint(setup):
+    whole = setup.envelope.at(np.eye(3), -1e3 * setup.scene.hull.size).volume * setup.scene.water.density
+    if not setup.scene.n and setup.scene.ground is None and setup.gravity > whole:
+        return (f"the weight {setup.gravity:.6g} t exceeds the buoyancy of the whole hull "
+                f"{whole:.6g} t: it sinks; expected a ground contact or ropes")
+    return "check the start attitude and that the scene can hold the hull"
+
+
+def _root(rootfinder, guess, p):
+    x = rootfinder(ca.DM(list(guess)), ca.DM(p))
+    stats = rootfinder.stats()
+    return np.asarray(x).ravel(), int(stats.get("iter_count", -1))
+
+
+def _converged(residual, rot, tol=RESIDUAL_TOL):
+    """Finite attitude and a residual below ``tol``."""
+    residual = np.asarray(residual, dtype=float)
+    return (
+        np.all(np.isfinite(residual))
+        and np.all(np.isfinite(rot))
+        and float(np.max(np.abs(residual))) <= tol
+    )
+
+
+def paper_newton(setup, start, tol=PAPER_TOL, max_iter=PAPER_MAX_ITER):
+    """The stranded-ship paper's iteration: (J^T D J) delta = -J^T f at the pivot.
+
+    Parameters
+    ----------
+    setup : WaterSetup
+        Of a stranded scene (ground contact, no ropes, intact hull).
+    start : numpy.ndarray, shape (3, 3)
+        Start attitude R0.
+    tol : float  [t m]
+        Stop when both moments about the pivot are below this (the paper: 1).
+
+    Returns
+    -------
+    rotation : numpy.ndarray, shape (3, 3)
+        The last attitude.
+    iterations : int
+        Steps taken. If ``max_iter`` is reached the attitude is returned as it is and
+        the caller's residual check refuses it.
+    """
+    scene = setup.scene
+    rho, weight = scene.water.density, setup.gravity
+    contact = np.asarray(scene.ground.contact)
+    rot = np.asarray(start, dtype=float)
+    for iteration in range(max_iter + 1):
+        c = rot @ contact  # pivot relative to the body origin O
+        zo = setup.ground_height - c[2]
+        hs = setup.envelope.at(rot, zo)
+        g = rot @ setup.cog
+        # positions relative to O (the origin sits zo above o on the water plane)
+        centre = np.array(hs.centre) - [0.0, 0.0, zo] if hs.volume > 0 else np.zeros(3)
+        buoy = rho * hs.volume
+        f = np.array([buoy - weight, buoy * centre[1] - weight * g[1],
+                      -(buoy * centre[0] - weight * g[0])])
+        jac = np.array([[-c[1], c[0]], [1.0, 0.0], [0.0, 1.0]])
+        moment = jac.T @ f  # moments about the pivot
+        if np.max(np.abs(moment)) <= tol:
+            return rot, iteration
+        area = hs.waterplane_area
+        xf, yf = hs.flotation if hs.flotation else (0.0, 0.0)
+        i_t, i_l, i_xy = hs.inertia
+        s_yy, s_xx, s_xy = i_t + area * yf**2, i_l + area * xf**2, i_xy + area * xf * yf
+        d = rho * np.array([
+            [-area, -area * yf, area * xf],
+            [-area * yf, -(hs.volume * centre[2] + s_yy), s_xy],
+            [area * xf, s_xy, -(hs.volume * centre[2] + s_xx)],
+        ])
+        d[1, 1] += weight * g[2]
+        d[2, 2] += weight * g[2]
+        try:
+            step = np.linalg.solve(jac.T @ d @ jac, -moment)
+        except np.linalg.LinAlgError:
+            break
+        if not np.all(np.isfinite(step)):
+            break
+        rot = _rotation(step, rot)  # a rotation about the world's horizontal axes
+    return rot, iteration
+
+
+def unyaw(rot, yaw):
+    """Turn an attitude about the vertical so that its yaw (as in
+    :func:`~liftplan.model.frames.attitude_angles`) is ``yaw`` [deg].
+
+    Vertical forces do not see a turn about the vertical, so an equilibrium found by
+    tilts is one of a family; this picks the member with the scene's yaw, the attitude
+    the contract's angles describe. Returned unchanged where no turn of at most
+    ``MAX_TURN`` reaches that yaw: near heel 90 deg the body's trim axis is vertical, a
+    world pitch shows as yaw, and turning the hull round to hide it would misdescribe it.
+    """
+    a, b = rot[0, 1], -rot[1, 1]  # -sin(yaw') = cos(psi) a + sin(psi) b for Rz(psi) rot
+    c = -math.sin(math.radians(yaw))
+    norm = math.hypot(a, b)
+    if norm < abs(c) or norm < 1e-12:
+        return rot
+    base, spread = math.atan2(b, a), math.acos(max(-1.0, min(1.0, c / norm)))
+    psi = min((math.remainder(v, 2 * math.pi) for v in (base + spread, base - spread)), key=abs)
+    if abs(psi) > math.radians(MAX_TURN):
+        return rot
+    return rotation_matrix(0.0, 0.0, math.degrees(psi)) @ rot
+
+
+def _result(setup, zo, rot, hoist, solver, grounded):
+    """Assemble the Equilibrium (world frame) of a converged pose (zo [m], attitude)."""
+    scene = setup.scene
+    rot = unyaw(rot, scene.attitude.yaw)
+    p = setup.params(rot, hoist)
+    out = setup.model.free.call({"x": ca.DM([zo, 0.0, 0.0]), "p": ca.DM(p)})
+    residual = np.asarray(out["r"]).ravel()
+    tensions = np.asarray(out["tension"]).ravel()
+    heel, trim, yaw = attitude_angles(rot)
+    level = scene.water.level
+    if grounded:
+        shift = setup.contact_world[:2] - (rot @ scene.ground.contact)[:2]
+    else:
+        shift = np.zeros(2)
+    origin = np.array([shift[0], shift[1], level])  # world position of o
+
+    def world(q):
+        return tuple(float(v) for v in np.asarray(q) + origin)
+
+    hs = setup.envelope.at(rot, zo)
+    buoyancy = float(np.asarray(out["buoyancy"]).ravel()[0]) - setup.trapped
+    reaction = scene.body.weight - buoyancy - float(tensions.sum()) if grounded else 0.0
+    friction = scene.ground.friction if scene.ground is not None else None
+    gravity = rot @ np.asarray(scene.body.cog) + [0.0, 0.0, zo]
+    lowest = zo + float(np.min((rot @ scene.hull.vertices.T)[2]))
+    state = "grounded" if grounded else ("afloat" if lowest < 0.0 else "clear")
+    afloat = Afloat(
+        state=state,
+        buoyancy=buoyancy,
+        volume=hs.volume,
+        ground_reaction=reaction if scene.ground is not None else None,
+        freeing_force=friction * reaction if friction is not None else None,
+        centre_of_buoyancy=world(hs.centre) if hs.centre is not None else None,
+        centre_of_gravity=world(gravity),
+        contact=tuple(float(v) for v in setup.contact_world) if scene.ground is not None else None,
+    )
+    # force (closed by the ground reaction when grounded), and moments over L
+    worst = float(np.max(np.abs(residual[1:] if grounded else residual))) * setup.gravity
+    names = scene.lug_names
+    return Equilibrium(
+        model="hydrostatic",
+        pose=Pose(heel=heel, trim=trim, yaw=yaw, lift_height=zo + level),
+        tensions=dict(zip(names, tensions.tolist())),
+        weight=scene.body.weight,
+        swl={c.lug: c.swl for c in scene.cranes},
+        slack=tuple(name for name, t in zip(names, tensions) if t <= 0.0),
+        residual=worst,
+        solver=solver,
+        afloat=afloat,
+    )
+
+def submerged_scene(setup):
+    """The rope-only scene equivalent to the hull while fully submerged, or None.
+
+    Fully submerged, the buoyancy is constant in magnitude and fixed in the body (the
+    centre of the displaced volume), and every force is vertical: weight W at G and
+    buoyancy B at C make one force W - B at (W G - B C) / (W - B) at any attitude. So the
+    vertical-rope ``elastic`` model with that weight and CG is exact there. None when
+    W - B <= 0 (the hull would float up).
+    """
+    scene = setup.scene
+    deep = 1e3 * scene.hull.size
+    out = setup.model.free.call({"x": ca.DM([-deep, 0, 0]), "p": ca.DM(setup.params(np.eye(3)))})
+    buoy = float(out["buoyancy"])
+    centre = np.asarray(out["moment"]).ravel() / buoy + [0.0, 0.0, deep]
+    net = setup.gravity - buoy
+    if net <= 1e-9 * setup.gravity:
+        return None, buoy
+    cog = (setup.gravity * setup.cog - buoy * centre) / net
+    rope_scene = dataclasses.replace(
+        scene, water=None, hull=None, ground=None, body=dataclasses.replace(scene.body, weight=net, cog=cog),
+        analysis=dataclasses.replace(scene.analysis, model="elastic"),
+    )
+    return rope_scene, buoy
+
+
+def solve_hydrostatic(scene, method="newton"):
+    """Solve a scene with a hull in water with the least model it needs.
+
+    * ropes, no ground, hull fully submerged at the answer: constant buoyancy (the
+      vertical-rope ``elastic`` model with the submerged weight and centre,
+      :func:`submerged_scene`); the answer is checked on the clipped model's residual.
+    * otherwise the clipped hull (:func:`solve_in_water`).
+
+    Returns
+    -------
+    Equilibrium
+        ``model`` is ``"submerged"`` or ``"hydrostatic"``.
+    """
+    from .solve import solve_elastic  # solve imports this module
+
+    setup = WaterSetup(scene)
+    start = None
+    if scene.n and scene.ground is None and method == "newton":
+        try:
+            rope_scene, _ = submerged_scene(setup)
+        except InvalidScene:  # e.g. the submerged centre lies outside the lugs
+            rope_scene = None
+        if rope_scene is not None:
+            try:
+                eq = solve_elastic(rope_scene)
+            except EquilibriumNotFound:
+                eq = None
+            if eq is not None:
+                pose = eq.pose
+                zo = pose.lift_height - scene.water.level
+                rot = rotation_matrix(pose.heel, pose.trim, pose.yaw)
+                top = zo + float(np.max((rot @ scene.hull.vertices.T)[2]))
+                if top < 0.0:
+                    info = dataclasses.replace(eq.solver, method="newton (constant buoyancy)")
+                    result = _result(setup, zo, rot, 0.0, info, grounded=False)
+                    if result.residual <= 1e-7 * setup.gravity:
+                        return dataclasses.replace(result, model="submerged")
+                start = Start(zo, rot)
+    return solve_in_water(scene, method=method, setup=setup, start=start)
