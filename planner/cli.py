@@ -47,6 +47,14 @@ def _parser():
         "--method", choices=["newton", "paper-newton"], default="newton",
         help="stranded hull: casadi Newton (default) or the paper's J^T D J iteration",
     )
+    lift_cmd = commands.add_parser("lift", help="load curve of a lift off the seabed and through the waterline")
+    lift_cmd.add_argument("scene", help="scene file with [hull], [water], cranes (and usually [ground])")
+    lift_cmd.add_argument("--to", type=float, metavar="M",
+                          help="last hoist in m (default: the hull 1 m clear of the water)")
+    lift_cmd.add_argument("--step", type=float, default=0.25, metavar="M", help="hoist step in m (0.25)")
+    lift_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    lift_cmd.add_argument("--figure", metavar="PNG",
+                          help="where to save the figure (default: SCENE_load_curve.png next to the scene)")
     plan_cmd = commands.add_parser("plan", help="choose lugs and boom heights for a lift")
     plan_cmd.add_argument("scene", help="planning scene file (TOML with [[candidates]], [plan])")
     plan_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
@@ -74,6 +82,27 @@ def _plan(args):
         print(plan_table(result))
 
 
+def _lift(args):
+    from pathlib import Path
+
+    from liftplan.model.lift import load_curve
+
+    from .console import load_curve_table
+    from .figures import load_curve as draw
+
+    scene = load_scene(args.scene)
+    curve = load_curve(scene, stop=args.to, step=args.step)
+    figure = Path(args.figure) if args.figure else Path(args.scene).with_name(
+        Path(args.scene).stem + "_load_curve.png")
+    swl = min((c.swl for c in scene.cranes if c.swl), default=None)
+    draw(curve, swl=swl).savefig(figure, dpi=120)
+    print(f"liftplan: wrote {figure}", file=sys.stderr)
+    if args.json:
+        print(json.dumps(curve.to_json()))
+    else:
+        print(load_curve_table(scene, curve))
+
+
 def _solve(args):
     scene = load_scene(args.scene)
     eq = solve(scene, model=args.model, method=args.method)
@@ -88,7 +117,7 @@ def main(argv=None):
     2 bad input, 3 internal error)."""
     args = _parser().parse_args(argv)
     try:
-        _plan(args) if args.command == "plan" else _solve(args)
+        {"plan": _plan, "lift": _lift, "solve": _solve}[args.command](args)
     except EquilibriumNotFound as err:
         print(f"liftplan: no equilibrium: {err}", file=sys.stderr)
         return NO_SOLUTION

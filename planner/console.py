@@ -116,3 +116,27 @@ def plan_table(plan):
         lines.append(f"{k + 1:<6}{' '.join(r.lugs):<36}{r.nominal_spread:>20.2f}"
                      f"{r.worst_spread:>18.2f}")
     return "\n".join(lines)
+
+
+def load_curve_table(scene, curve, rows=25):
+    """The load curve, thinned to about ``rows`` lines, with its maximum and lift-off."""
+    title = scene.name or "scene"
+    names = curve.lugs
+    head = f"{'hoist [m]':>10}" + "".join(f"{'T ' + n + ' [t]':>12}" for n in names) + \
+        f"{'heel [deg]':>12}{'trim [deg]':>12}{'buoyancy [t]':>14}{'ground [t]':>12}  state"
+    lines = [title, head]
+    every = max(1, len(curve.hoist) // rows)
+    for k in range(0, len(curve.hoist), every):
+        lines.append(
+            f"{curve.hoist[k]:>10.2f}" + "".join(f"{t:>12.1f}" for t in curve.tensions[k])
+            + f"{curve.heel[k]:>12.2f}{curve.trim[k]:>12.2f}{curve.buoyancy[k]:>14.1f}"
+            f"{curve.ground_reaction[k]:>12.1f}  {curve.state[k]}"
+        )
+    load, lug, at = curve.max_load
+    lines.append(f"maximum crane load: {load:.1f} t on {lug} at hoist {at:.2f} m")
+    off = curve.lift_off
+    lines.append(f"lift-off (ground reaction reaches 0): hoist {off:.2f} m" if off is not None
+                 else "no lift-off within the hoist range")
+    for hoist, reason in curve.failed:
+        lines.append(f"no equilibrium at hoist {hoist:.2f} m: {reason}")
+    return "\n".join(lines)

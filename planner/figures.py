@@ -103,3 +103,43 @@ def _rectangle(x, y, width, height):
 
     return Rectangle((x, y), width, height, fill=False, ec="tab:red", ls=":",
                      label="CG envelope")
+
+
+def load_curve(curve, swl=None):
+    """Crane loads, water and ground forces, and attitude against hoist.
+
+    Parameters
+    ----------
+    curve : liftplan.model.lift.LoadCurve
+    swl : float, optional  [t]
+        Drawn as a line on the loads panel.
+    """
+    fig = Figure(figsize=(8, 9), layout="constrained")
+    loads, water, pose = fig.subplots(3, 1, sharex=True)
+    for name, column in zip(curve.lugs, curve.tensions.T):
+        loads.plot(curve.hoist, column, label=name)
+    load, lug, at = curve.max_load
+    loads.plot([at], [load], "ko", ms=4)
+    loads.annotate(f" max {load:.1f} t ({lug})", (at, load), fontsize=8, va="bottom")
+    if swl:
+        loads.axhline(swl, color="k", ls="--", lw=1, label="SWL")
+    loads.set_ylabel("rope tension [t]")
+    loads.legend(fontsize=8, loc="best")
+    water.plot(curve.hoist, curve.buoyancy, label="buoyancy (net water force up)")
+    water.plot(curve.hoist, curve.ground_reaction, label="ground reaction")
+    water.plot(curve.hoist, curve.tensions.sum(axis=1), label="sum of rope tensions")
+    water.set_ylabel("force [t]")
+    water.legend(fontsize=8, loc="best")
+    pose.plot(curve.hoist, curve.heel, label="heel (+ starboard down)")
+    pose.plot(curve.hoist, curve.trim, label="trim (+ bow down)")
+    pose.set_ylabel("angle [deg]")
+    pose.set_xlabel("hoist [m] (every hook raised by this)")
+    pose.legend(fontsize=8, loc="best")
+    if curve.lift_off is not None:
+        for ax in (loads, water, pose):
+            ax.axvline(curve.lift_off, color="0.6", lw=0.8, ls=":")
+    for ax in (loads, water, pose):
+        ax.grid(True, lw=0.3)
+    for hoist, _ in curve.failed:
+        loads.axvline(hoist, color="r", lw=0.5, alpha=0.5)
+    return fig
