@@ -47,7 +47,8 @@ def _parser():
         "--method", choices=["newton", "paper-newton"], default="newton",
         help="stranded hull: casadi Newton (default) or the paper's J^T D J iteration",
     )
-    lift_cmd = commands.add_parser("lift", help="load curve of a lift off the seabed and through the waterline")
+    lift_cmd = commands.add_parser(
+        "lift", help="load curve of a lift off the seabed and through the waterline")
     lift_cmd.add_argument("scene", help="scene file with [hull], [water], cranes (and usually [ground])")
     lift_cmd.add_argument("--to", type=float, metavar="M",
                           help="last hoist in m (default: the hull 1 m clear of the water)")
