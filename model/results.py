@@ -103,6 +103,10 @@ class Equilibrium:
     solver : SolverInfo
     afloat : Afloat or None
         Buoyancy and ground reaction, for a hull in water.
+    rope_forces : dict of str to RopeForce or None
+        Inclined ropes: each rope's force vector and inclination.
+    position : tuple of 3 float or None  [m]
+        Inclined ropes: world position of the body-frame origin (it swings in plan).
     """
 
     model: str
@@ -114,6 +118,8 @@ class Equilibrium:
     residual: float
     solver: SolverInfo
     afloat: Afloat | None = None
+    rope_forces: dict | None = None
+    position: tuple[float, float, float] | None = None
 
     @property
     def share(self):
@@ -156,6 +162,10 @@ class Equilibrium:
                 "seconds": self.solver.seconds,
             },
         }
+        if self.rope_forces is not None:
+            out["horizontal_forces"] = {name: list(f.force[:2]) for name, f in self.rope_forces.items()}
+            out["rope_angles"] = {name: f.angle for name, f in self.rope_forces.items()}
+            out["position"] = list(self.position)
         if self.afloat is not None:
             a = self.afloat
             out.update({

@@ -17,7 +17,7 @@ import numpy as np
 
 from .errors import InvalidScene
 
-MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic")
+MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined")
 
 # Plan-area test for collinear lugs: the support polygon's area over its diameter squared.
 # Below this the 3x3 statics matrix has a condition number above ~1e9: singular in t and m.
@@ -112,6 +112,8 @@ class Crane:
         Unstretched rope length l0 between boom tip and lug (forward ``elastic`` model).
     swl : float or None  [t]
         Safe working load of the crane at its radius.
+    tip : tuple of 3 float or None  [m]
+        World position of the boom tip when it is not above the lug (inclined rope).
     """
 
     lug: str
@@ -119,6 +121,7 @@ class Crane:
     boom_height: float | None = None
     rope_length: float | None = None
     swl: float | None = None
+    tip: tuple[float, float, float] | None = None
 
     def __post_init__(self):
         where = f"cranes[{self.lug}]"
@@ -130,6 +133,8 @@ class Crane:
             _set(self, "rope_length", positive(f"{where}.rope_length", self.rope_length))
         if self.swl is not None:
             _set(self, "swl", positive(f"{where}.swl", self.swl))
+        if self.tip is not None:
+            _set(self, "tip", point(f"{where}.tip", self.tip))
 
 
 @dataclass(frozen=True)

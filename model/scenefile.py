@@ -53,6 +53,7 @@ class _Ropes(Table):
 
 class _Crane(Table):
     lug: Text
+    tip: Point | None = None
     boom_height: Num | None = None
     rope_length: Num | None = None
     swl: Num | None = None
@@ -72,7 +73,7 @@ class _Redundant(Table):
 
 
 class _Analysis(Table):
-    model: Literal["elastic", "paper-elastic", "rigid", "hydrostatic"] | None = None
+    model: Literal["elastic", "paper-elastic", "rigid", "hydrostatic", "inclined"] | None = None
     redundant: _Redundant | list[_Redundant] | None = None
 
 
@@ -226,6 +227,7 @@ def _to_scene(data, base):
             boom_height=c.boom_height,
             rope_length=c.rope_length,
             swl=c.swl,
+            tip=to_zup(c.tip) if c.tip is not None else None,
         )
         for c in data.cranes
     ]

@@ -22,6 +22,7 @@ import numpy as np
 from .errors import EquilibriumNotFound, InvalidScene
 from .results import Equilibrium, Pose, SolverInfo
 from .statics import BLOCK, rope_model
+from .inclined import solve_inclined
 from .water import solve_hydrostatic
 
 # Equilibrium accepted when the residual is below this fraction of W (force, and moment
@@ -34,7 +35,8 @@ def pick_model(scene):
     """The model a scene asks for, or the least one its data supports.
 
     Returns ``scene.analysis.model`` if set; otherwise ``"hydrostatic"`` for a hull in water
-    (which then picks constant or clipped buoyancy itself), ``"elastic"`` when every crane has a
+    (which then picks constant or clipped buoyancy itself), ``"inclined"`` when a crane's tip
+    is placed in the world, ``"elastic"`` when every crane has a
     boom height, rope length and EA, ``"rigid"`` when redundant tensions are given (or n = 3),
     else ``"paper-elastic"``.
     """
@@ -42,6 +44,8 @@ def pick_model(scene):
         return scene.analysis.model
     if scene.hull is not None:
         return "hydrostatic"
+    if any(c.tip is not None for c in scene.cranes):
+        return "inclined"
     cranes = scene.cranes
     if all(c.boom_height is not None and c.rope_length is not None and c.EA for c in cranes):
         return "elastic"
@@ -82,15 +86,22 @@ def solve(scene, model=None, method="newton"):
             f"model = {model!r} leaves out the scene's [water] and [hull]; expected 'hydrostatic' "
             "(or no model: the least model the scene needs is picked)"
         )
+    if model != "inclined" and any(c.tip is not None for c in scene.cranes) and scene.hull is None:
+        raise InvalidScene(
+            f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
+            "'inclined' (or no model: it is picked when a tip is given)"
+        )
     if model == "hydrostatic":
         return solve_hydrostatic(scene, method=method)
+    if model == "inclined":
+        return solve_inclined(scene)
     if model == "rigid":
         return solve_rigid(scene)
     if model == "paper-elastic":
         return solve_paper_elastic(scene)
     if model == "elastic":
         return solve_elastic(scene)
-    raise InvalidScene(f"model = {model!r}: expected one of elastic, paper-elastic, rigid, hydrostatic")
+    raise InvalidScene(f"model = {model!r}: expected one of elastic, paper-elastic, rigid, hydrostatic, inclined")
 
 
 # -- parameters -----------------------------------------------------------------------------

@@ -91,6 +91,11 @@ class WaterSetup:
             self.contact_world = None
             pivot, self.ground_height = cog, 0.0
         ropes = []
+        if any(c.tip is not None for c in scene.cranes):
+            raise InvalidScene(
+                "cranes.tip: inclined ropes on a hull in water are not modelled; expected tips "
+                "above the lugs (no tip: vertical ropes) for a scene with [hull] and [water]"
+            )
         if scene.n:
             for name in ("boom_height", "rope_length", "EA"):
                 missing = [c.lug for c in scene.cranes if getattr(c, name) is None]

@@ -40,7 +40,7 @@ def _parser():
     solve_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     solve_cmd.add_argument(
         "--model",
-        choices=["elastic", "paper-elastic", "rigid", "hydrostatic"],
+        choices=["elastic", "paper-elastic", "rigid", "hydrostatic", "inclined"],
         help="override the scene's [analysis] model",
     )
     solve_cmd.add_argument(

@@ -45,3 +45,35 @@ def rotation_of(r6):
     from moorpy.helpers import rotationMatrix
 
     return rotationMatrix(*r6[3:])
+
+
+def moorpy_solve_6dof(scene, tips, start):
+    """Six-DOF MoorPy solve with rope tips at world points.
+
+    Parameters
+    ----------
+    tips : array (n, 3)  [m]
+    start : array (6,)  (x, y, z [m], then MoorPy's roll, pitch, yaw [rad])
+
+    Returns
+    -------
+    tensions [t], lug world positions (n, 3) [m]
+    """
+    import moorpy as mp
+
+    lugs = scene.lug_points()
+    system = mp.System(depth=1000.0, rho=0.0, g=G)
+    body = system.addBody(0, np.asarray(start, dtype=float), m=scene.body.weight / G, v=0.0,
+                          rCG=np.array(scene.body.cog), DOFs=[0, 1, 2, 3, 4, 5])
+    for i, crane in enumerate(scene.cranes):
+        tip = system.addPoint(1, np.asarray(tips[i], dtype=float))
+        lug = system.addPoint(1, lugs[i], body=1)
+        rope = dict(name=f"rope{i}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=crane.EA,
+                    material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
+        system.addLine(crane.rope_length, rope, pointA=lug.number, pointB=tip.number)
+    system.initialize()
+    if not system.solveEquilibrium(tol=1e-10, maxIter=1000):
+        raise RuntimeError("MoorPy did not converge")
+    tensions = np.array([line.TA for line in system.lineList])
+    world = np.array([body.r6[:3] + rotation_of(body.r6) @ p for p in lugs])
+    return tensions, world
