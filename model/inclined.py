@@ -152,8 +152,8 @@ def solve_inclined(scene):
     forces = {}
     for name, pull in zip(names, pulls.T):
         horizontal = float(math.hypot(pull[0], pull[1]))
-        forces[name] = RopeForce(tuple(float(v) for v in pull), horizontal,
-                                 math.degrees(math.atan2(horizontal, pull[2])) if pull[2] or horizontal else 0.0)
+        angle = math.degrees(math.atan2(horizontal, pull[2]))  # 0 for a slack rope's zero pull
+        forces[name] = RopeForce(tuple(float(v) for v in pull), horizontal, angle)
     return Equilibrium(
         model="inclined",
         pose=Pose(heel=heel, trim=trim, yaw=yaw, lift_height=float(x[2])),

@@ -20,9 +20,10 @@ import casadi as ca
 import numpy as np
 
 from .errors import EquilibriumNotFound, InvalidScene
-from .results import Equilibrium, Pose, SolverInfo
-from .statics import BLOCK, rope_model
 from .inclined import solve_inclined
+from .results import Equilibrium, Pose, SolverInfo
+from .scene import MODELS
+from .statics import BLOCK, rope_model
 from .water import solve_hydrostatic
 
 # Equilibrium accepted when the residual is below this fraction of W (force, and moment
@@ -101,7 +102,7 @@ def solve(scene, model=None, method="newton"):
         return solve_paper_elastic(scene)
     if model == "elastic":
         return solve_elastic(scene)
-    raise InvalidScene(f"model = {model!r}: expected one of elastic, paper-elastic, rigid, hydrostatic, inclined")
+    raise InvalidScene(f"model = {model!r}: expected one of {', '.join(MODELS)}")
 
 
 # -- parameters -----------------------------------------------------------------------------
