@@ -137,6 +137,14 @@ class AfloatModel:
             "grounded", [x2, p], [grounded["r"][1:], grounded["r"][0], zo2, grounded["tension"]],
             ["x", "p"], ["r", "force", "zo", "tension"],
         )
+        # stiffness in physical units (t/m, t, t m/rad): minus the Jacobian of the forces
+        unscale = ca.diag(ca.vertcat(weight, weight * scale, weight * scale))
+        free_r = self.free.call([x3, p])[0]
+        grounded_r = self.grounded.call([x2, p])[0]
+        self.free_stiffness = ca.Function(
+            "free_stiffness", [x3, p], [-ca.mtimes(unscale, ca.jacobian(free_r, x3))])
+        self.grounded_stiffness = ca.Function(
+            "grounded_stiffness", [x2, p], [-ca.mtimes(unscale[1:, 1:], ca.jacobian(grounded_r, x2))])
         self.free_root = self._rootfinder("free_root", x3, p, self.free.call([x3, p])[0])
         self.grounded_root = self._rootfinder("grounded_root", x2, p, self.grounded.call([x2, p])[0])
 

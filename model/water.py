@@ -41,9 +41,11 @@ RESIDUAL_TOL = 1e-9
 PAPER_TOL = 1.0
 PAPER_MAX_ITER = 500
 METHODS = ("newton", "paper-newton")
-# Largest turn about the vertical used to report an equilibrium at the scene's yaw (deg);
-# near upright the needed turn is second order in the tilts (0.016 deg on the barge).
+# Reporting at the scene's yaw (see unyaw): near upright the needed turn about the vertical
+# is second order in the tilts (0.016 deg on the barge); with the body's trim axis within
+# ~25 deg of vertical (|R[2, 1]| > 0.9, heel near 90) only turns up to MAX_TURN deg are made.
 MAX_TURN = 5.0
+TRIM_AXIS_VERTICAL = 0.9
 
 
 @dataclass(frozen=True)
@@ -179,6 +181,8 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
         tol = RESIDUAL_TOL if paper_tol is None else paper_tol / (setup.gravity * scene.hull.size)
         rot = _rotation(tilts, start.rotation)
         if _converged(residual, rot, tol):
+            _check_turn(rot, start.rotation, "grounded")
+            _check_stable(setup.model.grounded_stiffness(tilts, p), rot, scene.hull.size, "grounded")
             reaction = -float(force[0]) * setup.gravity
             if reaction > 0.0:
                 info = SolverInfo(method, True, iterations, seconds)
@@ -201,6 +205,8 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
             f"{_label(scene)}: no {what} equilibrium found (residual {np.max(np.abs(residual)):.3g} W, "
             f"heel {heel:.1f} deg, trim {trim:.1f} deg); " + _hint(setup)
         )
+    _check_turn(rot, start.rotation, "afloat")
+    _check_stable(setup.model.free_stiffness(x, p), rot, scene.hull.size, "afloat")
     if scene.ground is not None:
         # free of the ground only if the contact point is not pushed below it
         below = setup.ground_height - (float((rot @ scene.ground.contact)[2]) + x[0])
@@ -212,6 +218,37 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
     info = SolverInfo("newton" if method == "newton" else "newton (afloat after paper-newton)",
                       True, iterations, seconds)
     return _result(setup, float(x[0]), rot, hoist, info, grounded=False)
+
+
+def _check_turn(rot, start, what):
+    """Refuse an answer whose body z axis turned more than 90 deg from the start's: a flipped
+    hull (upside down, hanging under its contact) is another equilibrium of the same
+    equations, not the one the scene asks about."""
+    if float(rot[:, 2] @ start[:, 2]) <= 0.0:
+        heel, trim, _ = attitude_angles(rot)
+        raise EquilibriumNotFound(
+            f"the {what} solve ended with the hull turned over (heel {heel:.1f} deg, trim {trim:.1f} deg), "
+            "more than 90 deg from its start; expected a start attitude nearer the answer"
+        )
+
+
+def _check_stable(stiffness, rot, length, what):
+    """Refuse an equilibrium that is not stable: a root of the equations where the hull
+    would capsize or roll over given the smallest push (Newton finds those too, from a
+    start far off). Stable: the stiffness matrix (symmetric part) is positive definite.
+    Its rows and columns are brought to t/m by the hull length first, so the test is one
+    of signs and does not depend on units."""
+    k = np.asarray(stiffness, dtype=float)
+    scale = np.diag([1.0] * (len(k) - 2) + [1.0 / length, 1.0 / length])
+    k = scale @ (0.5 * (k + k.T)) @ scale
+    low = float(np.min(np.linalg.eigvalsh(k)))
+    if not low > -1e-9 * float(np.max(np.abs(k))):
+        heel, trim, _ = attitude_angles(rot)
+        raise EquilibriumNotFound(
+            f"the {what} equilibrium found at heel {heel:.1f} deg, trim {trim:.1f} deg is unstable "
+            f"(stiffness eigenvalue {low:.3g} t/m < 0): the hull would not stay there; expected a "
+            "start attitude nearer the stable one"
+        )
 
 
 def _rotation(tilts, start):
@@ -313,9 +350,9 @@ def unyaw(rot, yaw):
 
     Vertical forces do not see a turn about the vertical, so an equilibrium found by
     tilts is one of a family; this picks the member with the scene's yaw, the attitude
-    the contract's angles describe. Returned unchanged where no turn of at most
-    ``MAX_TURN`` reaches that yaw: near heel 90 deg the body's trim axis is vertical, a
-    world pitch shows as yaw, and turning the hull round to hide it would misdescribe it.
+    the contract's angles describe. Near heel 90 deg the body's trim axis is (nearly)
+    vertical, a world pitch shows as yaw, and turning the hull round to hide it would
+    misdescribe it: there only turns of at most ``MAX_TURN`` are made.
     """
     a, b = rot[0, 1], -rot[1, 1]  # -sin(yaw') = cos(psi) a + sin(psi) b for Rz(psi) rot
     c = -math.sin(math.radians(yaw))
@@ -323,10 +360,13 @@ def unyaw(rot, yaw):
     if norm < abs(c) or norm < 1e-12:
         return rot
     base, spread = math.atan2(b, a), math.acos(max(-1.0, min(1.0, c / norm)))
-    psi = min((math.remainder(v, 2 * math.pi) for v in (base + spread, base - spread)), key=abs)
-    if abs(psi) > math.radians(MAX_TURN):
+    candidates = [math.remainder(v, 2 * math.pi) for v in (base + spread, base - spread)]
+    turned = [rotation_matrix(0.0, 0.0, math.degrees(psi)) @ rot for psi in candidates]
+    # of the two turns, keep the one whose bow points forward (heel within +-90)
+    best = max(range(2), key=lambda k: turned[k][1, 1] + turned[k][2, 2])
+    if abs(rot[2, 1]) > TRIM_AXIS_VERTICAL and abs(candidates[best]) > math.radians(MAX_TURN):
         return rot
-    return rotation_matrix(0.0, 0.0, math.degrees(psi)) @ rot
+    return turned[best]
 
 
 def _result(setup, zo, rot, hoist, solver, grounded):
