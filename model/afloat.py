@@ -15,8 +15,8 @@ point v is at R v + (0, 0, zo). Every force is vertical:
 
 Residual r(x) = (F, M_x, M_y) / (W, W L, W L): net vertical force without the ground,
 and moments about the pivot's current position (about G when there is no pivot; at an
-equilibrium the net force is zero and the point does not matter). Grounded: x = (heel,
-x = (a, b) and zo follows from the pivot staying on the ground; the moments must vanish
+equilibrium the net force is zero and the point does not matter). Grounded: x = (a, b)
+and zo follows from the pivot staying on the ground; the moments must vanish
 and F_R = -F >= 0. Afloat or hanging: x = (zo, a, b) and all three vanish.
 """
 
@@ -124,8 +124,8 @@ class AfloatModel:
             mx += ca.dot(tension, lugs[1, :].T - c[1])
             my -= ca.dot(tension, lugs[0, :].T - c[0])
         scaled = ca.vertcat(force / weight, mx / (weight * scale), my / (weight * scale))
-        outputs = [scaled, buoy, moment, tension, c]
-        names = ["r", "buoyancy", "moment", "tension", "pivot"]
+        outputs = [scaled, buoy, moment, tension]
+        names = ["r", "buoyancy", "moment", "tension"]
         self.free = ca.Function("free", [x3, p], outputs, ["x", "p"], names)
         # grounded: the pivot stays at its ground height, so zo follows from the angles
         x2 = ca.MX.sym("x", 2)
@@ -145,8 +145,8 @@ class AfloatModel:
             "free_stiffness", [x3, p], [-ca.mtimes(unscale, ca.jacobian(free_r, x3))])
         self.grounded_stiffness = ca.Function(
             "grounded_stiffness", [x2, p], [-ca.mtimes(unscale[1:, 1:], ca.jacobian(grounded_r, x2))])
-        self.free_root = self._rootfinder("free_root", x3, p, self.free.call([x3, p])[0])
-        self.grounded_root = self._rootfinder("grounded_root", x2, p, self.grounded.call([x2, p])[0])
+        self.free_root = self._rootfinder("free_root", x3, p, free_r)
+        self.grounded_root = self._rootfinder("grounded_root", x2, p, grounded_r)
 
     @staticmethod
     def _weighted(triangles, kappa, rot, zo):

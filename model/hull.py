@@ -21,7 +21,6 @@ Water inside the hull (:class:`Flooding`):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -282,10 +281,3 @@ class Hull:
             )
         return volume
 
-
-def check_angle(path, value):
-    """A finite angle in degrees within [-180, 180]."""
-    angle = finite(path, value)
-    if abs(angle) > 180.0:
-        raise InvalidScene(f"{path} = {value!r}: expected a value in [-180, 180] deg")
-    return math.radians(angle)

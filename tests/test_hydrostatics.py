@@ -110,3 +110,13 @@ def test_open_and_inverted_meshes_refused(tmp_path):
         Hull.from_stl(tmp_path / "mixed.stl")
     with pytest.raises(InvalidScene, match="no such file"):
         Hull.from_stl(tmp_path / "missing.stl")
+
+
+def test_attitude_angles_invert_rotation_matrix():
+    """The decomposition used to report hydrostatic answers inverts the one convention."""
+    from liftplan.model.frames import attitude_angles
+
+    rng = np.random.default_rng(7)
+    angles = zip(rng.uniform(-179, 179, 30), rng.uniform(-89, 89, 30), rng.uniform(-89, 89, 30))
+    for heel, trim, yaw in angles:
+        assert_allclose(attitude_angles(rotation_matrix(heel, trim, yaw)), (heel, trim, yaw), atol=1e-9)
