@@ -28,17 +28,22 @@ def moorpy_solve(scene, heel, trim, lift, start_offset=(0.05, 0.002, -0.002)):
         m=scene.body.weight / G, v=0.0, rCG=np.array(scene.body.cog), DOFs=[2, 3, 4],
     )
     for i, crane in enumerate(scene.cranes):
-        tip = system.addPoint(1, np.array([world[i, 0], world[i, 1], crane.boom_height]))
-        lug = system.addPoint(1, lugs[i], body=1)
-        rope = dict(name=f"rope{i}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=crane.EA,
-                    material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
-        system.addLine(crane.rope_length, rope, pointA=lug.number, pointB=tip.number)
+        add_rope(system, i, crane, lugs[i], [world[i, 0], world[i, 1], crane.boom_height])
     system.initialize()
     if not system.solveEquilibrium(tol=1e-10, maxIter=500):
         raise RuntimeError("MoorPy did not converge")
     tensions = np.array([line.TA for line in system.lineList])
     heights = np.array([body.r6[2] + (rotation_of(body.r6) @ p)[2] for p in lugs])
     return tensions, heights
+
+
+def add_rope(system, i, crane, lug_point, tip_point):
+    """A weightless straight rope from a fixed tip (world) to a lug on body 1 (body frame)."""
+    tip = system.addPoint(1, np.asarray(tip_point, dtype=float))
+    lug = system.addPoint(1, np.asarray(lug_point, dtype=float), body=1)
+    rope = dict(name=f"rope{i}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=crane.EA,
+                material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
+    system.addLine(crane.rope_length, rope, pointA=lug.number, pointB=tip.number)
 
 
 def rotation_of(r6):
@@ -66,11 +71,7 @@ def moorpy_solve_6dof(scene, tips, start):
     body = system.addBody(0, np.asarray(start, dtype=float), m=scene.body.weight / G, v=0.0,
                           rCG=np.array(scene.body.cog), DOFs=[0, 1, 2, 3, 4, 5])
     for i, crane in enumerate(scene.cranes):
-        tip = system.addPoint(1, np.asarray(tips[i], dtype=float))
-        lug = system.addPoint(1, lugs[i], body=1)
-        rope = dict(name=f"rope{i}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=crane.EA,
-                    material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
-        system.addLine(crane.rope_length, rope, pointA=lug.number, pointB=tip.number)
+        add_rope(system, i, crane, lugs[i], tips[i])
     system.initialize()
     if not system.solveEquilibrium(tol=1e-10, maxIter=1000):
         raise RuntimeError("MoorPy did not converge")
