@@ -11,8 +11,10 @@ Python API for planners::
 
 from .errors import EquilibriumNotFound, InvalidScene, LiftPlanError, PlanInfeasible, SolverFailed
 from .frames import choi_to_zup, rotation_matrix, zup_to_choi
+from .hull import Compartment, Hull
+from .lift import LoadCurve, load_curve
 from .results import Equilibrium, Pose, SolverInfo
-from .scene import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene
+from .scene import Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Water
 from .scenefile import load_scene, loads_scene
 from .solve import (
     paper_elastic_tensions,
@@ -24,9 +26,9 @@ from .solve import (
 )
 
 __all__ = [
-    "Analysis", "Attitude", "Body", "Crane", "Equilibrium", "EquilibriumNotFound",
-    "InvalidScene", "LiftPlanError", "Lug", "PlanInfeasible", "Pose", "Redundant", "Scene",
-    "SolverFailed", "SolverInfo", "choi_to_zup", "load_scene", "loads_scene",
-    "paper_elastic_tensions", "pick_model", "rotation_matrix", "solve", "solve_elastic",
-    "solve_paper_elastic", "solve_rigid", "zup_to_choi",
+    "Analysis", "Attitude", "Body", "Compartment", "Crane", "Equilibrium", "EquilibriumNotFound",
+    "Ground", "Hull", "InvalidScene", "LiftPlanError", "LoadCurve", "Lug", "PlanInfeasible", "Pose",
+    "Redundant", "Scene", "SolverFailed", "SolverInfo", "Water", "choi_to_zup", "load_curve",
+    "load_scene", "loads_scene", "paper_elastic_tensions", "pick_model", "rotation_matrix", "solve",
+    "solve_elastic", "solve_paper_elastic", "solve_rigid", "zup_to_choi",
 ]

@@ -122,15 +122,12 @@ def solve_inclined(scene):
             "above the lugs (vertical ropes) for a scene with [hull] and [water]"
         )
     n = scene.n
-    for name in ("rope_length", "EA"):
-        missing = [c.lug for c in scene.cranes if getattr(c, name) is None]
-        if missing:
-            raise InvalidScene(f"cranes[{missing[0]}].{name}: missing, the inclined model needs it")
+    length, stiffness = scene.crane_values("rope_length", "inclined"), scene.crane_values("EA", "inclined")
     tips = crane_tips(scene)
     function, root = inclined_model(n)
     body = scene.body
     p = np.concatenate([scene.lug_points().ravel(), tips.ravel(),
-                        [c.rope_length for c in scene.cranes], [c.EA for c in scene.cranes],
+                        length, stiffness,
                         [body.weight], body.cog, [max(scene.plan_diameter, 1.0)]])
     a = scene.attitude
     x0 = [0.0, 0.0, a.lift_height, math.radians(a.heel), math.radians(a.trim), math.radians(a.yaw)]

@@ -365,6 +365,19 @@ class Scene:
         plan = self._lug_array[:, :2]
         return float(np.max(np.linalg.norm(plan[:, None, :] - plan[None, :, :], axis=-1)))
 
+    def crane_values(self, field, model):
+        """Every crane's ``field`` in lug order; a missing one is an InvalidScene naming the
+        crane and the model that needs it."""
+        values = []
+        for crane in self.cranes:
+            value = getattr(crane, field)
+            if value is None:
+                raise InvalidScene(
+                    f"cranes[{crane.lug}].{field}: missing, the {model} model needs it for every crane"
+                )
+            values.append(value)
+        return values
+
     def crane(self, lug):
         """The crane on lug ``lug``."""
         for crane in self.cranes:

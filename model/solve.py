@@ -106,25 +106,13 @@ def solve(scene, model=None, method="newton"):
 
 
 # -- parameters -----------------------------------------------------------------------------
-def _require(scene, field, model):
-    values = []
-    for crane in scene.cranes:
-        value = getattr(crane, field)
-        if value is None:
-            raise InvalidScene(
-                f"cranes[{crane.lug}].{field}: missing, the {model} model needs it for every crane"
-            )
-        values.append(value)
-    return values
-
-
 def pack_params(scene, model):
     """The flat parameter vector of :class:`~liftplan.model.statics.Layout` for a scene."""
     n = scene.n
     ones = [1.0] * n
-    boom = _require(scene, "boom_height", model) if model != "rigid" else ones
-    stiffness = _require(scene, "EA", model) if model != "rigid" else ones
-    length = _require(scene, "rope_length", model) if model == "elastic" else ones
+    boom = scene.crane_values("boom_height", model) if model != "rigid" else ones
+    stiffness = scene.crane_values("EA", model) if model != "rigid" else ones
+    length = scene.crane_values("rope_length", model) if model == "elastic" else ones
     return np.concatenate([
         [math.radians(scene.attitude.yaw)],
         scene.lug_points().ravel(),

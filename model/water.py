@@ -99,16 +99,10 @@ class WaterSetup:
                 "above the lugs (no tip: vertical ropes) for a scene with [hull] and [water]"
             )
         if scene.n:
-            for name in ("boom_height", "rope_length", "EA"):
-                missing = [c.lug for c in scene.cranes if getattr(c, name) is None]
-                if missing:
-                    raise InvalidScene(
-                        f"cranes[{missing[0]}].{name}: missing, a hull hanging from ropes in water "
-                        "needs boom_height, rope_length and EA for every crane"
-                    )
-            hook = [c.boom_height - water.level for c in scene.cranes]
-            ropes = [scene.lug_points().ravel(), hook,
-                     [c.rope_length for c in scene.cranes], [c.EA for c in scene.cranes]]
+            model = "hydrostatic (a hull hanging from ropes)"
+            hook = [h - water.level for h in scene.crane_values("boom_height", model)]
+            ropes = [scene.lug_points().ravel(), hook, scene.crane_values("rope_length", model),
+                     scene.crane_values("EA", model)]
         self.start = Start(a.lift_height - water.level, rotation_matrix(a.heel, a.trim, a.yaw))
         self.base = np.concatenate([
             self.start.rotation.ravel(order="F"), [gravity], cog, pivot,
@@ -436,13 +430,13 @@ def submerged_scene(setup):
     centre = np.asarray(out["moment"]).ravel() / buoy + [0.0, 0.0, deep]
     net = setup.gravity - buoy
     if net <= 1e-9 * setup.gravity:
-        return None, buoy
+        return None
     cog = (setup.gravity * setup.cog - buoy * centre) / net
     rope_scene = dataclasses.replace(
         scene, water=None, hull=None, ground=None, body=dataclasses.replace(scene.body, weight=net, cog=cog),
         analysis=dataclasses.replace(scene.analysis, model="elastic"),
     )
-    return rope_scene, buoy
+    return rope_scene
 
 
 def solve_hydrostatic(scene, method="newton"):
@@ -464,7 +458,7 @@ def solve_hydrostatic(scene, method="newton"):
     start = None
     if scene.n and scene.ground is None and method == "newton":
         try:
-            rope_scene, _ = submerged_scene(setup)
+            rope_scene = submerged_scene(setup)
         except InvalidScene:  # e.g. the submerged centre lies outside the lugs
             rope_scene = None
         if rope_scene is not None:

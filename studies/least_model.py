@@ -53,7 +53,7 @@ def main():
     # 1. fully submerged: constant buoyancy vs clipped
     scene = hanging(36.0)
     setup = WaterSetup(scene)
-    rope_scene, _ = submerged_scene(setup)
+    rope_scene = submerged_scene(setup)
     simple = median_time(lambda: solve_elastic(rope_scene))
     full = median_time(lambda: solve_in_water(scene, setup=setup))
     a, b = solve_elastic(rope_scene), solve_in_water(scene, setup=setup)
