@@ -30,6 +30,8 @@ T_i = k_i (c0 + c1 x_i + c2 y_i), k_i = EA_i / l_i, into the statics gives the 3
 
 from __future__ import annotations
 
+import os
+import tempfile
 import threading
 from dataclasses import dataclass
 from functools import cache, cached_property
@@ -298,7 +300,7 @@ class RopeModel:
             column = ca.Function(
                 f"{function.name()}_jit", [x, p], list(outputs),
                 {"jit": True, "compiler": "shell",
-                 "jit_options": {"flags": ["-O2"], "verbose": False}},
+                 "jit_options": {"flags": ["-O2"], "verbose": False, "directory": _jit_directory()}},
             )
             self.batch_backend = "jit"
         except RuntimeError:  # no C compiler on this machine
@@ -307,6 +309,22 @@ class RopeModel:
         # with shared_p, input 1 (p) is shared by every column rather than repeated
         shared = [1] if shared_p else []
         return FastCall(column.map(f"{function.name()}_block", "serial", BLOCK, shared, []))
+
+
+@cache
+def _jit_directory():
+    """The folder for casadi's JIT sources and libraries (in the system's temporary folder).
+
+    casadi writes them to the working directory by default and removes them when the
+    Function is destroyed; a process that is killed (a Dask worker at shutdown) never does,
+    and must not leave them in the user's folder.
+    """
+    folder = os.path.join(tempfile.gettempdir(), "liftplan-jit")
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError:  # not ours (another user's), make a private one
+        folder = tempfile.mkdtemp(prefix="liftplan-jit-")
+    return folder + os.sep
 
 
 @cache

@@ -1,6 +1,6 @@
 """The ``liftplan`` command line.
 
-argparse (standard library) rather than click/typer: two sub-commands with a few options do
+argparse (standard library) rather than click/typer: four sub-commands with a few options do
 not justify three more dependencies, and argparse's errors are already one line.
 """
 
@@ -18,7 +18,7 @@ from liftplan.model import (
     solve,
 )
 
-from .console import equilibrium_table, plan_table
+from .console import batch_table, equilibrium_table, plan_table
 from .plan import plan
 from .problemfile import load_problem
 
@@ -63,6 +63,18 @@ def _parser():
                           help="write report.html (and report.pdf with WeasyPrint), "
                                "plan_scene.toml and plan.json into DIR")
     plan_cmd.add_argument("--top", type=int, metavar="K", help="rank the best K lug sets")
+    batch_cmd = commands.add_parser(
+        "batch", help="run a batch study (many plans, or one plan checked many times) on Dask")
+    batch_cmd.add_argument("study", help="study file (TOML with [study], [sweep], [sample])")
+    batch_cmd.add_argument("--scheduler", metavar="ADDRESS",
+                           help="a running Dask scheduler, e.g. tcp://10.0.0.5:8786 "
+                                "(default: a local cluster)")
+    batch_cmd.add_argument("--workers", type=int, metavar="N",
+                           help="local cluster size (default: one per core)")
+    batch_cmd.add_argument("--output", metavar="CSV", help="the table to write (default: the study's)")
+    batch_cmd.add_argument("--restart", action="store_true",
+                           help="discard an interrupted run's rows instead of resuming it")
+    batch_cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
 
@@ -104,6 +116,23 @@ def _lift(args):
         print(load_curve_table(scene, curve))
 
 
+def _batch(args):
+    from .batch import run_study
+    from .study import load_study
+
+    if args.workers is not None and args.workers < 1:
+        raise LiftPlanError(f"--workers {args.workers}: expected an integer >= 1")
+    study = load_study(args.study)
+    try:
+        summary = run_study(study, scheduler=args.scheduler, workers=args.workers,
+                            restart=args.restart, progress=not args.no_progress, output=args.output)
+    except KeyboardInterrupt:
+        print("liftplan: interrupted; the finished cases are kept, run the same command to resume",
+              file=sys.stderr)
+        raise SystemExit(130) from None
+    print(batch_table(study, summary))
+
+
 def _solve(args):
     scene = load_scene(args.scene)
     eq = solve(scene, model=args.model, method=args.method)
@@ -118,7 +147,7 @@ def main(argv=None):
     2 bad input, 3 internal error)."""
     args = _parser().parse_args(argv)
     try:
-        {"plan": _plan, "lift": _lift, "solve": _solve}[args.command](args)
+        {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command](args)
     except EquilibriumNotFound as err:
         print(f"liftplan: no equilibrium: {err}", file=sys.stderr)
         return NO_SOLUTION

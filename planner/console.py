@@ -140,3 +140,29 @@ def load_curve_table(scene, curve, rows=25):
     for hoist, reason in curve.failed:
         lines.append(f"no equilibrium at hoist {hoist:.2f} m: {reason}")
     return "\n".join(lines)
+
+
+def batch_table(study, summary):
+    """What a batch run did: cases per status, time, where the table is.
+
+    Parameters
+    ----------
+    study : Study
+    summary : BatchSummary
+
+    Returns
+    -------
+    str
+    """
+    lines = [f"study {study.name} ({study.kind}): {summary.cases} cases"]
+    resumed = summary.cases - summary.ran
+    if summary.ran:
+        lines.append(f"ran {summary.ran} in {summary.seconds:.2f} s on {summary.cores} cores "
+                     f"({summary.rate_per_core:,.0f} cases/s per core)"
+                     + (f"; {resumed} were done before (resumed)" if resumed else ""))
+    else:
+        lines.append("every case was done before (resumed)")
+    lines += ["", f"{'status':<12}{'cases':>8}"]
+    lines += [f"{status:<12}{count:>8}" for status, count in sorted(summary.counts.items())]
+    lines += ["", f"table: {summary.output}"]
+    return "\n".join(lines)

@@ -102,7 +102,11 @@ def load_problem(path):
 
 def loads_problem(text):
     """Validate a planning scene given as TOML text; see :func:`load_problem`."""
-    raw = parse_toml(text)
+    return problem_from_dict(parse_toml(text))
+
+
+def problem_from_dict(raw):
+    """Validate a planning scene given as the dict its TOML file parses to."""
     if "candidates" not in raw and "lugs" in raw:
         raise InvalidScene(
             "[[lugs]]: a scene with fixed lugs; expected [[candidates]] and [plan] for "

@@ -76,7 +76,7 @@ def run_block(block, n, attitudes, params):
     return tensions, shift, gain
 
 
-def pack(problem, points, cog, boom):
+def pack(problem, points, cog, boom, weight=None):
     """Parameter vectors (:class:`~liftplan.model.statics.Layout`) of lug sets.
 
     Parameters
@@ -85,14 +85,16 @@ def pack(problem, points, cog, boom):
     points : (..., n, 3)  [m]   lug positions, body frame (one set, or a batch of sets)
     cog : (..., 3)  [m]
     boom : (..., n)  [m]   boom-tip heights H
+    weight : (...) [t], optional   the body weight (default the problem's)
 
     Returns
     -------
     numpy.ndarray, shape (..., 6 n + 6)
     """
+    weight = np.asarray(problem.body.weight if weight is None else weight, dtype=float)
     points, cog, boom = (np.asarray(v, dtype=float) for v in (points, cog, boom))
     n = points.shape[-2]
-    batch = np.broadcast_shapes(points.shape[:-2], cog.shape[:-1], boom.shape[:-1])
+    batch = np.broadcast_shapes(points.shape[:-2], cog.shape[:-1], boom.shape[:-1], weight.shape)
     points = np.broadcast_to(points, (*batch, n, 3))
     spec = problem.crane
     plan = points[..., :2]
@@ -107,7 +109,7 @@ def pack(problem, points, cog, boom):
         column(math.radians(problem.yaw), 1),
         points.reshape(*batch, 3 * n),
         column(cog, 3),
-        column(problem.body.weight, 1),
+        column(weight, 1),
         column(boom, n),
         column(spec.rope_length, n),
         column(spec.EA, n),

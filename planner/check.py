@@ -1,0 +1,161 @@
+"""A fixed plan checked against many uncertain cases at once.
+
+A case is a real weight, a real CG position and a heel/trim tolerance box (and the least
+tension the engineer accepts). The plan's boom heights are fixed; with them held, the
+operators keep the body near level by moving the hooks as a rigid body, which leaves the
+preload alone (README "Planning"), so the tensions at each attitude of the box are the
+``held`` model's, exact while every rope is taut. One batched casadi call evaluates every
+(case, attitude) column.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from liftplan.model.statics import rope_model
+
+from .scenarios import LugSet, pack, run_block
+
+#: Outcomes of a checked case.
+OK, UNSAFE, FAILED = "ok", "unsafe", "failed"
+
+
+@dataclass(frozen=True)
+class CheckCases:
+    """Uncertain states to check a plan against (arrays of one length m).
+
+    Parameters
+    ----------
+    weight : numpy.ndarray, shape (m,)  [t]
+    cog : numpy.ndarray, shape (m, 3)  [m]
+        Body frame (``z-up``).
+    heel_tolerance, trim_tolerance : numpy.ndarray, shape (m,)  [deg]
+        Half-widths of the attitude box.
+    min_tension : numpy.ndarray, shape (m,)  [t]
+    """
+
+    weight: np.ndarray
+    cog: np.ndarray
+    heel_tolerance: np.ndarray
+    trim_tolerance: np.ndarray
+    min_tension: np.ndarray
+
+    def __len__(self):
+        return len(self.weight)
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """A plan checked over each case's tolerance box.
+
+    Parameters
+    ----------
+    status : list of str
+        ``"ok"``; ``"unsafe"`` (a rope above the SWL or below the minimum tension); or
+        ``"failed"`` (a rope went slack: the all-taut model does not hold there, and the
+        numbers of that case are NaN).
+    reason : list of str
+        Empty when ok; otherwise one line naming the rope, the value and the attitude.
+    worst_spread : numpy.ndarray  [t]
+        Largest max - min tension over the box.
+    worst_heel, worst_trim : numpy.ndarray  [deg]
+        Where it occurs.
+    min_tension, max_tension : numpy.ndarray  [t]
+        Smallest and largest tension anywhere in the box.
+    utilisation : numpy.ndarray  [-]
+        ``max_tension`` over the SWL.
+    """
+
+    status: list
+    reason: list
+    worst_spread: np.ndarray
+    worst_heel: np.ndarray
+    worst_trim: np.ndarray
+    min_tension: np.ndarray
+    max_tension: np.ndarray
+    utilisation: np.ndarray
+
+
+def unit_grid(count):
+    """Heel x trim points on [-1, 1]^2, ``count`` per axis (level first when odd), (g, 2)."""
+    if count < 2:
+        return np.zeros((1, 2))
+    axis = np.linspace(-1.0, 1.0, count)
+    grid = np.array(np.meshgrid(axis, axis, indexing="ij")).reshape(2, -1).T
+    return grid[np.argsort(np.abs(grid).sum(axis=1), kind="stable")]
+
+
+def check_plan(problem, indices, preload, cases, grid=3):
+    """Tensions of one plan over every case's tolerance box.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Gives the candidates, crane, lift height and yaw (its weight and CG are replaced by
+        each case's).
+    indices : sequence of int
+        The plan's candidate indices.
+    preload : array_like, shape (n,)  [t]
+        The plan's level tensions (they fix the boom heights).
+    cases : CheckCases
+    grid : int
+        Attitudes per axis of each box (3: corners, edge middles and level).
+
+    Returns
+    -------
+    CheckResult
+    """
+    lugset = LugSet(problem, indices)
+    n, m = lugset.n, len(cases)
+    units = unit_grid(grid)
+    g = len(units)
+    heel = cases.heel_tolerance[:, None] * units[None, :, 0]  # (m, g)
+    trim = cases.trim_tolerance[:, None] * units[None, :, 1]
+    x = np.column_stack([np.full(m * g, problem.lift_height),
+                         np.radians(heel).ravel(), np.radians(trim).ravel()])
+    params = pack(problem, lugset.points, cases.cog, lugset.boom_heights(preload), cases.weight)
+    tensions, _, _ = run_block(rope_model(n).held_columns, n, x, np.repeat(params, g, axis=0))
+    tensions = tensions.reshape(m, g, n)
+
+    spread = np.ptp(tensions, axis=2)  # (m, g)
+    worst = np.argmax(spread, axis=1)
+    rows = np.arange(m)
+    low, high = tensions.min(axis=(1, 2)), tensions.max(axis=(1, 2))
+    swl = problem.crane.swl
+    flagged = ~np.all(np.isfinite(tensions), axis=(1, 2)) | np.any(
+        (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2))
+    status, reason = [OK] * m, [""] * m
+    for k in np.flatnonzero(flagged):  # only flagged cases need a reason
+        status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k])
+    failed = np.array([s == FAILED for s in status])
+
+    def blank(values):
+        return np.where(failed, np.nan, values)
+
+    return CheckResult(
+        status=status, reason=reason,
+        worst_spread=blank(spread[rows, worst]),
+        worst_heel=blank(heel[rows, worst]), worst_trim=blank(trim[rows, worst]),
+        min_tension=blank(low), max_tension=blank(high), utilisation=blank(high / swl),
+    )
+
+
+def _judge(tensions, heel, trim, swl, min_tension):
+    """Status and reason of one case from its (g, n) tensions."""
+    if not np.all(np.isfinite(tensions)):
+        return FAILED, "tensions not finite: the lugs cannot hold the body (collinear?)"
+    for test, bound, word, outcome in (
+        (tensions < 0.0, 0.0, "slack", FAILED),
+        (tensions > swl, swl, "over the SWL", UNSAFE),
+        (tensions < min_tension, min_tension, "below min_tension", UNSAFE),
+    ):
+        if test.any():
+            j, i = np.unravel_index(np.argmax(np.abs(tensions - bound) * test), test.shape)
+            where = f"at heel {heel[j]:+.2f}, trim {trim[j]:+.2f} deg"
+            if outcome == FAILED:
+                return FAILED, (f"rope L{i + 1} slack {where}: the all-taut (held) model does "
+                                "not hold there")
+            return UNSAFE, f"rope L{i + 1} {tensions[j, i]:.1f} t {word} {bound:g} t {where}"
+    return OK, ""

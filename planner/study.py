@@ -1,0 +1,314 @@
+"""Batch study files (``liftplan batch STUDY.toml``): which cases to run.
+
+A study names a planning scene file and the parameters to vary. Two kinds:
+
+``plan``
+    every case is a full optimisation (:func:`~liftplan.planner.plan.plan`) of the scene
+    with the case's values: how the best lugs and boom heights move with the weight, the
+    CG, the tolerances, the candidate set or the crane count.
+``check``
+    the scene is planned once; every case checks that plan (boom heights fixed) against
+    a real weight, CG and tolerance box: how robust is the chosen plan.
+
+Cases are the grid of ``[sweep]`` values (every combination), times ``[sample]`` random
+draws of the weight and CG (seeded; the same draws at every grid point). Keys are the
+planning file's own dotted names, values in its frame and units::
+
+    [study]
+    problem = "tanker_plan.toml"   # relative to this file
+    kind = "check"
+    output = "tanker_check.csv"    # relative to this file (default: STUDY.csv)
+
+    [sweep]
+    "plan.tolerance.heel" = [1.0, 2.0, 3.0]
+
+    [sample]
+    count = 1000
+    seed = 1
+    weight = [0.95, 1.05]          # factor on body.weight, uniform
+    cog = [0.5, 0.2, 0.3]          # m, half-widths of a uniform offset of body.cog
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Annotated, Literal
+
+import numpy as np
+from pydantic import Field, Strict, ValidationError
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
+
+from .problemfile import problem_from_dict
+
+Count = Annotated[int, Strict(), Field(ge=1)]
+Value = Annotated[float, Strict()] | Annotated[int, Strict()] | str | list
+
+#: Keys a ``check`` study may vary (the plan's lugs and boom heights stay fixed).
+CHECK_KEYS = ("body.weight", "body.cog", "plan.tolerance.heel", "plan.tolerance.trim",
+              "plan.min_tension")
+#: The sweep key that picks a named candidate subset.
+CANDIDATES = "candidates"
+MAX_CASES = 10_000_000
+
+
+class _Study(Table):
+    problem: Text
+    kind: Literal["plan", "check"] = "plan"
+    name: Text = ""
+    output: Text = ""
+    grid: Annotated[int, Strict(), Field(ge=1, le=41)] = 3
+    chunk: Count | None = None
+
+
+class _Sample(Table):
+    count: Count
+    seed: Annotated[int, Strict(), Field(ge=0)] = 0
+    weight: Annotated[list[Num], Field(min_length=2, max_length=2)] | None = None
+    cog: Point | None = None
+
+
+class _StudyFile(Table):
+    study: _Study
+    sweep: dict[str, Annotated[list[Value], Field(min_length=1)]] = {}
+    candidate_sets: dict[str, Annotated[list[Text], Field(min_length=1)]] = {}
+    sample: _Sample | None = None
+
+
+@dataclass(frozen=True)
+class Study:
+    """A batch study: a base planning scene and the cases to run on it.
+
+    Parameters
+    ----------
+    name : str
+    kind : {"plan", "check"}
+    base : dict
+        The planning scene file, as parsed TOML (its own frame and units).
+    output : pathlib.Path
+        The table to write (CSV).
+    sweep : tuple of (str, tuple)
+        Dotted key and its values; every combination is a case.
+    candidate_sets : dict of str to tuple of str
+        Named candidate subsets, picked by the sweep key ``"candidates"`` (``"all"``: every
+        candidate).
+    sample_count : int
+        Random draws per grid point (0: none).
+    seed : int
+    weight_range : tuple of 2 float or None
+        Factor range on the weight, uniform.
+    cog_widths : tuple of 3 float or None  [m]
+        Half-widths of the uniform CG offset, file frame.
+    grid : int
+        ``check``: attitudes per axis of the tolerance box.
+    chunk : int
+        Cases per Dask task.
+    """
+
+    name: str
+    kind: str
+    base: dict
+    output: Path
+    sweep: tuple
+    candidate_sets: dict
+    sample_count: int = 0
+    seed: int = 0
+    weight_range: tuple | None = None
+    cog_widths: tuple | None = None
+    grid: int = 3
+    chunk: int = 1
+
+    @property
+    def fingerprint(self):
+        """Hash of everything that defines the cases (a resumed run must match it)."""
+        spec = {"kind": self.kind, "base": self.base, "sweep": self.sweep,
+                "sets": self.candidate_sets, "sample": [self.sample_count, self.seed,
+                                                        self.weight_range, self.cog_widths],
+                "grid": self.grid}
+        return hashlib.sha256(json.dumps(spec, sort_keys=True, default=str).encode()).hexdigest()[:16]
+
+    @property
+    def size(self):
+        """Number of cases."""
+        grid = int(np.prod([len(values) for _, values in self.sweep], dtype=np.int64))
+        return grid * max(self.sample_count, 1)
+
+    @cached_property
+    def _keys(self):
+        keys = [key for key, _ in self.sweep]
+        if self.weight_range is not None and "body.weight" not in keys:
+            keys.append("body.weight")
+        if self.cog_widths is not None and "body.cog" not in keys:
+            keys.append("body.cog")
+        return keys
+
+    @cached_property
+    def _vectors(self):
+        return {key for key in self._keys if key == "body.cog" or any(
+            isinstance(v, list) for k, vs in self.sweep if k == key for v in vs)}
+
+    def columns(self):
+        """Parameter columns of the output table (vectors split into .x .y .z)."""
+        return [f"{key}.{axis}" if key in self._vectors else key
+                for key in self._keys for axis in ("xyz" if key in self._vectors else "-")]
+
+    def cases(self):
+        """Every case, as (index, {dotted key: value}) in a fixed order."""
+        keys = [key for key, _ in self.sweep]
+        draws = self._draws()
+        index = 0
+        for combo in itertools.product(*(values for _, values in self.sweep)):
+            values = dict(zip(keys, combo))
+            for draw in draws:
+                case = dict(values)
+                if draw is not None:
+                    factor, offset = draw
+                    if factor is not None:
+                        case["body.weight"] = factor * float(_get(self.base, "body.weight", case))
+                    if offset is not None:
+                        cog = np.asarray(_get(self.base, "body.cog", case), dtype=float) + offset
+                        case["body.cog"] = cog.tolist()
+                yield index, case
+                index += 1
+
+    def _draws(self):
+        if self.sample_count == 0:
+            return [None]
+        rng = np.random.default_rng(self.seed)
+        count = self.sample_count
+        factors = (rng.uniform(*self.weight_range, count) if self.weight_range is not None
+                   else [None] * count)
+        offsets = (rng.uniform(-1.0, 1.0, (count, 3)) * np.asarray(self.cog_widths)
+                   if self.cog_widths is not None else [None] * count)
+        return list(zip(factors, offsets))
+
+    def row_values(self, case):
+        """A case's parameter values in :meth:`columns` order."""
+        out = []
+        for key in self._keys:
+            value = case.get(key)
+            out.extend(value if key in self._vectors else [value])
+        return out
+
+    def raw_problem(self, case):
+        """The planning file of one case (a copy of the base with the case's values)."""
+        raw = copy.deepcopy(self.base)
+        for key, value in case.items():
+            if key == CANDIDATES:
+                raw["candidates"] = self._subset(value)
+            else:
+                _set(raw, key, value)
+        return raw
+
+    def problem(self, case):
+        """The :class:`PlanProblem` of one case (``InvalidScene`` if its values are not)."""
+        return problem_from_dict(self.raw_problem(case))
+
+    def _subset(self, name):
+        if name == "all":
+            return self.base["candidates"]
+        if name not in self.candidate_sets:
+            raise InvalidScene(f"sweep.candidates = {name!r}: expected 'all' or a name in "
+                               f"[candidate_sets] ({', '.join(self.candidate_sets) or 'none'})")
+        keep = self.candidate_sets[name]
+        return [c for c in self.base["candidates"] if c.get("name") in keep]
+
+
+def _get(raw, key, case):
+    if key in case:
+        return case[key]
+    node = raw
+    for part in key.split("."):
+        node = node[part]
+    return node
+
+
+def _set(raw, key, value):
+    *parents, leaf = key.split(".")
+    node = raw
+    for part in parents:
+        node = node.setdefault(part, {})
+        if not isinstance(node, dict):
+            raise InvalidScene(f"sweep.{key!r}: {part} is not a table in the planning file")
+    node[leaf] = value
+
+
+def load_study(path):
+    """Read and validate a study file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    Study
+
+    Raises
+    ------
+    InvalidScene
+        One line naming the file, the key, the value and what is expected; also when the
+        first case's planning scene is not valid (a misspelt sweep key, say).
+    """
+    path = Path(path)
+    return load_with(path, lambda text: loads_study(text, path.parent, path.stem))
+
+
+def loads_study(text, base=Path("."), stem="study"):
+    """Validate a study given as TOML text; relative paths are read from ``base``."""
+    try:
+        data = _StudyFile.model_validate(parse_toml(text))
+    except ValidationError as err:
+        raise InvalidScene(one_line(err, _StudyFile)) from None
+    spec = data.study
+    problem_path = base / spec.problem
+    try:
+        raw = parse_toml(problem_path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InvalidScene(f"study.problem = {spec.problem!r}: no such planning file "
+                           f"({problem_path})") from None
+    sample = data.sample
+    if sample is not None and sample.weight is None and sample.cog is None:
+        raise InvalidScene("[sample]: expected weight = [low, high] and/or cog = [dx, dy, dz]")
+    if sample is not None and sample.weight is not None and not 0 < sample.weight[0] <= sample.weight[1]:
+        raise InvalidScene(f"sample.weight = {sample.weight}: expected factors 0 < low <= high")
+    if sample is not None and sample.cog is not None and min(sample.cog) < 0:
+        raise InvalidScene(f"sample.cog = {list(sample.cog)}: expected half-widths >= 0 m")
+    if spec.kind == "check":
+        for key in data.sweep:
+            if key not in CHECK_KEYS:
+                raise InvalidScene(f"sweep.{key!r}: a check study keeps the plan's lugs; expected "
+                                   f"one of {', '.join(CHECK_KEYS)}")
+    study = Study(
+        name=spec.name or stem,
+        kind=spec.kind,
+        base=raw,
+        output=base / (spec.output or f"{stem}.csv"),
+        sweep=tuple((key, tuple(values)) for key, values in data.sweep.items()),
+        candidate_sets={k: tuple(v) for k, v in data.candidate_sets.items()},
+        sample_count=sample.count if sample else 0,
+        seed=sample.seed if sample else 0,
+        weight_range=tuple(sample.weight) if sample and sample.weight else None,
+        cog_widths=tuple(sample.cog) if sample and sample.cog else None,
+        grid=spec.grid,
+        chunk=spec.chunk or (5000 if spec.kind == "check" else 1),
+    )
+    if study.size > MAX_CASES:
+        raise InvalidScene(f"study: {study.size} cases, expected at most {MAX_CASES}")
+    if CANDIDATES in data.sweep and spec.kind == "plan":
+        for name in data.sweep[CANDIDATES]:
+            study._subset(name)
+    # the first case must be a valid planning scene: this catches misspelt sweep keys
+    _, first = next(study.cases())
+    try:
+        study.problem(first)
+    except InvalidScene as err:
+        raise InvalidScene(f"study.problem {spec.problem!r} with the first case {first}: {err}") from None
+    return study
