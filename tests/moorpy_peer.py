@@ -7,6 +7,8 @@ assumes; MoorPy then finds the equilibrium on its own from a disturbed start. Un
 forces (MoorPy's N), m, with g = 9.80665 so that MoorPy's weight m g equals W.
 """
 
+import math
+
 import numpy as np
 
 from liftplan.model import rotation_matrix
@@ -16,15 +18,30 @@ ROPE_WEIGHT = 1e-9  # t/m
 
 
 def moorpy_solve(scene, heel, trim, lift, start_offset=(0.05, 0.002, -0.002)):
-    """Solve in MoorPy; returns (tensions at the lugs [t], lug world heights [m])."""
+    """Solve in MoorPy; returns (tensions at the lugs [t], lug world heights [m]).
+
+    The crane tips are put above the lugs at the pose given, written in MoorPy's own
+    angles: MoorPy's attitude is Rz(yaw) Ry(pitch) Rx(roll) with yaw held (its DOFs here are
+    heave, roll, pitch), ours Rx(heel) Ry(trim). The two differ by a turn about the
+    vertical, which changes no tension of vertical ropes, but moves the lugs away from
+    under fixed tips: the pose is therefore turned to MoorPy's yaw 0 first (a difference
+    of ~1e-3 W in the tensions at 20 deg heel and trim otherwise). MoorPy starts from its
+    roll and pitch there plus ``start_offset`` (heave m, roll rad, pitch rad).
+    """
     import moorpy as mp
 
     rot = rotation_matrix(heel, trim)
+    yaw = math.atan2(rot[1, 0], rot[0, 0])
+    turn = np.array([[math.cos(yaw), math.sin(yaw), 0.0], [-math.sin(yaw), math.cos(yaw), 0.0],
+                     [0.0, 0.0, 1.0]])
+    rot = turn @ rot  # Ry(pitch) Rx(roll)
+    roll, pitch = math.atan2(rot[2, 1], rot[2, 2]), -math.asin(rot[2, 0])
     lugs = scene.lug_points()
     world = lugs @ rot.T + np.array([0.0, 0.0, lift])
     system = mp.System(depth=1000.0, rho=0.0, g=G)
     body = system.addBody(
-        0, np.array([0.0, 0.0, lift + start_offset[0], start_offset[1], start_offset[2], 0.0]),
+        0, np.array([0.0, 0.0, lift + start_offset[0], roll + start_offset[1],
+                     pitch + start_offset[2], 0.0]),
         m=scene.body.weight / G, v=0.0, rCG=np.array(scene.body.cog), DOFs=[2, 3, 4],
     )
     for i, crane in enumerate(scene.cranes):
