@@ -335,12 +335,25 @@ def _energy_solve(scene, model, p):
     x, tensions, stretch, residual, _ = model.elastic_polish(x_min, p)
     if not _acceptable(scene, x, residual):
         status = solver.stats()["return_status"]
+        floor = _rounding_floor(scene)
+        if floor > RESIDUAL_TOL * scene.body.weight:
+            raise EquilibriumNotFound(
+                f"elastic: the ropes are too stiff for the tolerance (EA/l up to "
+                f"{max(c.EA / c.rope_length for c in scene.cranes):.3g} t/m: rounding the heights "
+                f"alone moves a tension by ~{floor:.1e} t, above {RESIDUAL_TOL:g} W); expected "
+                "model 'paper-elastic' or 'rigid', the stiff-rope limit"
+            )
         raise EquilibriumNotFound(
             f"elastic: no upright equilibrium found (energy minimisation: {status}, residual "
             f"{_worst(scene, residual):.3g} t after Newton); check that the boom heights and "
             "rope lengths can hold the body with three or more taut ropes"
         )
     return x, tensions, stretch, residual
+
+
+def _rounding_floor(scene):
+    """Tension accuracy float64 allows [t]: a height rounded by eps |H| moves T by k eps |H|."""
+    return max(c.EA / c.rope_length * abs(c.boom_height) for c in scene.cranes) * np.finfo(float).eps
 
 
 def _check_pose(x):
