@@ -1,16 +1,12 @@
-"""Benchmark of the core model, with MoorPy as the peer in the same run.
+"""Timing helpers of the core model for :mod:`benchmarks` (MoorPy as the peer).
 
-Figures: one forward ``elastic`` 4-rope solve through the public API (median over varied
-scenes), the same job in MoorPy (prebuilt system, ``solveEquilibrium`` only, and with
-building), and batched ``paper-elastic`` attitude evaluations per second.
-
-Run:  python studies/bench_core.py      (writes studies/out/bench_core.json)
+Varied 4-rope scenes, the median ``elastic`` solve through the public API, the same job in
+MoorPy (build + solve), and batched ``paper-elastic`` attitude evaluations per second.
+Every figure is printed by ``python studies/benchmarks.py``.
 """
 
 from __future__ import annotations
 
-import json
-import platform
 import statistics
 import sys
 import time
@@ -72,27 +68,3 @@ def time_batch(count=2_000_000, seed=2):
         paper_elastic_tensions(scene, heel, trim)
         runs.append(time.perf_counter() - start)
     return count / min(runs), rope_model(scene.n).batch_backend
-
-
-def main():
-    scenes = varied_scenes()
-    elastic = time_elastic(scenes)
-    moorpy = time_moorpy(scenes)
-    rate, backend = time_batch()
-    result = {
-        "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
-        "python": platform.python_version(),
-        "elastic_solve_median_us": round(elastic * 1e6, 1),
-        "moorpy_same_job_median_ms": round(moorpy * 1e3, 2),
-        "moorpy_over_liftplan": round(moorpy / elastic, 1),
-        "paper_elastic_batch_per_s": round(rate),
-        "batch_backend": backend,
-    }
-    out = HERE / "out" / "bench_core.json"
-    out.parent.mkdir(exist_ok=True)
-    out.write_text(json.dumps(result, indent=1) + "\n")
-    print(json.dumps(result, indent=1))
-
-
-if __name__ == "__main__":
-    main()

@@ -243,8 +243,6 @@ def measure():
                          "heel": round(state.pose.heel, 3), "trim": round(state.pose.trim, 3),
                          "method": name, "status": status, "seconds": seconds, "error": error,
                          "reason": reason})
-        print(f"scene {index}: n={scene.n} {scene.name} heel {state.pose.heel:+.1f} trim "
-              f"{state.pose.trim:+.1f}", file=sys.stderr)
     return rows, dropped
 
 

@@ -1,0 +1,39 @@
+"""Run every study in order; each writes its data to studies/out/ first, then its summary.
+
+Run:  python studies/run_all.py            (about 5 minutes on 2 cores)
+      python studies/run_all.py --skip report_screenshot   (no Chromium on this machine)
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).parent
+#: In order: stranded_methods feeds speed_accuracy's hydrostatics panel.
+STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
+           "benchmarks", "report_screenshot"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--skip", nargs="*", default=[], choices=STUDIES, help="studies to leave out")
+    args = parser.parse_args()
+    failed = []
+    for name in STUDIES:
+        if name in args.skip:
+            continue
+        start = time.perf_counter()
+        result = subprocess.run([sys.executable, str(HERE / f"{name}.py")], stdout=subprocess.DEVNULL)
+        print(f"{name}: {'ok' if result.returncode == 0 else 'FAILED'} "
+              f"({time.perf_counter() - start:.0f} s)", file=sys.stderr)
+        if result.returncode:
+            failed.append(name)
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
