@@ -15,7 +15,7 @@ from liftplan.planner import load_problem, plan
 from liftplan.planner.batch import run_study
 from liftplan.planner.check import CheckCases, check_plan
 from liftplan.planner.cli import main
-from liftplan.planner.scenarios import Scenario
+from liftplan.planner.scenarios import LugSet, Scenario
 from liftplan.planner.study import load_study
 
 PLAN_STUDY = """
@@ -177,9 +177,8 @@ def test_check_equals_the_plans_held_tensions(tanker_plan):
     heavy = dataclasses.replace(problem, body=Body(weight=1000.0, cog=problem.body.cog))
     result = check_plan(problem, chosen.indices, chosen.preload,
                         cases(problem, [1000.0], [(0, 0, 0)]), grid=3)
-    lugset = tanker_plan.lugset
-    lugset.problem = heavy
-    expected = lugset.tensions(chosen.preload, [Scenario(h, t) for h in (-2, 0, 2) for t in (-2, 0, 2)])
+    box = [Scenario(h, t) for h in (-2, 0, 2) for t in (-2, 0, 2)]
+    expected = LugSet(heavy, chosen.indices).tensions(chosen.preload, box)
     assert result.min_tension[0] == pytest.approx(expected.min(), rel=1e-12)
     assert result.max_tension[0] == pytest.approx(expected.max(), rel=1e-12)
 
