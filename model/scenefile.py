@@ -10,6 +10,7 @@ expected; nothing is returned half-read.
 
 from __future__ import annotations
 
+import stat
 import tomllib
 import types
 import typing
@@ -146,26 +147,66 @@ def load_scene(path):
 
 
 def load_with(path, loads):
-    """Read a TOML file and validate it with ``loads``; errors start with the path."""
+    """Read a TOML file and validate it with ``loads``; errors start with the path.
+
+    Only regular files are read: a FIFO would block for ever, and a folder or device is a
+    mistake that deserves its own line.
+    """
+    if str(path) == "":
+        raise InvalidScene("'': expected a scene file path, got an empty one")
     path = Path(path)
+    try:
+        mode = path.stat().st_mode
+    except FileNotFoundError:
+        raise InvalidScene(f"{path}: no such scene file") from None
+    except OSError as err:
+        raise InvalidScene(f"{path}: cannot read the scene file ({err.strerror or err})") from None
+    if not stat.S_ISREG(mode):
+        kind = "a folder" if stat.S_ISDIR(mode) else "not a regular file"
+        raise InvalidScene(f"{path}: is {kind}; expected a TOML scene file")
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise InvalidScene(f"{path}: no such scene file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise InvalidScene(f"{path}: cannot read the scene file ({err})") from None
+    except UnicodeDecodeError:
+        raise InvalidScene(f"{path}: not a text file (not UTF-8); expected a TOML scene file") from None
+    except OSError as err:
+        raise InvalidScene(f"{path}: cannot read the scene file ({err.strerror or err})") from None
     try:
         return loads(text)
     except InvalidScene as err:
         raise InvalidScene(f"{path}: {err}") from None
 
 
+# Deeper than any scene needs (a scene is at most ~5 levels); bounds the recursion of the
+# validators and of error messages that print the offending value.
+MAX_TOML_DEPTH = 32
+
+
 def parse_toml(text):
-    """TOML text to a dict; a syntax error is an InvalidScene naming the line."""
+    """TOML text to a dict; a syntax error is an InvalidScene naming the line.
+
+    Nesting deeper than ``MAX_TOML_DEPTH`` tables/arrays is refused (tomllib itself recurses
+    on inline arrays and tables and would overflow the stack).
+    """
     try:
-        return tomllib.loads(text)
+        raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise InvalidScene(f"TOML syntax error: {err}") from None
+    except RecursionError:
+        raise InvalidScene(
+            f"TOML nested too deeply: expected at most {MAX_TOML_DEPTH} levels of tables and arrays"
+        ) from None
+    stack = [(raw, 1)]
+    while stack:  # iterative, so a deep document cannot overflow the check itself
+        node, depth = stack.pop()
+        if depth > MAX_TOML_DEPTH:
+            raise InvalidScene(
+                f"TOML nested too deeply: expected at most {MAX_TOML_DEPTH} levels of tables and arrays"
+            )
+        children = node.values() if isinstance(node, dict) else node if isinstance(node, list) else ()
+        stack.extend((c, depth + 1) for c in children if isinstance(c, dict | list))
+    return raw
 
 
 def loads_scene(text, base=None):
