@@ -19,17 +19,13 @@ import time
 import casadi as ca
 import numpy as np
 
+from .acceptance import RESIDUAL_TOL, judge
 from .errors import EquilibriumNotFound, InvalidScene
 from .inclined import solve_inclined
 from .results import Equilibrium, Pose, SolverInfo
 from .scene import MODELS
 from .statics import BLOCK, rope_model
 from .water import solve_hydrostatic
-
-# Equilibrium accepted when the residual is below this fraction of W (force, and moment
-# over the lugs' plan diameter): well above double-precision round-off (~1e-15 W) and well
-# below any physical meaning (1e-9 of 1000 t is 1 g).
-RESIDUAL_TOL = 1e-9
 
 
 def pick_model(scene):
@@ -137,10 +133,6 @@ def _worst(scene, residual):
     scale = scene.plan_diameter
     worst = max(r0, r1 / scale, r2 / scale)
     return float(worst) if math.isfinite(worst) else math.inf
-
-
-def _small(scene, residual):
-    return _worst(scene, residual) <= RESIDUAL_TOL * scene.body.weight
 
 
 def _equilibrium(scene, model, x, tensions, residual, method, seconds, slack=()):
@@ -281,11 +273,14 @@ def solve_elastic(scene, method="auto"):
     ----------
     scene : Scene
     method : {"auto", "newton", "energy"}
-        ``"auto"``: Newton, and IPOPT on the potential energy if Newton fails.
+        ``"auto"``: Newton, and IPOPT on the potential energy (polished by Newton) if
+        Newton's answer is not accepted.
 
     Returns
     -------
     Equilibrium
+        Accepted by :func:`liftplan.model.acceptance.judge` (residual, stability, upright),
+        whichever method found it.
     """
     if method not in ("auto", "newton", "energy"):
         raise InvalidScene(f"method = {method!r}: expected auto, newton or energy")
@@ -295,18 +290,17 @@ def solve_elastic(scene, method="auto"):
     start = time.perf_counter()
     if method != "energy":
         x, tensions, stretch, residual, minors = model.elastic_solver(p)
-    if method == "energy" or not (_acceptable(scene, x, residual) and min(minors) > 0.0):
+        verdict = _verdict(scene, x, residual, minors)
+    if method == "energy" or not verdict.ok:
         if method == "newton":
             raise EquilibriumNotFound(
-                f"elastic: Newton did not reach a stable upright equilibrium (residual "
-                f"{_worst(scene, residual):.3g} t, heel {math.degrees(x[1]):.1f} deg, trim "
-                f"{math.degrees(x[2]):.1f} deg); try method='energy'"
+                f"elastic: Newton did not reach a stable upright equilibrium ({verdict.reason()}); "
+                "try method='energy'"
             )
         start = time.perf_counter()
-        x, tensions, stretch, residual = _energy_solve(scene, model, p)
+        x, tensions, stretch, residual, minors = _energy_solve(scene, model, p)
         used = "energy"
     seconds = time.perf_counter() - start
-    _check_pose(x)
     slack = tuple(name for name, s in zip(scene.lug_names, stretch) if s <= 0.0)
     if scene.n - len(slack) < 3:
         raise EquilibriumNotFound(
@@ -316,9 +310,9 @@ def solve_elastic(scene, method="auto"):
     return _equilibrium(scene, "elastic", x, tensions, residual, used, seconds, slack=slack)
 
 
-def _acceptable(scene, x, residual):
-    """An equilibrium with the body the right way up (Newton's also needs to be stable)."""
-    return _small(scene, residual) and abs(x[1]) < math.pi / 2 and abs(x[2]) < math.pi / 2
+def _verdict(scene, x, residual, minors):
+    """The one acceptance (:mod:`liftplan.model.acceptance`) of a candidate elastic state."""
+    return judge(_worst(scene, residual) / scene.body.weight, x[1], x[2], minors=minors)
 
 
 def _energy_solve(scene, model, p):
@@ -326,40 +320,36 @@ def _energy_solve(scene, model, p):
 
     IPOPT's stopping test is on the energy gradient, which can stop short of the residual
     tolerance (or report a tiny search direction at the minimum itself); Newton started
-    at its point converges quadratically there. The polished point is judged as any other.
+    at its point converges quadratically there. The polished point is judged as Newton's
+    own is: residual, stability and upright (IPOPT can end at a saddle).
     """
     solver = model.energy_solver
     p_dm = ca.DM(p)
     result = solver(x0=model.elastic_start(p_dm), p=p_dm)
     x_min = np.asarray(result["x"]).ravel()
-    x, tensions, stretch, residual, _ = model.elastic_polish(x_min, p)
-    if not _acceptable(scene, x, residual):
+    x, tensions, stretch, residual, minors = model.elastic_polish(x_min, p)
+    verdict = _verdict(scene, x, residual, minors)
+    if not verdict.ok:
         status = solver.stats()["return_status"]
         floor = _rounding_floor(scene)
-        if floor > RESIDUAL_TOL * scene.body.weight:
+        if not verdict.small and floor > RESIDUAL_TOL * scene.body.weight:
             raise EquilibriumNotFound(
                 f"elastic: the ropes are too stiff for the tolerance (EA/l up to "
                 f"{max(c.EA / c.rope_length for c in scene.cranes):.3g} t/m: rounding the heights "
                 f"alone moves a tension by ~{floor:.1e} t, above {RESIDUAL_TOL:g} W); expected "
                 "model 'paper-elastic' or 'rigid', the stiff-rope limit"
             )
+        hint = ("a CG high above soft ropes can have no stable upright equilibrium; expected "
+                "stiffer ropes, lugs further apart or a lower CG" if verdict.small and verdict.upright
+                else "check that the boom heights and rope lengths can hold the body with three "
+                "or more taut ropes")
         raise EquilibriumNotFound(
-            f"elastic: no upright equilibrium found (energy minimisation: {status}, residual "
-            f"{_worst(scene, residual):.3g} t after Newton); check that the boom heights and "
-            "rope lengths can hold the body with three or more taut ropes"
+            f"elastic: no stable upright equilibrium found (energy minimisation: {status}; after "
+            f"Newton: {verdict.reason()}); {hint}"
         )
-    return x, tensions, stretch, residual
+    return x, tensions, stretch, residual, minors
 
 
 def _rounding_floor(scene):
     """Tension accuracy float64 allows [t]: a height rounded by eps |H| moves T by k eps |H|."""
     return max(c.EA / c.rope_length * abs(c.boom_height) for c in scene.cranes) * np.finfo(float).eps
-
-
-def _check_pose(x):
-    heel, trim = math.degrees(x[1]), math.degrees(x[2])
-    if not (abs(heel) < 90.0 and abs(trim) < 90.0):  # NaN fails too
-        raise EquilibriumNotFound(
-            f"elastic: the solve ended at heel {heel:.1f} deg, trim {trim:.1f} deg, beyond "
-            "90 deg: the boom heights cannot hold the body the right way up"
-        )

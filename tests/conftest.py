@@ -1,5 +1,14 @@
 import pytest
 from helpers import example
+from hypothesis import settings
+
+# Property tests draw the same examples on every run and keep no example database, so a
+# clean checkout's `python -m pytest` cannot pass or fail by chance or by an earlier run.
+# `python -m pytest --hypothesis-profile explore` searches afresh (random draws); pin what it
+# finds with @example.
+settings.register_profile("liftplan", derandomize=True, database=None, print_blob=True)
+settings.register_profile("explore", derandomize=False, database=None, print_blob=True)
+settings.load_profile("liftplan")
 
 
 @pytest.fixture

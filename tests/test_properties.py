@@ -4,7 +4,8 @@ and the forward elastic model recovers a state built to be its solution."""
 import math
 
 import numpy as np
-from hypothesis import assume, given, settings
+import pytest
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
@@ -20,6 +21,7 @@ from liftplan.model import (
     Scene,
     rotation_matrix,
     solve,
+    solve_elastic,
 )
 
 
@@ -140,8 +142,31 @@ def stable(scene, state):
     return bool(np.all(np.asarray(minors) > 0))
 
 
+def pentagon():
+    """The case Hypothesis found (issue 14, item 11): five lugs on a 5 m circle, CG 2 m above
+    them, EA 1000 t except the first rope (10 000 t, on the 40 m boom; the others 60 m).
+    Its constructed state is a saddle of the energy; IPOPT's fallback once returned it."""
+    angles = np.linspace(0, 2 * math.pi, 5, endpoint=False)
+    lugs = tuple(Lug(f"L{i}", (5 * math.cos(a), 5 * math.sin(a), 0.0)) for i, a in enumerate(angles))
+    cranes = tuple(Crane(lug.name, EA=10000.0 if i == 0 else 1000.0, boom_height=40.0 if i == 0 else 60.0)
+                   for i, lug in enumerate(lugs))
+    return Scene(Body(562.0, (0.0, 0.0, 2.0)), lugs, cranes, Attitude())
+
+
+def test_pentagon_saddle_is_refused():
+    """The pinned case itself: the constructed state is unstable, and no method returns it
+    (every accepted answer passes the same residual, stability and upright tests)."""
+    state, forward = constructed(pentagon())
+    assert not stable(forward, state)
+    with pytest.raises(EquilibriumNotFound, match="unstable"):
+        solve(forward)
+    with pytest.raises(EquilibriumNotFound, match="unstable"):
+        solve_elastic(forward, method="energy")
+
+
 @settings(max_examples=150, deadline=None)
 @given(scenes(max_angle=10.0, spread=True))
+@example(pentagon())
 def test_elastic_recovers_a_constructed_state(scene):
     """Well-spread lugs, tilt up to 10 deg: the forward solve returns the constructed state
     when it is stable. Tolerance 1e-6 relative: the tilted state is recovered through a
