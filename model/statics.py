@@ -30,8 +30,6 @@ T_i = k_i (c0 + c1 x_i + c2 y_i), k_i = EA_i / l_i, into the statics gives the 3
 
 from __future__ import annotations
 
-import os
-import tempfile
 import threading
 from dataclasses import dataclass
 from functools import cache, cached_property
@@ -39,6 +37,7 @@ from functools import cache, cached_property
 import casadi as ca
 import numpy as np
 
+from .compiled import compile_cached
 from .frames import rotation
 
 
@@ -276,8 +275,9 @@ class RopeModel:
         """``paper_elastic`` mapped over :data:`BLOCK` attitudes (columns of x), p shared,
         as a :class:`FastCall`.
 
-        Compiled to C by casadi's JIT (gcc) when a compiler is there: about 6.6 M attitudes/s
-        on one core against 1.4 M/s in casadi's virtual machine, which is the fallback.
+        Compiled to C when a compiler is there (once per machine, then loaded from the user's
+        cache: :mod:`liftplan.model.compiled`): about 6.6 M attitudes/s on one core against
+        1.4 M/s in casadi's virtual machine, which is the fallback.
         (casadi's "thread" map was slower than serial here, so it is not used.)
         """
         return self._block(self.paper_elastic, shared_p=True)
@@ -295,36 +295,13 @@ class RopeModel:
     def _block(self, function, shared_p):
         x = ca.SX.sym("x", 3)
         p = ca.SX.sym("p", self.layout.size)
-        outputs = function(x, p)
-        try:
-            column = ca.Function(
-                f"{function.name()}_jit", [x, p], list(outputs),
-                {"jit": True, "compiler": "shell",
-                 "jit_options": {"flags": ["-O2"], "verbose": False, "directory": _jit_directory()}},
-            )
-            self.batch_backend = "jit"
-        except RuntimeError:  # no C compiler on this machine
-            column = function
-            self.batch_backend = "casadi-vm"
+        # the column is compiled to C once per model and machine, then loaded from the user's
+        # cache by every later process (see liftplan.model.compiled); casadi's VM without a compiler
+        compiled = compile_cached(ca.Function(f"{function.name()}_column", [x, p], list(function(x, p))))
+        self.batch_backend = compiled.backend
         # with shared_p, input 1 (p) is shared by every column rather than repeated
         shared = [1] if shared_p else []
-        return FastCall(column.map(f"{function.name()}_block", "serial", BLOCK, shared, []))
-
-
-@cache
-def _jit_directory():
-    """The folder for casadi's JIT sources and libraries (in the system's temporary folder).
-
-    casadi writes them to the working directory by default and removes them when the
-    Function is destroyed; a process that is killed (a Dask worker at shutdown) never does,
-    and must not leave them in the user's folder.
-    """
-    folder = os.path.join(tempfile.gettempdir(), "liftplan-jit")
-    try:
-        os.makedirs(folder, exist_ok=True)
-    except OSError:  # not ours (another user's), make a private one
-        folder = tempfile.mkdtemp(prefix="liftplan-jit-")
-    return folder + os.sep
+        return FastCall(compiled.function.map(f"{function.name()}_block", "serial", BLOCK, shared, []))
 
 
 @cache
