@@ -2,36 +2,46 @@
 
 argparse (standard library) rather than click/typer: four sub-commands with a few options do
 not justify three more dependencies, and argparse's errors are already one line.
+
+Start-up matters (``liftplan --help`` and a 3 ms solve should not wait seconds): this module
+imports only the standard library and the error classes at the top; each command imports
+what it needs (``solve`` never loads cvxpy, Dask or matplotlib).
+
+Exit codes: 0 success; 1 no equilibrium or no feasible plan; 2 bad input (including output
+paths, checked before any computation); 3 internal error; 4 solved or planned, but a check
+failed (the result is still printed, with a FAIL line per failed check); 130 interrupted
+(Ctrl-C); 141 stdout closed early (a broken pipe, as ``| head``).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
 import sys
 
-from liftplan.model import (
-    EquilibriumNotFound,
-    LiftPlanError,
-    PlanInfeasible,
-    load_scene,
-    solve,
-)
-
-from .console import batch_table, equilibrium_table, plan_table
-from .plan import plan
-from .problemfile import load_problem
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene, LiftPlanError, PlanInfeasible
 
 # exit codes
-BAD_INPUT = 2
 NO_SOLUTION = 1
+BAD_INPUT = 2
 INTERNAL = 3
+CHECK_FAILED = 4
+INTERRUPTED = 130
+BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for a writer whose reader went away
+
+#: Largest plan yaw accepted  [deg] (beyond a turn it is a slip, and 1e308 breaks the trig).
+MAX_YAW = 360.0
 
 
 def _parser():
     parser = argparse.ArgumentParser(
         prog="liftplan",
         description="Multi-crane lift planning for salvage and heavy-block rigging.",
+        epilog="exit codes: 0 success, 1 no equilibrium / no feasible plan, 2 bad input, "
+               "3 internal error, 4 result printed but a check failed (FAIL lines), "
+               "130 interrupted",
     )
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
     commands = parser.add_subparsers(dest="command", required=True)
@@ -54,14 +64,15 @@ def _parser():
                           help="last hoist in m (default: the hull 1 m clear of the water)")
     lift_cmd.add_argument("--step", type=float, default=0.25, metavar="M", help="hoist step in m (0.25)")
     lift_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
-    lift_cmd.add_argument("--figure", metavar="PNG",
-                          help="where to save the figure (default: SCENE_load_curve.png next to the scene)")
+    lift_cmd.add_argument("--figure", metavar="FILE",
+                          help="where to save the figure, .png, .pdf or .svg (default: "
+                               "SCENE_load_curve.png in the current folder)")
     plan_cmd = commands.add_parser("plan", help="choose lugs and boom heights for a lift")
     plan_cmd.add_argument("scene", help="planning scene file (TOML with [[candidates]], [plan])")
     plan_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     plan_cmd.add_argument("--report", metavar="DIR",
                           help="write report.html (and report.pdf with WeasyPrint), "
-                               "plan_scene.toml and plan.json into DIR")
+                               "plan_scene.toml and plan.json into DIR (created if missing)")
     plan_cmd.add_argument("--top", type=int, metavar="K", help="rank the best K lug sets")
     batch_cmd = commands.add_parser(
         "batch", help="run a batch study (many plans, or one plan checked many times) on Dask")
@@ -78,38 +89,129 @@ def _parser():
     return parser
 
 
+def _warn(lines):
+    for line in lines:
+        print(f"liftplan: warning: {line}", file=sys.stderr)
+
+
+def _verdict(checks, table):
+    """Print the failed checks (stdout after the table; a summary on stderr); the exit code."""
+    failed = [c for c in checks if not c.ok]
+    if table:
+        for check in failed:
+            print(check.line())
+        if checks:
+            print(f"checks: {len(checks) - len(failed)} of {len(checks)} met"
+                  + (f", {len(failed)} FAILED" if failed else ""))
+    if failed:
+        names = ", ".join(f"{c.name} {c.subject}" for c in failed[:5])
+        more = f" and {len(failed) - 5} more" if len(failed) > 5 else ""
+        print(f"liftplan: {len(failed)} check(s) failed: {names}{more} (exit {CHECK_FAILED})",
+              file=sys.stderr)
+        return CHECK_FAILED
+    return 0
+
+
+def _solve(args):
+    from liftplan.model.plausibility import equilibrium_warnings, scene_warnings
+    from liftplan.model.scenefile import load_scene
+    from liftplan.model.solve import solve
+    from liftplan.model.solve_checks import equilibrium_checks
+
+    from .console import equilibrium_table
+
+    scene = load_scene(args.scene)
+    _warn(scene_warnings(scene))
+    eq = solve(scene, model=args.model, method=args.method)
+    _warn(equilibrium_warnings(scene, eq))
+    checks = equilibrium_checks(scene, eq)
+    if args.json:
+        print(json.dumps({**eq.to_json(), "checks": [c.to_json() for c in checks]}))
+    else:
+        print(equilibrium_table(scene, eq))
+    return _verdict(checks, table=not args.json)
+
+
 def _plan(args):
-    problem = load_problem(args.scene)
+    from .output_paths import output_folder
+
     if args.top is not None and args.top < 1:
-        raise LiftPlanError(f"--top {args.top}: expected an integer >= 1")
-    result = plan(problem, top=args.top)
-    if args.report:
+        raise InvalidScene(f"--top {args.top}: expected an integer >= 1")
+    report = output_folder(args.report, "--report") if args.report else None
+    from .plausibility import problem_warnings
+    from .problemfile import load_problem
+
+    problem = load_problem(args.scene)
+    if abs(problem.yaw) > MAX_YAW:
+        raise InvalidScene(f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
+                           f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg")
+    _warn(problem_warnings(problem))
+    from . import search
+    from .plan import plan
+
+    try:
+        result = plan(problem, top=args.top)
+    except (KeyboardInterrupt, getattr(search, "Interrupted", KeyboardInterrupt)) as err:
+        best = getattr(err, "plan", None)
+        if best is None:
+            raise KeyboardInterrupt from None
+        _print_plan(best, args, interrupted=True)
+        print("liftplan: interrupted; the plan above is the best found so far, not the search's "
+              "answer", file=sys.stderr)
+        return INTERRUPTED
+    if report is not None:
         from .report import write_report  # matplotlib only when a report is asked for
 
-        files = write_report(result, args.report)
+        files = write_report(result, report)
         written = [files.html, files.pdf, files.scene, files.json]
         print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
+    _print_plan(result, args)
+    return _verdict(result.checks, table=not args.json)
+
+
+def _print_plan(result, args, interrupted=False):
+    from .console import plan_table
+
     if args.json:
-        print(json.dumps(result.to_json()))
+        out = {**result.to_json(), "checks": [c.to_json() for c in result.checks]}
+        if interrupted:
+            out["interrupted"] = True
+        print(json.dumps(out))
     else:
+        if interrupted:
+            print("INTERRUPTED: best plan found so far (the search did not finish)")
         print(plan_table(result))
 
 
 def _lift(args):
     from pathlib import Path
 
+    from .output_paths import FIGURE_TYPES, make_parent, output_file
+
+    for option, value in (("--to", args.to), ("--step", args.step)):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise InvalidScene(f"{option} {value:g}: expected a finite number of m > 0")
+    scene_path = Path(args.scene)
+    figure = output_file(args.figure or f"{scene_path.stem}_load_curve.png", "--figure", FIGURE_TYPES)
     from liftplan.model.lift import load_curve
+    from liftplan.model.plausibility import scene_warnings
+    from liftplan.model.scenefile import load_scene
 
     from .console import load_curve_table
     from .figures import load_curve as draw
 
-    scene = load_scene(args.scene)
+    scene = load_scene(scene_path)
+    _warn(scene_warnings(scene))
     curve = load_curve(scene, stop=args.to, step=args.step)
-    figure = Path(args.figure) if args.figure else Path(args.scene).with_name(
-        Path(args.scene).stem + "_load_curve.png")
     swl = min((c.swl for c in scene.cranes if c.swl), default=None)
-    draw(curve, swl=swl).savefig(figure, dpi=120)
-    print(f"liftplan: wrote {figure}", file=sys.stderr)
+    make_parent(figure)
+    try:
+        draw(curve, swl=swl).savefig(figure, dpi=120)
+    except OSError as err:  # a full disk, a folder removed meanwhile: the table still prints
+        print(f"liftplan: error: --figure {figure}: cannot write ({err.strerror or err})",
+              file=sys.stderr)
+    else:
+        print(f"liftplan: wrote {figure}", file=sys.stderr)
     if args.json:
         print(json.dumps(curve.to_json()))
     else:
@@ -118,36 +220,30 @@ def _lift(args):
 
 def _batch(args):
     from .batch import run_study
+    from .console import batch_table
+    from .output_paths import output_file
     from .study import load_study
 
     if args.workers is not None and args.workers < 1:
-        raise LiftPlanError(f"--workers {args.workers}: expected an integer >= 1")
+        raise InvalidScene(f"--workers {args.workers}: expected an integer >= 1")
+    if args.output is not None:
+        output_file(args.output, "--output")
     study = load_study(args.study)
+    if args.output is None:
+        output_file(study.output, "study.output")
     try:
         summary = run_study(study, scheduler=args.scheduler, workers=args.workers,
                             restart=args.restart, progress=not args.no_progress, output=args.output)
     except KeyboardInterrupt:
         print("liftplan: interrupted; the finished cases are kept, run the same command to resume",
               file=sys.stderr)
-        raise SystemExit(130) from None
+        return INTERRUPTED
     print(batch_table(study, summary))
 
 
-def _solve(args):
-    scene = load_scene(args.scene)
-    eq = solve(scene, model=args.model, method=args.method)
-    if args.json:
-        print(json.dumps(eq.to_json()))
-    else:
-        print(equilibrium_table(scene, eq))
-
-
-def main(argv=None):
-    """Entry point; returns the exit code (0 success, 1 no equilibrium or no feasible plan,
-    2 bad input, 3 internal error)."""
-    args = _parser().parse_args(argv)
+def _run(args):
     try:
-        {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command](args)
+        return {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command](args) or 0
     except EquilibriumNotFound as err:
         print(f"liftplan: no equilibrium: {err}", file=sys.stderr)
         return NO_SOLUTION
@@ -157,13 +253,29 @@ def main(argv=None):
     except LiftPlanError as err:
         print(f"liftplan: error: {err}", file=sys.stderr)
         return BAD_INPUT
+
+
+def main(argv=None):
+    """Entry point; returns the exit code (see the module docstring)."""
+    args = _parser().parse_args(argv)
+    try:
+        code = _run(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at exit
+        return code
+    except KeyboardInterrupt:
+        print("liftplan: interrupted", file=sys.stderr)
+        return INTERRUPTED
+    except BrokenPipeError:
+        # the reader went away (``| head``): nothing more to say; stop Python's own flush at
+        # exit from failing on the same pipe
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return BROKEN_PIPE
     except Exception as err:  # noqa: BLE001 - the command line never shows a traceback
         if args.debug:
             raise
         print(f"liftplan: internal error: {type(err).__name__}: {err} (rerun with --debug)",
               file=sys.stderr)
         return INTERNAL
-    return 0
 
 
 if __name__ == "__main__":

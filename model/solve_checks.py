@@ -1,0 +1,44 @@
+"""The checks of a solved state that can fail (see :class:`~liftplan.model.checks.Check`).
+
+Each rope against its crane's SWL (where the scene gives one), each rope's tension against
+zero (a rope cannot push), and all ropes taut (a slack rope carries nothing and leaves the
+body on the others). ``liftplan solve`` prints a FAIL line per failed check and exits with
+its own code; ``--json`` carries them all as ``"checks"``.
+"""
+
+from __future__ import annotations
+
+from .checks import Check
+
+
+def equilibrium_checks(scene, eq):
+    """Checks of one equilibrium, in lug order.
+
+    Parameters
+    ----------
+    scene : Scene
+    eq : Equilibrium
+
+    Returns
+    -------
+    list of Check
+        ``swl`` per rope with an SWL (tension <= SWL  [t]), ``min_tension`` per rope
+        (tension >= 0  [t]) and one ``taut`` check (ropes carrying load >= all ropes  [-]).
+        Empty for a body with no ropes.
+    """
+    checks = []
+    for name, tension in eq.tensions.items():
+        swl = eq.swl.get(name)
+        if swl:
+            checks.append(Check.upper("swl", name, tension, swl, "t",
+                                      note=f"rope tension / crane SWL = {tension / swl:.0%}"))
+    for name, tension in eq.tensions.items():
+        checks.append(Check.lower("min_tension", name, tension, 0.0, "t",
+                                  note="a rope cannot push"))
+    if eq.tensions:
+        slack = [name for name in eq.tensions if name in eq.slack]
+        note = (f"slack: {', '.join(slack)} carries nothing, the body hangs on the others"
+                if slack else "")
+        checks.append(Check.lower("taut", "ropes", len(eq.tensions) - len(slack), len(eq.tensions),
+                                  "-", note=note))
+    return checks

@@ -1,0 +1,56 @@
+"""Implausible magnitudes in a planning problem: warnings, not errors.
+
+The same idea as :mod:`liftplan.model.plausibility` (whose weight and height rules are
+reused), plus the planning keys a unit slip hits most: the hook-height tolerance (mm typed
+as m) and the heel/trim tolerance box.
+"""
+
+from __future__ import annotations
+
+from liftplan.model.plausibility import coordinate_warnings, height_warnings, weight_warnings
+
+#: A hook-height tolerance above this is likely in mm  [m].
+MAX_HOOK_TOLERANCE = 0.5
+#: A heel or trim tolerance above this is no lift anyone would plan  [deg].
+MAX_TOLERANCE = 30.0
+
+
+def _swl_total(problem):
+    """The fleet's total capacity (largest SWL of each crane's chart)  [t]."""
+    total = 0.0
+    for crane in problem.fleet:
+        if crane.swl:
+            total += crane.swl
+        elif crane.load_chart:
+            total += max(swl for _, swl in crane.load_chart)
+        else:
+            return None
+    return total
+
+
+def problem_warnings(problem):
+    """Implausible magnitudes of a planning problem.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+
+    Returns
+    -------
+    list of str
+        One line each, naming the key, the value and the likely slip.
+    """
+    out = [
+        *weight_warnings("body.weight", problem.body.weight, _swl_total(problem)),
+        *height_warnings("attitude.lift_height", problem.lift_height),
+        *coordinate_warnings("candidates", [(c.name, c.at) for c in problem.candidates]),
+    ]
+    if problem.hook_tolerance > MAX_HOOK_TOLERANCE:
+        out.append(f"plan.hook_tolerance = {problem.hook_tolerance:g} m: more than "
+                   f"{MAX_HOOK_TOLERANCE:g} m of hook-height error; mm typed as m?")
+    for axis in ("heel", "trim"):
+        value = getattr(problem, f"{axis}_tolerance")
+        if value > MAX_TOLERANCE:
+            out.append(f"plan.tolerance.{axis} = {value:g} deg: a box wider than {MAX_TOLERANCE:g} deg "
+                       "each way; a slip (radians? a total instead of a half-width?)")
+    return out
