@@ -149,10 +149,10 @@ class MinimaxResult:
     ----------
     preload : numpy.ndarray, shape (n,)  [t]
         Level tensions T* to dial in.
-    worst_spread : float  [t]
-        Largest spread over the scenarios given (a lower bound over the whole box).
-    nominal_spread : float  [t]
-        Spread of T* at the level attitude.
+    worst_spread : float  [t or -]
+        Largest spread (of s_i T_i) over the scenarios given (a lower bound over the whole box).
+    nominal_spread : float  [t or -]
+        Spread of s_i T*_i at the level attitude.
     """
 
     preload: np.ndarray
@@ -161,7 +161,7 @@ class MinimaxResult:
 
 
 class PreloadMinimax:
-    """min over T* of max over scenarios of (max_i - min_i) of T_k = P_k T* + q_k.
+    """min over T* of max over scenarios of (max_i - min_i) of s_i T_k,i, T_k = P_k T* + q_k.
 
     Parameters
     ----------
@@ -185,6 +185,10 @@ class PreloadMinimax:
         m = slots
         self.gain = cp.Parameter((m * n, n), name="P")
         self.offset = cp.Parameter(m * n, name="q")
+        # the objective's rows: s_i T_i (s = 1 for the spread, 1 / SWL_i for utilisation)
+        self.spread_gain = cp.Parameter((m * n, n), name="SP")
+        self.spread_offset = cp.Parameter(m * n, name="Sq")
+        self.level_scale = cp.Parameter((n, n), name="S0")
         self.a_level = cp.Parameter((3, n), name="A0")
         self.b_level = cp.Parameter(3, name="b0")
         self.preload_low = cp.Parameter(n, name="preload_low")
@@ -197,24 +201,25 @@ class PreloadMinimax:
         nominal_high, nominal_low = cp.Variable(), cp.Variable()
         spread_of = np.kron(np.eye(m), np.ones((n, 1)))  # scenario k's bound on its n ropes
         tensions = self.gain @ preload + self.offset
+        scaled = self.spread_gain @ preload + self.spread_offset
         constraints = [
             self.a_level @ preload == self.b_level,
             preload >= self.preload_low,
             preload <= self.preload_high,
             tensions >= self.tension_low,
             tensions <= self.tension_high,
-            tensions <= spread_of @ high,
-            tensions >= spread_of @ low,
+            scaled <= spread_of @ high,
+            scaled >= spread_of @ low,
             high - low <= worst,
-            preload <= nominal_high,
-            preload >= nominal_low,
+            self.level_scale @ preload <= nominal_high,
+            self.level_scale @ preload >= nominal_low,
         ]
         objective = cp.Minimize(worst + self.TIE_BREAK * (nominal_high - nominal_low))
         self.problem = _checked(cp.Problem(objective, constraints), "preload minimax")
         self._preload, self._worst = preload, worst
         self._nominal = (nominal_high, nominal_low)
 
-    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range):
+    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range, scale=None):
         """Solve for the scenarios given.
 
         Parameters
@@ -229,6 +234,9 @@ class PreloadMinimax:
             Bounds on T* (from the boom-height range).
         tension_range : tuple of two arrays, shape (k, n)  [t]
             min_tension and SWL per scenario and rope.
+        scale : array_like, shape (n,), optional
+            What the spread is taken of: s_i T_i (default 1: tension spread [t];
+            1 / SWL_i: utilisation spread [-]).
 
         Returns
         -------
@@ -254,8 +262,13 @@ class PreloadMinimax:
 
         tension_range = (clip(tension_range[0]), clip(tension_range[1]))
         preload_range = (clip(preload_range[0]), clip(preload_range[1]))
+        scale = np.ones(n) if scale is None else np.asarray(scale, dtype=float)
         self.gain.value = gains[pad].reshape(self.slots * n, n)
         self.offset.value = np.asarray(offsets, dtype=float)[pad].ravel()
+        rows = np.tile(scale, self.slots)
+        self.spread_gain.value = rows[:, None] * self.gain.value
+        self.spread_offset.value = rows * self.offset.value
+        self.level_scale.value = np.diag(scale)
         self.tension_low.value = np.asarray(tension_range[0], dtype=float)[pad].ravel()
         self.tension_high.value = np.asarray(tension_range[1], dtype=float)[pad].ravel()
         self.a_level.value = np.asarray(a_level, dtype=float)

@@ -13,6 +13,7 @@ from functools import cached_property
 
 import numpy as np
 
+from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 
@@ -34,15 +35,20 @@ class CraneCapacity:
     ----------
     label : str
         Planned lug label.
+    crane : str
+        The crane on that lug.
+    radius : float  [m]   the crane's radius to the lug
     nominal : float  [t]   level tension, nominal CG
     worst : float  [t]   largest tension over the box and CG envelope
     twist : float  [t]   largest increase from hook-height errors within the tolerance
     design : float  [t]   worst + twist
-    swl : float  [t]
+    swl : float  [t]   the crane's SWL at that radius (load chart)
     required_margin : float  [-]   the multi-crane code margin over the share (0.2/0.33/0.5)
     """
 
     label: str
+    crane: str
+    radius: float
     nominal: float
     worst: float
     twist: float
@@ -158,9 +164,39 @@ class Plan:
         """Largest max - min tension over the tolerance box and CG envelope  [t]."""
         return self.chosen.worst_spread
 
+    @property
+    def objective(self):
+        """``"spread"`` or ``"utilisation"``: what the plan keeps small."""
+        return self.problem.objective
+
+    @property
+    def cranes(self):
+        """Planned label -> name of the crane on that lug."""
+        return dict(zip(self.labels, self.chosen.crane_names))
+
+    @property
+    def radius(self):
+        """Planned label -> the crane's radius to its lug  [m]."""
+        return dict(zip(self.labels, self.chosen.radius.tolist()))
+
+    @property
+    def swl(self):
+        """Planned label -> the crane's SWL at that radius  [t]."""
+        return dict(zip(self.labels, self.chosen.swl.tolist()))
+
+    @property
+    def utilisation(self):
+        """Planned label -> nominal (level) tension over the crane's SWL there  [-]."""
+        return dict(zip(self.labels, (self.chosen.preload / self.chosen.swl).tolist()))
+
+    @property
+    def worst_utilisation_spread(self):
+        """Largest max - min of T_i / SWL_i over the tolerance box and CG envelope  [-]."""
+        return self.chosen.worst_utilisation_spread
+
     @cached_property
     def lugset(self):
-        return LugSet(self.problem, self.chosen.indices)
+        return LugSet(self.problem, self.chosen.indices, self.chosen.cranes)
 
     def tensions_at(self, heel, trim, cog_offset=(0.0, 0.0, 0.0)):
         """Tensions with the plan's preload held, at many attitudes.
@@ -185,13 +221,13 @@ class Plan:
 
         Its ``elastic`` solve gives the plan's level tensions at the plan's lift height.
         """
-        problem, spec = self.problem, self.problem.crane
+        problem, chosen = self.problem, self.chosen
         lugs = tuple(Lug(name=label, at=tuple(problem.points[i]))
-                     for label, i in zip(self.labels, self.chosen.indices))
+                     for label, i in zip(self.labels, chosen.indices))
         cranes = tuple(
-            Crane(lug=label, EA=spec.EA, boom_height=float(h), rope_length=spec.rope_length,
-                  swl=spec.swl)
-            for label, h in zip(self.labels, self.chosen.boom_heights)
+            Crane(lug=label, EA=problem.fleet[j].EA, boom_height=float(h),
+                  rope_length=problem.fleet[j].rope_length, swl=float(swl))
+            for label, j, h, swl in zip(self.labels, chosen.cranes, chosen.boom_heights, chosen.swl)
         )
         return Scene(
             body=problem.body,
@@ -210,15 +246,36 @@ class Plan:
     @cached_property
     def capacity(self):
         """Per crane: nominal, worst, twist, design load against SWL and the code margin."""
-        spec = self.problem.crane
+        chosen = self.chosen
         twist = self.problem.hook_tolerance * np.abs(self._twist_gain).sum(axis=1)
         required = code_margin(len(self.labels))
         return [
-            CraneCapacity(label=label, nominal=float(t0), worst=float(tw), twist=float(dt),
-                          design=float(tw + dt), swl=spec.swl, required_margin=required)
-            for label, t0, tw, dt in zip(self.labels, self.chosen.preload, self.chosen.rope_max,
-                                         twist)
+            CraneCapacity(label=label, crane=name, radius=float(r), nominal=float(t0),
+                          worst=float(tw), twist=float(dt), design=float(tw + dt), swl=float(swl),
+                          required_margin=required)
+            for label, name, r, t0, tw, dt, swl in zip(
+                self.labels, chosen.crane_names, chosen.radius, chosen.preload, chosen.rope_max,
+                twist, chosen.swl)
         ]
+
+    @cached_property
+    def checks(self):
+        """Every check of the plan that can fail, as :class:`~liftplan.model.checks.Check`.
+
+        Per crane: the design load (worst in the box and CG envelope, plus the hook-height
+        twist) against its SWL at its radius, and the crane code's capacity margin over the
+        nominal share; per rope: the lowest tension in the box against min_tension.
+        """
+        out = []
+        for c in self.capacity:
+            where = f"{c.label} ({c.crane})"
+            out.append(Check.upper("design_load", where, c.design, c.swl, "t",
+                                   note=f"worst in box + twist, SWL at radius {c.radius:.1f} m"))
+            out.append(Check.lower("code_margin", where, 100 * c.margin, 100 * c.required_margin,
+                                   "%", note="SWL over the nominal share, minus one"))
+        out.append(Check.lower("min_tension", "all ropes", self.chosen.tension_range[0],
+                               self.problem.min_tension, "t", note="lowest tension in the box"))
+        return out
 
     @cached_property
     def skew(self):
@@ -261,7 +318,7 @@ class Plan:
         problem = self.problem
         lp = AdmissibleTensions(len(self.labels))
         lower = np.full(len(self.labels), problem.min_tension)
-        upper = np.full(len(self.labels), problem.crane.swl)
+        upper = np.asarray(self.chosen.swl, dtype=float)
         out = []
         for heel, trim in [(0.0, 0.0)] + [(h, t) for h in (-1, 1) for t in (-1, 1)]:
             scenario = Scenario(heel * problem.heel_tolerance + 0.0,
@@ -318,7 +375,6 @@ class Plan:
     # -- output -------------------------------------------------------------------------
     def to_json(self):
         """The JSON object of ``liftplan plan --json`` (keys fixed by CONTRACT.md first)."""
-        spec = self.problem.crane
         worst = self.chosen.worst
         return {
             "lugs": self.lugs,
@@ -326,12 +382,19 @@ class Plan:
             "tensions": self.tensions,
             "spread": self.spread,
             "worst_spread": self.worst_spread,
-            "ranking": [_ranking_entry(r, spec.swl) for r in self.ranking],
+            "objective": self.objective,
+            "cranes": self.cranes,
+            "radius": self.radius,
+            "swl": self.swl,
+            "utilisation": self.utilisation,
+            "worst_utilisation_spread": self.worst_utilisation_spread,
+            "ranking": [_ranking_entry(r) for r in self.ranking],
             "worst_attitude": {"heel": worst.heel, "trim": worst.trim,
                                "cog_offset": list(worst.cog_offset)},
             "bound": self.chosen.bound,
             "capacity": [
-                {"lug": c.label, "nominal": c.nominal, "worst": c.worst, "twist": c.twist,
+                {"lug": c.label, "crane": c.crane, "radius": c.radius, "nominal": c.nominal,
+                 "worst": c.worst, "twist": c.twist,
                  "design": c.design, "swl": c.swl, "utilisation": c.utilisation,
                  "margin": c.margin, "required_margin": c.required_margin, "ok": c.ok}
                 for c in self.capacity
@@ -340,21 +403,26 @@ class Plan:
                       "factor": s.factor} for s in self.skew],
             "guidance": [{"angle": g.angle, "from": g.start, "to": g.end, "change": g.change,
                           "within_model": g.within_model} for g in self.guidance],
-            "search": {"sets": self.stats.sets, "screened_out": self.stats.screened_out,
+            "search": {"sets": self.stats.sets, "rows": self.stats.rows,
+                       "out_of_reach": self.stats.out_of_reach,
+                       "screened_out": self.stats.screened_out,
                        "evaluated": self.stats.evaluated, "pruned": self.stats.pruned,
                        "infeasible": self.stats.infeasible, "seconds": self.stats.seconds},
+            "checks": [c.to_json() for c in self.checks],
         }
 
 
-def _ranking_entry(result, swl):
+def _ranking_entry(result):
     return {
         "lugs": list(result.lugs),
+        "cranes": list(result.crane_names),
         "nominal_spread": result.nominal_spread,
         "worst_spread": result.worst_spread,
+        "worst_utilisation_spread": result.worst_utilisation_spread,
         "worst_attitude": {"heel": result.worst.heel, "trim": result.worst.trim,
                            "cog_offset": list(result.worst.cog_offset)},
         "bound": result.bound,
-        "max_utilisation": result.utilisation(swl),
+        "max_utilisation": result.max_utilisation,
         "boom_heights": result.boom_heights.tolist(),
         "preload": result.preload.tolist(),
         "converged": result.converged,

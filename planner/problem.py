@@ -15,7 +15,10 @@ from functools import cached_property
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
+from liftplan.model.frames import rotation_matrix
 from liftplan.model.scene import Body, finite, point, positive
+
+from .fleet import FleetCrane, crane_classes, equal_fleet, reach_table
 
 #: Crane-code capacity margin over the calculated share for cranes lifting together
 #: (2, 3, 4 or more cranes): 20 / 33 / 50 %.
@@ -25,6 +28,7 @@ CODE_MARGIN_MANY = 0.50
 DEFAULT_SKEW_FACTOR = 1.25
 
 MAX_CRANES = 8
+OBJECTIVES = ("spread", "utilisation")
 #: Lug sets the planner will enumerate; beyond this the search would take hours.
 MAX_SETS = 5_000_000
 
@@ -154,7 +158,8 @@ class PlanProblem:
     candidates : tuple of Candidate
     cranes : int
         How many cranes (lugs) to use, 3 to 8.
-    crane : CraneSpec
+    crane : CraneSpec or None
+        The ``[crane]`` defaults: a fleet of ``cranes`` equal cranes when ``fleet`` is empty.
     heel_tolerance, trim_tolerance : float  [deg]
         Half-widths of the attitude box around level.
     min_tension : float  [t]
@@ -174,12 +179,17 @@ class PlanProblem:
     frame : str
         Frame of the file the problem came from (``"z-up"`` or ``"choi"``), to echo the
         inputs as the engineer wrote them.
+    fleet : tuple of FleetCrane
+        The cranes, one per lug (default: ``cranes`` equal cranes from ``crane``).
+    objective : {"spread", "utilisation"} or None
+        What the plan keeps small over the box: max - min tension [t], or max - min of
+        T_i / SWL_i [-]. None: ``spread`` for equal cranes, ``utilisation`` when they differ.
     """
 
     body: Body
     candidates: tuple[Candidate, ...]
     cranes: int
-    crane: CraneSpec
+    crane: CraneSpec | None
     heel_tolerance: float = 2.0
     trim_tolerance: float = 2.0
     min_tension: float = 0.0
@@ -191,6 +201,8 @@ class PlanProblem:
     outline: tuple[tuple[float, float], ...] = ()
     name: str = ""
     frame: str = "z-up"
+    fleet: tuple[FleetCrane, ...] = ()
+    objective: str | None = None
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -238,6 +250,38 @@ class PlanProblem:
             )
         _set(self, "outline", tuple((finite("plan.outline", x), finite("plan.outline", y))
                                     for x, y, *_ in self.outline))
+        self._check_fleet()
+
+    def _check_fleet(self):
+        fleet = tuple(self.fleet)
+        if all(c.from_defaults for c in fleet):  # none given, or made from [crane] before
+            if self.crane is None:
+                raise InvalidScene("crane: missing, expected [crane] defaults or one [[cranes]] "
+                                   "table per crane")
+            fleet = equal_fleet(self.crane, self.cranes)
+        _set(self, "fleet", fleet)
+        if len(fleet) != self.cranes:
+            raise InvalidScene(f"plan.cranes = {self.cranes}: {len(fleet)} [[cranes]] tables "
+                               "given; expected one table per crane")
+        names = [c.name for c in fleet]
+        for name in names:
+            if names.count(name) > 1:
+                raise InvalidScene(f"cranes.name = {name!r}: duplicate, expected unique names")
+        if self.objective is None:
+            equal = len(crane_classes(fleet)) == 1
+            _set(self, "objective", "spread" if equal else "utilisation")
+        if self.objective not in OBJECTIVES:
+            raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread or utilisation")
+        radius, swl = self.reach
+        for j, crane in enumerate(fleet):
+            if np.all(np.isnan(swl[:, j])):
+                i = int(np.argmin(radius[:, j]))
+                raise InvalidScene(
+                    f"cranes[{crane.name}]: reaches no candidate (chart reach {crane.reach:g} m; "
+                    f"nearest candidate {self.names[i]} at radius {radius[i, j]:.2f} m)")
+            reachable = int(np.sum(~np.isnan(swl[:, j])))
+            if reachable < 1:
+                raise InvalidScene(f"cranes[{crane.name}]: reaches no candidate")
 
     @cached_property
     def points(self):
@@ -247,6 +291,26 @@ class PlanProblem:
     @property
     def names(self):
         return tuple(c.name for c in self.candidates)
+
+    @cached_property
+    def plan_points(self):
+        """Candidates at the level attitude in world plan coordinates (yaw applied), (C, 2)  [m]."""
+        return (self.points @ rotation_matrix(0.0, 0.0, self.yaw).T)[:, :2]
+
+    @cached_property
+    def reach(self):
+        """(radius, swl), each (C, m): every crane at every candidate; SWL NaN out of reach."""
+        return reach_table(self.fleet, self.plan_points)
+
+    @cached_property
+    def crane_classes(self):
+        """Interchangeable cranes grouped: tuple of tuples of fleet indices."""
+        return crane_classes(self.fleet)
+
+    @property
+    def equal_cranes(self):
+        """True when every crane is the same (one class)."""
+        return len(self.crane_classes) == 1
 
     @property
     def set_count(self):

@@ -16,6 +16,7 @@ from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene import Body
 from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
 
+from .fleet import FleetCrane
 from .problem import Candidate, CogEnvelope, CraneSpec, PlanProblem
 
 Count = Annotated[int, Strict(), Field(ge=1)]
@@ -38,7 +39,8 @@ class _Tolerance(Table):
 
 
 class _Plan(Table):
-    cranes: Count
+    cranes: Count | None = None
+    objective: Literal["spread", "utilisation"] | None = None
     tolerance: _Tolerance = _Tolerance()
     min_tension: Num = 0.0
     hook_tolerance: Num = 0.05
@@ -55,8 +57,18 @@ class _Range(Table):
 
 class _Crane(Table):
     EA: Num | None = None
-    rope_length: Num
-    swl: Num
+    rope_length: Num | None = None
+    swl: Num | None = None
+    boom_height: _Range | None = None
+
+
+class _FleetCrane(Table):
+    name: Text
+    position: Point | None = None
+    load_chart: list[tuple[Num, Num]] | None = None
+    swl: Num | None = None
+    EA: Num | None = None
+    rope_length: Num | None = None
     boom_height: _Range | None = None
 
 
@@ -75,7 +87,8 @@ class _PlanFile(Table):
     body: _Body
     candidates: list[_Candidate]
     plan: _Plan
-    crane: _Crane
+    crane: _Crane = _Crane()
+    cranes: list[_FleetCrane] = []
     ropes: _Ropes = _Ropes()
     attitude: _Attitude = _Attitude()
 
@@ -119,31 +132,91 @@ def problem_from_dict(raw):
     return _to_problem(data)
 
 
-def _to_problem(data):
-    choi = data.frame == "choi"
-    to_zup = choi_to_zup if choi else tuple
+def _default_spec(data):
+    """The [crane] defaults as a CraneSpec, or None when the fleet lists every crane."""
     crane = data.crane
     stiffness = crane.EA if crane.EA is not None else data.ropes.EA
+    if data.cranes and (crane.rope_length is None or crane.swl is None):
+        return None
     if stiffness is None:
         raise InvalidScene("crane.EA: missing, expected the rope stiffness EA in t "
                            "(in [crane] or [ropes])")
+    for key in ("rope_length", "swl"):
+        if getattr(crane, key) is None:
+            raise InvalidScene(f"crane.{key}: missing, expected a number "
+                               "(or one [[cranes]] table per crane)")
     boom = crane.boom_height
+    return CraneSpec(
+        EA=stiffness,
+        rope_length=crane.rope_length,
+        swl=crane.swl,
+        boom_min=boom.min if boom else float("-inf"),
+        boom_max=boom.max if boom else float("inf"),
+    )
+
+
+def _fleet(data, to_zup):
+    """[[cranes]] tables with the [crane] / [ropes] defaults filled in."""
+    defaults = data.crane
+    fleet = []
+    for entry in data.cranes:
+        def pick(key, entry=entry):
+            value = getattr(entry, key)
+            if value is None:
+                value = getattr(defaults, key)
+            if value is None and key == "EA":
+                value = data.ropes.EA
+            if value is None:
+                raise InvalidScene(f"cranes[{entry.name}].{key}: missing, expected a number "
+                                   "(here or in [crane])")
+            return value
+
+        boom = entry.boom_height or defaults.boom_height
+        chart = entry.load_chart
+        swl = entry.swl
+        if chart is None and swl is None:
+            swl = defaults.swl
+        if chart is not None and swl is not None:
+            raise InvalidScene(f"cranes[{entry.name}]: both load_chart and swl given; "
+                               "expected one of them")
+        if chart is None and swl is None:
+            raise InvalidScene(f"cranes[{entry.name}]: no load_chart or swl; expected one "
+                               "(here or swl in [crane])")
+        fleet.append(FleetCrane(
+            name=entry.name,
+            EA=pick("EA"),
+            rope_length=pick("rope_length"),
+            position=None if entry.position is None else to_zup(entry.position)[:2],
+            load_chart=tuple(chart or ()),
+            swl=swl,
+            boom_min=boom.min if boom else float("-inf"),
+            boom_max=boom.max if boom else float("inf"),
+        ))
+    return tuple(fleet)
+
+
+def _to_problem(data):
+    choi = data.frame == "choi"
+    to_zup = choi_to_zup if choi else tuple
     widths = data.plan.cog_tolerance
     # half-widths are magnitudes: the frame change only permutes the axes
     widths = (widths[0], widths[2], widths[1]) if choi else widths
+    fleet = _fleet(data, to_zup)
+    cranes = data.plan.cranes
+    if cranes is None:
+        if not fleet:
+            raise InvalidScene("plan.cranes: missing, expected how many cranes (3 to 8) or one "
+                               "[[cranes]] table per crane")
+        cranes = len(fleet)
     return PlanProblem(
         body=Body(weight=data.body.weight, cog=to_zup(data.body.cog)),
         candidates=tuple(
             Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead) for c in data.candidates
         ),
-        cranes=data.plan.cranes,
-        crane=CraneSpec(
-            EA=stiffness,
-            rope_length=crane.rope_length,
-            swl=crane.swl,
-            boom_min=boom.min if boom else float("-inf"),
-            boom_max=boom.max if boom else float("inf"),
-        ),
+        cranes=cranes,
+        crane=_default_spec(data),
+        fleet=fleet,
+        objective=data.plan.objective,
         heel_tolerance=data.plan.tolerance.heel,
         trim_tolerance=data.plan.tolerance.trim,
         min_tension=data.plan.min_tension,

@@ -76,7 +76,7 @@ def run_block(block, n, attitudes, params):
     return tensions, shift, gain
 
 
-def pack(problem, points, cog, boom, weight=None):
+def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None):
     """Parameter vectors (:class:`~liftplan.model.statics.Layout`) of lug sets.
 
     Parameters
@@ -86,6 +86,8 @@ def pack(problem, points, cog, boom, weight=None):
     cog : (..., 3)  [m]
     boom : (..., n)  [m]   boom-tip heights H
     weight : (...) [t], optional   the body weight (default the problem's)
+    rope_length, EA : (..., n)  [m, t], optional
+        Each rope's l0 and EA (default the first n cranes of the fleet, in fleet order).
 
     Returns
     -------
@@ -96,7 +98,10 @@ def pack(problem, points, cog, boom, weight=None):
     n = points.shape[-2]
     batch = np.broadcast_shapes(points.shape[:-2], cog.shape[:-1], boom.shape[:-1], weight.shape)
     points = np.broadcast_to(points, (*batch, n, 3))
-    spec = problem.crane
+    if rope_length is None:
+        rope_length = [c.rope_length for c in problem.fleet[:n]]
+    if EA is None:
+        EA = [c.EA for c in problem.fleet[:n]]
     plan = points[..., :2]
     diameter = np.max(np.linalg.norm(plan[..., :, None, :] - plan[..., None, :, :], axis=-1),
                       axis=(-2, -1))
@@ -111,8 +116,8 @@ def pack(problem, points, cog, boom, weight=None):
         column(cog, 3),
         column(weight, 1),
         column(boom, n),
-        column(spec.rope_length, n),
-        column(spec.EA, n),
+        column(rope_length, n),
+        column(EA, n),
         column(diameter, 1),
     ], axis=-1)
 
@@ -141,25 +146,39 @@ class Scenario:
 
 
 class LugSet:
-    """One choice of lugs: its level statics and its tensions across scenarios.
+    """One choice of lugs and of the crane on each: level statics and tensions across scenarios.
 
     Parameters
     ----------
     problem : PlanProblem
     indices : sequence of int
         Candidate indices, in candidate order.
+    cranes : sequence of int, optional
+        Fleet index of the crane on each lug (default: crane k on the k-th lug, which is any
+        assignment for a fleet of equal cranes).
     """
 
-    def __init__(self, problem, indices):
+    def __init__(self, problem, indices, cranes=None):
         self.problem = problem
         self.indices = tuple(int(i) for i in indices)
         self.n = len(self.indices)
+        self.cranes = tuple(range(self.n)) if cranes is None else tuple(int(j) for j in cranes)
         self.points = problem.points[list(self.indices)]
         self.names = tuple(problem.names[i] for i in self.indices)
-        spec = problem.crane
-        self.stiffness = np.full(self.n, spec.stiffness)
+        fleet = [problem.fleet[j] for j in self.cranes]
+        self.crane_names = tuple(c.name for c in fleet)
+        self.rope_length = np.array([c.rope_length for c in fleet])
+        self.EA = np.array([c.EA for c in fleet])
+        self.stiffness = self.EA / self.rope_length
+        self.boom_range = (np.array([c.boom_min for c in fleet]), np.array([c.boom_max for c in fleet]))
+        radius, swl = problem.reach
+        self.radius = radius[list(self.indices), list(self.cranes)]
+        #: SWL of each crane at its radius [t] (NaN: the crane cannot reach its lug)
+        self.swl = swl[list(self.indices), list(self.cranes)]
+        #: what the objective's spread is taken of: s_i T_i
+        self.scale = 1.0 / self.swl if problem.objective == "utilisation" else np.ones(self.n)
         # boom heights with every rope just unstretched at the level pose
-        self.boom_zero = problem.lift_height + self.points[:, 2] + spec.rope_length
+        self.boom_zero = problem.lift_height + self.points[:, 2] + self.rope_length
         self._model = rope_model(self.n)
 
     @cached_property
@@ -178,9 +197,8 @@ class LugSet:
 
     def preload_range(self):
         """Bounds on T* from the boom-height range  [t]."""
-        spec = self.problem.crane
-        low = self.stiffness * (spec.boom_min - self.boom_zero)
-        high = self.stiffness * (spec.boom_max - self.boom_zero)
+        low = self.stiffness * (self.boom_range[0] - self.boom_zero)
+        high = self.stiffness * (self.boom_range[1] - self.boom_zero)
         return low, high
 
     def boom_heights(self, preload):
@@ -207,7 +225,8 @@ class LugSet:
         cog = np.array(self.problem.body.cog)
         for offset in np.unique(offsets, axis=0):
             rows = np.all(offsets == offset, axis=1)
-            p = pack(self.problem, self.points, cog + offset, boom)
+            p = pack(self.problem, self.points, cog + offset, boom,
+                     rope_length=self.rope_length, EA=self.EA)
             t, d, g = run_block(self._model.held_block, self.n, x[rows], p)
             tensions[rows], shift[rows], gain[rows] = t, d, g
         return tensions, shift, gain

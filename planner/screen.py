@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from itertools import combinations
+from itertools import combinations, permutations
 
 import numpy as np
 
@@ -63,7 +63,9 @@ class Screening:
     Parameters
     ----------
     sets : numpy.ndarray, shape (N, n), int
-        Candidate indices of each set (ascending).
+        Candidate indices of each set (ascending). A set appears once per crane assignment.
+    cranes : numpy.ndarray, shape (N, n), int
+        Fleet index of the crane on each lug of the row.
     bound : numpy.ndarray, shape (N,)  [t]
         Lower bound on the set's worst spread over the box; inf where infeasible.
     reason : numpy.ndarray, shape (N,), int
@@ -73,6 +75,7 @@ class Screening:
     """
 
     sets: np.ndarray
+    cranes: np.ndarray
     bound: np.ndarray
     reason: np.ndarray
     exact: bool
@@ -86,40 +89,119 @@ def all_sets(problem):
     )
 
 
-def screen(problem, sets=None):
-    """Screen lug sets (all of them by default).
+def assignments(problem):
+    """Distinct ways to put the fleet on n lugs (interchangeable cranes counted once).
+
+    Returns
+    -------
+    numpy.ndarray, shape (P, n), int
+        Row p: the fleet index of the crane on the k-th lug of a set (candidate order).
+    """
+    classes = problem.crane_classes
+    label = np.empty(problem.cranes, dtype=np.int64)
+    for c, group in enumerate(classes):
+        label[list(group)] = c
+    patterns = sorted(set(permutations(label.tolist())))
+    rows = []
+    for pattern in patterns:
+        taken = [list(group) for group in classes]
+        rows.append([taken[c].pop(0) for c in pattern])
+    return np.array(rows, dtype=np.int64).reshape(-1, problem.cranes)
+
+
+def set_rows(problem, sets=None):
+    """Every (set, assignment) row whose cranes all reach their lugs.
+
+    Returns
+    -------
+    sets, cranes : numpy.ndarray, shape (N, n), int
+    out_of_reach : int
+        Rows dropped because a crane cannot reach its lug.
+    """
+    sets = all_sets(problem) if sets is None else np.asarray(sets, dtype=np.int64)
+    patterns = assignments(problem)
+    swl = problem.reach[1]
+    sets_r = np.repeat(sets, len(patterns), axis=0)
+    cranes_r = np.tile(patterns, (len(sets), 1))
+    ok = ~np.any(np.isnan(swl[sets_r, cranes_r]), axis=1)
+    return sets_r[ok], cranes_r[ok], int(np.sum(~ok))
+
+
+#: Screening columns (rows x scenarios) above which the rows are first screened on the box
+#: corners and level only, and the full screening scenarios are applied lazily (search).
+FULL_COLUMNS = 400_000
+
+
+def screen(problem, sets=None, cranes=None, coarse=None):
+    """Screen lug sets with their crane assignments (every feasible row by default).
 
     Parameters
     ----------
     problem : PlanProblem
     sets : numpy.ndarray, shape (N, n), optional
+    cranes : numpy.ndarray, shape (N, n), optional
+        Fleet indices per lug (default: the identity, any assignment of an equal fleet).
+    coarse : bool, optional
+        Screen on the tolerance box's corners and level (nominal CG) only: a weaker, cheaper
+        bound. Default: when the full screening would exceed :data:`FULL_COLUMNS`.
 
     Returns
     -------
     Screening
     """
-    sets = all_sets(problem) if sets is None else np.asarray(sets, dtype=np.int64)
+    if sets is None:
+        sets, cranes, _ = set_rows(problem)
+    sets = np.asarray(sets, dtype=np.int64)
+    if cranes is None:
+        cranes = np.broadcast_to(np.arange(sets.shape[1]), sets.shape)
+    cranes = np.asarray(cranes, dtype=np.int64)
+    scenarios = screening_scenarios(problem, coarse=False)
+    if coarse is None:
+        coarse = len(sets) * len(scenarios[0]) > FULL_COLUMNS
+    if coarse:
+        scenarios = screening_scenarios(problem, coarse=True)
     bound = np.empty(len(sets))
     reason = np.empty(len(sets), dtype=np.int64)
     for start in range(0, len(sets), CHUNK):
-        part = sets[start : start + CHUNK]
+        part = slice(start, start + CHUNK)
         # collinear sets give singular statics (inf, nan): they are marked, not used
         with np.errstate(divide="ignore", invalid="ignore"):
-            bound[start : start + len(part)], reason[start : start + len(part)] = _screen_chunk(
-                problem, part
-            )
-    return Screening(sets=sets, bound=bound, reason=reason, exact=problem.cranes <= 4)
+            bound[part], reason[part] = _screen_chunk(problem, sets[part], cranes[part], scenarios)
+    return Screening(sets=sets, cranes=cranes, bound=bound, reason=reason,
+                     exact=problem.cranes <= 4 and not coarse)
 
 
-def _screen_chunk(problem, sets):
+def screening_scenarios(problem, coarse=False):
+    """Screening scenarios: (x columns (m, 3) [m, rad, rad], CG offsets (m, 3) [m]).
+
+    Full: the 3 x 3 box grid for every CG vertex. Coarse: the 4 corners and level, nominal CG.
+    """
+    grid = box_attitudes(problem, 3, 3)
+    offsets = problem.cog_envelope.offsets()
+    if coarse:
+        corners = (np.abs(grid[:, 0]) == problem.heel_tolerance) & \
+            (np.abs(grid[:, 1]) == problem.trim_tolerance)
+        grid = grid[corners | np.all(grid == 0.0, axis=1)]
+        offsets = offsets[:1]
+    x = np.tile(np.column_stack([
+        np.full(len(grid), problem.lift_height), np.radians(grid[:, 0]), np.radians(grid[:, 1]),
+    ]), (len(offsets), 1))
+    return x, np.repeat(offsets, len(grid), axis=0)
+
+
+def _screen_chunk(problem, sets, cranes, scenarios):
     count, n = sets.shape
-    spec = problem.crane
     weight = problem.body.weight
+    fleet = problem.fleet
     points = problem.points[sets]  # (N, n, 3)
     cog = np.array(problem.body.cog)
     yaw = math.radians(problem.yaw)
-    stiffness = spec.stiffness
-    boom_zero = problem.lift_height + points[..., 2] + spec.rope_length
+    rope_length = np.array([c.rope_length for c in fleet])[cranes]  # (N, n)
+    rope_ea = np.array([c.EA for c in fleet])[cranes]
+    stiffness = rope_ea / rope_length
+    boom_zero = problem.lift_height + points[..., 2] + rope_length
+    swl = problem.reach[1][sets, cranes]  # (N, n)
+    scale = 1.0 / swl if problem.objective == "utilisation" else np.ones_like(swl)
 
     # level statics (yaw only)
     c, s = math.cos(yaw), math.sin(yaw)
@@ -128,26 +210,23 @@ def _screen_chunk(problem, sets):
     a_level = np.stack([np.ones((count, n)), plan_x, plan_y], axis=1)  # (N, 3, n)
     b_level = weight * np.array([1.0, c * cog[0] - s * cog[1], s * cog[0] + c * cog[1]])
 
-    # tensions at the screening scenarios with zero preload, and their gains: the 3 x 3 box
-    # grid for each CG of the envelope (all at once: the CG is in the parameter vector)
-    grid = box_attitudes(problem, 3, 3)
-    offsets = problem.cog_envelope.offsets()
-    m = len(grid) * len(offsets)
-    x = np.tile(np.column_stack([
-        np.full(len(grid), problem.lift_height), np.radians(grid[:, 0]), np.radians(grid[:, 1]),
-    ]), (len(offsets), 1))
-    # one parameter vector per (set, scenario) column: the CG moves with the envelope
-    cogs = np.repeat(cog + offsets, len(grid), axis=0)  # (m, 3)
-    columns_p = pack(problem, points[:, None], cogs[None], boom_zero[:, None]).reshape(-1, 6 * n + 6)
+    # tensions at the screening scenarios with zero preload, and their gains (all at once:
+    # the CG is in the parameter vector, one column per (row, scenario))
+    x, offsets = scenarios
+    m = len(x)
+    columns_p = pack(problem, points[:, None], (cog + offsets)[None], boom_zero[:, None],
+                     rope_length=rope_length[:, None], EA=rope_ea[:, None]).reshape(-1, 6 * n + 6)
     columns_x = np.tile(x, (count, 1))
     q, _, gain = run_block(rope_model(n).held_columns, n, columns_x, columns_p)
     q = q.reshape(count, m, n)
-    gain = gain.reshape(count, m, n, n) / stiffness  # P_k
+    gain = gain.reshape(count, m, n, n) / stiffness[:, None, None, :]  # P_k
 
     inside = _cog_inside(plan_x, plan_y, b_level[1] / weight, b_level[2] / weight)
-    preload_low = stiffness * (spec.boom_min - boom_zero)
-    preload_high = stiffness * (spec.boom_max - boom_zero)
-    limits = (problem.min_tension, spec.swl)
+    boom_min = np.array([c.boom_min for c in fleet])[cranes]
+    boom_max = np.array([c.boom_max for c in fleet])[cranes]
+    preload_low = stiffness * (boom_min - boom_zero)
+    preload_high = stiffness * (boom_max - boom_zero)
+    limits = (problem.min_tension, swl)
     # particular level solution (least norm) and null space of the level statics
     collinear = _collinear(plan_x, plan_y)
     gram = a_level @ a_level.transpose(0, 2, 1)
@@ -156,13 +235,13 @@ def _screen_chunk(problem, sets):
     particular = np.einsum("kji,kj->ki", a_level, np.linalg.solve(gram, rhs)[..., 0])
     if n == 3:
         bound, reason = _screen_fixed(particular, q, gain, inside, limits,
-                                      (preload_low, preload_high))
+                                      (preload_low, preload_high), scale)
     elif n == 4:
         bound, reason = _screen_line(particular, _null_vector(a_level), q, gain, inside, limits,
-                                     (preload_low, preload_high))
+                                     (preload_low, preload_high), scale)
     else:
         bound, reason = _screen_pairs(particular, a_level, points[..., 2], q, gain, inside,
-                                      limits, weight)
+                                      limits, weight, scale)
     bound[collinear] = np.inf
     reason[collinear] = COLLINEAR
     return bound, reason
@@ -224,15 +303,15 @@ def _golden(f, lo, hi, lipschitz):
     return np.minimum(fc, fd) - lipschitz * (b - a)
 
 
-def _screen_fixed(preload, q, gain, inside, limits, preload_range):
+def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale):
     tensions = np.einsum("kmij,kj->kmi", gain, preload) + q
     reason = _classify_point(preload, tensions, inside, limits, preload_range)
-    bound = np.ptp(tensions, axis=2).max(axis=1)
+    bound = np.ptp(scale[:, None, :] * tensions, axis=2).max(axis=1)
     return np.where(reason == FEASIBLE, bound, np.inf), reason
 
 
 def _classify_point(preload, tensions, inside, limits, preload_range):
-    low, high = limits
+    low, high = limits  # high: (N, n)
     reason = np.full(len(preload), FEASIBLE)
     checks = [
         (~inside, CG_OUTSIDE),
@@ -240,16 +319,17 @@ def _classify_point(preload, tensions, inside, limits, preload_range):
         (np.any(preload < low, axis=1), LEVEL_MIN_TENSION),
         (np.any((preload < preload_range[0]) | (preload > preload_range[1]), axis=1), BOOM_RANGE),
         (np.any(tensions < low, axis=(1, 2)), BOX_SLACK),
-        (np.any(tensions > high, axis=(1, 2)), BOX_OVERLOAD),
+        (np.any(tensions > high[:, None, :], axis=(1, 2)), BOX_OVERLOAD),
     ]
     for failed, code in reversed(checks):  # the first failing check wins
         reason = np.where(failed, code, reason)
     return reason
 
 
-def _screen_line(particular, null, q, gain, inside, limits, preload_range):
+def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale):
     count, m, n = q.shape
-    low, high = limits
+    low, high = limits  # high: (N, n)
+    box_high = np.tile(high, (1, m))
     alpha = np.einsum("kmij,kj->kmi", gain, particular) + q  # T_k = alpha + t beta
     beta = np.einsum("kmij,kj->kmi", gain, null)
     lo = np.full(count, -np.inf)
@@ -261,7 +341,7 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range):
         (particular, null, low, np.inf, LEVEL_MIN_TENSION),
         (particular, null, preload_range[0], preload_range[1], BOOM_RANGE),
         (alpha.reshape(count, -1), beta.reshape(count, -1), low, np.inf, BOX_SLACK),
-        (alpha.reshape(count, -1), beta.reshape(count, -1), -np.inf, high, BOX_OVERLOAD),
+        (alpha.reshape(count, -1), beta.reshape(count, -1), -np.inf, box_high, BOX_OVERLOAD),
     ]
     for a_rows, b_rows, row_low, row_high, code in steps:
         lo, hi = _interval(a_rows, b_rows, row_low, row_high, lo, hi)
@@ -269,7 +349,8 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range):
     ok = reason == FEASIBLE
     bound = np.full(count, np.inf)
     if np.any(ok):
-        al, be = alpha[ok], beta[ok]
+        sc = scale[ok][:, None, :]
+        al, be = sc * alpha[ok], sc * beta[ok]
 
         def worst(t):
             values = al + t[:, None, None] * be
@@ -280,10 +361,10 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range):
     return bound, reason
 
 
-def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight):
+def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight, scale):
     count, m, n = q.shape
     reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
-    reason = np.where(inside & (weight > n * limits[1]), LEVEL_SWL, reason)
+    reason = np.where(inside & (weight > limits[1].sum(axis=1)), LEVEL_SWL, reason)
     ok = reason == FEASIBLE
     bound = np.full(count, np.inf)
     if not np.any(ok):
@@ -299,6 +380,8 @@ def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight)
     coplanar = ww < 1e-18 * np.max(np.abs(z), axis=1) ** 2 + 1e-300
     e_vec[coplanar] = 0.0
     first, second = np.triu_indices(n, 1)
+    sc = scale[ok][:, None, :]
+    alpha, e_vec = sc * alpha, sc * e_vec  # the objective's s_i T_i (T* cancels as before)
     g = alpha[..., first] - alpha[..., second]  # (N, m, pairs)
     h = e_vec[..., first] - e_vec[..., second]
     z_fixed = np.einsum("ki,ki->k", z, part)

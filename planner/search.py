@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import heapq
 import time
 from collections import Counter
 from dataclasses import dataclass, field
@@ -29,10 +30,13 @@ from .screen import (
     BOX_SLACK,
     CG_OUTSIDE,
     FEASIBLE,
+    FULL_COLUMNS,
     LEVEL_MIN_TENSION,
     LEVEL_SWL,
     REASONS,
     screen,
+    screening_scenarios,
+    set_rows,
 )
 
 #: Dense check grid: heel x trim points over the box.
@@ -66,18 +70,26 @@ class SetResult:
     lugs : tuple of str
         Candidate names, in candidate order.
     indices : tuple of int
+    cranes : tuple of int
+        Fleet index of the crane on each lug.
+    crane_names : tuple of str
+    radius : numpy.ndarray  [m]
+        Each crane's radius to its lug.
+    swl : numpy.ndarray  [t]
+        Each crane's SWL at that radius (chart).
     preload : numpy.ndarray  [t]
         Level tensions T* the plan dials in.
     boom_heights : numpy.ndarray  [m]
     nominal_spread : float  [t]
         Spread of T* (level, nominal CG).
     worst_spread : float  [t]
-        Largest spread found over the box (and CG envelope) with T* held.
+        Largest tension spread found over the box (and CG envelope) with T* held.
     worst : Scenario
-        Where it occurs.
-    bound : float  [t]
-        The preload LP's optimum over its scenarios: no preload of this set does better.
-    screen_bound : float  [t]
+        Where the objective's worst value occurs.
+    bound : float  [t or -]
+        The preload LP's optimum over its scenarios, in the objective's unit: no preload of
+        this set and assignment does better.
+    screen_bound : float  [t or -]
         The screening bound used to order and prune.
     tension_range : tuple of float  [t]
         Smallest and largest tension anywhere in the box.
@@ -87,10 +99,23 @@ class SetResult:
         Cutting-plane rounds.
     converged : bool
         The dense search found nothing worse than the LP (within :func:`tolerance`).
+    objective : str
+        ``"spread"`` or ``"utilisation"``.
+    worst_value : float  [t or -]
+        The objective's largest value found over the box: the worst tension spread, or the
+        worst max - min of T_i / SWL_i.
+    worst_utilisation_spread : float  [-]
+        Largest max - min of T_i / SWL_i found over the box.
+    nominal_utilisation_spread : float  [-]
+        max - min of T*_i / SWL_i at level.
     """
 
     lugs: tuple[str, ...]
     indices: tuple[int, ...]
+    cranes: tuple[int, ...]
+    crane_names: tuple[str, ...]
+    radius: np.ndarray
+    swl: np.ndarray
     preload: np.ndarray
     boom_heights: np.ndarray
     nominal_spread: float
@@ -102,10 +127,20 @@ class SetResult:
     rope_max: np.ndarray
     rounds: int
     converged: bool
+    objective: str = "spread"
+    worst_value: float = 0.0
+    worst_utilisation_spread: float = 0.0
+    nominal_utilisation_spread: float = 0.0
 
-    def utilisation(self, swl):
-        """Largest tension in the box over the SWL  [-]."""
-        return self.tension_range[1] / swl
+    @property
+    def max_utilisation(self):
+        """Largest T_i / SWL_i anywhere in the box (dense grid, CG envelope)  [-]."""
+        return float(np.max(self.rope_max / self.swl))
+
+    @property
+    def nominal_value(self):
+        """The objective at level: nominal spread [t] or nominal utilisation spread [-]."""
+        return self.nominal_spread if self.objective == "spread" else self.nominal_utilisation_spread
 
 
 @dataclass(frozen=True)
@@ -115,7 +150,7 @@ class SearchStats:
     Parameters
     ----------
     sets : int
-        Lug sets in all.
+        Lug sets in all (each with every crane assignment in reach: see ``rows``).
     screened_out : int
         Proved infeasible by screening.
     evaluated : int
@@ -125,6 +160,12 @@ class SearchStats:
     infeasible : dict of str to int
         Reasons and counts of every infeasible set found.
     seconds : float  [s]
+    rows : int
+        (set, crane assignment) pairs searched (equal cranes: one per set).
+    out_of_reach : int
+        (set, assignment) pairs dropped because a crane cannot reach its lug.
+    refined : int
+        Rows whose coarse screening bound was replaced by the full one before evaluation.
     """
 
     sets: int
@@ -133,6 +174,45 @@ class SearchStats:
     pruned: int
     infeasible: dict[str, int] = field(default_factory=dict)
     seconds: float = 0.0
+    rows: int = 0
+    out_of_reach: int = 0
+    refined: int = 0
+
+
+@dataclass(frozen=True)
+class DenseSearch:
+    """What the dense search over the box found for one preload (each with its scenario).
+
+    Parameters
+    ----------
+    worst : (float, Scenario)
+        The objective's largest value (tension spread [t] or utilisation spread [-]).
+    low : (float, Scenario)
+        The lowest tension [t].
+    over : (float, Scenario)
+        The largest excess of a tension over its crane's SWL [t] (negative: none).
+    highest : float  [t]
+    rope_max : numpy.ndarray  [t]
+        Each rope's largest tension.
+    spread : float  [t]
+        The largest tension spread.
+    utilisation_spread : float  [-]
+        The largest max - min of T_i / SWL_i.
+    """
+
+    worst: tuple
+    low: tuple
+    over: tuple
+    highest: float
+    rope_max: np.ndarray
+    spread: float
+    utilisation_spread: float
+
+
+def _limits(count, low, high):
+    """(min_tension, SWL) per scenario and rope, each (count, n)  [t]."""
+    high = np.asarray(high, dtype=float)
+    return np.full((count, len(high)), float(low)), np.tile(high, (count, 1))
 
 
 class SetEvaluator:
@@ -150,13 +230,17 @@ class SetEvaluator:
         grid = box_attitudes(self.problem, count, count)
         return [Scenario(float(h), float(t), o) for o in self.offsets for h, t in grid]
 
-    def _limits(self, count):
-        spec = self.problem.crane
-        return (np.full((count, self.problem.cranes), self.problem.min_tension),
-                np.full((count, self.problem.cranes), spec.swl))
+    def evaluate(self, indices, cranes=None, screen_bound=0.0):
+        """Evaluate one set with one crane assignment.
 
-    def evaluate(self, indices, screen_bound=0.0):
-        """Evaluate one set.
+        Parameters
+        ----------
+        indices : sequence of int
+            Candidate indices.
+        cranes : sequence of int, optional
+            Fleet index of the crane on each lug (default: the identity).
+        screen_bound : float
+            The screening bound, recorded in the result.
 
         Returns
         -------
@@ -168,70 +252,91 @@ class SetEvaluator:
             No preload of this set keeps every rope within [min_tension, SWL] over the box;
             the message names the first constraint that cannot be met.
         """
-        lugset = LugSet(self.problem, indices)
+        lugset = LugSet(self.problem, indices, cranes)
         scenarios = list(self.start)
         a_level, b_level = lugset.level_statics
+        low_limit, high_limit = self.problem.min_tension, lugset.swl
         rounds, converged = 0, False
         while True:
             rounds += 1
             gains, offsets = lugset.affine(scenarios)
             try:
                 result = self.minimax.solve(gains, offsets, a_level, b_level,
-                                            lugset.preload_range(), self._limits(len(scenarios)))
+                                            lugset.preload_range(),
+                                            _limits(len(scenarios), low_limit, high_limit),
+                                            scale=lugset.scale)
             except PlanInfeasible:
                 raise SetInfeasible(self.diagnose(lugset, scenarios)) from None
-            worst, low, high, rope_max = self._search(lugset, result.preload)
-            violated = low[0] < self.problem.min_tension - self.tol or \
-                high[0] > self.problem.crane.swl + self.tol
-            if worst[0] <= result.worst_spread + self.tol and not violated:
+            found = self._search(lugset, result.preload)
+            worst, low, over = found.worst, found.low, found.over
+            violated = low[0] < low_limit - self.tol or over[0] > self.tol
+            if worst[0] <= result.worst_spread + self._tol(lugset) and not violated:
                 converged = True
                 break
             if rounds == MAX_ROUNDS or len(scenarios) + 3 > SLOTS:
                 break
-            found = [worst[1]] + ([low[1], high[1]] if violated else [])
-            new = [s for s in dict.fromkeys(found) if s not in scenarios]
+            cuts = [worst[1]] + ([low[1], over[1]] if violated else [])
+            new = [s for s in dict.fromkeys(cuts) if s not in scenarios]
             if not new:
                 break  # the LP already holds these points: nothing to cut with
             scenarios += new
-        if not converged and (low[0] < self.problem.min_tension - self.tol
-                              or high[0] > self.problem.crane.swl + self.tol):
-            raise SetInfeasible(
-                BOX_SLACK if low[0] < self.problem.min_tension - self.tol else BOX_OVERLOAD
-            )
+        if not converged and (low[0] < low_limit - self.tol or over[0] > self.tol):
+            raise SetInfeasible(BOX_SLACK if low[0] < low_limit - self.tol else BOX_OVERLOAD)
+        preload = result.preload
         return SetResult(
             lugs=lugset.names,
             indices=lugset.indices,
-            preload=result.preload,
-            boom_heights=lugset.boom_heights(result.preload),
-            nominal_spread=result.nominal_spread,
-            worst_spread=worst[0],
+            cranes=lugset.cranes,
+            crane_names=lugset.crane_names,
+            radius=lugset.radius,
+            swl=lugset.swl,
+            preload=preload,
+            boom_heights=lugset.boom_heights(preload),
+            nominal_spread=float(np.ptp(preload)),
+            worst_spread=found.spread,
             worst=worst[1],
             bound=result.worst_spread,
             screen_bound=screen_bound,
-            tension_range=(low[0], high[0]),
-            rope_max=rope_max,
+            tension_range=(low[0], found.highest),
+            rope_max=found.rope_max,
             rounds=rounds,
             converged=converged,
+            objective=self.problem.objective,
+            worst_value=worst[0],
+            worst_utilisation_spread=found.utilisation_spread,
+            nominal_utilisation_spread=float(np.ptp(preload / lugset.swl)),
         )
 
+    def _tol(self, lugset):
+        """Agreement asked in the objective's unit."""
+        return self.tol if self.problem.objective == "spread" else self.tol / float(np.min(lugset.swl))
+
     def _search(self, lugset, preload):
-        """Worst spread, lowest and highest tension over the box (with their scenarios), and
-        each rope's largest tension on the dense grid."""
+        """The dense search over the box with T* held: see :class:`DenseSearch`."""
         tensions = lugset.tensions(preload, self.dense)
-        spread = np.ptp(tensions, axis=1)
-        k = int(np.argmax(spread))
-        worst = (float(spread[k]), self.dense[k])
+        value = np.ptp(tensions * lugset.scale, axis=1)
+        k = int(np.argmax(value))
+        worst = (float(value[k]), self.dense[k])
         for _ in range(ZOOM_ROUNDS):
             local = self._around(worst[1])
-            values = np.ptp(lugset.tensions(preload, local), axis=1)
+            values = np.ptp(lugset.tensions(preload, local) * lugset.scale, axis=1)
             j = int(np.argmax(values))
             if values[j] > worst[0]:
                 worst = (float(values[j]), local[j])
+        excess = tensions - lugset.swl
         lowest = np.unravel_index(np.argmin(tensions), tensions.shape)[0]
-        highest = np.unravel_index(np.argmax(tensions), tensions.shape)[0]
-        low = (float(tensions.min()), self.dense[lowest])
-        high = (float(tensions.max()), self.dense[highest])
-        return worst, low, high, tensions.max(axis=0)
+        over = np.unravel_index(np.argmax(excess), excess.shape)[0]
+        return DenseSearch(
+            worst=worst,
+            low=(float(tensions.min()), self.dense[lowest]),
+            over=(float(excess.max()), self.dense[over]),
+            highest=float(tensions.max()),
+            rope_max=tensions.max(axis=0),
+            spread=max(float(np.ptp(tensions, axis=1).max()),
+                       worst[0] if self.problem.objective == "spread" else 0.0),
+            utilisation_spread=max(float(np.ptp(tensions / lugset.swl, axis=1).max()),
+                                   worst[0] if self.problem.objective == "utilisation" else 0.0),
+        )
 
     def _around(self, scenario):
         """A ZOOM x ZOOM grid of one dense cell either side of a scenario, inside the box."""
@@ -246,7 +351,7 @@ class SetEvaluator:
 
     def diagnose(self, lugset, scenarios):
         """The first constraint group that makes a set infeasible (a key of REASONS)."""
-        problem, spec = self.problem, self.problem.crane
+        problem, swl = self.problem, lugset.swl
         a_level, b_level = lugset.level_statics
         level = [Scenario(0.0, 0.0)]
         g_level, q_level = lugset.affine(level)
@@ -256,11 +361,11 @@ class SetEvaluator:
         ones = np.ones((1, lugset.n))
         steps = [
             (g_level, q_level, free, (0 * ones, inf), CG_OUTSIDE),
-            (g_level, q_level, free, (0 * ones, spec.swl * ones), LEVEL_SWL),
-            (g_level, q_level, free, (problem.min_tension * ones, spec.swl * ones),
+            (g_level, q_level, free, (0 * ones, swl * ones), LEVEL_SWL),
+            (g_level, q_level, free, (problem.min_tension * ones, swl * ones),
              LEVEL_MIN_TENSION),
             (g_level, q_level, lugset.preload_range(),
-             (problem.min_tension * ones, spec.swl * ones), BOOM_RANGE),
+             (problem.min_tension * ones, swl * ones), BOOM_RANGE),
         ]
         count = len(scenarios)
         steps.append((gains, offsets, lugset.preload_range(),
@@ -274,8 +379,12 @@ class SetEvaluator:
         return BOX_OVERLOAD
 
 
+#: Rows whose coarse screening bound is replaced by the full one at a time.
+REFINE = 64
+
+
 def search(problem, top=None):
-    """Rank the best lug sets.
+    """Rank the best lug sets with their crane assignments.
 
     Parameters
     ----------
@@ -286,7 +395,7 @@ def search(problem, top=None):
     Returns
     -------
     ranking : list of SetResult
-        Best first (smallest worst spread).
+        Best first (smallest worst value of the objective).
     stats : SearchStats
 
     Raises
@@ -296,38 +405,79 @@ def search(problem, top=None):
     """
     started = time.perf_counter()
     top = top or problem.top
-    screening = screen(problem)
+    sets, cranes, out_of_reach = set_rows(problem)
+    if len(sets) == 0:
+        raise PlanInfeasible(_unreachable(problem))
+    screening = screen(problem, sets, cranes)
     evaluator = SetEvaluator(problem)
     reasons = Counter(int(r) for r in screening.reason[screening.reason != FEASIBLE])
-    order = np.argsort(screening.bound, kind="stable")
-    order = order[np.isfinite(screening.bound[order])]
-    ranking, evaluated = [], 0
-    for k in order:
-        if len(ranking) >= top and screening.bound[k] >= ranking[top - 1].worst_spread:
+    bound = screening.bound.copy()
+    refined = np.zeros(len(bound), dtype=bool) if _coarse(screening, problem) else \
+        np.ones(len(bound), dtype=bool)
+    heap = [(float(bound[k]), bool(not refined[k]), int(k)) for k in np.flatnonzero(np.isfinite(bound))]
+    heapq.heapify(heap)
+    feasible_rows = len(heap)
+    ranking, evaluated, refine_count = [], 0, 0
+    while heap:
+        if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
             break
+        value, coarse, k = heapq.heappop(heap)
+        if coarse:
+            batch = [k] + [heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap)))
+                           if heap and heap[0][1]]
+            full = screen(problem, sets[batch], cranes[batch], coarse=False)
+            refine_count += len(batch)
+            for j, new_bound, reason in zip(batch, full.bound, full.reason):
+                refined[j] = True
+                if reason != FEASIBLE:
+                    reasons[int(reason)] += 1
+                    continue
+                heapq.heappush(heap, (max(float(new_bound), float(bound[j])), False, int(j)))
+            continue
         evaluated += 1
         try:
-            result = evaluator.evaluate(screening.sets[k], float(screening.bound[k]))
+            result = evaluator.evaluate(sets[k], cranes[k], value)
         except SetInfeasible as err:
             reasons[err.code] += 1
             continue
         ranking.append(result)
-        ranking.sort(key=lambda r: (r.worst_spread, r.nominal_spread))
+        ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
         del ranking[top:]
     stats = SearchStats(
-        sets=len(screening.sets),
+        sets=problem.set_count,
         screened_out=int(np.sum(screening.reason != FEASIBLE)),
         evaluated=evaluated,
-        pruned=len(order) - evaluated,
+        pruned=feasible_rows - evaluated,
         infeasible={REASONS[c]: n for c, n in reasons.most_common()},
         seconds=time.perf_counter() - started,
+        rows=len(sets),
+        out_of_reach=out_of_reach,
+        refined=refine_count,
     )
     if not ranking:
         causes = "; ".join(f"{n} sets: {text}" for text, n in stats.infeasible.items())
+        what = f"{problem.cranes} lugs among {len(problem.candidates)} candidates"
+        if not problem.equal_cranes:
+            what += f" with any assignment of the cranes in reach ({out_of_reach} out of reach)"
         raise PlanInfeasible(
-            f"no set of {problem.cranes} lugs among {len(problem.candidates)} candidates can "
-            f"hold the body within heel +-{problem.heel_tolerance:g} deg, trim "
-            f"+-{problem.trim_tolerance:g} deg, tensions {problem.min_tension:g} to "
-            f"{problem.crane.swl:g} t ({causes})"
+            f"no set of {what} can hold the body within heel +-{problem.heel_tolerance:g} deg, "
+            f"trim +-{problem.trim_tolerance:g} deg, tensions {problem.min_tension:g} t to "
+            f"each crane's SWL ({causes})"
         )
     return ranking, stats
+
+
+def _coarse(screening, problem):
+    return len(screening.sets) * len(screening_scenarios(problem)[0]) > FULL_COLUMNS
+
+
+def _unreachable(problem):
+    """Why no assignment puts every crane within reach of a distinct lug."""
+    swl = problem.reach[1]
+    counts = np.sum(~np.isnan(swl), axis=0)
+    worst = int(np.argmin(counts))
+    crane = problem.fleet[worst]
+    return (f"no assignment puts every crane within reach of its own lug: crane "
+            f"{crane.name} reaches {int(counts[worst])} of {len(problem.candidates)} candidates "
+            f"(chart reach {crane.reach:g} m); expected cranes closer to the candidates or "
+            "longer charts")

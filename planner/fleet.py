@@ -1,0 +1,188 @@
+"""The crane fleet: unequal cranes at fixed positions, each with its load chart.
+
+A planning file lists the cranes with ``[[cranes]]`` (README "Crane fleet"); a file with only
+``[crane]`` and ``[plan] cranes = n`` is a fleet of n equal cranes with no reach limit. The
+planner decides which crane takes which lug; a crane can take a lug only within its chart's
+reach, and its SWL there is read from the chart.
+
+The radius of a crane on a lug is the plan distance from the crane's slew centre to the lug
+at the level attitude (the hook is above the lug), in the world frame of the plan (the body
+turned by the plan's yaw about the vertical through the body-frame origin).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.scene import finite, positive
+
+
+def _set(obj, name, value):
+    object.__setattr__(obj, name, value)
+
+
+@dataclass(frozen=True)
+class FleetCrane:
+    """One crane of the fleet.
+
+    Parameters
+    ----------
+    name : str
+    EA : float  [t]
+        Hoist rope axial stiffness.
+    rope_length : float  [m]
+        Unstretched rope length l0 from boom tip to lug.
+    position : tuple of 2 float or None  [m]
+        Slew centre in plan (world x, y, z-up); None: anywhere (no reach limit).
+    load_chart : tuple of (radius [m], SWL [t]) pairs
+        Radii strictly increasing; SWL linear between points, the first point's SWL inside
+        its radius, no reach past the last point. Empty when ``swl`` is given.
+    swl : float or None  [t]
+        A fixed SWL at any radius (instead of a chart).
+    boom_min, boom_max : float  [m]
+        Range of the boom-tip height H above the datum.
+    from_defaults : bool
+        Made from the ``[crane]`` defaults (a problem re-makes such a fleet when its
+        defaults or crane count change).
+    """
+
+    name: str
+    EA: float
+    rope_length: float
+    position: tuple[float, float] | None = None
+    load_chart: tuple[tuple[float, float], ...] = ()
+    swl: float | None = None
+    boom_min: float = -math.inf
+    boom_max: float = math.inf
+    from_defaults: bool = field(default=False, compare=False)
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InvalidScene(f"cranes.name = {self.name!r}: expected a non-empty string")
+        key = f"cranes[{self.name}]"
+        _set(self, "EA", positive(f"{key}.EA", self.EA))
+        _set(self, "rope_length", positive(f"{key}.rope_length", self.rope_length))
+        if self.position is not None:
+            x, y = (finite(f"{key}.position", v) for v in tuple(self.position)[:2])
+            _set(self, "position", (x, y))
+        chart = tuple(tuple(p) for p in self.load_chart)
+        if (self.swl is None) == (not chart):
+            raise InvalidScene(f"{key}: expected exactly one of load_chart = [[radius, swl], ...] "
+                               "or swl")
+        if self.swl is not None:
+            _set(self, "swl", positive(f"{key}.swl", self.swl))
+        if chart:
+            if self.position is None:
+                raise InvalidScene(f"{key}.position: missing, expected the slew centre [x, y, z] "
+                                   "in m (a load chart needs it for the radius)")
+            points = []
+            for pair in chart:
+                if len(pair) != 2:
+                    raise InvalidScene(f"{key}.load_chart = {list(map(list, chart))}: expected "
+                                       "[[radius m, SWL t], ...]")
+                radius = finite(f"{key}.load_chart radius", pair[0])
+                swl = finite(f"{key}.load_chart SWL", pair[1])
+                if radius < 0.0:
+                    raise InvalidScene(f"{key}.load_chart radius {radius:g}: expected >= 0 m")
+                if swl <= 0.0:
+                    raise InvalidScene(f"{key}.load_chart SWL {swl:g} t at radius {radius:g} m: "
+                                       "expected > 0 t")
+                points.append((radius, swl))
+            radii = [p[0] for p in points]
+            if any(b <= a for a, b in zip(radii, radii[1:])):
+                raise InvalidScene(f"{key}.load_chart radii {radii}: expected strictly increasing")
+            _set(self, "load_chart", tuple(points))
+        for name in ("boom_min", "boom_max"):
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and math.isinf(value)):
+                _set(self, name, finite(f"{key}.boom_height.{name[5:]}", value))
+        if self.boom_min > self.boom_max:
+            raise InvalidScene(f"{key}.boom_height = {{min = {self.boom_min:g}, max = "
+                               f"{self.boom_max:g}}}: expected min <= max")
+
+    @property
+    def stiffness(self):
+        """Rope spring rate EA / l0  [t/m]."""
+        return self.EA / self.rope_length
+
+    @property
+    def reach(self):
+        """Largest radius of the chart  [m] (inf without a chart)."""
+        return self.load_chart[-1][0] if self.load_chart else math.inf
+
+    def radius(self, plan_points):
+        """Plan distance from the slew centre to points (world x, y)  [m]; 0 without a position."""
+        plan_points = np.asarray(plan_points, dtype=float)
+        if self.position is None:
+            return np.zeros(plan_points.shape[:-1])
+        return np.hypot(plan_points[..., 0] - self.position[0], plan_points[..., 1] - self.position[1])
+
+    def swl_at(self, radius):
+        """SWL at a radius  [t]; NaN beyond the chart's reach."""
+        radius = np.asarray(radius, dtype=float)
+        if not self.load_chart:
+            return np.full(radius.shape, self.swl)
+        chart = np.array(self.load_chart)
+        value = np.interp(radius, chart[:, 0], chart[:, 1])  # flat inside the first radius
+        return np.where(radius <= chart[-1, 0] * (1 + 1e-12), value, np.nan)
+
+    def same_as(self, other):
+        """True when the two cranes are interchangeable (all but the name equal)."""
+        keys = ("EA", "rope_length", "position", "load_chart", "swl", "boom_min", "boom_max")
+        return all(getattr(self, k) == getattr(other, k) for k in keys)
+
+
+def equal_fleet(spec, count):
+    """``count`` equal cranes from the ``[crane]`` defaults, named ``crane 1`` ...
+
+    Parameters
+    ----------
+    spec : CraneSpec
+    count : int
+    """
+    return tuple(
+        FleetCrane(name=f"crane {k + 1}", EA=spec.EA, rope_length=spec.rope_length, swl=spec.swl,
+                   boom_min=spec.boom_min, boom_max=spec.boom_max, from_defaults=True)
+        for k in range(count)
+    )
+
+
+def crane_classes(fleet):
+    """Group interchangeable cranes.
+
+    Returns
+    -------
+    tuple of tuple of int
+        Crane indices of each class, in fleet order of first appearance.
+    """
+    classes = []
+    for j, crane in enumerate(fleet):
+        for group in classes:
+            if fleet[group[0]].same_as(crane):
+                group.append(j)
+                break
+        else:
+            classes.append([j])
+    return tuple(tuple(g) for g in classes)
+
+
+def reach_table(fleet, plan_points):
+    """Radius and SWL of every crane at every candidate.
+
+    Parameters
+    ----------
+    fleet : tuple of FleetCrane
+    plan_points : (C, 2)  [m]   candidates at level, world plan coordinates
+
+    Returns
+    -------
+    radius : (C, m)  [m]
+    swl : (C, m)  [t]   NaN where the crane cannot reach the candidate
+    """
+    radius = np.column_stack([crane.radius(plan_points) for crane in fleet])
+    swl = np.column_stack([crane.swl_at(radius[:, j]) for j, crane in enumerate(fleet)])
+    return radius, swl
