@@ -1,4 +1,9 @@
-"""Result objects of a solve."""
+"""Result objects of a solve.
+
+Results are in the ``z-up`` frame, as the scene is; :meth:`Equilibrium.to_json` writes
+world coordinates (body position, hook positions, spreader ends) back in the frame of the
+scene's file (``Equilibrium.frame``).
+"""
 
 from __future__ import annotations
 
@@ -83,16 +88,62 @@ class Afloat:
 
 
 @dataclass(frozen=True)
+class RiggingState:
+    """Sling legs, hooks and spreader bars of an equilibrium (``rigging`` model).
+
+    Leg keys are ``"CRANE/LUG"`` for a leg to a lug and ``"CRANE/top1"``, ``"CRANE/top2"``
+    for a spreader's top legs (hook to bar end 1, 2); CRANE is the crane's name.
+
+    Parameters
+    ----------
+    legs : dict of str to float  [t]
+        Leg tension (0 for a slack leg).
+    sling_angles : dict of str to float  [deg]
+        Leg angle from the horizontal at the equilibrium (90 for a vertical leg).
+    leg_lugs : dict of str to str or None
+        The lug at each leg's lower end (None for a top leg).
+    hook_positions : dict of str to tuple of 3 float  [m]
+        World position of each sling crane's hook (``z-up``).
+    spreader_compression : dict of str to float  [t]
+        Axial compression of each crane's spreader bar (> 0 compressed).
+    spreader_ends : dict of str to tuple of two 3-tuples  [m]
+        World positions of the bar's ends 1 and 2 (``z-up``).
+    min_sling_angle : float  [deg]
+        The limit the scene set (``[rigging] min_sling_angle``).
+    """
+
+    legs: dict[str, float]
+    sling_angles: dict[str, float]
+    leg_lugs: dict[str, str | None]
+    hook_positions: dict[str, tuple[float, float, float]]
+    spreader_compression: dict[str, float]
+    spreader_ends: dict[str, tuple[tuple[float, float, float], tuple[float, float, float]]]
+    min_sling_angle: float
+
+
+def _in_frame(point, frame):
+    """A world point from ``z-up`` to a file's frame (``choi``: (x, y, z) -> (x, z, -y))."""
+    x, y, z = (float(v) for v in point)
+    return [x, z, -y] if frame == "choi" else [x, y, z]
+
+
+def _maybe_in_frame(point, frame):
+    return None if point is None else _in_frame(point, frame)
+
+
+@dataclass(frozen=True)
 class Equilibrium:
     """Equilibrium of the body on its ropes.
 
     Parameters
     ----------
     model : str
-        ``"elastic"``, ``"paper-elastic"`` or ``"rigid"``.
+        ``"elastic"``, ``"paper-elastic"``, ``"rigid"``, ``"hydrostatic"``, ``"inclined"``
+        or ``"rigging"``.
     pose : Pose
     tensions : dict of str to float  [t]
-        Rope tension by lug name, in scene order.
+        Rope tension at each crane, in scene order: by lug name for one rope per lug; with
+        sling sets, the hook load by crane name (see ``rigging``).
     weight : float  [t]
     swl : dict of str to float or None  [t]
         Safe working load by lug name (None where not given).
@@ -107,6 +158,12 @@ class Equilibrium:
         Inclined ropes: each rope's force vector and inclination.
     position : tuple of 3 float or None  [m]
         Inclined ropes: world position of the body-frame origin (it swings in plan).
+    rigging : RiggingState or None
+        Sling sets: legs, sling angles, hooks and spreaders. ``tensions`` then holds each
+        crane's hook load (hoist rope tension), keyed by crane name (a one-rope crane by
+        its lug).
+    frame : str
+        The scene file's frame; :meth:`to_json` writes world coordinates in it.
     """
 
     model: str
@@ -120,15 +177,17 @@ class Equilibrium:
     afloat: Afloat | None = None
     rope_forces: dict | None = None
     position: tuple[float, float, float] | None = None
+    rigging: RiggingState | None = None
+    frame: str = "z-up"
 
     @property
     def share(self):
-        """Each rope's share of the weight, by lug name  [-]."""
+        """Each crane's share of the weight, keyed as ``tensions``  [-]."""
         return {name: t / self.weight for name, t in self.tensions.items()}
 
     @property
     def utilisation(self):
-        """Tension over the crane's SWL, by lug name (None where no SWL)  [-]."""
+        """Tension over the crane's SWL, keyed as ``tensions`` (None where no SWL)  [-]."""
         return {
             name: (t / self.swl[name] if self.swl[name] else None)
             for name, t in self.tensions.items()
@@ -141,7 +200,11 @@ class Equilibrium:
         return max(values) - min(values) if values else 0.0
 
     def to_json(self):
-        """The JSON object of ``liftplan solve --json`` (keys fixed by CONTRACT.md)."""
+        """The JSON object of ``liftplan solve --json`` (keys fixed by CONTRACT.md).
+
+        World coordinates (``position``, the water centres and contact, ``hook_positions``,
+        spreader ends) are in the scene file's frame, named by ``"frame"``.
+        """
         out = {
             "model": self.model,
             "converged": self.solver.converged,
@@ -156,6 +219,7 @@ class Equilibrium:
             "utilisation": self.utilisation,
             "slack": list(self.slack),
             "residual": self.residual,
+            "frame": self.frame,
             "solver": {
                 "method": self.solver.method,
                 "iterations": self.solver.iterations,
@@ -165,7 +229,18 @@ class Equilibrium:
         if self.rope_forces is not None:
             out["horizontal_forces"] = {name: list(f.force[:2]) for name, f in self.rope_forces.items()}
             out["rope_angles"] = {name: f.angle for name, f in self.rope_forces.items()}
-            out["position"] = list(self.position)
+            out["position"] = _in_frame(self.position, self.frame)
+        if self.rigging is not None:
+            r = self.rigging
+            out.update({
+                "hook_loads": dict(self.tensions),
+                "legs": dict(r.legs),
+                "sling_angles": dict(r.sling_angles),
+                "hook_positions": {k: _in_frame(v, self.frame) for k, v in r.hook_positions.items()},
+                "spreaders": {k: {"compression": c, "ends": [_in_frame(e, self.frame)
+                                                             for e in r.spreader_ends[k]]}
+                              for k, c in r.spreader_compression.items()},
+            })
         if self.afloat is not None:
             a = self.afloat
             out.update({
@@ -174,8 +249,8 @@ class Equilibrium:
                 "ground_reaction": a.ground_reaction,
                 "freeing_force": a.freeing_force,
                 "displaced_volume": a.volume,
-                "centre_of_buoyancy": a.centre_of_buoyancy,
-                "centre_of_gravity": a.centre_of_gravity,
-                "contact": a.contact,
+                "centre_of_buoyancy": _maybe_in_frame(a.centre_of_buoyancy, self.frame),
+                "centre_of_gravity": _maybe_in_frame(a.centre_of_gravity, self.frame),
+                "contact": _maybe_in_frame(a.contact, self.frame),
             })
         return out

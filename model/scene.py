@@ -1,4 +1,4 @@
-"""The scene: a rigid body hung from n >= 3 vertical crane ropes.
+"""The scene: a rigid body hung from crane ropes (n >= 3 lugs), or from sling sets.
 
 Frozen dataclasses in the ``z-up`` frame (see :mod:`liftplan.model.frames`), referring to
 each other by lug name. Each object checks its own values where it is made, and
@@ -16,8 +16,10 @@ from functools import cached_property
 import numpy as np
 
 from .errors import InvalidScene
+from .rigging_gear import RiggingLimits, Sling
 
-MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined")
+MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined", "rigging")
+FRAMES = ("z-up", "choi")  # as liftplan.model.frames.FRAMES (not imported: it pulls casadi in)
 
 # Plan-area test for collinear lugs: the support polygon's area over its diameter squared.
 # Below this the 3x3 statics matrix has a condition number above ~1e9: singular in t and m.
@@ -98,33 +100,58 @@ class Lug:
 
 @dataclass(frozen=True)
 class Crane:
-    """A crane whose hook hangs vertically above one lug.
+    """A crane: one rope from its tip to one lug, or a hoist rope to a hook with a sling set.
 
     Parameters
     ----------
-    lug : str
-        Name of the lug the rope is shackled to.
+    lug : str or None
+        Name of the lug the rope is shackled to (None for a crane with a ``sling``).
     EA : float or None  [t]
-        Axial stiffness of the rope (modulus times metallic area).
+        Axial stiffness of the rope (modulus times metallic area); with a sling, of the
+        hoist rope from tip to hook.
     boom_height : float or None  [m]
         Height H of the boom tip (rope's upper end) above the datum z = 0.
     rope_length : float or None  [m]
-        Unstretched rope length l0 between boom tip and lug (forward ``elastic`` model).
+        Unstretched rope length l0 between boom tip and lug (forward ``elastic`` model); with a
+        sling, between boom tip and hook.
     swl : float or None  [t]
         Safe working load of the crane at its radius.
     tip : tuple of 3 float or None  [m]
-        World position of the boom tip when it is not above the lug (inclined rope).
+        World position of the boom tip when it is not above the lug (inclined rope); with a
+        sling, default above the centroid of the sling's lugs at the boom height.
+    name : str or None
+        The crane's label; needed with a ``sling`` (results are keyed by it). A crane on one
+        lug is keyed by its lug, as the contract fixes.
+    sling : Sling or None
+        Legs (and a spreader bar) from the hook to 2-4 lugs, instead of ``lug``.
     """
 
-    lug: str
+    lug: str | None = None
     EA: float | None = None
     boom_height: float | None = None
     rope_length: float | None = None
     swl: float | None = None
     tip: tuple[float, float, float] | None = None
+    name: str | None = None
+    sling: Sling | None = None
 
     def __post_init__(self):
-        where = f"cranes[{self.lug}]"
+        if self.name is not None and (not isinstance(self.name, str) or not self.name.strip()):
+            raise InvalidScene(f"cranes.name = {self.name!r}: expected a non-empty string")
+        where = f"cranes[{self.name or self.lug}]"
+        if (self.lug is None) == (self.sling is None):
+            raise InvalidScene(
+                f"{where}: {'both lug and sling' if self.lug is not None else 'neither lug nor sling'}"
+                ' given; expected lug = "NAME" (one rope to one lug) or sling = { legs = [...] }'
+            )
+        if self.sling is not None:
+            if not isinstance(self.sling, Sling):
+                raise InvalidScene(f"{where}.sling = {self.sling!r}: expected a Sling")
+            if self.name is None:
+                raise InvalidScene(
+                    f"cranes[{', '.join(self.sling.lugs)}].name: missing; a crane with a sling "
+                    "needs a name (its hook load and legs are reported under it)"
+                )
         if self.EA is not None:
             _set(self, "EA", positive(f"{where}.EA", self.EA))
         if self.boom_height is not None:
@@ -135,6 +162,16 @@ class Crane:
             _set(self, "swl", positive(f"{where}.swl", self.swl))
         if self.tip is not None:
             _set(self, "tip", point(f"{where}.tip", self.tip))
+
+    @property
+    def label(self):
+        """The key of this crane's results: its lug (one rope) or its name (a sling)."""
+        return self.lug if self.sling is None else self.name
+
+    @property
+    def lugs(self):
+        """The lugs this crane holds."""
+        return (self.lug,) if self.sling is None else self.sling.lugs
 
 
 @dataclass(frozen=True)
@@ -268,7 +305,8 @@ class Scene:
     body : Body
     lugs : tuple of Lug
     cranes : tuple of Crane
-        Exactly one per lug; stored in lug order.
+        Every lug held by exactly one crane's rope or sling leg; stored in the order of
+        their (first) lugs.
     attitude : Attitude
     analysis : Analysis
     name : str
@@ -276,6 +314,11 @@ class Scene:
     hull : liftplan.model.hull.Hull or None
         Needed with ``water`` (buoyancy acts on the hull).
     ground : Ground or None
+    rigging : RiggingLimits
+        Limits checked on sling sets (``[rigging]``).
+    frame : str
+        The frame the scene's file was written in (``"z-up"`` or ``"choi"``); the scene
+        itself is always in ``z-up``, and JSON coordinates are written back in this frame.
     """
 
     body: Body
@@ -287,8 +330,12 @@ class Scene:
     water: Water | None = None
     hull: object | None = None
     ground: Ground | None = None
+    rigging: RiggingLimits = field(default_factory=RiggingLimits)
+    frame: str = "z-up"
 
     def __post_init__(self):
+        if self.frame not in FRAMES:
+            raise InvalidScene(f"frame = {self.frame!r}: expected one of {', '.join(FRAMES)}")
         lugs, cranes = tuple(self.lugs), tuple(self.cranes)
         if (self.water is None) != (self.hull is None):
             raise InvalidScene(
@@ -308,22 +355,39 @@ class Scene:
         for name in names:
             if names.count(name) > 1:
                 raise InvalidScene(f"lugs.name = {name!r}: duplicate, expected unique lug names")
-        by_lug = {}
+        holder = {}
         for crane in cranes:
-            if crane.lug not in names:
-                raise InvalidScene(
-                    f"cranes.lug = {crane.lug!r}: unknown lug, expected one of {', '.join(names)}"
-                )
-            if crane.lug in by_lug:
-                raise InvalidScene(
-                    f"cranes.lug = {crane.lug!r}: two cranes on one lug, expected one crane per lug"
-                )
-            by_lug[crane.lug] = crane
+            for lug in crane.lugs:
+                key = "cranes.lug" if crane.sling is None else f"cranes[{crane.name}].sling.legs.lug"
+                if lug not in names:
+                    raise InvalidScene(
+                        f"{key} = {lug!r}: unknown lug, expected one of {', '.join(names)}"
+                    )
+                if lug in holder:
+                    if crane.sling is None and holder[lug].sling is None:
+                        raise InvalidScene(
+                            f"cranes.lug = {lug!r}: two cranes on one lug, expected one crane per lug"
+                        )
+                    raise InvalidScene(
+                        f"{key} = {lug!r}: used twice (cranes {holder[lug].label} and {crane.label}); "
+                        "expected each lug on one rope or sling leg"
+                    )
+                holder[lug] = crane
         for name in names:
-            if name not in by_lug:
+            if name not in holder:
                 raise InvalidScene(f"lugs[{name}]: no crane on it, expected one crane per lug")
+        seen = {}
+        for crane in cranes:
+            for ident in {crane.label, crane.name} - {None}:
+                if seen.setdefault(ident, crane) is not crane:
+                    raise InvalidScene(
+                        f"cranes.name = {ident!r}: names two cranes (a crane on one lug is also "
+                        "known by its lug); expected unique crane names"
+                    )
+        # cranes in the order of their first lug: lug order for one rope per lug, as before
+        order = {name: k for k, name in enumerate(names)}
         _set(self, "lugs", lugs)
-        _set(self, "cranes", tuple(by_lug[name] for name in names))
+        _set(self, "cranes", tuple(sorted(cranes, key=lambda c: min(order[lug] for lug in c.lugs))))
         for red in self.analysis.redundant:
             if red.lug not in names:
                 raise InvalidScene(
@@ -373,22 +437,30 @@ class Scene:
             value = getattr(crane, field)
             if value is None:
                 raise InvalidScene(
-                    f"cranes[{crane.lug}].{field}: missing, the {model} model needs it for every crane"
+                    f"cranes[{crane.label}].{field}: missing, the {model} model needs it for every crane"
                 )
             values.append(value)
         return values
 
-    def crane(self, lug):
-        """The crane on lug ``lug``."""
+    def crane(self, key):
+        """The crane on lug ``key``, or named ``key``."""
         for crane in self.cranes:
-            if crane.lug == lug:
+            if key in (crane.lug, crane.name):
                 return crane
-        raise InvalidScene(f"lug = {lug!r}: unknown lug, expected one of {', '.join(self.lug_names)}")
+        known = [c.label for c in self.cranes]
+        raise InvalidScene(
+            f"crane = {key!r}: unknown crane, expected a lug or crane name of {', '.join(known)}")
+
+    @property
+    def slings(self):
+        """True when a crane carries a sling set (the ``rigging`` model is needed)."""
+        return any(c.sling is not None for c in self.cranes)
 
     # -- changed copies (the scene is frozen) ------------------------------------
-    def with_crane(self, lug, **changes):
-        """A copy with crane ``lug`` changed, e.g. ``scene.with_crane("T1", boom_height=41.0)``."""
-        old = self.crane(lug)
+    def with_crane(self, key, **changes):
+        """A copy with crane ``key`` (lug or name) changed, e.g.
+        ``scene.with_crane("T1", boom_height=41.0)``."""
+        old = self.crane(key)
         cranes = tuple(dataclasses.replace(c, **changes) if c is old else c for c in self.cranes)
         return dataclasses.replace(self, cranes=cranes)
 

@@ -23,7 +23,8 @@ from pydantic import BaseModel, ConfigDict, Strict, ValidationError
 from .errors import InvalidScene
 from .frames import choi_to_zup
 from .hull import Compartment, Hull
-from .scene import Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Water
+from .rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from .scene import MODELS, Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Water
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -52,8 +53,36 @@ class _Ropes(Table):
     EA: Num | None = None
 
 
-class _Crane(Table):
+class _Leg(Table):
     lug: Text
+    length: Num
+    EA: Num | None = None
+    diameter: Num | None = None   # mm
+    end: Literal[1, 2] | None = None
+
+
+class _TopLeg(Table):
+    length: Num
+    EA: Num | None = None
+    diameter: Num | None = None
+
+
+class _Spreader(Table):
+    length: Num
+    top: list[_TopLeg]
+    weight: Num = 0.0
+    EA: Num | None = None
+
+
+class _Sling(Table):
+    legs: list[_Leg]
+    spreader: _Spreader | None = None
+
+
+class _Crane(Table):
+    lug: Text | None = None
+    name: Text | None = None
+    sling: _Sling | None = None
     tip: Point | None = None
     boom_height: Num | None = None
     rope_length: Num | None = None
@@ -74,7 +103,7 @@ class _Redundant(Table):
 
 
 class _Analysis(Table):
-    model: Literal["elastic", "paper-elastic", "rigid", "hydrostatic", "inclined"] | None = None
+    model: Literal[MODELS] | None = None
     redundant: _Redundant | list[_Redundant] | None = None
 
 
@@ -108,6 +137,10 @@ class _Ground(Table):
     friction: Num | None = None
 
 
+class _Rigging(Table):
+    min_sling_angle: Num = RiggingLimits.min_sling_angle
+
+
 class _SceneFile(Table):
     name: Text = ""
     frame: Literal["z-up", "choi"] = "z-up"
@@ -120,6 +153,7 @@ class _SceneFile(Table):
     water: _Water | None = None
     hull: _Hull | None = None
     ground: _Ground | None = None
+    rigging: _Rigging = _Rigging()
 
 # Tables of a planning scene (read by liftplan.planner.problemfile).
 PLAN_TABLES = ("candidates", "plan", "crane")
@@ -261,17 +295,7 @@ def _zup_box(box, to_zup):
 def _to_scene(data, base):
     to_zup = choi_to_zup if data.frame == "choi" else tuple
     lugs = [Lug(name=lug.name, at=to_zup(lug.at)) for lug in data.lugs]
-    cranes = [
-        Crane(
-            lug=c.lug,
-            EA=c.EA if c.EA is not None else data.ropes.EA,
-            boom_height=c.boom_height,
-            rope_length=c.rope_length,
-            swl=c.swl,
-            tip=to_zup(c.tip) if c.tip is not None else None,
-        )
-        for c in data.cranes
-    ]
+    cranes = [_to_crane(c, data, to_zup) for c in data.cranes]
     red = data.analysis.redundant
     red = [] if red is None else [red] if isinstance(red, _Redundant) else red
     return Scene(
@@ -288,7 +312,39 @@ def _to_scene(data, base):
         hull=_to_hull(data, to_zup, base) if data.hull is not None else None,
         ground=(Ground(contact=to_zup(data.ground.contact), friction=data.ground.friction)
                 if data.ground is not None else None),
+        rigging=RiggingLimits(min_sling_angle=data.rigging.min_sling_angle),
+        frame=data.frame,
     )
+
+
+def _to_crane(c, data, to_zup):
+    """One crane; errors of its sling are prefixed with the crane's key."""
+    try:
+        sling = _to_sling(c.sling) if c.sling is not None else None
+    except InvalidScene as err:
+        raise InvalidScene(f"cranes[{c.name or c.lug}].{err}") from None
+    return Crane(
+        lug=c.lug,
+        EA=c.EA if c.EA is not None else data.ropes.EA,
+        boom_height=c.boom_height,
+        rope_length=c.rope_length,
+        swl=c.swl,
+        tip=to_zup(c.tip) if c.tip is not None else None,
+        name=c.name,
+        sling=sling,
+    )
+
+
+def _to_sling(spec):
+    legs = tuple(Leg(lug=g.lug, length=g.length, EA=g.EA, diameter=g.diameter, end=g.end)
+                 for g in spec.legs)
+    spreader = None
+    if spec.spreader is not None:
+        bar = spec.spreader
+        top = tuple(Leg(lug=None, length=g.length, EA=g.EA, diameter=g.diameter) for g in bar.top)
+        options = {"EA": bar.EA} if bar.EA is not None else {}
+        spreader = Spreader(length=bar.length, top=top, weight=bar.weight, **options)
+    return Sling(legs=legs, spreader=spreader)
 
 
 def one_line(err, root):

@@ -13,6 +13,7 @@ typed error says why.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 
@@ -23,6 +24,7 @@ from .acceptance import RESIDUAL_TOL, judge
 from .errors import EquilibriumNotFound, InvalidScene
 from .inclined import solve_inclined
 from .results import Equilibrium, Pose, SolverInfo
+from .rigging import solve_rigging
 from .scene import MODELS
 from .statics import BLOCK, rope_model
 from .water import solve_hydrostatic
@@ -32,15 +34,17 @@ def pick_model(scene):
     """The model a scene asks for, or the least one its data supports.
 
     Returns ``scene.analysis.model`` if set; otherwise ``"hydrostatic"`` for a hull in water
-    (which then picks constant or clipped buoyancy itself), ``"inclined"`` when a crane's tip
-    is placed in the world, ``"elastic"`` when every crane has a
-    boom height, rope length and EA, ``"rigid"`` when redundant tensions are given (or n = 3),
-    else ``"paper-elastic"``.
+    (which then picks constant or clipped buoyancy itself), ``"rigging"`` when a crane carries
+    a sling set, ``"inclined"`` when a crane's tip is placed in the world, ``"elastic"`` when
+    every crane has a boom height, rope length and EA, ``"rigid"`` when redundant tensions
+    are given (or n = 3), else ``"paper-elastic"``.
     """
     if scene.analysis.model:
         return scene.analysis.model
     if scene.hull is not None:
         return "hydrostatic"
+    if scene.slings:
+        return "rigging"
     if any(c.tip is not None for c in scene.cranes):
         return "inclined"
     cranes = scene.cranes
@@ -83,13 +87,24 @@ def solve(scene, model=None, method="newton"):
             f"model = {model!r} leaves out the scene's [water] and [hull]; expected 'hydrostatic' "
             "(or no model: the least model the scene needs is picked)"
         )
-    if model != "inclined" and any(c.tip is not None for c in scene.cranes) and scene.hull is None:
+    if scene.slings and model != "rigging":
+        raise InvalidScene(
+            f"cranes.sling given, but the {model} model hangs one rope per lug; expected model "
+            "'rigging' (or no model: it is picked when a crane has a sling)"
+            if scene.hull is None else
+            "cranes.sling: slings on a hull in water are not modelled; expected one rope per lug"
+        )
+    if model not in ("inclined", "rigging") and any(c.tip is not None for c in scene.cranes) \
+            and scene.hull is None:
         raise InvalidScene(
             f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
             "'inclined' (or no model: it is picked when a tip is given)"
         )
     if model == "hydrostatic":
-        return solve_hydrostatic(scene, method=method)
+        # the water solvers build their results themselves: give them the file's frame here
+        return dataclasses.replace(solve_hydrostatic(scene, method=method), frame=scene.frame)
+    if model == "rigging":
+        return solve_rigging(scene)
     if model == "inclined":
         return solve_inclined(scene)
     if model == "rigid":
@@ -157,6 +172,7 @@ def _equilibrium(scene, model, x, tensions, residual, method, seconds, slack=())
         slack=tuple(slack),
         residual=worst,
         solver=SolverInfo(method=method, converged=True, iterations=None, seconds=seconds),
+        frame=scene.frame,
     )
 
 
