@@ -29,20 +29,26 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 
 SOLVER = cp.CLARABEL
+FALLBACK = cp.HIGHS
 _INFEASIBLE = (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE)
 
 
 def _run(problem, what):
-    """Solve with Clarabel; return the optimal value or raise a typed error."""
-    try:
-        problem.solve(solver=SOLVER)
-    except cp.error.SolverError as err:
-        raise SolverFailed(f"{what}: Clarabel failed ({err})") from None
-    if problem.status in _INFEASIBLE:
-        raise PlanInfeasible(f"{what}: no tension set satisfies the constraints")
-    if problem.status != cp.OPTIMAL:
-        raise SolverFailed(f"{what}: Clarabel ended with status {problem.status!r}")
-    return float(problem.value)
+    """Solve with Clarabel (HiGHS's simplex where Clarabel fails numerically, as it can on
+    badly scaled rows); return the optimal value or raise a typed error."""
+    failure = None
+    for solver in (SOLVER, FALLBACK):
+        try:
+            problem.solve(solver=solver)
+        except cp.error.SolverError as err:
+            failure = f"{solver} failed ({err})"
+            continue
+        if problem.status in _INFEASIBLE:
+            raise PlanInfeasible(f"{what}: no tension set satisfies the constraints")
+        if problem.status == cp.OPTIMAL:
+            return float(problem.value)
+        failure = f"{solver} ended with status {problem.status!r}"
+    raise SolverFailed(f"{what}: {failure}")
 
 
 def _checked(problem, name):
