@@ -52,7 +52,8 @@ class Compiled:
     function : casadi.Function
         The compiled library's Function, or the original one in casadi's VM.
     backend : {"jit", "casadi-vm"}
-        ``jit``: compiled C (from the cache or just built); ``casadi-vm``: no compiler.
+        ``jit``: compiled C (from the cache or just built); ``casadi-vm``: no compiler, or
+        the compile failed.
     library : pathlib.Path or None
         The shared library loaded (``jit`` only).
     built : bool
@@ -82,7 +83,10 @@ def cache_folder():
 def compiler():
     """The C compiler command as a list of words, or None when there is none."""
     if "CC" in os.environ:
-        words = shlex.split(os.environ["CC"])
+        try:
+            words = shlex.split(os.environ["CC"])
+        except ValueError:  # unbalanced quotes: not a command
+            return None
         return words if words and shutil.which(words[0]) else None
     for name in ("cc", "gcc", "clang"):
         path = shutil.which(name)

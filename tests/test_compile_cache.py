@@ -185,9 +185,9 @@ def test_a_corrupt_cache_entry_is_rebuilt(tmp_path, logged_cc, damage):
         assert_allclose(np.array(got), np.array(want), rtol=1e-12, atol=1e-12)  # as above
 
 
-@pytest.mark.parametrize("cc", ["", "/nonexistent/cc", "false"])
+@pytest.mark.parametrize("cc", ["", "/nonexistent/cc", "'unbalanced", "false"])
 def test_without_a_working_compiler_the_vm_gives_the_same_results(tmp_path, monkeypatch, cc):
-    # "" and a missing program: no compiler; "false": a compiler that fails
+    # "", a missing program, a malformed command: no compiler; "false": a compiler that fails
     monkeypatch.setenv("CC", cc)
     function = column_function(n=4)
     result = compile_cached(function, tmp_path)
