@@ -15,7 +15,9 @@ from __future__ import annotations
 import csv
 import logging
 import os
+import signal
 import sys
+import threading
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -110,10 +112,20 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
     from tqdm import tqdm
 
     output = Path(output or study.output)
+    if client is None and scheduler:
+        probe_scheduler(scheduler)  # before any work: a wrong address costs seconds, not a plan
     base = plan(study.problem({})) if study.kind == "check" else None  # the plan every case checks
     journal = Journal(output.with_name(output.name + ".partial"), study, restart)
     pending = [(i, case) for i, case in study.cases() if i not in journal.done]
-    tasks = _tasks(study, pending, base)
+    runnable = pending
+    if study.kind == "check":
+        # a grid point that is no valid planning scene (each sweep value is; a combination
+        # may not be): its cases are invalid rows with the reason, not numbers
+        reasons, per = study.grid_reasons, max(study.sample_count, 1)
+        journal.write([_row(study, i, case, "invalid", _one_line_text(reasons[i // per]))
+                       for i, case in pending if reasons[i // per]])
+        runnable = [(i, case) for i, case in pending if not reasons[i // per]]
+    tasks = _tasks(study, runnable, base)
     seconds, cores = 0.0, 1
     if tasks:
         with _connect(client, scheduler, workers) as dask_client:
@@ -124,7 +136,7 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
             dask_client.run(warm_up, len(base.chosen.indices) if base is not None else None)
             start = time.perf_counter()
             futures = {dask_client.submit(fn, *args, pure=False): chunk for fn, args, chunk in tasks}
-            with tqdm(total=study.size, initial=study.size - len(pending), unit="case",
+            with tqdm(total=study.size, initial=study.size - len(runnable), unit="case",
                       disable=not progress, file=sys.stderr, dynamic_ncols=True) as bar:
                 for future in as_completed(futures):
                     try:
@@ -148,8 +160,8 @@ def _connect(client, scheduler, workers):
 
     if scheduler:
         try:
-            client = Client(scheduler, timeout="10s")
-        except (OSError, TimeoutError, ValueError) as err:
+            client = Client(scheduler, timeout=f"{HANDSHAKE_SECONDS}s")
+        except Exception as err:  # noqa: BLE001 - whatever answers there, one line naming it
             raise LiftPlanError(
                 f"--scheduler {scheduler}: cannot connect ({_one_line(err)}); expected the address "
                 "of a running Dask scheduler, e.g. tcp://10.0.0.5:8786") from None
@@ -157,10 +169,88 @@ def _connect(client, scheduler, workers):
             yield client
         return
     count = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                      dashboard_address=":0", silence_logs=logging.ERROR) as cluster, \
-            Client(cluster) as client:
+    # Ctrl-C is the command's to handle: workers started with SIGINT ignored keep it so (it
+    # survives exec), and print no tracebacks or solver warnings of their own when it comes
+    main = threading.current_thread() is threading.main_thread()  # only it may set handlers
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                               dashboard_address=":0", silence_logs=logging.ERROR)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
+    with cluster, Client(cluster) as client:
         yield client
+
+
+#: Seconds a scheduler has to answer the connection handshake.
+HANDSHAKE_SECONDS = 10.0
+#: A Dask handshake is ~100 bytes; a first frame larger than this is another protocol.
+_HANDSHAKE_BYTES = 1 << 16
+
+
+def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
+    """Check that a Dask scheduler answers at ``address`` within ``timeout`` seconds.
+
+    A Dask scheduler greets each connection with a small msgpack handshake frame. Anything
+    else (an HTTP server waiting for a request, a service sending text) is refused here in
+    one line, where Dask itself would wait for ever or read the text as a frame length of
+    exabytes. Only ``tcp://`` addresses (and bare ``host:port``) are probed; other
+    protocols are left to Dask's own connect timeout.
+
+    Raises
+    ------
+    LiftPlanError
+        Naming the address and what answered.
+    """
+    import socket
+    import struct
+
+    import msgpack
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    def refuse(why):
+        return LiftPlanError(f"--scheduler {address}: {why}; expected the address of a running Dask "
+                             "scheduler, e.g. tcp://10.0.0.5:8786")
+
+    try:
+        scheme, location = parse_address(address)
+        if scheme != "tcp":
+            return
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError) as err:
+        raise refuse(f"not an address ({err})") from None
+    deadline = time.monotonic() + timeout
+
+    def read(sock, count):
+        data = b""
+        while len(data) < count:
+            sock.settimeout(max(deadline - time.monotonic(), 1e-3))
+            chunk = sock.recv(count - len(data))
+            if not chunk:
+                raise refuse("the connection was closed before a Dask handshake")
+            data += chunk
+        return data
+
+    try:
+        with socket.create_connection((host, port), timeout=timeout) as sock:
+            (size,) = struct.unpack("<Q", read(sock, 8))
+            if not 16 <= size <= _HANDSHAKE_BYTES:
+                raise refuse("something answered, but not a Dask scheduler (not its handshake)")
+            body = read(sock, size)
+    except TimeoutError:
+        raise refuse(f"no Dask handshake within {timeout:g} s") from None
+    except OSError as err:
+        raise refuse(f"cannot connect ({err.strerror or err})") from None
+    try:
+        (frames,) = struct.unpack_from("<Q", body)
+        first = struct.unpack_from("<Q", body, 8)[0]
+        greeting = msgpack.loads(body[8 + 8 * frames:8 + 8 * frames + first])
+        ok = isinstance(greeting, dict) and "python" in greeting
+    except (struct.error, ValueError, msgpack.UnpackException):
+        ok = False
+    if not ok:
+        raise refuse("something answered, but not a Dask scheduler (not its handshake)")
 
 
 def _tasks(study, pending, base):
@@ -266,8 +356,12 @@ def _failed_rows(study, cases, status, reason):
 
 
 def _one_line(err):
-    text = str(err).strip().replace("\n", " ") or type(err).__name__
+    text = _one_line_text(str(err)) or type(err).__name__
     return text if isinstance(err, LiftPlanError) else f"{type(err).__name__}: {text}"
+
+
+def _one_line_text(text):
+    return text.strip().replace("\n", " ")
 
 
 class Journal:

@@ -14,12 +14,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from liftplan.model.scene import _convex_hull
 from liftplan.model.statics import rope_model
 
 from .scenarios import LugSet, pack, run_block
 
 #: Outcomes of a checked case.
-OK, UNSAFE, FAILED = "ok", "unsafe", "failed"
+OK, UNSAFE, FAILED, INVALID = "ok", "unsafe", "failed", "invalid"
 
 
 @dataclass(frozen=True)
@@ -53,9 +54,10 @@ class CheckResult:
     Parameters
     ----------
     status : list of str
-        ``"ok"``; ``"unsafe"`` (a rope above the SWL or below the minimum tension); or
-        ``"failed"`` (a rope went slack: the all-taut model does not hold there, and the
-        numbers of that case are NaN).
+        ``"ok"``; ``"unsafe"`` (a rope above the SWL or below the minimum tension);
+        ``"failed"`` (a rope went slack: the all-taut model does not hold there); or
+        ``"invalid"`` (the CG is not over the plan's lugs, as the scene rules require).
+        The numbers of failed and invalid cases are NaN.
     reason : list of str
         Empty when ok; otherwise one line naming the rope, the value and the attitude.
     worst_spread : numpy.ndarray  [t]
@@ -127,9 +129,15 @@ def check_plan(problem, indices, preload, cases, grid=3):
     flagged = ~np.all(np.isfinite(tensions), axis=(1, 2)) | np.any(
         (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2))
     status, reason = [OK] * m, [""] * m
-    for k in np.flatnonzero(flagged):  # only flagged cases need a reason
-        status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k])
-    failed = np.array([s == FAILED for s in status])
+    outside = outside_support(lugset.points[:, :2], cases.cog[:, :2])
+    for k in np.flatnonzero(flagged | (outside > 0)):  # only flagged cases need a reason
+        if outside[k] > 0:
+            status[k], reason[k] = INVALID, (
+                f"body.cog lies {outside[k]:.3g} m outside the plan's lugs' support polygon (in "
+                "plan); expected the CG over the lugs")
+        else:
+            status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k])
+    failed = np.array([s in (FAILED, INVALID) for s in status])
 
     def blank(values):
         return np.where(failed, np.nan, values)
@@ -140,6 +148,30 @@ def check_plan(problem, indices, preload, cases, grid=3):
         worst_heel=blank(heel[rows, worst]), worst_trim=blank(trim[rows, worst]),
         min_tension=blank(low), max_tension=blank(high), utilisation=blank(high / swl),
     )
+
+
+def outside_support(lugs, points):
+    """How far each plan point lies outside the lugs' convex hull (0 inside)  [m].
+
+    Parameters
+    ----------
+    lugs : numpy.ndarray, shape (n, 2)  [m]
+    points : numpy.ndarray, shape (m, 2)  [m]
+
+    Returns
+    -------
+    numpy.ndarray, shape (m,)  [m]
+        The largest distance beyond a hull edge (the scene's own test, at level attitude),
+        with the scene's rounding allowance of 1e-9 lug-set diameters.
+    """
+    hull = _convex_hull([tuple(p) for p in lugs])
+    a = lugs[hull]
+    edge = np.roll(a, -1, axis=0) - a  # counter-clockwise edges
+    rel = points[:, None, :] - a[None, :, :]
+    inside = (edge[None, :, 0] * rel[..., 1] - edge[None, :, 1] * rel[..., 0]) / np.hypot(*edge.T)
+    beyond = np.max(-inside, axis=1)
+    diameter = np.max(np.linalg.norm(lugs[:, None] - lugs[None], axis=-1))
+    return np.where(beyond > 1e-9 * diameter, beyond, 0.0)
 
 
 def _judge(tensions, heel, trim, swl, min_tension):

@@ -35,6 +35,7 @@ import copy
 import hashlib
 import itertools
 import json
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -178,6 +179,22 @@ class Study:
                 yield index, case
                 index += 1
 
+    @cached_property
+    def grid_reasons(self):
+        """Why each sweep grid point is no valid planning scene ("" where it is), in case
+        order: case ``i`` is grid point ``i // max(sample_count, 1)``. Each point is checked
+        by the planning file's own rules (schema and dataclasses), ~1 ms a point."""
+        keys = [key for key, _ in self.sweep]
+        out = []
+        for combo in itertools.product(*(values for _, values in self.sweep)):
+            try:
+                self.problem(dict(zip(keys, combo)))
+            except InvalidScene as err:
+                out.append(str(err).replace("\n", " "))
+            else:
+                out.append("")
+        return out
+
     def _draws(self):
         if self.sample_count == 0:
             return [None]
@@ -268,19 +285,15 @@ def loads_study(text, base=Path("."), stem="study"):
     except ValidationError as err:
         raise InvalidScene(one_line(err, _StudyFile)) from None
     spec = data.study
-    problem_path = base / spec.problem
-    try:
-        raw = parse_toml(problem_path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InvalidScene(f"study.problem = {spec.problem!r}: no such planning file "
-                           f"({problem_path})") from None
+    raw = _read_problem(base, spec.problem)
     sample = data.sample
     if sample is not None and sample.weight is None and sample.cog is None:
         raise InvalidScene("[sample]: expected weight = [low, high] and/or cog = [dx, dy, dz]")
-    if sample is not None and sample.weight is not None and not 0 < sample.weight[0] <= sample.weight[1]:
-        raise InvalidScene(f"sample.weight = {sample.weight}: expected factors 0 < low <= high")
-    if sample is not None and sample.cog is not None and min(sample.cog) < 0:
-        raise InvalidScene(f"sample.cog = {list(sample.cog)}: expected half-widths >= 0 m")
+    if sample is not None and sample.weight is not None and not (
+            0 < sample.weight[0] <= sample.weight[1] < math.inf):
+        raise InvalidScene(f"sample.weight = {sample.weight}: expected finite factors 0 < low <= high")
+    if sample is not None and sample.cog is not None and not all(0 <= w < math.inf for w in sample.cog):
+        raise InvalidScene(f"sample.cog = {list(sample.cog)}: expected finite half-widths >= 0 m")
     if spec.kind == "check":
         for key in data.sweep:
             if key not in CHECK_KEYS:
@@ -302,13 +315,37 @@ def loads_study(text, base=Path("."), stem="study"):
     )
     if study.size > MAX_CASES:
         raise InvalidScene(f"study: {study.size} cases, expected at most {MAX_CASES}")
-    if CANDIDATES in data.sweep and spec.kind == "plan":
-        for name in data.sweep[CANDIDATES]:
-            study._subset(name)
-    # the first case must be a valid planning scene: this catches misspelt sweep keys
-    _, first = next(study.cases())
-    try:
-        study.problem(first)
-    except InvalidScene as err:
-        raise InvalidScene(f"study.problem {spec.problem!r} with the first case {first}: {err}") from None
+    _check_sweep(study)
     return study
+
+
+def _read_problem(base, name):
+    """The study's planning file as a dict, refused unless it is a valid planning scene."""
+    if not name.strip():
+        raise InvalidScene("study.problem = '': expected the planning file's path")
+    path = base / name
+    if not path.exists():
+        raise InvalidScene(f"study.problem = {name!r}: no such planning file ({path})")
+    try:
+        raw = load_with(path, parse_toml)
+        problem_from_dict(raw)
+    except InvalidScene as err:
+        raise InvalidScene(f"study.problem = {name!r}: {err}") from None
+    return raw
+
+
+def _check_sweep(study):
+    """Refuse a sweep value that no case can use (a string for a number, a CG with two
+    components, a NaN weight, a 200 deg tolerance, a crane count of 9): every grid point
+    holding it is no valid planning scene. A value valid in some combinations only keeps
+    the run; its invalid combinations become ``invalid`` rows with the reason."""
+    shape = tuple(len(values) for _, values in study.sweep)
+    reasons = study.grid_reasons
+    valid = np.array([not r for r in reasons], dtype=bool).reshape(shape)
+    for axis, (key, values) in enumerate(study.sweep):
+        usable = valid.any(axis=tuple(a for a in range(len(shape)) if a != axis))
+        for k in np.flatnonzero(~usable):
+            index = [0] * len(shape)
+            index[axis] = int(k)
+            reason = reasons[int(np.ravel_multi_index(index, shape))]
+            raise InvalidScene(f"sweep.{key!r}[{k}] = {values[k]!r}: no case can use it: {reason}")

@@ -25,7 +25,8 @@ kind = "plan"
 output = "plan_study.csv"
 
 [sweep]
-"plan.cranes" = [4, 3, 9]      # 3: infeasible (SWL); 9: not a valid crane count
+"plan.cranes" = [4, 3]            # 3: infeasible (SWL)
+"plan.min_tension" = [0.0, 240.0]  # 4 x 240 t > 904 t: not a valid scene (3 x 240 t is)
 """
 
 CHECK_STUDY = """
@@ -72,13 +73,13 @@ def client():
 def test_plan_study_on_two_workers_keeps_failed_rows(tmp_path, client):
     study = load_study(study_file(tmp_path, PLAN_STUDY))
     summary = run_study(study, client=client, progress=False)
-    assert summary.cores == 2 and summary.ran == 3
+    assert summary.cores == 2 and summary.ran == 4
     rows = read_table(tmp_path / "plan_study.csv")
-    assert [r["case"] for r in rows] == ["0", "1", "2"]
-    assert [r["status"] for r in rows] == ["ok", "infeasible", "invalid"]
-    assert summary.counts == {"ok": 1, "infeasible": 1, "invalid": 1}
-    assert "crane SWL" in rows[1]["reason"] and "expected 3 to 8" in rows[2]["reason"]
-    assert rows[1]["worst_spread"] == "" and rows[2]["lugs"] == ""
+    assert [r["case"] for r in rows] == ["0", "1", "2", "3"]
+    assert [r["status"] for r in rows] == ["ok", "invalid", "infeasible", "infeasible"]
+    assert summary.counts == {"ok": 1, "infeasible": 2, "invalid": 1}
+    assert "crane SWL" in rows[2]["reason"] and "carry more than the weight" in rows[1]["reason"]
+    assert rows[2]["worst_spread"] == "" and rows[1]["lugs"] == ""
     # the ok row is the plan of the base scene
     best = plan(load_problem(EXAMPLES / "tanker_plan.toml"))
     assert rows[0]["lugs"] == " ".join(best.chosen.lugs)
@@ -129,6 +130,7 @@ def test_journal_of_another_study_is_refused(tmp_path):
 
 @pytest.mark.parametrize("text, match", [
     (PLAN_STUDY.replace('"plan.cranes"', '"plan.cranse"'), "cranse"),
+    (PLAN_STUDY.replace("[4, 3]", "[4, 3, 9]"), r"sweep.'plan.cranes'\[2\] = 9: no case can use it.*3 to 8"),
     (CHECK_STUDY.replace('"body.weight"', '"plan.cranes"'), "a check study keeps the plan's lugs"),
     (PLAN_STUDY.replace("tanker_plan.toml", "missing.toml"), "no such planning file"),
     (CHECK_STUDY.replace("count = 50", "count = 0"), "sample.count"),
@@ -186,9 +188,14 @@ def test_check_equals_the_plans_held_tensions(tanker_plan):
 def test_check_reports_slack_and_limits_not_numbers(tanker_plan):
     problem, chosen = tanker_plan.problem, tanker_plan.chosen
     result = check_plan(problem, chosen.indices, chosen.preload,
-                        cases(problem, [904.0, 904.0, 1700.0], [(30.0, 0, 0), (0, 0, 0), (0, 0, 0)],
-                              min_tension=[20.0, 225.0, 20.0]))
-    assert result.status == ["failed", "unsafe", "unsafe"]
+                        cases(problem, [904.0, 904.0, 1700.0, 904.0],
+                              [(0, 5.9, 20.0), (0, 0, 0), (0, 0, 0), (60.0, 0, 0)],
+                              min_tension=[20.0, 225.0, 20.0, 20.0]))
+    assert result.status == ["failed", "unsafe", "unsafe", "invalid"]
+    # a CG 0.1 m inside the edge of the lugs and 16.5 m above them: a rope goes slack in the box
     assert "slack" in result.reason[0] and np.isnan(result.worst_spread[0])
     assert "below min_tension 225 t" in result.reason[1]
     assert "over the SWL 400 t" in result.reason[2] and result.utilisation[2] > 1.0
+    # a CG 60 m forward lies beyond the forward lugs: no scene would accept it
+    assert "outside the plan's lugs' support polygon" in result.reason[3]
+    assert np.isnan(result.max_tension[3])
