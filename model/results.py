@@ -180,6 +180,10 @@ class Equilibrium:
     rigging: RiggingState | None = None
     frame: str = "z-up"
 
+    def file_point(self, point):
+        """A world point (``z-up``) in the scene file's frame, as a list  [m]."""
+        return _in_frame(point, self.frame)
+
     @property
     def share(self):
         """Each crane's share of the weight, keyed as ``tensions``  [-]."""

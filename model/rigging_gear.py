@@ -93,9 +93,9 @@ class Leg:
         where = f"sling.legs[{self.lug}]" if self.lug is not None else "sling.spreader.top[]"
         _set(self, "length", _number(f"{where}.length", self.length, unit=" m"))
         if (self.EA is None) == (self.diameter is None):
-            both = "both" if self.EA is not None else "neither"
+            both = "both EA and" if self.EA is not None else "neither EA nor"
             raise InvalidScene(
-                f"{where}: {both} EA and diameter given; expected exactly one (EA in t, or the "
+                f"{where}: {both} diameter given; expected exactly one (EA in t, or the "
                 "wire diameter in mm, from which EA = 80 000 N/mm2 x 0.785 d^2)"
             )
         if self.EA is not None:

@@ -25,7 +25,8 @@ def equilibrium_table(scene, eq):
         "",
     ]
     if eq.tensions:
-        lines.append(f"{'lug':<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
+        who = "crane" if eq.rigging is not None else "lug"
+        lines.append(f"{who:<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
                      f"{'utilisation [%]':>17}")
     for name, tension in eq.tensions.items():
         swl = eq.swl[name]
@@ -40,9 +41,30 @@ def equilibrium_table(scene, eq):
         total = sum(eq.tensions.values())
         lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
         lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
+    if eq.rigging is not None:
+        lines += _rigging_lines(eq)
     if eq.afloat is not None:
         lines += _afloat_lines(eq)
     return "\n".join(lines)
+
+
+def _rigging_lines(eq):
+    """Hook loads are the crane rows above; here the legs, hooks and spreader bars."""
+    r = eq.rigging
+    lines = ["", f"hook loads above are the hoist-rope tensions; sling legs (angle from the horizontal, "
+                 f"limit {r.min_sling_angle:g} deg):",
+             f"{'leg':<16}{'to lug':<10}{'tension [t]':>13}{'angle [deg]':>13}"]
+    for key, tension in r.legs.items():
+        angle = r.sling_angles[key]
+        lines.append(f"{key:<16}{r.leg_lugs[key] or '(bar end)':<10}{tension:>13.2f}{angle:>13.2f}"
+                     + ("  slack" if key in eq.slack else "")
+                     + ("  BELOW LIMIT" if not angle >= r.min_sling_angle else ""))
+    frame = f"world, frame {eq.frame}"
+    for name, at in r.hook_positions.items():
+        lines.append("hook {}: ({:.3f}, {:.3f}, {:.3f}) m ({})".format(name, *eq.file_point(at), frame))
+    for name, compression in r.spreader_compression.items():
+        lines.append(f"spreader {name}: compression {compression:.2f} t")
+    return lines
 
 
 def _afloat_lines(eq):

@@ -95,3 +95,58 @@ def moorpy_solve_6dof(scene, tips, start):
     tensions = np.array([line.TA for line in system.lineList])
     world = np.array([body.r6[:3] + rotation_of(body.r6) @ p for p in lugs])
     return tensions, world
+
+
+def moorpy_solve_rigging(scene, tips, hooks, start):
+    """A body on sling sets in MoorPy: each crane's hook is a free point (type 0) hung from
+    its tip by the hoist rope and joined to its lugs by the legs (no spreader bars: MoorPy's
+    lines carry no compression).
+
+    Parameters
+    ----------
+    tips : dict crane name -> (3,)  [m]
+        World tip positions.
+    hooks : dict crane name -> (3,)  [m]
+        Start positions of the hooks (world).
+    start : array (6,)
+        Body start (x, y, z [m], MoorPy's roll, pitch, yaw [rad]).
+
+    Returns
+    -------
+    hook loads {crane: t}, leg tensions {"CRANE/LUG": t}, hook positions {crane: (3,)}
+    """
+    import moorpy as mp
+
+    lugs = dict(zip(scene.lug_names, scene.lug_points()))
+    system = mp.System(depth=1000.0, rho=0.0, g=G)
+    body = system.addBody(0, np.asarray(start, dtype=float), m=scene.body.weight / G, v=0.0,
+                          rCG=np.array(scene.body.cog), DOFs=[0, 1, 2, 3, 4, 5])
+    points, lines = {}, {}
+    for crane in scene.cranes:
+        tip = system.addPoint(1, np.asarray(tips[crane.name], dtype=float))
+        hook = system.addPoint(0, np.asarray(hooks[crane.name], dtype=float))
+        points[crane.name] = hook
+        lines[crane.name] = _line(system, crane.rope_length, crane.EA, hook, tip)
+        for leg in crane.sling.legs:
+            lug = system.addPoint(1, lugs[leg.lug], body=1)
+            lines[f"{crane.name}/{leg.lug}"] = _line(system, leg.length, leg.stiffness, lug, hook)
+    system.initialize()
+    if not system.solveEquilibrium(tol=1e-10, maxIter=2000):
+        raise RuntimeError("MoorPy did not converge")
+    del body
+    tension = {key: line.TA for key, line in lines.items()}
+    hook_loads = {c.name: tension.pop(c.name) for c in scene.cranes}
+    return hook_loads, tension, {name: np.array(p.r) for name, p in points.items()}
+
+
+def _line(system, length, ea, point_a, point_b):
+    """A weightless straight line from point_a to point_b; returns the MoorPy line."""
+    kind = dict(name=f"line{len(system.lineList)}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=ea,
+                material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
+    system.addLine(length, kind, pointA=point_a.number, pointB=point_b.number)
+    return system.lineList[-1]
+
+
+def moorpy_angles(rot):
+    """MoorPy's (roll, pitch, yaw) [rad] of an attitude matrix: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    return (math.atan2(rot[2, 1], rot[2, 2]), -math.asin(rot[2, 0]), math.atan2(rot[1, 0], rot[0, 0]))
