@@ -84,7 +84,7 @@ def _nonempty(path, option):
 def _mode(path):
     try:
         return path.stat().st_mode
-    except FileNotFoundError:
+    except (FileNotFoundError, NotADirectoryError):  # missing, or a file on the way
         return None
     except OSError as err:
         raise InvalidScene(f"{path}: cannot be reached ({err.strerror or err})") from None
