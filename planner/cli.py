@@ -159,14 +159,28 @@ def _plan(args):
         print("liftplan: interrupted; the plan above is the best found so far, not the search's "
               "answer", file=sys.stderr)
         return INTERRUPTED
+    unwritten = None
     if report is not None:
         from .report import write_report  # matplotlib only when a report is asked for
 
-        files = write_report(result, report)
-        written = [files.html, files.pdf, files.scene, files.json]
-        print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
+        try:
+            files = write_report(result, report)
+        except OSError as err:  # a full disk, a folder removed meanwhile: the plan still prints
+            unwritten = f"--report {report}: cannot write ({err.strerror or err})"
+        else:
+            written = [files.html, files.pdf, files.scene, files.json]
+            print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
     _print_plan(result, args)
-    return _verdict(result.checks, table=not args.json)
+    code = _verdict(result.checks, table=not args.json)
+    return _unwritten(unwritten) or code
+
+
+def _unwritten(message):
+    """Exit code for an output that could not be written (after the result was printed)."""
+    if message is None:
+        return 0
+    print(f"liftplan: error: {message}", file=sys.stderr)
+    return BAD_INPUT
 
 
 def _print_plan(result, args, interrupted=False):
@@ -204,18 +218,19 @@ def _lift(args):
     _warn(scene_warnings(scene))
     curve = load_curve(scene, stop=args.to, step=args.step)
     swl = min((c.swl for c in scene.cranes if c.swl), default=None)
-    make_parent(figure)
+    unwritten = None
     try:
+        make_parent(figure)
         draw(curve, swl=swl).savefig(figure, dpi=120)
     except OSError as err:  # a full disk, a folder removed meanwhile: the table still prints
-        print(f"liftplan: error: --figure {figure}: cannot write ({err.strerror or err})",
-              file=sys.stderr)
+        unwritten = f"--figure {figure}: cannot write ({err.strerror or err})"
     else:
         print(f"liftplan: wrote {figure}", file=sys.stderr)
     if args.json:
         print(json.dumps(curve.to_json()))
     else:
         print(load_curve_table(scene, curve))
+    return _unwritten(unwritten)
 
 
 def _batch(args):

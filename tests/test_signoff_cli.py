@@ -195,6 +195,22 @@ def test_figure_into_a_missing_folder_creates_it_and_defaults_to_the_current_fol
     assert (tmp_path / "new" / "sub" / "c.svg").read_text().startswith("<?xml")
 
 
+def test_figure_on_a_full_disk_keeps_the_table_and_exits_2(tmp_path, capsys, monkeypatch):
+    import errno
+
+    import liftplan.planner.figures as figures
+
+    class FullDisk:
+        def savefig(self, path, **options):
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    monkeypatch.setattr(figures, "load_curve", lambda curve, swl=None: FullDisk())
+    assert main(["lift", str(LIFT), "--step", "1", "--figure", str(tmp_path / "c.png")]) == 2
+    captured = capsys.readouterr()
+    assert "hoist [m]" in captured.out  # the computed table is not lost
+    assert one_error_line(captured.err) and "No space left on device" in captured.err
+
+
 @pytest.mark.parametrize("output, fragment", [
     ("folder", "is a folder; expected a file name"),
     ("/proc/liftplan/out.csv", "cannot write in /proc"),  # no file can be created under /proc
