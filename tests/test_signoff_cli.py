@@ -143,6 +143,37 @@ def test_ctrl_c_during_plan_is_one_line_exit_130(tmp_path):
     assert "Traceback" not in err
 
 
+def test_interrupted_plan_prints_the_best_so_far_marked_as_such(capsys, monkeypatch):
+    import importlib
+
+    from liftplan.planner import plan
+
+    # (``import liftplan.planner.plan as m`` gives the function, as the package exports it)
+    planning = importlib.import_module("liftplan.planner.plan")
+    search = importlib.import_module("liftplan.planner.search")
+
+    best = plan(load_problem(TANKER_PLAN), top=2)
+
+    class Interrupted(KeyboardInterrupt):  # a stand-in for the search's: carries .plan
+        def __init__(self, plan):
+            super().__init__()
+            self.plan = plan
+
+    monkeypatch.setattr(search, "Interrupted", Interrupted, raising=False)
+
+    def interrupted(problem, top=None):
+        raise Interrupted(best)
+
+    monkeypatch.setattr(planning, "plan", interrupted)
+    assert main(["plan", str(TANKER_PLAN)]) == 130
+    captured = capsys.readouterr()
+    assert captured.out.startswith("INTERRUPTED: best plan found so far")
+    assert " ".join(best.chosen.lugs[:2]) in captured.out
+    assert captured.err.strip().splitlines()[-1].startswith("liftplan: interrupted; the plan above")
+    assert main(["plan", str(TANKER_PLAN), "--json"]) == 130
+    assert json.loads(capsys.readouterr().out)["interrupted"] is True
+
+
 @pytest.mark.slow
 def test_ctrl_c_during_batch_is_one_line_exit_130(tmp_path):
     # 600 plans on a local cluster: interrupted at its first finished case, long before the end
