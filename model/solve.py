@@ -6,9 +6,12 @@
   plan coordinates close the statics. Linear: solved exactly.
 * ``elastic`` (forward): boom heights and unstretched lengths given; pose and tensions
   found by casadi's Newton root-finder, with IPOPT on the potential energy as fallback.
+* ``inclined`` and ``rigging`` (:mod:`liftplan.model.inclined`, :mod:`liftplan.model.rigging`):
+  the 6-DOF body with crane tips in the world, hooks and spreader bars as free points.
+* ``hydrostatic`` (:mod:`liftplan.model.water`): a hull in water.
 
-A result is returned only when its equilibrium residual is below tolerance; otherwise a
-typed error says why.
+A result is returned only when it passes :mod:`liftplan.model.acceptance` (residual,
+stability, upright), whichever method found it; otherwise a typed error says why.
 """
 
 from __future__ import annotations
