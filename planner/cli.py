@@ -256,9 +256,27 @@ def _batch(args):
     print(batch_table(study, summary))
 
 
+def _interrupt(err):
+    """Whether ``err`` is a Ctrl-C in disguise: casadi turns the KeyboardInterrupt raised
+    inside its calls into a RuntimeError naming it (and callers may wrap that in turn)."""
+    seen = set()
+    while err is not None and id(err) not in seen:
+        seen.add(id(err))
+        if isinstance(err, KeyboardInterrupt) or "KeyboardInterrupt" in str(err):
+            return True
+        err = err.__cause__ or err.__context__
+    return False
+
+
 def _run(args):
+    command = {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command]
     try:
-        return {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command](args) or 0
+        try:
+            return command(args) or 0
+        except Exception as err:
+            if _interrupt(err):
+                raise KeyboardInterrupt from None
+            raise
     except EquilibriumNotFound as err:
         print(f"liftplan: no equilibrium: {err}", file=sys.stderr)
         return NO_SOLUTION

@@ -134,9 +134,12 @@ def interrupt(args, ready, tmp_path, after=0.5):
     return proc.returncode, out.decode(), (seen + err).decode()
 
 
-def test_ctrl_c_during_plan_is_one_line_exit_130(tmp_path):
-    # 0.5 s after start-up the planner is still importing cvxpy or searching (2-3 s in all)
-    code, out, err = interrupt(["plan", TANKER_PLAN], "started", tmp_path)
+@pytest.mark.parametrize("args", [
+    ["plan", TANKER_PLAN],  # 2-3 s in all: at 0.5 s it is importing cvxpy or searching
+    ["lift", LIFT, "--step", "0.05"],  # ~8 s: at 1 s inside casadi's solves or the imports
+], ids=["plan", "lift"])
+def test_ctrl_c_is_one_line_exit_130(tmp_path, args):
+    code, out, err = interrupt(args, "started", tmp_path, after=0.5 if args[0] == "plan" else 1.0)
     assert code == 130, err
     lines = err.strip().splitlines()
     assert lines[0] == "started" and lines[-1].startswith("liftplan: interrupted")
@@ -172,6 +175,24 @@ def test_interrupted_plan_prints_the_best_so_far_marked_as_such(capsys, monkeypa
     assert captured.err.strip().splitlines()[-1].startswith("liftplan: interrupted; the plan above")
     assert main(["plan", str(TANKER_PLAN), "--json"]) == 130
     assert json.loads(capsys.readouterr().out)["interrupted"] is True
+
+
+def test_ctrl_c_inside_casadi_is_still_an_interruption(capsys, monkeypatch):
+    import importlib
+
+    from liftplan.model.errors import SolverFailed
+
+    solving = importlib.import_module("liftplan.model.solve")
+
+    def interrupted(scene, **options):
+        try:  # what casadi raises for a Ctrl-C during a Function call, wrapped by a caller
+            raise RuntimeError("Error in Function::call for 'free_root' [Newton]:\nKeyboardInterrupt")
+        except RuntimeError as err:
+            raise SolverFailed("Newton stopped") from err
+
+    monkeypatch.setattr(solving, "solve", interrupted)
+    assert main(["solve", str(TANKER)]) == 130
+    assert capsys.readouterr().err == "liftplan: interrupted\n"
 
 
 @pytest.mark.slow
