@@ -1,9 +1,9 @@
 """The checks of a solved state that can fail (see :class:`~liftplan.model.checks.Check`).
 
 Each rope against its crane's SWL (where the scene gives one), each rope's tension against
-zero (a rope cannot push), and all ropes taut (a slack rope carries nothing and leaves the
-body on the others). ``liftplan solve`` prints a FAIL line per failed check and exits with
-its own code; ``--json`` carries them all as ``"checks"``.
+zero (a rope cannot push), and, for a body in air, all ropes taut (a slack rope carries
+nothing and leaves the body on the others). ``liftplan solve`` prints a FAIL line per
+failed check and exits with its own code; ``--json`` carries them all as ``"checks"``.
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ def equilibrium_checks(scene, eq):
     -------
     list of Check
         ``swl`` per rope with an SWL (tension <= SWL  [t]), ``min_tension`` per rope
-        (tension >= 0  [t]) and one ``taut`` check (ropes carrying load >= all ropes  [-]).
-        Empty for a body with no ropes.
+        (tension >= 0  [t]) and, without a hull in water, one ``taut`` check (ropes carrying
+        load >= all ropes  [-]). Empty for a body with no ropes.
     """
     checks = []
     for name, tension in eq.tensions.items():
@@ -35,7 +35,9 @@ def equilibrium_checks(scene, eq):
     for name, tension in eq.tensions.items():
         checks.append(Check.lower("min_tension", name, tension, 0.0, "t",
                                   note="a rope cannot push"))
-    if eq.tensions:
+    if eq.tensions and scene.hull is None:
+        # in water or on the ground a slack rope is a state (the water or the ground carries
+        # the body), not a failure; in air the ropes alone must hold it
         slack = [name for name in eq.tensions if name in eq.slack]
         note = (f"slack: {', '.join(slack)} carries nothing, the body hangs on the others"
                 if slack else "")
