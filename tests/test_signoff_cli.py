@@ -75,6 +75,13 @@ def test_json_carries_every_check_and_a_script_can_gate_on_them(tmp_path):
     assert failed[0]["value"] == pytest.approx(272.11, abs=0.005) and failed[0]["limit"] == 250.0
 
 
+def test_slack_rope_of_a_grounded_hull_is_a_state_not_a_failure(capsys):
+    # the sunken block rests on the seabed at hoist 0, two ropes slack: the ground carries it
+    assert main(["solve", str(LIFT), "--json"]) == 0
+    checks = json.loads(capsys.readouterr().out)["checks"]
+    assert checks and all(c["ok"] for c in checks) and "taut" not in {c["name"] for c in checks}
+
+
 def test_slack_rope_fails_the_taut_check():
     scene = load_scene(TANKER)
     eq = Equilibrium(model="elastic", pose=Pose(0.0, 0.0, 0.0, -131.0),
