@@ -67,10 +67,12 @@ class Check:
 
     def line(self):
         """One console line, ``FAIL swl L2: 452.1 t > 400 t (note)`` or ``ok ...``."""
-        sign = (">" if self.kind == "max" else "<") if not self.ok else ("<=" if self.kind == "max" else ">=")
-        word = "FAIL" if not self.ok else "ok  "
+        upper = self.kind == "max"
+        sign = ("<=" if upper else ">=") if self.ok else (">" if upper else "<")
+        word = "ok  " if self.ok else "FAIL"
         note = f" ({self.note})" if self.note else ""
-        return f"{word} {self.name} {self.subject}: {self.value:.4g} {self.unit} {sign} {self.limit:.4g} {self.unit}{note}"
+        return (f"{word} {self.name} {self.subject}: {self.value:.4g} {self.unit} {sign} "
+                f"{self.limit:.4g} {self.unit}{note}")
 
 
 def failed(checks):

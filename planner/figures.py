@@ -27,69 +27,153 @@ def tension_curves(plan):
         zero = np.zeros_like(values)
         tensions = plan.tensions_at(values, zero) if angle == "heel" else \
             plan.tensions_at(zero, values)
+        swl = plan.swl
+        equal = len(set(swl.values())) == 1
         for label, column in zip(plan.labels, tensions.T):
-            ax.plot(values, column, label=f"{label} ({plan.lugs[label]})")
+            line, = ax.plot(values, column, label=f"{label} ({plan.lugs[label]}, {plan.cranes[label]})")
+            if not equal:
+                ax.axhline(swl[label], color=line.get_color(), ls="--", lw=1,
+                           label=f"SWL {label} {swl[label]:.0f} t")
         ax.axvspan(-tol, tol, color="0.9", label="tolerance")
-        ax.axhline(problem.crane.swl, color="k", ls="--", lw=1, label="SWL")
+        if equal:
+            ax.axhline(next(iter(swl.values())), color="k", ls="--", lw=1, label="SWL")
         if problem.min_tension > 0:
             ax.axhline(problem.min_tension, color="k", ls=":", lw=1, label="min tension")
         sign = "starboard down" if angle == "heel" else "bow down"
         ax.set_xlabel(f"{angle} [deg] (+ {sign})")
         ax.grid(True, lw=0.3)
     axes[0].set_ylabel("rope tension [t]")
-    axes[1].legend(fontsize=8, loc="best")
-    fig.suptitle("Tensions with the plan's preload held")
+    axes[1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    fig.suptitle("Tensions with the plan's preload held (nominal CG)")
     return fig
+
+
+def _file_plan(problem, xy):
+    """Plan coordinates (z-up x, y) in the frame of the problem's file, and axis labels."""
+    xy = np.asarray(xy, dtype=float)
+    if problem.frame == "choi":  # papers' frame: z to starboard = -y (z-up)
+        return np.column_stack([xy[..., 0], -xy[..., 1]]), "z [m] (to starboard)"
+    return xy, "y [m] (to port)"
+
+
+def _file_point(problem, point):
+    """A z-up vector (x, y, z) in the frame of the problem's file."""
+    from liftplan.model.frames import zup_to_choi
+
+    return tuple(zup_to_choi(point)) if problem.frame == "choi" else tuple(point)
 
 
 def plan_view(plan):
-    """Plan view: hull outline, candidates, CG (and envelope), chosen lugs."""
+    """Plan view in the file's frame: hull outline, candidates, CG and its envelope, chosen
+    lugs with their boom heights, and the cranes (slew centre, chart reach, the lug each
+    takes, its radius and SWL there)."""
     problem = plan.problem
-    fig = Figure(figsize=(10, 4.5), layout="constrained")
+    fig = Figure(figsize=(10, 6 if _positioned(problem) else 4.5), layout="constrained")
     ax = fig.subplots()
     if problem.outline:
-        outline = np.array(problem.outline + problem.outline[:1])
+        outline, _ = _file_plan(problem, np.array(problem.outline + problem.outline[:1]))
         ax.plot(outline[:, 0], outline[:, 1], color="0.3", lw=1.2, label="hull outline")
-    pts = problem.points
+    pts, side = _file_plan(problem, problem.points[:, :2])
     ax.scatter(pts[:, 0], pts[:, 1], s=18, color="0.6", label="candidates", zorder=2)
-    for name, (x, y, _) in zip(problem.names, pts):
-        ax.annotate(name, (x, y), fontsize=6, color="0.4", xytext=(2, -8),
-                    textcoords="offset points")
-    chosen = plan.lugset.points
-    order = np.r_[_around(chosen, problem.body.cog), _around(chosen, problem.body.cog)[:1]]
+    mid = np.mean(pts[:, 1])
+    for name, (x, y) in zip(problem.names, pts):
+        ax.annotate(name, (x, y), fontsize=6, color="0.4", ha="center",
+                    xytext=(0, 6 if y >= mid else -10), textcoords="offset points")
+    chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
+    (cog, ), _ = _file_plan(problem, np.array([problem.body.cog[:2]]))
+    order = _around(chosen, cog)
+    order = np.r_[order, order[:1]]
     ax.plot(chosen[order, 0], chosen[order, 1], color="tab:blue", lw=1, ls="--")
     ax.scatter(chosen[:, 0], chosen[:, 1], s=70, color="tab:blue", label="chosen lugs", zorder=3)
-    for label, (x, y, _) in zip(plan.labels, chosen):
+    for label, (x, y) in zip(plan.labels, chosen):
         ax.annotate(f"{label}  H={plan.boom_heights[label]:.2f} m", (x, y), fontsize=8,
-                    color="tab:blue", xytext=(4, 5), textcoords="offset points")
-    cx, cy = problem.body.cog[:2]
+                    color="tab:blue", xytext=(4, 10 if y >= mid else -16),
+                    textcoords="offset points")
+    if _positioned(problem):
+        _draw_cranes(ax, plan)
+        # frame the hull and the slew centres; the reach circles are cut at the edge
+        if problem.outline:
+            seen_outline = _file_plan(problem, np.array(problem.outline))[0]
+        else:
+            seen_outline = pts
+        seen = [pts, chosen, seen_outline] + [_file_plan(problem, np.array([c.position]))[0]
+                                for c in problem.fleet if c.position is not None]
+        seen = np.vstack(seen)
+        low, high = seen.min(axis=0) - 8.0, seen.max(axis=0) + 8.0
+        ax.set_xlim(low[0], high[0])
+        ax.set_ylim(low[1], high[1])
     dx, dy = problem.cog_envelope.half_widths[:2]
     if dx or dy:
-        ax.add_patch(_rectangle(cx - dx, cy - dy, 2 * dx, 2 * dy))
-    ax.scatter([cx], [cy], marker="x", s=80, color="tab:red", label="CG", zorder=4)
+        ax.add_patch(_rectangle(cog[0] - dx, cog[1] - dy, 2 * dx, 2 * dy))
+    ax.scatter([cog[0]], [cog[1]], marker="x", s=80, color="tab:red", label="CG", zorder=4)
     ax.set_aspect("equal")
+    if problem.frame == "choi":
+        ax.invert_yaxis()  # seen from above with x to the right, starboard is down
     ax.set_xlabel("x [m] (forward)")
-    ax.set_ylabel("y [m] (to port)")
+    ax.set_ylabel(side)
     ax.grid(True, lw=0.3)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    ax.set_title("Plan view (z-up frame)")
+    frame = "papers' frame" if problem.frame == "choi" else "z-up frame"
+    ax.set_title(f"Plan view ({frame}, seen from above)")
     return fig
 
 
+def _positioned(problem):
+    return any(c.position is not None for c in problem.fleet)
+
+
+def _draw_cranes(ax, plan):
+    """Each crane's slew centre, its chart reach, and a line to the lug it takes."""
+    from matplotlib.patches import Circle
+
+    problem = plan.problem
+    chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
+    lug_of = {name: k for k, name in enumerate(plan.chosen.crane_names)}
+    colors = ["tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
+              "tab:cyan", "tab:gray"]
+    for j, crane in enumerate(problem.fleet):
+        if crane.position is None:
+            continue
+        color = colors[j % len(colors)]
+        ((cx, cy), ), _ = _file_plan(problem, np.array([crane.position]))
+        ax.scatter([cx], [cy], marker="s", s=60, color=color, zorder=4)
+        ax.annotate(crane.name, (cx, cy), fontsize=8, color=color, xytext=(0, 8),
+                    textcoords="offset points", ha="center")
+        if np.isfinite(crane.reach):
+            ax.add_patch(Circle((cx, cy), crane.reach, fill=False, ec=color, ls=":", lw=0.8))
+        k = lug_of.get(crane.name)
+        if k is not None:
+            x, y = chosen[k]
+            label = plan.labels[k]
+            ax.plot([cx, x], [cy, y], color=color, lw=1.2)
+            ax.annotate(f"{label}: {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.0f} t",
+                        ((cx + x) / 2, (cy + y) / 2), fontsize=7, color=color, ha="center",
+                        bbox={"fc": "white", "ec": "none", "alpha": 0.7, "pad": 0.5})
+    ax.plot([], [], color="0.4", ls=":", lw=0.8, label="crane reach (chart)")
+    ax.scatter([], [], marker="s", color="0.4", label="crane slew centre")
+
+
 def spread_map(plan, count=41):
-    """Spread (max - min tension) over the tolerance box, worst over the CG envelope."""
-    heel, trim, spread = plan.spread_map(count)
+    """The plan's objective (tension spread, or utilisation spread) over the tolerance box,
+    at each attitude the worst over the CG envelope."""
+    utilisation = plan.objective == "utilisation"
+    heel, trim, spread = plan.spread_map(count, utilisation=utilisation)
     fig = Figure(figsize=(6, 4.5), layout="constrained")
     ax = fig.subplots()
     mesh = ax.pcolormesh(trim, heel, spread, shading="auto", cmap="viridis")
-    fig.colorbar(mesh, ax=ax, label="spread [t]")
+    unit = "max - min of T / SWL [-]" if utilisation else "max - min tension [t]"
+    fig.colorbar(mesh, ax=ax, label=unit)
     worst = plan.chosen.worst
+    dx, dy, dz = _file_point(plan.problem, worst.cog_offset)
+    value = f"{plan.chosen.worst_value:.3f}" if utilisation else f"{plan.worst_spread:.1f} t"
     ax.scatter([worst.trim], [worst.heel], marker="*", s=160, color="tab:red",
-               label=f"worst {plan.worst_spread:.1f} t")
+               label=f"worst {value}\nCG offset ({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m")
     ax.set_xlabel("trim [deg] (+ bow down)")
     ax.set_ylabel("heel [deg] (+ starboard down)")
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title("Spread over the tolerance box")
+    what = "Utilisation spread" if utilisation else "Tension spread"
+    ax.set_title(f"{what} over the tolerance box\n(each point: worst CG of the envelope)",
+                 fontsize=10)
     return fig
 
 

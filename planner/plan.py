@@ -354,21 +354,30 @@ class Plan:
                 ))
         return rows
 
-    def spread_map(self, count=41):
+    def spread_map(self, count=41, utilisation=False):
         """Spread over a heel x trim grid, worst over the CG envelope.
+
+        Parameters
+        ----------
+        count : int
+        utilisation : bool
+            Map max - min of T_i / SWL_i instead of the tension spread.
 
         Returns
         -------
         heel : (count,)  [deg]
         trim : (count,)  [deg]
-        spread : (count, count)  [t], indexed [heel, trim]
+        spread : (count, count)  [t or -], indexed [heel, trim]
         """
         heel = np.linspace(-self.problem.heel_tolerance, self.problem.heel_tolerance, count)
         trim = np.linspace(-self.problem.trim_tolerance, self.problem.trim_tolerance, count)
         hh, tt = np.meshgrid(heel, trim, indexing="ij")
         spread = np.zeros(hh.size)
         for offset in self.problem.cog_envelope.offsets():
-            values = np.ptp(self.tensions_at(hh.ravel(), tt.ravel(), offset), axis=1)
+            tensions = self.tensions_at(hh.ravel(), tt.ravel(), offset)
+            if utilisation:
+                tensions = tensions / self.chosen.swl
+            values = np.ptp(tensions, axis=1)
             spread = np.maximum(spread, values)
         return heel, trim, spread.reshape(hh.shape)
 

@@ -116,7 +116,7 @@ def _xyz(problem, point):
 
 def render_html(plan):
     """The report as one HTML string."""
-    problem, chosen, spec = plan.problem, plan.chosen, plan.problem.crane
+    problem, chosen = plan.problem, plan.chosen
     frame = ("the papers' frame (x forward, y up, z to starboard)" if problem.frame == "choi"
              else "z-up (x forward, y to port, z up)")
     candidates = dict(zip(problem.names, problem.candidates))
@@ -126,14 +126,13 @@ def render_html(plan):
         [
             ("weight W", f"{problem.body.weight:.2f}", "t"),
             ("CG (file frame)", _xyz(problem, problem.body.cog), "m"),
-            ("CG envelope half-widths (z-up x, y, z)",
-             ", ".join(f"{v:.2f}" for v in problem.cog_envelope.half_widths), "m"),
+            ("CG envelope half-widths (x, y, z)",
+             ", ".join(f"{abs(v):.2f}" for v in _shown(problem, problem.cog_envelope.half_widths)),
+             "m"),
             ("CG envelope shape", problem.cog_envelope.shape, "-"),
             ("cranes", problem.cranes, "-"),
-            ("rope EA", f"{spec.EA:.0f}", "t"),
-            ("rope length l0", f"{spec.rope_length:.2f}", "m"),
-            ("crane SWL", f"{spec.swl:.1f}", "t"),
-            ("boom height range", f"{spec.boom_min:g} to {spec.boom_max:g}", "m"),
+            ("objective", "max - min of T / SWL (utilisation)" if plan.objective == "utilisation"
+             else "max - min tension (spread)", "-"),
             ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
             ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
             ("min tension", f"{problem.min_tension:g}", "t"),
@@ -144,15 +143,29 @@ def render_html(plan):
         f"Inputs (coordinates in {frame})",
     ))
     sections.append(_table(
-        ["lug", "candidate", "bulkhead", "position x, y, z [m]", "boom height H [m]",
-         "level tension [t]", "share of W [%]"],
+        ["crane", "slew centre x, y, z [m]", "load chart (radius m: SWL t)", "rope EA [t]",
+         "rope length l0 [m]", "boom height range [m]"],
         [
-            (label, name, candidates[name].bulkhead, _xyz(problem, candidates[name].at),
+            (c.name, "-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
+             f"{c.swl:g} t at any radius" if c.swl is not None else
+             ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
+             f"{c.EA:.0f}", f"{c.rope_length:.2f}", f"{c.boom_min:g} to {c.boom_max:g}")
+            for c in problem.fleet
+        ],
+        "Crane fleet",
+    ))
+    sections.append(_table(
+        ["lug", "candidate (bulkhead)", "position x, y, z [m]", "crane", "radius [m]",
+         "chart SWL [t]", "boom height H [m]", "level tension [t]", "T / SWL [%]"],
+        [
+            (label, f"{name} ({candidates[name].bulkhead})" if candidates[name].bulkhead else name,
+             _xyz(problem, candidates[name].at),
+             plan.cranes[label], f"{plan.radius[label]:.1f}", f"{plan.swl[label]:.1f}",
              f"{plan.boom_heights[label]:.3f}", f"{plan.tensions[label]:.2f}",
-             f"{100 * plan.tensions[label] / problem.body.weight:.2f}")
+             f"{100 * plan.utilisation[label]:.1f}")
             for label, name in plan.lugs.items()
         ],
-        "Recommended lugs and boom heights",
+        "Recommended lugs, cranes and boom heights",
     ))
     worst = chosen.worst
     sections.append(_table(
@@ -161,8 +174,10 @@ def render_html(plan):
             ("nominal spread (level, nominal CG)", f"{plan.spread:.2f}", "t"),
             ("worst spread over the box", f"{plan.worst_spread:.2f}", "t"),
             ("... at heel, trim", f"{worst.heel:+.2f}, {worst.trim:+.2f}", "deg"),
-            ("... with CG offset (z-up x, y, z)",
-             ", ".join(f"{v:+.2f}" for v in worst.cog_offset), "m"),
+            ("... with CG offset (x, y, z)",
+             ", ".join(f"{v:+.2f}" for v in _shown(problem, worst.cog_offset)), "m"),
+            ("worst utilisation spread (max - min of T / SWL)",
+             f"{100 * plan.worst_utilisation_spread:.1f}", "%"),
             ("convex bound (LP optimum for this set)", f"{chosen.bound:.2f}", "t"),
             ("tension range over the box", f"{chosen.tension_range[0]:.2f} to "
                                            f"{chosen.tension_range[1]:.2f}", "t"),
@@ -170,23 +185,27 @@ def render_html(plan):
         "Plan summary",
     ))
     sections.append(_table(
-        ["rank", "lugs", "nominal spread [t]", "worst spread [t]", "worst at heel, trim [deg]",
-         "convex bound [t]", "max SWL utilisation [%]", "boom heights H [m]"],
+        ["rank", "lugs (crane)", "nominal spread [t]", "worst spread [t]",
+         "worst utilisation spread [%]", "worst at heel, trim [deg]",
+         "highest in-box load / SWL [%]", "boom heights H [m]"],
         [
-            (k + 1, " ".join(r.lugs), f"{r.nominal_spread:.2f}", f"{r.worst_spread:.2f}",
-             f"{r.worst.heel:+.2f}, {r.worst.trim:+.2f}", f"{r.bound:.2f}",
-             f"{100 * r.utilisation(spec.swl):.1f}",
+            (k + 1, " ".join(f"{lug} ({crane})" for lug, crane in zip(r.lugs, r.crane_names)),
+             f"{r.nominal_spread:.2f}", f"{r.worst_spread:.2f}",
+             f"{100 * r.worst_utilisation_spread:.1f}",
+             f"{r.worst.heel:+.2f}, {r.worst.trim:+.2f}",
+             f"{100 * r.max_utilisation:.1f}",
              " ".join(f"{h:.3f}" for h in r.boom_heights))
             for k, r in enumerate(plan.ranking)
         ],
         f"Ranking of lug sets (best {len(plan.ranking)} of {plan.stats.sets})",
     ))
     sections.append(_table(
-        ["lug", "nominal [t]", "worst in box [t]", "twist increase [t]", "design load [t]",
-         "SWL [t]", "utilisation [%]", "margin over share [%]", "code margin [%]", "check"],
+        ["lug", "crane", "radius [m]", "nominal [t]", "worst in box [t]", "twist increase [t]",
+         "design load [t]", "chart SWL [t]", "utilisation [%]", "margin over share [%]",
+         "code margin [%]", "check"],
         [
-            (c.label, f"{c.nominal:.2f}", f"{c.worst:.2f}", f"{c.twist:.2f}",
-             f"{c.design:.2f}", f"{c.swl:.1f}", f"{100 * c.utilisation:.1f}",
+            (c.label, c.crane, f"{c.radius:.1f}", f"{c.nominal:.2f}", f"{c.worst:.2f}",
+             f"{c.twist:.2f}", f"{c.design:.2f}", f"{c.swl:.1f}", f"{100 * c.utilisation:.1f}",
              f"{100 * c.margin:.1f}", f"{100 * c.required_margin:.0f}",
              "ok" if c.ok else "NOT MET")
             for c in plan.capacity
@@ -232,6 +251,8 @@ def render_html(plan):
         ["quantity", "value", "unit"],
         [
             ("lug sets", stats.sets, "-"),
+            ("(set, crane assignment) pairs in reach", stats.rows, "-"),
+            ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
             ("ruled out by screening", stats.screened_out, "-"),
             ("evaluated (LP + dense search)", stats.evaluated, "-"),
             ("pruned by the bound", stats.pruned, "-"),

@@ -31,6 +31,8 @@ import numpy as np
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.statics import BLOCK, rope_model
 
+from .problem import code_margin
+
 
 def run_block(block, n, attitudes, params):
     """Evaluate ``held`` over many columns.
@@ -195,10 +197,15 @@ class LugSet:
         a_mat = np.vstack([np.ones(self.n), plan.T])
         return a_mat, problem.body.weight * np.array([1.0, cog[0], cog[1]])
 
+    @property
+    def share_limit(self):
+        """Largest level tension the crane code allows each crane: SWL / (1 + margin)  [t]."""
+        return self.swl / (1.0 + code_margin(self.n))
+
     def preload_range(self):
-        """Bounds on T* from the boom-height range  [t]."""
+        """Bounds on T* from the boom-height range and the crane code's margin  [t]."""
         low = self.stiffness * (self.boom_range[0] - self.boom_zero)
-        high = self.stiffness * (self.boom_range[1] - self.boom_zero)
+        high = np.minimum(self.stiffness * (self.boom_range[1] - self.boom_zero), self.share_limit)
         return low, high
 
     def boom_heights(self, preload):

@@ -30,11 +30,13 @@ import numpy as np
 
 from liftplan.model.statics import rope_model
 
+from .problem import code_margin
 from .scenarios import box_attitudes, pack, run_block
 
 # Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
 FEASIBLE = 0
 COLLINEAR = 7
+CODE_MARGIN = 8
 CG_OUTSIDE = 1
 LEVEL_SWL = 2
 LEVEL_MIN_TENSION = 3
@@ -46,6 +48,7 @@ REASONS = {
     CG_OUTSIDE: "the CG lies outside the lugs' polygon in plan",
     LEVEL_SWL: "level tensions need more than the crane SWL",
     LEVEL_MIN_TENSION: "level tensions cannot all reach min_tension",
+    CODE_MARGIN: "a level tension exceeds the crane's SWL / (1 + the multi-crane code margin)",
     BOOM_RANGE: "the boom heights needed lie outside the crane's boom-height range",
     BOX_SLACK: "a rope falls below min_tension somewhere in the tolerance box",
     BOX_OVERLOAD: "a rope exceeds the crane SWL somewhere in the tolerance box",
@@ -224,9 +227,10 @@ def _screen_chunk(problem, sets, cranes, scenarios):
     inside = _cog_inside(plan_x, plan_y, b_level[1] / weight, b_level[2] / weight)
     boom_min = np.array([c.boom_min for c in fleet])[cranes]
     boom_max = np.array([c.boom_max for c in fleet])[cranes]
+    share_limit = swl / (1.0 + code_margin(n))
     preload_low = stiffness * (boom_min - boom_zero)
-    preload_high = stiffness * (boom_max - boom_zero)
-    limits = (problem.min_tension, swl)
+    preload_high = np.minimum(stiffness * (boom_max - boom_zero), share_limit)
+    limits = (problem.min_tension, swl, share_limit)
     # particular level solution (least norm) and null space of the level statics
     collinear = _collinear(plan_x, plan_y)
     gram = a_level @ a_level.transpose(0, 2, 1)
@@ -311,12 +315,13 @@ def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale):
 
 
 def _classify_point(preload, tensions, inside, limits, preload_range):
-    low, high = limits  # high: (N, n)
+    low, high, share = limits  # high, share: (N, n)
     reason = np.full(len(preload), FEASIBLE)
     checks = [
         (~inside, CG_OUTSIDE),
         (np.any(preload > high, axis=1), LEVEL_SWL),
         (np.any(preload < low, axis=1), LEVEL_MIN_TENSION),
+        (np.any(preload > share, axis=1), CODE_MARGIN),
         (np.any((preload < preload_range[0]) | (preload > preload_range[1]), axis=1), BOOM_RANGE),
         (np.any(tensions < low, axis=(1, 2)), BOX_SLACK),
         (np.any(tensions > high[:, None, :], axis=(1, 2)), BOX_OVERLOAD),
@@ -328,7 +333,7 @@ def _classify_point(preload, tensions, inside, limits, preload_range):
 
 def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale):
     count, m, n = q.shape
-    low, high = limits  # high: (N, n)
+    low, high, share = limits  # high, share: (N, n)
     box_high = np.tile(high, (1, m))
     alpha = np.einsum("kmij,kj->kmi", gain, particular) + q  # T_k = alpha + t beta
     beta = np.einsum("kmij,kj->kmi", gain, null)
@@ -339,6 +344,7 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
         (particular, null, 0.0, np.inf, CG_OUTSIDE),
         (particular, null, -np.inf, high, LEVEL_SWL),
         (particular, null, low, np.inf, LEVEL_MIN_TENSION),
+        (particular, null, low, share, CODE_MARGIN),
         (particular, null, preload_range[0], preload_range[1], BOOM_RANGE),
         (alpha.reshape(count, -1), beta.reshape(count, -1), low, np.inf, BOX_SLACK),
         (alpha.reshape(count, -1), beta.reshape(count, -1), -np.inf, box_high, BOX_OVERLOAD),
@@ -365,6 +371,7 @@ def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight,
     count, m, n = q.shape
     reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
     reason = np.where(inside & (weight > limits[1].sum(axis=1)), LEVEL_SWL, reason)
+    reason = np.where((reason == FEASIBLE) & (weight > limits[2].sum(axis=1)), CODE_MARGIN, reason)
     ok = reason == FEASIBLE
     bound = np.full(count, np.inf)
     if not np.any(ok):

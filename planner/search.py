@@ -29,6 +29,7 @@ from .screen import (
     BOX_OVERLOAD,
     BOX_SLACK,
     CG_OUTSIDE,
+    CODE_MARGIN,
     FEASIBLE,
     FULL_COLUMNS,
     LEVEL_MIN_TENSION,
@@ -364,6 +365,8 @@ class SetEvaluator:
             (g_level, q_level, free, (0 * ones, swl * ones), LEVEL_SWL),
             (g_level, q_level, free, (problem.min_tension * ones, swl * ones),
              LEVEL_MIN_TENSION),
+            (g_level, q_level, free, (problem.min_tension * ones, lugset.share_limit * ones),
+             CODE_MARGIN),
             (g_level, q_level, lugset.preload_range(),
              (problem.min_tension * ones, swl * ones), BOOM_RANGE),
         ]

@@ -108,9 +108,7 @@ def brute_force(problem, grid=7):
         for perm in itertools.permutations(range(problem.cranes)):
             if np.any(np.isnan(swl[list(indices), list(perm)])):
                 continue  # a crane beyond its chart's reach
-            value = linprog_minimax(LugSet(problem, indices, perm), scenarios)
-            if value is not None:
-                best[(indices, perm)] = value
+            best[(indices, perm)] = linprog_minimax(LugSet(problem, indices, perm), scenarios)
     return best
 
 
@@ -118,7 +116,8 @@ def brute_force(problem, grid=7):
 @pytest.mark.parametrize("cranes", [3, 4, 5])
 def test_search_equals_brute_force_over_sets_and_assignments(cranes, objective):
     problem = fleet_problem(cranes, objective)
-    brute = brute_force(problem)
+    every = brute_force(problem)
+    brute = {k: v for k, v in every.items() if v is not None}
     ranking, stats = search(problem)
     best = min(brute.values())
     # brute force on a 7 x 7 grid per CG vertex is coarser than the search (21 x 21 and
@@ -131,12 +130,12 @@ def test_search_equals_brute_force_over_sets_and_assignments(cranes, objective):
     assert (ranking[0].indices, ranking[0].cranes) in winners
     top = sorted(brute.values())[: len(ranking)]
     assert_allclose([r.worst_value for r in ranking], top, atol=tol)
-    # the assignment matters in this fleet: some set's assignments differ in value
+    # the assignment matters in this fleet: some set is feasible with one assignment in reach
+    # and infeasible, or worse, with another
     by_set = {}
-    for (s, _), v in brute.items():
-        by_set.setdefault(s, []).append(v)
-    if objective == "utilisation" or cranes > 3:  # three ropes: tensions fixed by statics
-        assert max(np.ptp(v) for v in by_set.values()) > 10 * tol
+    for (s, _), v in every.items():
+        by_set.setdefault(s, []).append(np.inf if v is None else v)
+    assert any(min(v) < np.inf and np.ptp(v) > 10 * tol for v in by_set.values())
 
 
 @pytest.mark.parametrize("cranes", [3, 4, 5])
