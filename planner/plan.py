@@ -20,7 +20,7 @@ from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 from .bounds import AdmissibleTensions
 from .problem import DEFAULT_SKEW_FACTOR, PlanProblem, code_margin
 from .scenarios import LugSet, Scenario
-from .search import SearchStats, SetResult, search
+from .search import Interrupted, SearchStats, SetResult, search
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
 GUIDANCE_STEP = 5.0
@@ -412,7 +412,10 @@ class Plan:
                       "factor": s.factor} for s in self.skew],
             "guidance": [{"angle": g.angle, "from": g.start, "to": g.end, "change": g.change,
                           "within_model": g.within_model} for g in self.guidance],
-            "search": {"sets": self.stats.sets, "rows": self.stats.rows,
+            "lower_bound": self.stats.lower_bound,
+            "gap": self.stats.gap,
+            "relative_gap": self.stats.relative_gap,
+            "search": {"sets": self.stats.sets, "rows": self.stats.rows, "stopped": self.stats.stopped,
                        "out_of_reach": self.stats.out_of_reach,
                        "screened_out": self.stats.screened_out,
                        "evaluated": self.stats.evaluated, "pruned": self.stats.pruned,
@@ -457,5 +460,10 @@ def plan(problem, top=None):
         No lug set can hold the body within the tolerances and limits; the message names
         the causes and how many sets each ruled out.
     """
-    ranking, stats = search(problem, top)
+    try:
+        ranking, stats = search(problem, top)
+    except Interrupted as stop:
+        if stop.ranking:
+            stop.plan = Plan(problem=problem, ranking=stop.ranking, stats=stop.stats)
+        raise
     return Plan(problem=problem, ranking=ranking, stats=stats)

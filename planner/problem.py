@@ -184,6 +184,10 @@ class PlanProblem:
     objective : {"spread", "utilisation"} or None
         What the plan keeps small over the box: max - min tension [t], or max - min of
         T_i / SWL_i [-]. None: ``spread`` for equal cranes, ``utilisation`` when they differ.
+    gap : float  [-]
+        Relative optimality gap at which the search may stop (0: prove the optimum).
+    time_limit : float or None  [s]
+        Stop the search after this long with the best plan and its honest gap.
     """
 
     body: Body
@@ -203,6 +207,8 @@ class PlanProblem:
     frame: str = "z-up"
     fleet: tuple[FleetCrane, ...] = ()
     objective: str | None = None
+    gap: float = 0.0
+    time_limit: float | None = None
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -250,6 +256,16 @@ class PlanProblem:
             )
         _set(self, "outline", tuple((finite("plan.outline", x), finite("plan.outline", y))
                                     for x, y, *_ in self.outline))
+        value = finite("plan.gap", self.gap)
+        if not 0.0 <= value < 1.0:
+            raise InvalidScene(f"plan.gap = {value!r}: expected a relative gap 0 <= gap < 1 "
+                               "(0.01 = 1 %)")
+        _set(self, "gap", value)
+        if self.time_limit is not None:
+            value = finite("plan.time_limit", self.time_limit)
+            if value <= 0.0:
+                raise InvalidScene(f"plan.time_limit = {value!r}: expected > 0 s")
+            _set(self, "time_limit", value)
         self._check_fleet()
 
     def _check_fleet(self):

@@ -41,6 +41,8 @@ class _Tolerance(Table):
 class _Plan(Table):
     cranes: Count | None = None
     objective: Literal["spread", "utilisation"] | None = None
+    gap: Num = 0.0
+    time_limit: Num | None = None
     tolerance: _Tolerance = _Tolerance()
     min_tension: Num = 0.0
     hook_tolerance: Num = 0.05
@@ -217,6 +219,8 @@ def _to_problem(data):
         crane=_default_spec(data),
         fleet=fleet,
         objective=data.plan.objective,
+        gap=data.plan.gap,
+        time_limit=data.plan.time_limit,
         heel_tolerance=data.plan.tolerance.heel,
         trim_tolerance=data.plan.tolerance.trim,
         min_tension=data.plan.min_tension,

@@ -14,6 +14,8 @@
 from __future__ import annotations
 
 import heapq
+import math
+import sys
 import time
 from collections import Counter
 from dataclasses import dataclass, field
@@ -167,6 +169,14 @@ class SearchStats:
         (set, assignment) pairs dropped because a crane cannot reach its lug.
     refined : int
         Rows whose coarse screening bound was replaced by the full one before evaluation.
+    lower_bound : float  [t or -]
+        Certified: no lug set and assignment does better over the box than this (the least
+        of the LP bounds of the rows evaluated and the screening bounds of the rows not).
+    best : float  [t or -]
+        The plan's worst value of the objective.
+    stopped : {"proved", "gap", "time_limit", "interrupted"}
+        Why the search ended: the top plans proved, the gap target reached, the time limit,
+        or Ctrl-C.
     """
 
     sets: int
@@ -178,6 +188,19 @@ class SearchStats:
     rows: int = 0
     out_of_reach: int = 0
     refined: int = 0
+    lower_bound: float = 0.0
+    best: float = math.inf
+    stopped: str = "proved"
+
+    @property
+    def gap(self):
+        """Best worst value minus the certified lower bound, in the objective's unit (>= 0)."""
+        return max(self.best - self.lower_bound, 0.0)
+
+    @property
+    def relative_gap(self):
+        """:attr:`gap` over the best worst value  [-]."""
+        return self.gap / self.best if self.best > 0 else 0.0
 
 
 @dataclass(frozen=True)
@@ -386,25 +409,44 @@ class SetEvaluator:
 REFINE = 64
 
 
-def search(problem, top=None):
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during the search; ``ranking`` and ``stats`` hold the best found so far (the
+    ranking may be empty), ``plan`` is set by :func:`liftplan.planner.plan.plan`."""
+
+    def __init__(self, ranking, stats):
+        super().__init__("search interrupted")
+        self.ranking, self.stats, self.plan = ranking, stats, None
+
+
+def search(problem, top=None, progress=None):
     """Rank the best lug sets with their crane assignments.
+
+    Best bound first over every (set, assignment) row: the search stops when no row left
+    can enter the top k (the optimum is proved), when the best plan is within
+    ``problem.gap`` of the certified lower bound, or at ``problem.time_limit``.
 
     Parameters
     ----------
     problem : PlanProblem
     top : int, optional
         How many to rank (default ``problem.top``).
+    progress : bool, optional
+        A progress bar on stderr (rows done, best, bound, gap). Default: when stderr is a
+        terminal, shown once the search has run a second.
 
     Returns
     -------
     ranking : list of SetResult
         Best first (smallest worst value of the objective).
     stats : SearchStats
+        With the certified lower bound and the gap.
 
     Raises
     ------
     PlanInfeasible
         No lug set is feasible; the message counts the causes.
+    Interrupted
+        Ctrl-C: carries the best ranking found so far.
     """
     started = time.perf_counter()
     top = top or problem.top
@@ -421,53 +463,106 @@ def search(problem, top=None):
     heapq.heapify(heap)
     feasible_rows = len(heap)
     ranking, evaluated, refine_count = [], 0, 0
-    while heap:
-        if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
-            break
-        value, coarse, k = heapq.heappop(heap)
-        if coarse:
-            batch = [k] + [heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap)))
-                           if heap and heap[0][1]]
-            full = screen(problem, sets[batch], cranes[batch], coarse=False)
-            refine_count += len(batch)
-            for j, new_bound, reason in zip(batch, full.bound, full.reason):
-                refined[j] = True
-                if reason != FEASIBLE:
-                    reasons[int(reason)] += 1
-                    continue
-                heapq.heappush(heap, (max(float(new_bound), float(bound[j])), False, int(j)))
-            continue
-        evaluated += 1
-        try:
-            result = evaluator.evaluate(sets[k], cranes[k], value)
-        except SetInfeasible as err:
-            reasons[err.code] += 1
-            continue
-        ranking.append(result)
-        ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
-        del ranking[top:]
-    stats = SearchStats(
-        sets=problem.set_count,
-        screened_out=int(np.sum(screening.reason != FEASIBLE)),
-        evaluated=evaluated,
-        pruned=feasible_rows - evaluated,
-        infeasible={REASONS[c]: n for c, n in reasons.most_common()},
-        seconds=time.perf_counter() - started,
-        rows=len(sets),
-        out_of_reach=out_of_reach,
-        refined=refine_count,
-    )
+    evaluated_bound = math.inf  # least LP bound of the rows evaluated feasible
+    stopped = "proved"
+    bar = _progress_bar(feasible_rows, progress)
+
+    def lower_bound():
+        return min(evaluated_bound, heap[0][0] if heap else math.inf)
+
+    def stats_now():
+        best = ranking[0].worst_value if ranking else math.inf
+        return SearchStats(
+            sets=problem.set_count,
+            screened_out=int(np.sum(screening.reason != FEASIBLE)),
+            evaluated=evaluated,
+            pruned=feasible_rows - evaluated,
+            infeasible={REASONS[c]: n for c, n in reasons.most_common()},
+            seconds=time.perf_counter() - started,
+            rows=len(sets),
+            out_of_reach=out_of_reach,
+            refined=refine_count,
+            lower_bound=min(lower_bound(), best),
+            best=best,
+            stopped=stopped,
+        )
+
+    try:
+        while heap:
+            if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
+                break
+            if ranking:
+                best, low = ranking[0].worst_value, min(lower_bound(), ranking[0].worst_value)
+                if problem.gap > 0 and best - low <= problem.gap * best:
+                    stopped = "gap"
+                    break
+                if problem.time_limit is not None and \
+                        time.perf_counter() - started > problem.time_limit:
+                    stopped = "time_limit"
+                    break
+            value, coarse, k = heapq.heappop(heap)
+            if coarse:
+                batch = [k] + [heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap)))
+                               if heap and heap[0][1]]
+                full = screen(problem, sets[batch], cranes[batch], coarse=False)
+                refine_count += len(batch)
+                for j, new_bound, reason in zip(batch, full.bound, full.reason):
+                    refined[j] = True
+                    if reason != FEASIBLE:
+                        reasons[int(reason)] += 1
+                        continue
+                    heapq.heappush(heap, (max(float(new_bound), float(bound[j])), False, int(j)))
+                continue
+            evaluated += 1
+            _tick(bar, ranking, lower_bound)
+            try:
+                result = evaluator.evaluate(sets[k], cranes[k], value)
+            except SetInfeasible as err:
+                reasons[err.code] += 1
+                continue
+            evaluated_bound = min(evaluated_bound, result.bound)
+            ranking.append(result)
+            ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
+            del ranking[top:]
+    except KeyboardInterrupt:
+        stopped = "interrupted"
+        raise Interrupted(ranking, stats_now()) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    stats = stats_now()
     if not ranking:
         causes = "; ".join(f"{n} sets: {text}" for text, n in stats.infeasible.items())
         what = f"{problem.cranes} lugs among {len(problem.candidates)} candidates"
         if not problem.equal_cranes:
             what += f" with any assignment of the cranes in reach ({out_of_reach} out of reach)"
+        if stopped == "time_limit":
+            what += f" found within the time limit {problem.time_limit:g} s"
         raise PlanInfeasible(
             f"no set of {what} can hold the body within heel +-{problem.heel_tolerance:g} deg, "
             f"trim +-{problem.trim_tolerance:g} deg, tensions {problem.min_tension:g} t to "
             f"each crane's SWL ({causes})"
         )
     return ranking, stats
+
+
+def _progress_bar(total, progress):
+    if progress is False or (progress is None and not sys.stderr.isatty()):
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc="plan", unit="set", file=sys.stderr, delay=1.0, leave=False,
+                dynamic_ncols=True)
+
+
+def _tick(bar, ranking, lower_bound):
+    if bar is None:
+        return
+    bar.update(1)
+    if ranking:
+        best, low = ranking[0].worst_value, min(lower_bound(), ranking[0].worst_value)
+        bar.set_postfix_str(f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %"
+                            if best > 0 else f"best {best:.4g}", refresh=False)
 
 
 def _coarse(screening, problem):

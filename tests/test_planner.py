@@ -11,7 +11,7 @@ from helpers import EXAMPLES
 from numpy.testing import assert_allclose
 from scipy.optimize import linprog
 
-from liftplan.model import PlanInfeasible, solve
+from liftplan.model import InvalidScene, PlanInfeasible, solve
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene import Body
 from liftplan.planner.bounds import AdmissibleTensions, PreloadMinimax
@@ -278,3 +278,29 @@ def test_admissible_bounds_contain_the_plan_and_bound_its_spread(tanker_plan):
         assert np.all(tensions >= bounds.lower - 1e-4)
         assert np.all(tensions <= bounds.upper + 1e-4)
         assert bounds.least_spread <= np.ptp(tensions) + 1e-4
+
+
+# -- certified gap, early stops ----------------------------------------------------------------
+@pytest.mark.parametrize("changes", [{"time_limit": 1e-6}, {"gap": 0.5}])
+def test_early_stop_returns_an_honest_gap(tanker_problem, tanker_plan, changes):
+    optimum = tanker_plan.worst_spread  # proved: the search ran to the end
+    assert tanker_plan.stats.stopped == "proved"
+    assert tanker_plan.stats.gap <= 1e-6 * tanker_problem.body.weight
+    early = plan(dataclasses.replace(tanker_problem, **changes))
+    stats = early.stats
+    # lower bound <= optimum <= reported worst; the gap is what separates them
+    assert stats.lower_bound <= optimum + 1e-6 * tanker_problem.body.weight
+    assert early.worst_spread >= optimum - 1e-6 * tanker_problem.body.weight
+    assert stats.gap == pytest.approx(early.worst_spread - stats.lower_bound, abs=1e-9)
+    assert stats.stopped in ("time_limit", "gap", "proved")
+    if "gap" in changes:
+        assert stats.relative_gap <= changes["gap"]
+    data = early.to_json()
+    assert data["lower_bound"] == stats.lower_bound and data["gap"] == stats.gap
+
+
+def test_bad_gap_and_time_limit(tanker_problem):
+    with pytest.raises(InvalidScene, match=r"plan.gap = 1.5: expected a relative gap"):
+        dataclasses.replace(tanker_problem, gap=1.5)
+    with pytest.raises(InvalidScene, match=r"plan.time_limit = 0.0: expected > 0 s"):
+        dataclasses.replace(tanker_problem, time_limit=0.0)
