@@ -39,7 +39,8 @@ def equilibrium_checks(scene, eq):
         # in water or on the ground a slack rope is a state (the water or the ground carries
         # the body), not a failure; in air the ropes alone must hold it
         slack = [name for name in eq.tensions if name in eq.slack]
-        note = (f"slack: {', '.join(slack)} carries nothing, the body hangs on the others"
+        verb = "carries" if len(slack) == 1 else "carry"
+        note = (f"slack: {', '.join(slack)} {verb} nothing, the body hangs on the others"
                 if slack else "")
         checks.append(Check.lower("taut", "ropes", len(eq.tensions) - len(slack), len(eq.tensions),
                                   "-", note=note))
