@@ -93,13 +93,13 @@ def main():
     (HERE / "out" / "startup.json").write_text(json.dumps(data, indent=1) + "\n")
 
     print(f"wall time, median of {RUNS} (whole process, {command})")
-    print(f"{'command':<54}{'median [s]':>12}{'goal':>8}")
+    print(f"{'command':<66}{'median [s]':>12}{'goal':>8}")
     for name, r in results.items():
         goal = f"< {GOAL}" if COMMANDS[name][0] != "plan" else ""
-        print(f"{name:<54}{r['median']:>12.3f}{goal:>8}")
-    print(f"{'python -c pass':<54}{floor:>12.3f}")
+        print(f"{name:<66}{r['median']:>12.3f}{goal:>8}")
+    print(f"{'python -c pass':<66}{floor:>12.3f}")
     for name, median in (shim or {}).items():
-        print(f"{name + ' (pyenv shim)':<54}{median:>12.3f}{'< ' + str(GOAL):>8}")
+        print(f"{name + ' (pyenv shim)':<66}{median:>12.3f}{'< ' + str(GOAL):>8}")
     print("\nlargest top-level imports of solve (cumulative):")
     for row in data["solve_imports"]:
         print(f"  {row['module']:<40}{row['seconds']:>8.3f} s")
