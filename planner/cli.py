@@ -146,16 +146,15 @@ def _plan(args):
         raise InvalidScene(f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
                            f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg")
     _warn(problem_warnings(problem))
-    from . import search
     from .plan import plan
+    from .search import Interrupted
 
     try:
         result = plan(problem, top=args.top)
-    except (KeyboardInterrupt, getattr(search, "Interrupted", KeyboardInterrupt)) as err:
-        best = getattr(err, "plan", None)
-        if best is None:
+    except Interrupted as err:
+        if err.plan is None:  # nothing evaluated yet
             raise KeyboardInterrupt from None
-        _print_plan(best, args, interrupted=True)
+        _print_plan(err.plan, args, interrupted=True)
         print("liftplan: interrupted; the plan above is the best found so far, not the search's "
               "answer", file=sys.stderr)
         return INTERRUPTED

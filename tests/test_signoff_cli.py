@@ -157,22 +157,16 @@ def test_interrupted_plan_prints_the_best_so_far_marked_as_such(capsys, monkeypa
     import importlib
 
     from liftplan.planner import plan
+    from liftplan.planner.search import Interrupted
 
     # (``import liftplan.planner.plan as m`` gives the function, as the package exports it)
     planning = importlib.import_module("liftplan.planner.plan")
-    search = importlib.import_module("liftplan.planner.search")
-
     best = plan(load_problem(TANKER_PLAN), top=2)
 
-    class Interrupted(KeyboardInterrupt):  # a stand-in for the search's: carries .plan
-        def __init__(self, plan):
-            super().__init__()
-            self.plan = plan
-
-    monkeypatch.setattr(search, "Interrupted", Interrupted, raising=False)
-
-    def interrupted(problem, top=None):
-        raise Interrupted(best)
+    def interrupted(problem, top=None):  # the search stopped by Ctrl-C with a plan in hand
+        error = Interrupted(best.ranking, best.stats)
+        error.plan = best
+        raise error
 
     monkeypatch.setattr(planning, "plan", interrupted)
     assert main(["plan", str(TANKER_PLAN)]) == 130
