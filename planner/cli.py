@@ -41,7 +41,7 @@ def _parser():
         description="Multi-crane lift planning for salvage and heavy-block rigging.",
         epilog="exit codes: 0 success, 1 no equilibrium / no feasible plan, 2 bad input, "
                "3 internal error, 4 result printed but a check failed (FAIL lines), "
-               "130 interrupted",
+               "130 interrupted (Ctrl-C), 141 output pipe closed early",
     )
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
     commands = parser.add_subparsers(dest="command", required=True)
