@@ -48,7 +48,9 @@ def one_error_line(err):
 # -- item 1: checks, exit code 4, warnings ----------------------------------------------------
 def test_weight_in_kg_fails_swl_checks_exit_4_and_warns(tmp_path):
     path = edited(tmp_path, TANKER, "weight = 904.0", "weight = 904000.0")
-    out = run("solve", str(path))
+    # the contract fixes exit 0 for a converged solve: only --strict turns FAIL into exit 4
+    assert run("solve", str(path)).returncode == 0
+    out = run("solve", str(path), "--strict")
     assert out.returncode == 4
     fails = [line for line in out.stdout.splitlines() if line.startswith("FAIL")]
     assert [line.split()[:3] for line in fails] == [["FAIL", "swl", f"T{i}:"] for i in (1, 2, 3, 4)]
@@ -67,7 +69,8 @@ def test_json_carries_every_check_and_a_script_can_gate_on_them(tmp_path):
     assert all(CHECK_KEYS <= set(c) and c["ok"] for c in checks)
     assert {c["name"] for c in checks} == {"swl", "min_tension", "taut"}
     # SWL 250 t: the 272.11 t ropes are at 108.8 %
-    over = run("solve", str(edited(tmp_path, TANKER, "swl = 400.0", "swl = 250.0")), "--json")
+    over = run("solve", str(edited(tmp_path, TANKER, "swl = 400.0", "swl = 250.0")), "--json",
+               "--strict")
     assert over.returncode == 4
     failed = [c for c in json.loads(over.stdout)["checks"] if not c["ok"]]
     assert {c["subject"] for c in failed} == {"T1", "T4"}
