@@ -26,6 +26,44 @@ def _set(obj, name, value):
 
 
 @dataclass(frozen=True)
+class SlingSpec:
+    """A crane's sling set in a planning file: equal legs from its hook to the lugs the
+    planner picks for it (README "Two-crane sling lifts").
+
+    Parameters
+    ----------
+    legs : int
+        Number of legs (2: the planner takes a pair of candidates for the crane).
+    length : float  [m]
+        Each leg's length, pin to pin.
+    EA : float or None  [t]
+        Each leg's axial stiffness; or give ``diameter``.
+    diameter : float or None  [mm]
+        Wire-rope diameter: EA = 80 000 N/mm2 x 0.785 d^2 (Noble Denton 0027/ND 5.6.13).
+    """
+
+    length: float
+    legs: int = 2
+    EA: float | None = None
+    diameter: float | None = None
+
+    def __post_init__(self):
+        from liftplan.model.rigging_gear import sling_ea
+
+        _set(self, "length", positive("cranes.sling.length", self.length))
+        if self.legs != 2:
+            raise InvalidScene(f"cranes.sling.legs = {self.legs!r}: expected 2 (the planner takes a "
+                               "pair of lugs per sling; 3- and 4-leg slings are solved, not planned)")
+        if (self.EA is None) == (self.diameter is None):
+            raise InvalidScene("cranes.sling: expected exactly one of EA (t) or diameter (mm)")
+        if self.diameter is not None:
+            _set(self, "diameter", positive("cranes.sling.diameter", self.diameter))
+            _set(self, "EA", sling_ea(self.diameter))
+        else:
+            _set(self, "EA", positive("cranes.sling.EA", self.EA))
+
+
+@dataclass(frozen=True)
 class FleetCrane:
     """One crane of the fleet.
 
@@ -48,6 +86,9 @@ class FleetCrane:
     from_defaults : bool
         Made from the ``[crane]`` defaults (a problem re-makes such a fleet when its
         defaults or crane count change).
+    sling : SlingSpec or None
+        A sling set on the hook (``rope_length`` and ``EA`` are then the hoist rope's, tip
+        to hook).
     """
 
     name: str
@@ -59,6 +100,7 @@ class FleetCrane:
     boom_min: float = -math.inf
     boom_max: float = math.inf
     from_defaults: bool = field(default=False, compare=False)
+    sling: SlingSpec | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
@@ -132,7 +174,8 @@ class FleetCrane:
 
     def same_as(self, other):
         """True when the two cranes are interchangeable (all but the name equal)."""
-        keys = ("EA", "rope_length", "position", "load_chart", "swl", "boom_min", "boom_max")
+        keys = ("EA", "rope_length", "position", "load_chart", "swl", "boom_min", "boom_max",
+                "sling")
         return all(getattr(self, k) == getattr(other, k) for k in keys)
 
 
