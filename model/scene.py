@@ -26,6 +26,18 @@ FRAMES = ("z-up", "choi")  # as liftplan.model.frames.FRAMES (not imported: it p
 _COLLINEAR_AREA = 1e-9
 
 
+#: Names listed in one error line; more are counted ("and 12 more"), so a 64-rope scene's
+#: message stays one readable line.
+NAMES_SHOWN = 8
+
+
+def name_list(names, limit=NAMES_SHOWN):
+    """Names joined by commas, the first ``limit`` of them and a count of the rest."""
+    names = list(names)
+    shown = ", ".join(str(name) for name in names[:limit])
+    return shown if len(names) <= limit else f"{shown} and {len(names) - limit} more"
+
+
 def finite(path, value):
     try:
         number = float(value)
@@ -361,7 +373,7 @@ class Scene:
                 key = "cranes.lug" if crane.sling is None else f"cranes[{crane.name}].sling.legs.lug"
                 if lug not in names:
                     raise InvalidScene(
-                        f"{key} = {lug!r}: unknown lug, expected one of {', '.join(names)}"
+                        f"{key} = {lug!r}: unknown lug, expected one of {name_list(names)}"
                     )
                 if lug in holder:
                     if crane.sling is None and holder[lug].sling is None:
@@ -388,12 +400,18 @@ class Scene:
         order = {name: k for k, name in enumerate(names)}
         _set(self, "lugs", lugs)
         _set(self, "cranes", tuple(sorted(cranes, key=lambda c: min(order[lug] for lug in c.lugs))))
+        held = set()
         for red in self.analysis.redundant:
             if red.lug not in names:
                 raise InvalidScene(
                     f"analysis.redundant.lug = {red.lug!r}: unknown lug, "
-                    f"expected one of {', '.join(names)}"
+                    f"expected one of {name_list(names)}"
                 )
+            if red.lug in held:
+                raise InvalidScene(
+                    f"analysis.redundant.lug = {red.lug!r}: held twice, expected each held lug once"
+                )
+            held.add(red.lug)
         if self.hull is None:
             _check_support(self)
 
@@ -449,7 +467,7 @@ class Scene:
                 return crane
         known = [c.label for c in self.cranes]
         raise InvalidScene(
-            f"crane = {key!r}: unknown crane, expected a lug or crane name of {', '.join(known)}")
+            f"crane = {key!r}: unknown crane, expected a lug or crane name of {name_list(known)}")
 
     @property
     def slings(self):
@@ -508,7 +526,7 @@ def _check_support(scene):
     area *= 0.5
     if diameter == 0.0 or len(hull) < 3 or area < _COLLINEAR_AREA * diameter**2:
         raise InvalidScene(
-            f"lugs {', '.join(scene.lug_names)}: plan positions (x, y) are collinear, "
+            f"lugs {name_list(scene.lug_names)}: plan positions (x, y) are collinear, "
             "so the statics are singular: expected lugs spanning an area in plan"
         )
     cx, cy = scene.body.cog[:2]
@@ -524,5 +542,5 @@ def _check_support(scene):
             raise InvalidScene(
                 f"body.cog = ({cx:g}, {cy:g}) m in plan lies {-dist:.3g} m outside the lugs' "
                 f"support polygon beyond edge {names[i]}-{names[j]}: rope(s) "
-                f"{', '.join(slack)} would go slack; expected the CG over the lugs"
+                f"{name_list(slack)} would go slack; expected the CG over the lugs"
             )

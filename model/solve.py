@@ -28,7 +28,7 @@ from .errors import EquilibriumNotFound, InvalidScene
 from .inclined import solve_inclined
 from .results import Equilibrium, Pose, SolverInfo
 from .rigging import solve_rigging
-from .scene import MODELS
+from .scene import MODELS, name_list
 from .statics import BLOCK, rope_model
 from .water import solve_hydrostatic
 
@@ -182,7 +182,8 @@ def _equilibrium(scene, model, x, tensions, residual, method, seconds, slack=())
 def _check_taut(scene, model, tensions):
     negative = [(name, t) for name, t in zip(scene.lug_names, tensions) if t < 0.0]
     if negative:
-        worst = ", ".join(f"{name} = {t:.2f} t" for name, t in negative)
+        negative.sort(key=lambda item: item[1])
+        worst = name_list(f"{name} = {t:.2f} t" for name, t in negative)
         att = scene.attitude
         raise EquilibriumNotFound(
             f"{model}: at heel {att.heel:g} deg, trim {att.trim:g} deg the statics need "
@@ -213,20 +214,26 @@ def solve_rigid(scene):
     start = time.perf_counter()
     x = _given_x(scene)
     a_mat, b_vec, _, _ = rope_model(n).statics(x, pack_params(scene, "rigid"))
+    a_mat, b_vec = np.asarray(a_mat), np.asarray(b_vec).ravel()
     names = scene.lug_names
-    rows = [np.asarray(a_mat)] + [np.eye(n)[[names.index(r.lug)]] for r in red]
-    matrix = np.vstack(rows)
-    rhs = np.concatenate([np.asarray(b_vec).ravel(), [r.tension for r in red]])
-    if np.linalg.cond(matrix) > 1e12:
-        held = ", ".join(r.lug for r in red)
+    given = {r.lug: r.tension for r in red}
+    held = np.array([name in given for name in names])
+    tensions = np.array([given.get(name, 0.0) for name in names])
+    # the three free tensions from the 3x3 statics of their lugs (rows scaled to unit size
+    # for the singularity test: (1, x / L, y / L), L the lugs' plan diameter)
+    free = a_mat[:, ~held]
+    scale = np.array([1.0, scene.plan_diameter, scene.plan_diameter])[:, None]
+    if np.linalg.cond(free / scale) > 1e12:
+        free_names = [name for name, h in zip(names, held) if not h]
         raise InvalidScene(
-            f"analysis.redundant = {held}: with these held, the other ropes' lugs are "
-            "collinear in plan and the statics are singular; expected other held lugs"
+            f"analysis.redundant: with {name_list([r.lug for r in red])} held, the free "
+            f"lugs {', '.join(free_names)} are collinear in plan and the statics are singular; "
+            "expected three free lugs spanning an area"
         )
-    tensions = np.linalg.solve(matrix, rhs)
+    tensions[~held] = np.linalg.solve(free, b_vec - a_mat[:, held] @ tensions[held])
     seconds = time.perf_counter() - start
     _check_taut(scene, "rigid", tensions)
-    residual = np.asarray(a_mat) @ tensions - np.asarray(b_vec).ravel()
+    residual = a_mat @ tensions - b_vec
     return _equilibrium(scene, "rigid", x, tensions, residual, "linear", seconds)
 
 
@@ -323,7 +330,7 @@ def solve_elastic(scene, method="auto"):
     slack = tuple(name for name, s in zip(scene.lug_names, stretch) if s <= 0.0)
     if scene.n - len(slack) < 3:
         raise EquilibriumNotFound(
-            f"elastic: only {scene.n - len(slack)} rope(s) taut ({', '.join(slack)} slack): "
+            f"elastic: only {scene.n - len(slack)} rope(s) taut ({name_list(slack)} slack): "
             "expected three or more to hold the body"
         )
     return _equilibrium(scene, "elastic", x, tensions, residual, used, seconds, slack=slack)

@@ -146,41 +146,67 @@ class FastCall:
 
 
 class RopeModel:
-    """Symbolic model and generated functions for n vertical ropes. Use :func:`rope_model`."""
+    """Symbolic model and generated functions for n vertical ropes. Use :func:`rope_model`.
+
+    Each function is built on first use, so a solve pays only for what it calls: the
+    held-hoist sensitivities (an n x n Jacobian, ~0.1 s to build at n = 64) are not made
+    for an elastic or paper-elastic solve.
+    """
 
     def __init__(self, n):
         self.n = n
         self.layout = Layout(n)
+        self.batch_backend = None  # "jit" or "casadi-vm", set when a batch map is built
         p = ca.SX.sym("p", self.layout.size)
         x = ca.SX.sym("x", 3)  # lift a [m], heel [rad], trim [rad]
         yaw, points, cog, weight, boom, length, stiffness, scale = self.layout.split(p)
         lift, heel, trim = x[0], x[1], x[2]
         lugs, cog_w = pose_points(points, cog, heel, trim, yaw, lift)
         a_mat, b_vec = statics_system(lugs, cog_w, weight)
-        row_scale = ca.vertcat(weight, weight * scale, weight * scale)
+        self._x, self._p = x, p
+        self._parts = (yaw, points, cog, weight, boom, length, stiffness, scale)
+        self._pose = (lugs, cog_w, a_mat, b_vec)
 
-        # -- given attitude: statics matrix, and the paper's elastic closure ---------------
-        self.statics = ca.Function(
-            "statics", [x, p], [a_mat, b_vec, lugs, cog_w], ["x", "p"], ["A", "b", "lugs", "cog"]
+    # -- given attitude: statics matrix, and the paper's elastic closure -------------------
+    @cached_property
+    def statics(self):
+        """(x, p) -> (A, b, lugs, cog): the statics A T = b at a given pose."""
+        lugs, cog_w, a_mat, b_vec = self._pose
+        return ca.Function(
+            "statics", [self._x, self._p], [a_mat, b_vec, lugs, cog_w], ["x", "p"],
+            ["A", "b", "lugs", "cog"],
         )
+
+    @cached_property
+    def paper_elastic(self):
+        """(x, p) -> (T, l, residual): Choi & Shin (2003)'s closure, a 3x3 normal system."""
+        lugs, _, a_mat, b_vec = self._pose
+        boom, stiffness = self._parts[4], self._parts[6]
         rope_len = boom - lugs[2, :].T  # l_i = H_i - a - z'_i
         k = stiffness / rope_len
         phi = a_mat.T  # n x 3
         normal = ca.mtimes(phi.T, ca.diag(k) @ phi)
         coeff = ca.solve(normal, b_vec)
         t_paper = k * ca.mtimes(phi, coeff)
-        self.batch_backend = None  # "jit" or "casadi-vm", set when the batch map is built
-        self.paper_elastic = ca.Function(
-            "paper_elastic", [x, p], [t_paper, rope_len, ca.mtimes(a_mat, t_paper) - b_vec],
+        return ca.Function(
+            "paper_elastic", [self._x, self._p], [t_paper, rope_len, ca.mtimes(a_mat, t_paper) - b_vec],
             ["x", "p"], ["T", "l", "residual"],
         )
 
-        # -- held hoist: the boom heights set at level, the hooks then moved rigidly ---------
-        # A heel or trim deviation comes from hook motions that are a rigid-body motion of
-        # the level hook pattern: dH_i = c0 + c1 x0_i + c2 y0_i (x0, y0 the lugs' level plan
-        # positions). Such motions leave the twist (the redundant preload) unchanged. At a
-        # given pose the statics fix c: linear, exact. See :func:`held_tensions`.
-        level, _ = pose_points(points, cog, 0, 0, yaw, lift)
+    # -- held hoist: the boom heights set at level, the hooks then moved rigidly -------------
+    @cached_property
+    def held(self):
+        """(x, p) -> (T, dH, dT_dH): tensions with the level preload held; see below.
+
+        A heel or trim deviation comes from hook motions that are a rigid-body motion of
+        the level hook pattern: dH_i = c0 + c1 x0_i + c2 y0_i (x0, y0 the lugs' level plan
+        positions). Such motions leave the twist (the redundant preload) unchanged. At a
+        given pose the statics fix c: linear, exact.
+        """
+        n = self.n
+        yaw, points, cog, _, boom, length, stiffness, _ = self._parts
+        lugs, _, a_mat, b_vec = self._pose
+        level, _ = pose_points(points, cog, 0, 0, yaw, self._x[0])
         phi0 = ca.horzcat(ca.DM.ones(n, 1), level[0, :].T, level[1, :].T)
         k0 = stiffness / length
         s_set = boom - lugs[2, :].T - length
@@ -188,34 +214,65 @@ class RopeModel:
         c_hold = ca.solve(coupling, b_vec - ca.mtimes(a_mat, k0 * s_set))
         hook_shift = ca.mtimes(phi0, c_hold)
         t_held = k0 * (s_set + hook_shift)
-        self.held = ca.Function(
-            "held", [x, p], [t_held, hook_shift, ca.jacobian(t_held, boom)],
+        return ca.Function(
+            "held", [self._x, self._p], [t_held, hook_shift, ca.jacobian(t_held, boom)],
             ["x", "p"], ["T", "dH", "dT_dH"],
         )
 
-        # -- forward elastic model -----------------------------------------------------------
+    # -- forward elastic model -------------------------------------------------------------
+    @cached_property
+    def _elastic(self):
+        """Symbolic tension, stretch, scaled residual and energy of the forward model."""
+        x = self._x
+        _, _, _, weight, boom, length, stiffness, scale = self._parts
+        lugs, cog_w, a_mat, b_vec = self._pose
+        row_scale = ca.vertcat(weight, weight * scale, weight * scale)
         tension, stretch = rope_tensions(boom, lugs[2, :].T, length, stiffness)
         residual = (ca.mtimes(a_mat, tension) - b_vec) / row_scale
-        self.elastic_tensions = ca.Function(
-            "elastic_tensions", [x, p], [tension, stretch, residual * row_scale],
-            ["x", "p"], ["T", "stretch", "residual"],
-        )
-        # Start: one Newton step on the all-taut residual from level, which is exact for the
-        # linearised kinematics (the residual is affine in the lift a).
-        taut = ca.mtimes(a_mat, stiffness * stretch / length) - b_vec
-        x_ref = ca.vertcat(0, 0, 0)
-        jac_taut = ca.substitute(ca.jacobian(taut, x), x, x_ref)
-        x_start = x_ref - ca.solve(jac_taut, ca.substitute(taut, x, x_ref))
-        self.elastic_start = ca.Function("elastic_start", [p], [x_start])
-
         # Potential energy; its stationary points are the equilibria (for |heel| < 90 deg),
         # and the stable ones are its minima: leading principal minors of the Hessian > 0.
         energy = weight * cog_w[2] + ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
         energy = energy / (weight * scale)
         hess = ca.hessian(energy, x)[0]
         minors = ca.vertcat(hess[0, 0], ca.det(hess[:2, :2]), ca.det(hess))
-        self._energy = (x, p, energy)
-        self._x, self._p, self._residual, self._minors = x, p, residual, minors
+        return tension, stretch, residual, row_scale, energy, minors
+
+    @cached_property
+    def elastic_tensions(self):
+        """(x, p) -> (T, stretch, residual [t]) of the forward model at a pose."""
+        tension, stretch, residual, row_scale, _, _ = self._elastic
+        return ca.Function(
+            "elastic_tensions", [self._x, self._p], [tension, stretch, residual * row_scale],
+            ["x", "p"], ["T", "stretch", "residual"],
+        )
+
+    @cached_property
+    def elastic_start(self):
+        """p -> x: one Newton step on the all-taut residual from level.
+
+        Exact for the linearised kinematics (the residual is affine in the lift a).
+        """
+        x, p = self._x, self._p
+        _, _, _, _, _, length, stiffness, _ = self._parts
+        _, stretch, _, _, _, _ = self._elastic
+        _, _, a_mat, b_vec = self._pose
+        taut = ca.mtimes(a_mat, stiffness * stretch / length) - b_vec
+        x_ref = ca.vertcat(0, 0, 0)
+        jac_taut = ca.substitute(ca.jacobian(taut, x), x, x_ref)
+        x_start = x_ref - ca.solve(jac_taut, ca.substitute(taut, x, x_ref))
+        return ca.Function("elastic_start", [p], [x_start])
+
+    @property
+    def _energy(self):
+        return self._x, self._p, self._elastic[4]
+
+    @property
+    def _residual(self):
+        return self._elastic[2]
+
+    @property
+    def _minors(self):
+        return self._elastic[5]
 
     @cached_property
     def _newton(self):
