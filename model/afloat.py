@@ -8,8 +8,9 @@ world offsets from the point o on the water plane above the body-frame origin, s
 point v is at R v + (0, 0, zo). Every force is vertical:
 
 * gravity W_g at G (the body's weight plus water trapped in compartments),
-* buoyancy: sum over the hull's triangles of kappa_t x (wet volume), kappa in t/m3
-  (:func:`buoyancy_weights`), at the centre of that volume,
+* buoyancy, the weight of the displaced water: sum over the hull's triangles of
+  kappa_t x (wet volume), kappa in t/m3 (:func:`buoyancy_weights`), at the centre of that
+  volume (>= 0; a trapped compartment's displacement is in it, its water in W_g),
 * rope i: T_i = EA_i / l0_i max(0, H_i - h_i - l0_i), h_i the lug's world height,
 * the ground reaction F_R at the pivot c (when grounded): whatever closes the forces.
 
@@ -48,6 +49,10 @@ def buoyancy_weights(hull, weight, density):
     kappa : numpy.ndarray, shape (m,)  [t/m3]
     trapped : list of (float, tuple)
         Weight [t] and body-frame centre [m] of water trapped in compartments.
+
+    A compartment's triangles carry kappa = density whatever it holds: watertight, it
+    displaces water while submerged. Trapped water is a weight (``trapped``), so
+    submerged the two cancel and clear of the water the weight remains.
     """
     if hull.flooding == "intact":
         return hull.triangles, np.full(len(hull.triangles), density), []
@@ -59,7 +64,6 @@ def buoyancy_weights(hull, weight, density):
         tris.append(comp.triangles)
         kappa.append(np.full(len(comp.triangles), density))
         if comp.contents == "water":
-            # carried as weight; its own buoyancy cancels it while submerged
             trapped.append((density * comp.volume, comp.centroid))
     return np.concatenate(tris), np.concatenate(kappa), trapped
 

@@ -15,8 +15,13 @@ Water inside the hull (:class:`Flooding`):
   is ``weight / steel_density`` (or ``(weight - weight_in_water) / water density``) and is
   taken as spread like the envelope: its submerged fraction and centre are those of the
   envelope's submerged part. Watertight :class:`Compartment` boxes inside a flooded hull
-  hold ``air`` (they displace water while submerged) or ``water`` (trapped: it never drains
-  and is carried as weight once the compartment rises above the surface).
+  hold ``air`` (they displace water while submerged) or ``water`` (trapped: it never drains).
+
+Trapped water is a weight (:meth:`Hull.trapped_water`), carried with the hull at every
+hoist; its compartment, being watertight, displaces water like any other while it is
+below the surface and so adds to the buoyancy. Submerged, the two cancel; clear of the
+water the cranes carry the trapped water whole. Buoyancy is therefore always the weight
+of the displaced water (>= 0), never a net force.
 """
 
 from __future__ import annotations
@@ -255,6 +260,27 @@ class Hull:
         """Largest bounding-box side  [m] (the moment residuals' length scale)."""
         lower, upper = self.bounds
         return float(max(upper - lower))
+
+    def trapped_water(self, density):
+        """Weight and centre of the water trapped in compartments.
+
+        Parameters
+        ----------
+        density : float  [t/m3]   water density
+
+        Returns
+        -------
+        weight : float  [t]
+            0 without trapped water.
+        centre : tuple of 3 float or None  [m]
+            Body frame; None without trapped water.
+        """
+        tanks = [c for c in self.compartments if c.contents == "water"]
+        volume = sum(c.volume for c in tanks)
+        if not tanks:
+            return 0.0, None
+        centre = sum(c.volume * np.asarray(c.centroid) for c in tanks) / volume
+        return density * volume, tuple(float(v) for v in centre)
 
     def steel_volume(self, weight, density):
         """Volume of steel that displaces water in a flooded hull  [m3].

@@ -7,6 +7,18 @@ grounded while the contact carries load, hanging once the ground reaction would 
 negative (lift-off), then through the surface as the buoyancy is lost. A step that finds
 no equilibrium is kept in the curve as a failed step with its reason; it never gets
 numbers.
+
+Events are located between the steps by bisection on the hoist, each solve started from
+the pose on the near side, until the bracket is at most ``EVENT_TOL`` wide:
+
+* ``lift-off``: the ground reaction reaches 0 (the grounded solve no longer holds);
+* ``surface``: the hull's highest point first reaches the surface from below;
+* ``clear``: its lowest point leaves the water.
+
+The maximum crane load is reported with its plateau: the hoist ranges where the largest
+rope load is within ``PLATEAU_REL`` of the peak, their ends bisected the same way. Clear
+of the water (or hanging submerged) the loads are constant, so the peak has no single
+hoist; a point of such a plateau would be an artefact of the step.
 """
 
 from __future__ import annotations
@@ -17,7 +29,85 @@ import numpy as np
 
 from .errors import EquilibriumNotFound, InvalidScene
 from .frames import rotation_matrix
-from .water import Start, WaterSetup, solve_in_water
+from .water import Start, WaterSetup, hull_heights, solve_in_water
+
+# Bracket width [m] at which an event's bisection stops (the event is reported at the
+# bracket's middle, to +-half of it). Hooks are set to centimetres; 0.1 mm costs about a
+# dozen solves per event at a 0.25 m step.
+EVENT_TOL = 1e-4
+# The plateau: rope loads within 0.1 % of the peak. Relative, so it reads the same on a
+# 50 t block and a 20 000 t wreck; 0.1 % is well below what a crane's load cell or a
+# weight estimate resolves, and still only millimetres of hoist where the load is rising
+# (about 40 t/m per rope as the sunken block pierces the surface).
+PLATEAU_REL = 1e-3
+
+EVENTS = {
+    "lift-off": "ground reaction reaches 0",
+    "surface": "hull first touches the surface from below",
+    "clear": "hull fully clear of the water",
+}
+
+
+@dataclass(frozen=True)
+class Event:
+    """A change of state on the load curve, located by bisection between steps.
+
+    Parameters
+    ----------
+    name : str
+        ``"lift-off"``, ``"surface"`` or ``"clear"`` (see :data:`EVENTS`).
+    hoist : float  [m]
+        Middle of the final bracket.
+    tolerance : float  [m]
+        Half the bracket's width: the event lies within ``hoist +- tolerance``.
+        At most ``EVENT_TOL / 2`` unless a solve inside the bracket failed.
+    """
+
+    name: str
+    hoist: float
+    tolerance: float
+
+    @property
+    def description(self):
+        return EVENTS[self.name]
+
+    def to_json(self):
+        return {"event": self.name, "hoist": self.hoist, "tolerance": self.tolerance,
+                "description": self.description}
+
+
+@dataclass(frozen=True)
+class MaxLoad:
+    """The largest rope load on the curve and where it holds.
+
+    Parameters
+    ----------
+    tension : float  [t]
+        The peak.
+    lug : str
+        The rope that carries it.
+    plateau : tuple of (float, float)  [m]
+        Hoist ranges (from, to) where the largest rope load is within ``tolerance`` of
+        the peak; ends bisected between steps to ``EVENT_TOL``. A range may end at the
+        curve's last hoist (``to_end``): it goes on beyond.
+    tolerance : float  [t]
+        ``PLATEAU_REL`` x the peak.
+    to_end : bool
+        The last range reaches the last hoist computed.
+    """
+
+    tension: float
+    lug: str
+    plateau: tuple[tuple[float, float], ...]
+    tolerance: float
+    to_end: bool
+
+    def to_json(self):
+        return {"tension": self.tension, "lug": self.lug,
+                "plateau": [{"from": a, "to": b} for a, b in self.plateau],
+                "tolerance": self.tolerance,
+                "tolerance_rule": f"within {100 * PLATEAU_REL:g} % of the peak",
+                "to_end": self.to_end}
 
 
 @dataclass(frozen=True)
@@ -32,13 +122,26 @@ class LoadCurve:
     tensions : numpy.ndarray, shape (k, n)  [t]
     heel, trim : numpy.ndarray, shape (k,)  [deg]
     buoyancy : numpy.ndarray, shape (k,)  [t]
+        Weight of the displaced water (>= 0).
+    displaced_volume : numpy.ndarray, shape (k,)  [m3]
     ground_reaction : numpy.ndarray, shape (k,)  [t]
         0 once lifted off (and without a ground contact).
+    bottom, top : numpy.ndarray, shape (k,)  [m]
+        Lowest and highest point of the hull envelope above the water level.
     state : tuple of str
-        ``grounded``, ``afloat`` (in the water, free of the ground) or ``clear``.
+        Per step, one of :attr:`~liftplan.model.results.Afloat.STATES`.
     failed : tuple of (float, str)
         Hoists [m] with no equilibrium found, and why.
     weight : float  [t]
+        The body's weight in air.
+    trapped_water : float  [t]
+        Water trapped in compartments, carried at every hoist.
+    density : float  [t/m3]
+    events : tuple of Event
+        In hoist order.
+    max_load : MaxLoad
+    name : str
+        The scene's name (the figure's title).
     """
 
     lugs: tuple[str, ...]
@@ -47,22 +150,34 @@ class LoadCurve:
     heel: np.ndarray
     trim: np.ndarray
     buoyancy: np.ndarray
+    displaced_volume: np.ndarray
     ground_reaction: np.ndarray
+    bottom: np.ndarray
+    top: np.ndarray
     state: tuple[str, ...]
     failed: tuple[tuple[float, str], ...]
     weight: float
+    trapped_water: float
+    density: float
+    events: tuple[Event, ...]
+    max_load: MaxLoad
+    name: str = ""
 
     @property
-    def max_load(self):
-        """(tension [t], lug, hoist [m]) of the largest rope load on the curve."""
-        k, i = np.unravel_index(int(np.argmax(self.tensions)), self.tensions.shape)
-        return float(self.tensions[k, i]), self.lugs[i], float(self.hoist[k])
+    def crane_load(self):
+        """Sum of the rope tensions per step  [t] (= W + trapped water - B - F_R)."""
+        return self.tensions.sum(axis=1)
+
+    def event(self, name):
+        """The :class:`Event` called ``name``, or None if it did not happen in the range."""
+        return next((e for e in self.events if e.name == name), None)
 
     @property
     def lift_off(self):
-        """First hoist [m] at which the hull is free of the ground (None if never)."""
-        free = [h for h, s in zip(self.hoist, self.state) if s != "grounded"]
-        return float(free[0]) if free else None
+        """Hoist [m] at which the ground reaction reaches 0 (None if the hull never rested
+        on the ground, or did not leave it within the range)."""
+        event = self.event("lift-off")
+        return event.hoist if event is not None else None
 
     def rows(self):
         """One dict per solved hoist (for CSV / JSON)."""
@@ -70,19 +185,24 @@ class LoadCurve:
         for k, h in enumerate(self.hoist):
             row = {"hoist": float(h)}
             row.update({f"T_{name}": float(t) for name, t in zip(self.lugs, self.tensions[k])})
-            row.update(heel=float(self.heel[k]), trim=float(self.trim[k]),
-                       buoyancy=float(self.buoyancy[k]), ground_reaction=float(self.ground_reaction[k]),
-                       state=self.state[k])
+            row.update(crane_load=float(self.crane_load[k]), heel=float(self.heel[k]),
+                       trim=float(self.trim[k]), buoyancy=float(self.buoyancy[k]),
+                       displaced_volume=float(self.displaced_volume[k]),
+                       ground_reaction=float(self.ground_reaction[k]), bottom=float(self.bottom[k]),
+                       top=float(self.top[k]), state=self.state[k])
             out.append(row)
         return out
 
     def to_json(self):
-        load, lug, at = self.max_load
         return {
+            "name": self.name,
             "lugs": list(self.lugs),
             "weight": self.weight,
-            "max_load": {"tension": load, "lug": lug, "hoist": at},
+            "trapped_water": self.trapped_water,
+            "water_density": self.density,
+            "max_load": self.max_load.to_json(),
             "lift_off": self.lift_off,
+            "events": [e.to_json() for e in self.events],
             "curve": self.rows(),
             "failed": [{"hoist": h, "reason": r} for h, r in self.failed],
         }
@@ -93,6 +213,115 @@ def default_stop(scene):
     rot = rotation_matrix(scene.attitude.heel, scene.attitude.trim, scene.attitude.yaw)
     heights = (rot @ scene.hull.vertices.T)[2] + scene.attitude.lift_height
     return float(scene.water.level - heights.min() + 1.0)
+
+
+@dataclass(frozen=True)
+class _Point:
+    """One solved hoist: the equilibrium, the pose to start the next solve from, and the
+    hull's lowest and highest point above the water."""
+
+    hoist: float
+    eq: object
+    start: Start
+    bottom: float
+    top: float
+
+    @property
+    def peak(self):
+        return max(self.eq.tensions.values())
+
+
+class _Lift:
+    """Solves at any hoist from a given pose (one built model)."""
+
+    def __init__(self, scene):
+        self.scene = scene
+        self.setup = WaterSetup(scene)
+
+    def at(self, hoist, start=None):
+        """The solved :class:`_Point` at ``hoist`` [m]; raises EquilibriumNotFound."""
+        scene = self.scene
+        eq = solve_in_water(scene, setup=self.setup, start=start, hoist=hoist)
+        pose = eq.pose
+        zo = pose.lift_height - scene.water.level
+        rot = rotation_matrix(pose.heel, pose.trim, pose.yaw)
+        bottom, top = hull_heights(scene.hull, rot, zo)
+        return _Point(float(hoist), eq, Start(zo, rot), bottom, top)
+
+    def bisect(self, lo, hi, test):
+        """Narrow [lo, hi] (``test`` false at ``lo``, true at ``hi``) to ``EVENT_TOL``.
+
+        Returns (middle, half-width) [m] of the last bracket: a solve that fails inside it
+        stops the bisection there, and the wider bracket is what is reported."""
+        a, b, start = lo.hoist, hi.hoist, lo.start
+        while b - a > EVENT_TOL:
+            mid = 0.5 * (a + b)
+            try:
+                point = self.at(mid, start)
+            except EquilibriumNotFound:
+                break
+            if test(point):
+                b = mid
+            else:
+                a, start = mid, point.start
+        return 0.5 * (a + b), 0.5 * (b - a)
+
+
+def _adjacent(points, failed):
+    """Pairs of neighbouring solved points (k, k + 1) with no failed hoist between them."""
+    bad = [h for h, _ in failed]
+    return [k for k in range(len(points) - 1)
+            if not any(points[k].hoist < h < points[k + 1].hoist for h in bad)]
+
+
+def _events(lift, points, failed):
+    tests = {
+        "lift-off": lambda p: p.eq.afloat.state != "grounded",
+        "surface": lambda p: p.top >= 0.0,
+        "clear": lambda p: p.bottom >= 0.0,
+    }
+    pairs = _adjacent(points, failed)
+    out = []
+    for name, test in tests.items():
+        if test(points[0]):  # already past it at the first hoist: it is not in the range
+            continue
+        first = next((k for k in range(len(points) - 1) if test(points[k + 1])), None)
+        if first is None:
+            continue
+        if first in pairs:
+            hoist, tol = lift.bisect(points[first], points[first + 1], test)
+        else:  # a failed step lies between: the bracket is the two solved neighbours
+            a, b = points[first].hoist, points[first + 1].hoist
+            hoist, tol = 0.5 * (a + b), 0.5 * (b - a)
+        out.append(Event(name, hoist, tol))
+    return tuple(sorted(out, key=lambda e: e.hoist))
+
+
+def _max_load(lift, points, failed, lugs, tensions):
+    k, i = np.unravel_index(int(np.argmax(tensions)), tensions.shape)
+    peak = float(tensions[k, i])
+    tolerance = PLATEAU_REL * abs(peak)
+    threshold = peak - tolerance
+    inside = tensions.max(axis=1) >= threshold
+    pairs = set(_adjacent(points, failed))
+    ranges, j, last = [], 0, len(points) - 1
+    while j <= last:
+        if not inside[j]:
+            j += 1
+            continue
+        end = j
+        while end < last and inside[end + 1] and end in pairs:
+            end += 1
+        start_at = points[j].hoist
+        if j > 0 and (j - 1) in pairs:
+            start_at = lift.bisect(points[j - 1], points[j], lambda p: p.peak >= threshold)[0]
+        end_at = points[end].hoist
+        if end < last and end in pairs:
+            end_at = lift.bisect(points[end], points[end + 1], lambda p: p.peak < threshold)[0]
+        ranges.append((float(start_at), float(end_at)))
+        j = end + 1
+    to_end = bool(inside[last])
+    return MaxLoad(peak, lugs[i], tuple(ranges), tolerance, to_end)
 
 
 def load_curve(scene, stop=None, step=0.25):
@@ -119,27 +348,38 @@ def load_curve(scene, stop=None, step=0.25):
     count = int(np.floor(stop / step + 1e-9)) + 1
     if count > 100_000:
         raise InvalidScene(f"lift: {count} steps; expected at most 100000 (a larger step)")
-    setup = WaterSetup(scene)
+    lift = _Lift(scene)
     start = None
-    rows, failed, states = [], [], []
+    points, failed = [], []
     for hoist in np.linspace(0.0, step * (count - 1), count):
         try:
-            eq = solve_in_water(scene, setup=setup, start=start, hoist=hoist)
+            point = lift.at(hoist, start)
         except EquilibriumNotFound as err:
             failed.append((float(hoist), str(err)))
             continue
-        a = eq.afloat
-        start = Start(eq.pose.lift_height - scene.water.level,
-                      rotation_matrix(eq.pose.heel, eq.pose.trim, eq.pose.yaw))
-        rows.append([hoist, *eq.tensions.values(), eq.pose.heel, eq.pose.trim, a.buoyancy,
-                     a.ground_reaction or 0.0])
-        states.append(a.state)
-    if not rows:
+        points.append(point)
+        start = point.start
+    if not points:
         raise EquilibriumNotFound(f"lift: no hoist step solved; first failure: {failed[0][1]}")
-    data = np.array(rows)
-    n = scene.n
+    afloat = [p.eq.afloat for p in points]
+    tensions = np.array([list(p.eq.tensions.values()) for p in points])
     return LoadCurve(
-        lugs=scene.lug_names, hoist=data[:, 0], tensions=data[:, 1 : 1 + n], heel=data[:, 1 + n],
-        trim=data[:, 2 + n], buoyancy=data[:, 3 + n], ground_reaction=data[:, 4 + n],
-        state=tuple(states), failed=tuple(failed), weight=scene.body.weight,
+        lugs=scene.lug_names,
+        hoist=np.array([p.hoist for p in points]),
+        tensions=tensions,
+        heel=np.array([p.eq.pose.heel for p in points]),
+        trim=np.array([p.eq.pose.trim for p in points]),
+        buoyancy=np.array([a.buoyancy for a in afloat]),
+        displaced_volume=np.array([a.displaced_volume for a in afloat]),
+        ground_reaction=np.array([a.ground_reaction or 0.0 for a in afloat]),
+        bottom=np.array([p.bottom for p in points]),
+        top=np.array([p.top for p in points]),
+        state=tuple(a.state for a in afloat),
+        failed=tuple(failed),
+        weight=scene.body.weight,
+        trapped_water=lift.setup.trapped,
+        density=scene.water.density,
+        events=_events(lift, points, failed),
+        max_load=_max_load(lift, points, failed, scene.lug_names, tensions),
+        name=scene.name or "",
     )

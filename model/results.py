@@ -8,6 +8,7 @@ scene's file (``Equilibrium.frame``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 
 @dataclass(frozen=True)
@@ -55,36 +56,102 @@ class SolverInfo:
 class Afloat:
     """Water and ground forces of an equilibrium (world frame, ``z-up``).
 
+    Every force is named for what it is. The hull carries its weight in air W at G and,
+    in a flooded hull, the trapped water (``trapped_water``, a weight, at its own centre);
+    the water pushes up with the buoyancy B (the weight of the displaced water, always
+    >= 0) at the centre of buoyancy; the ground pushes up with F_R at the contact; the
+    ropes carry the rest: sum T = W + trapped water - B - F_R. Submerged, a trapped
+    compartment displaces water like any watertight space, so its part of B cancels its
+    weight; clear of the water it is carried whole.
+
     Parameters
     ----------
     state : str
-        ``"grounded"`` (resting on the ground contact, which carries F_R > 0),
-        ``"afloat"`` (free of the ground; floating or hanging in the water) or ``"clear"``
-        (hanging clear of the water).
+        One of :attr:`STATES`: ``"grounded"`` (resting on the ground contact, which carries
+        F_R > 0), ``"hanging submerged"`` (free of the ground, held by the cranes, wholly
+        below the surface), ``"piercing the surface"`` (held by the cranes, partly out of
+        the water), ``"clear"`` (hanging clear of the water) or ``"afloat"`` (floating free:
+        no ground reaction, no crane load).
     buoyancy : float  [t]
-        Net upward water force (displaced water less trapped water's lift; see
-        :mod:`liftplan.model.hull`).
-    volume : float  [m3]
-        Envelope volume below the water plane.
+        Weight of the displaced water: ``density x displaced_volume`` (>= 0).
+    displaced_volume : float  [m3]
+        Volume of water displaced: the whole envelope below the surface for an intact
+        hull; the steel and the watertight compartments (air or trapped water) below the
+        surface for a flooded one.
+    immersed_volume : float  [m3]
+        Volume of the hull envelope below the water plane (equal to ``displaced_volume``
+        for an intact hull; a flooded hull's water inside displaces nothing).
+    trapped_water : float  [t]
+        Weight of the water trapped in compartments, carried with the hull (0 without).
+    density : float  [t/m3]
+        Water density.
     ground_reaction : float or None  [t]
-        F_R at the contact (None when no ground is modelled; 0 when afloat).
+        F_R at the contact (None when no ground is modelled; 0 once free of it).
     freeing_force : float or None  [t]
         friction x F_R (None without a friction coefficient).
     centre_of_buoyancy : tuple of 3 float or None  [m]
-        Centre of the displaced envelope volume (None when clear of the water).
+        Centre of the displaced volume, where B acts (None when clear of the water).
     centre_of_gravity : tuple of 3 float  [m]
+        The body's G (weight in air, without trapped water).
     contact : tuple of 3 float or None  [m]
         The ground contact point.
+    centre_of_trapped_water : tuple of 3 float or None  [m]
+        Centre of the trapped water (None without).
     """
 
     state: str
     buoyancy: float
-    volume: float
+    displaced_volume: float
+    immersed_volume: float
+    trapped_water: float
+    density: float
     ground_reaction: float | None
     freeing_force: float | None
     centre_of_buoyancy: tuple[float, float, float] | None
     centre_of_gravity: tuple[float, float, float]
     contact: tuple[float, float, float] | None
+    centre_of_trapped_water: tuple[float, float, float] | None = None
+
+    STATES: ClassVar[dict[str, str]] = {
+        "grounded": "resting on the ground contact",
+        "hanging submerged": "hanging on the cranes, wholly under water",
+        "piercing the surface": "hanging on the cranes, partly out of the water",
+        "clear": "hanging on the cranes, clear of the water",
+        "afloat": "floating free, no crane load",
+    }
+
+    def __post_init__(self):
+        if self.state not in self.STATES:
+            raise ValueError(f"Afloat.state = {self.state!r}: expected one of {', '.join(self.STATES)}")
+
+    def crane_load(self, weight):
+        """What the ropes carry together: W + trapped water - buoyancy - ground reaction  [t].
+
+        Parameters
+        ----------
+        weight : float  [t]   the body's weight in air
+        """
+        return weight + self.trapped_water - self.buoyancy - (self.ground_reaction or 0.0)
+
+    def to_json(self, frame="z-up"):
+        """The water keys of ``solve --json``; points in the scene file's ``frame``.
+
+        ``buoyancy``, ``ground_reaction`` and ``freeing_force`` mean what CONTRACT.md
+        says (buoyancy: the weight of the displaced water)."""
+        return {
+            "state": self.state,
+            "buoyancy": self.buoyancy,
+            "ground_reaction": self.ground_reaction,
+            "freeing_force": self.freeing_force,
+            "displaced_volume": self.displaced_volume,
+            "immersed_volume": self.immersed_volume,
+            "trapped_water": self.trapped_water,
+            "water_density": self.density,
+            "centre_of_buoyancy": _maybe_in_frame(self.centre_of_buoyancy, frame),
+            "centre_of_gravity": _maybe_in_frame(self.centre_of_gravity, frame),
+            "centre_of_trapped_water": _maybe_in_frame(self.centre_of_trapped_water, frame),
+            "contact": _maybe_in_frame(self.contact, frame),
+        }
 
 
 @dataclass(frozen=True)
@@ -246,15 +313,5 @@ class Equilibrium:
                               for k, c in r.spreader_compression.items()},
             })
         if self.afloat is not None:
-            a = self.afloat
-            out.update({
-                "state": a.state,
-                "buoyancy": a.buoyancy,
-                "ground_reaction": a.ground_reaction,
-                "freeing_force": a.freeing_force,
-                "displaced_volume": a.volume,
-                "centre_of_buoyancy": _maybe_in_frame(a.centre_of_buoyancy, self.frame),
-                "centre_of_gravity": _maybe_in_frame(a.centre_of_gravity, self.frame),
-                "contact": _maybe_in_frame(a.contact, self.frame),
-            })
+            out.update(self.afloat.to_json(self.frame))
         return out

@@ -15,7 +15,8 @@ Two methods for the stranded ship:
   from the pivot after each step (the pivot stays on the ground exactly).
 
 When the ground reaction of the grounded solution is <= 0 the hull floats free: the
-free-floating equilibrium (or hanging, with ropes) is solved instead and ``state`` says so.
+free-floating equilibrium (or hanging, with ropes) is solved instead and ``state`` says so
+(:func:`water_state`: grounded, hanging submerged, piercing the surface, clear, afloat).
 """
 
 from __future__ import annotations
@@ -78,7 +79,8 @@ class WaterSetup:
         self.scene = scene
         water, hull, body = scene.water, scene.hull, scene.body
         tris, kappa, trapped = buoyancy_weights(hull, body.weight, water.density)
-        self.trapped = sum(w for w, _ in trapped)
+        self.trapped = float(sum(w for w, _ in trapped))
+        self.trapped_centre = hull.trapped_water(water.density)[1]
         gravity = body.weight + self.trapped
         cog = (body.weight * np.asarray(body.cog) + sum(w * np.asarray(c) for w, c in trapped)) / gravity
         self.gravity, self.cog = gravity, cog
@@ -363,6 +365,44 @@ def unyaw(rot, yaw):
     return turned[best]
 
 
+def hull_heights(hull, rot, zo):
+    """Lowest and highest point of the hull envelope above the water plane  [m].
+
+    Parameters
+    ----------
+    hull : Hull
+    rot : numpy.ndarray, shape (3, 3)
+        Attitude.
+    zo : float  [m]
+        Height of the body-frame origin above the water plane.
+    """
+    z = (np.asarray(rot) @ hull.vertices.T)[2] + zo
+    return float(z.min()), float(z.max())
+
+
+def water_state(grounded, bottom, top, crane_load, weight):
+    """The state word of a hull in water (:attr:`Afloat.STATES`).
+
+    Parameters
+    ----------
+    grounded : bool
+        The ground contact carries load.
+    bottom, top : float  [m]
+        Lowest and highest point of the envelope above the water plane.
+    crane_load : float  [t]
+        Sum of the rope tensions.
+    weight : float  [t]
+        Scale: a crane load below 1e-9 of it is none (a slack rope carries exactly 0).
+    """
+    if grounded:
+        return "grounded"
+    if bottom >= 0.0:
+        return "clear"
+    if crane_load <= 1e-9 * weight:
+        return "afloat"
+    return "hanging submerged" if top < 0.0 else "piercing the surface"
+
+
 def _result(setup, zo, rot, hoist, solver, grounded):
     """Assemble the Equilibrium (world frame) of a converged pose (zo [m], attitude)."""
     scene = setup.scene
@@ -383,21 +423,29 @@ def _result(setup, zo, rot, hoist, solver, grounded):
         return tuple(float(v) for v in np.asarray(q) + origin)
 
     hs = setup.envelope.at(rot, zo)
-    buoyancy = float(np.asarray(out["buoyancy"]).ravel()[0]) - setup.trapped
-    reaction = scene.body.weight - buoyancy - float(tensions.sum()) if grounded else 0.0
+    # the model's buoyancy is the kappa-weighted wet volume: density x displaced volume
+    buoyancy = max(0.0, float(np.asarray(out["buoyancy"]).ravel()[0]))
+    moment = np.asarray(out["moment"]).ravel()
+    density = scene.water.density
+    reaction = scene.body.weight + setup.trapped - buoyancy - float(tensions.sum()) if grounded else 0.0
     friction = scene.ground.friction if scene.ground is not None else None
-    gravity = rot @ np.asarray(scene.body.cog) + [0.0, 0.0, zo]
-    lowest = zo + float(np.min((rot @ scene.hull.vertices.T)[2]))
-    state = "grounded" if grounded else ("afloat" if lowest < 0.0 else "clear")
+    lift = np.array([0.0, 0.0, zo])
+    gravity = rot @ np.asarray(scene.body.cog) + lift
+    bottom, top = hull_heights(scene.hull, rot, zo)
+    trapped_at = setup.trapped_centre
     afloat = Afloat(
-        state=state,
+        state=water_state(grounded, bottom, top, float(tensions.sum()), setup.gravity),
         buoyancy=buoyancy,
-        volume=hs.volume,
+        displaced_volume=buoyancy / density,
+        immersed_volume=hs.volume,
+        trapped_water=setup.trapped,
+        density=density,
         ground_reaction=reaction if scene.ground is not None else None,
         freeing_force=friction * reaction if friction is not None else None,
-        centre_of_buoyancy=world(hs.centre) if hs.centre is not None else None,
+        centre_of_buoyancy=world(moment[:3] / buoyancy) if buoyancy > 0.0 else None,
         centre_of_gravity=world(gravity),
         contact=tuple(float(v) for v in setup.contact_world) if scene.ground is not None else None,
+        centre_of_trapped_water=world(rot @ np.asarray(trapped_at) + lift) if trapped_at else None,
     )
     # force (closed by the ground reaction when grounded), and moments over L
     worst = float(np.max(np.abs(residual[1:] if grounded else residual))) * setup.gravity

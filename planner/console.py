@@ -78,39 +78,83 @@ def _afloat_lines(eq):
         return "-" if point is None else "({:.2f}, {:.2f}, {:.2f}) m".format(*point)
 
     lines = [
-        f"state: {a.state}; weight W = {eq.weight:.1f} t",
-        f"buoyancy: {a.buoyancy:.1f} t (displaced volume {a.volume:.1f} m3), "
-        f"centre of buoyancy {xyz(a.centre_of_buoyancy)}",
-        f"centre of gravity: {xyz(a.centre_of_gravity)} (world)",
+        f"state: {a.state} ({a.STATES[a.state]}); weight in air W = {eq.weight:.1f} t",
+        f"buoyancy B (weight of the displaced water): {a.buoyancy:.1f} t = {a.density:g} t/m3 x "
+        f"displaced volume {a.displaced_volume:.1f} m3, centre of buoyancy {xyz(a.centre_of_buoyancy)}",
     ]
+    if abs(a.immersed_volume - a.displaced_volume) > 1e-9 * max(a.immersed_volume, 1.0):
+        lines.append(f"hull envelope below the water plane: {a.immersed_volume:.1f} m3 (flooded: only the "
+                     "steel and the watertight compartments displace water)")
+    if a.trapped_water:
+        lines.append(f"trapped water (a weight, carried with the hull): {a.trapped_water:.1f} t at "
+                     f"{xyz(a.centre_of_trapped_water)}")
+    lines.append(f"centre of gravity (weight in air): {xyz(a.centre_of_gravity)} (world)")
     if a.ground_reaction is not None:
-        lines.append(f"ground reaction: {a.ground_reaction:.1f} t at {xyz(a.contact)}")
+        lines.append(f"ground reaction F_R: {a.ground_reaction:.1f} t at {xyz(a.contact)}")
     if a.freeing_force is not None:
         lines.append(f"freeing force (friction x ground reaction): {a.freeing_force:.1f} t")
+    lines.append(_balance_line(eq))
     if eq.solver.iterations is not None:
         lines.append(f"{eq.solver.iterations} iterations, {1e3 * eq.solver.seconds:.1f} ms")
     return lines
 
 
+def _balance_line(eq):
+    """Why the cranes carry more (trapped water) or less (buoyancy, ground) than W."""
+    a = eq.afloat
+    terms = f"W {eq.weight:.1f} - B {a.buoyancy:.1f}"
+    if a.trapped_water:
+        terms += f" + trapped water {a.trapped_water:.1f}"
+    reaction = a.ground_reaction or 0.0
+    if a.ground_reaction is not None:
+        if not eq.tensions:
+            return f"ground reaction = {terms} = {a.crane_load(eq.weight) + reaction:.1f} t"
+        terms += f" - F_R {reaction:.1f}"
+    if not eq.tensions:
+        return f"vertical balance: {terms} = {a.crane_load(eq.weight):.1f} t (afloat: 0)"
+    total = sum(eq.tensions.values())
+    return f"sum of rope tensions {total:.1f} t = {terms} = {a.crane_load(eq.weight):.1f} t"
+
+
 def load_curve_table(scene, curve, rows=25):
-    """The load curve, thinned to about ``rows`` lines, with its maximum and lift-off."""
+    """The load curve, thinned to about ``rows`` lines (event steps kept), with its
+    maximum load and plateau, and its events."""
+    from liftplan.model.lift import EVENT_TOL, PLATEAU_REL
+
     title = scene.name or "scene"
     names = curve.lugs
     head = f"{'hoist [m]':>10}" + "".join(f"{'T ' + n + ' [t]':>12}" for n in names) + \
-        f"{'heel [deg]':>12}{'trim [deg]':>12}{'buoyancy [t]':>14}{'ground [t]':>12}  state"
-    lines = [title, head]
+        f"{'sum T [t]':>11}{'heel [deg]':>12}{'trim [deg]':>12}{'buoyancy [t]':>14}{'ground [t]':>12}  state"
+    lines = [
+        title,
+        f"weight in air W = {curve.weight:.1f} t"
+        + (f"; trapped water carried {curve.trapped_water:.1f} t" if curve.trapped_water else "")
+        + "; buoyancy B = weight of the displaced water",
+        "sum T = W - B" + (" + trapped water" if curve.trapped_water else "") + " - ground reaction",
+        head,
+    ]
     every = max(1, len(curve.hoist) // rows)
-    for k in range(0, len(curve.hoist), every):
+    keep = set(range(0, len(curve.hoist), every)) | {len(curve.hoist) - 1}
+    keep |= {k for k in range(1, len(curve.hoist)) if curve.state[k] != curve.state[k - 1]}
+    for k in sorted(keep):
         lines.append(
             f"{curve.hoist[k]:>10.2f}" + "".join(f"{t:>12.1f}" for t in curve.tensions[k])
-            + f"{curve.heel[k]:>12.2f}{curve.trim[k]:>12.2f}{curve.buoyancy[k]:>14.1f}"
-            f"{curve.ground_reaction[k]:>12.1f}  {curve.state[k]}"
+            + f"{curve.crane_load[k]:>11.1f}{curve.heel[k]:>12.2f}{curve.trim[k]:>12.2f}"
+            f"{curve.buoyancy[k]:>14.1f}{curve.ground_reaction[k]:>12.1f}  {curve.state[k]}"
         )
-    load, lug, at = curve.max_load
-    lines.append(f"maximum crane load: {load:.1f} t on {lug} at hoist {at:.2f} m")
-    off = curve.lift_off
-    lines.append(f"lift-off (ground reaction reaches 0): hoist {off:.2f} m" if off is not None
-                 else "no lift-off within the hoist range")
+    m = curve.max_load
+    ranges = ", ".join(f"{a:.3f}-{b:.3f} m" for a, b in m.plateau)
+    lines.append(f"maximum crane load: {m.tension:.1f} t on {m.lug}, held (within {100 * PLATEAU_REL:g} % = "
+                 f"{m.tolerance:.2f} t of it) over hoist {ranges}"
+                 + (" (to the last hoist computed)" if m.to_end else ""))
+    lines.append(f"events (bisected between steps to {1e3 * EVENT_TOL:g} mm):")
+    for e in curve.events:
+        lines.append(f"  {e.name}: hoist {e.hoist:.4f} m +- {1e3 * e.tolerance:.2f} mm ({e.description})")
+    for name, why in (("lift-off", "the hull never rested on the ground or did not leave it"),
+                      ("surface", "already piercing the surface at the start, or not reached"),
+                      ("clear", "not clear of the water within the hoist range")):
+        if curve.event(name) is None:
+            lines.append(f"  {name}: none ({why})")
     for hoist, reason in curve.failed:
         lines.append(f"no equilibrium at hoist {hoist:.2f} m: {reason}")
     return "\n".join(lines)

@@ -189,8 +189,35 @@ def _rectangle(x, y, width, height):
                      label="CG envelope")
 
 
+_PHASE_COLOURS = {"grounded": "#c9b79c", "hanging submerged": "#9ecae1", "piercing the surface": "#c6dbef",
+                  "clear": "#e5f5e0", "afloat": "#fdd0a2"}
+
+
+def _phases(curve):
+    """(state, from, to) [m] along the curve: a change between two steps is placed at the
+    event found between them (bisected), else half-way."""
+    phases, k = [], 0
+    count = len(curve.state)
+    begin = float(curve.hoist[0])
+    while k < count:
+        end = k
+        while end + 1 < count and curve.state[end + 1] == curve.state[k]:
+            end += 1
+        if end + 1 < count:
+            lo, hi = curve.hoist[end], curve.hoist[end + 1]
+            inside = [e.hoist for e in curve.events if lo <= e.hoist <= hi]
+            stop = inside[0] if inside else 0.5 * (lo + hi)
+        else:
+            stop = float(curve.hoist[-1])
+        phases.append((curve.state[k], begin, float(stop)))
+        begin, k = float(stop), end + 1
+    return phases
+
+
 def load_curve(curve, swl=None):
-    """Crane loads, water and ground forces, and attitude against hoist.
+    """Crane loads, water and ground forces, and attitude against hoist, with the curve's
+    events (lift-off, surface, clear) marked and named on every panel, the phases (the
+    state words) on a strip above, and the maximum load's plateau shaded.
 
     Parameters
     ----------
@@ -198,32 +225,60 @@ def load_curve(curve, swl=None):
     swl : float, optional  [t]
         Drawn as a line on the loads panel.
     """
-    fig = Figure(figsize=(8, 9), layout="constrained")
-    loads, water, pose = fig.subplots(3, 1, sharex=True)
+    from matplotlib.transforms import blended_transform_factory
+
+    from liftplan.model.lift import PLATEAU_REL
+
+    fig = Figure(figsize=(11, 10), layout="constrained")
+    strip, loads, water, pose = fig.subplots(4, 1, sharex=True,
+                                             gridspec_kw={"height_ratios": [0.35, 3, 3, 2]})
+    span = max(float(curve.hoist[-1] - curve.hoist[0]), 1e-9)
+    for state, a, b in _phases(curve):
+        strip.axvspan(a, b, color=_PHASE_COLOURS.get(state, "0.9"), lw=0)
+        narrow = b - a < 0.08 * span
+        strip.text(a if narrow else 0.5 * (a + b), 0.5, f" {state}", ha="left" if narrow else "center",
+                   va="center", fontsize=8, style="italic", transform=blended_transform_factory(
+                       strip.transData, strip.transAxes))
+    strip.set_yticks([])
+    strip.set_title(f"Load curve: {curve.name or 'lift'}\ncrane loads, water and ground forces, attitude "
+                    "against hoist; the hull's state on this strip", fontsize=11)
     for name, column in zip(curve.lugs, curve.tensions.T):
         loads.plot(curve.hoist, column, label=name)
-    load, lug, at = curve.max_load
-    loads.plot([at], [load], "ko", ms=4)
-    loads.annotate(f" max {load:.1f} t ({lug})", (at, load), fontsize=8, va="bottom")
+    m = curve.max_load
+    for k, (a, b) in enumerate(m.plateau):
+        label = (f"max {m.tension:.1f} t ({m.lug}),\nwithin {100 * PLATEAU_REL:g} % "
+                 f"({m.tolerance:.2f} t) over\n" + ", ".join(f"{lo:.3f}-{hi:.3f} m" for lo, hi in m.plateau)
+                 + (" (to the end)" if m.to_end else "")) if k == 0 else None
+        loads.axvspan(a, b, color="0.85", lw=0, label=label)
+        loads.plot([a, b], [m.tension, m.tension], color="k", lw=2.5, alpha=0.6)
     if swl:
-        loads.axhline(swl, color="k", ls="--", lw=1, label="SWL")
+        loads.axhline(swl, color="k", ls="--", lw=1, label=f"SWL {swl:g} t")
     loads.set_ylabel("rope tension [t]")
-    loads.legend(fontsize=8, loc="best")
-    water.plot(curve.hoist, curve.buoyancy, label="buoyancy (net water force up)")
+    water.plot(curve.hoist, curve.crane_load, color="k", label="sum of rope tensions")
+    water.plot(curve.hoist, curve.buoyancy, label="buoyancy B\n(weight of displaced water)")
     water.plot(curve.hoist, curve.ground_reaction, label="ground reaction")
-    water.plot(curve.hoist, curve.tensions.sum(axis=1), label="sum of rope tensions")
+    water.axhline(curve.weight, color="0.4", ls="--", lw=1, label=f"weight in air W\n{curve.weight:.1f} t")
+    if curve.trapped_water:
+        water.axhline(curve.weight + curve.trapped_water, color="tab:purple", ls=":", lw=1.2,
+                      label=f"W + trapped water\n{curve.weight:.1f} + {curve.trapped_water:.1f} t")
     water.set_ylabel("force [t]")
-    water.legend(fontsize=8, loc="best")
-    pose.plot(curve.hoist, curve.heel, label="heel (+ starboard down)")
+    pose.plot(curve.hoist, curve.heel, label="heel\n(+ starboard down)")
     pose.plot(curve.hoist, curve.trim, label="trim (+ bow down)")
     pose.set_ylabel("angle [deg]")
     pose.set_xlabel("hoist [m] (every hook raised by this)")
-    pose.legend(fontsize=8, loc="best")
-    if curve.lift_off is not None:
+    for hoist, _ in curve.failed:
         for ax in (loads, water, pose):
-            ax.axvline(curve.lift_off, color="0.6", lw=0.8, ls=":")
+            ax.axvline(hoist, color="r", lw=0.5, alpha=0.5)
+    if curve.failed:
+        loads.plot([], [], color="r", lw=0.5, label=f"no equilibrium\n({len(curve.failed)} steps)")
+    for event in curve.events:
+        for ax in (strip, loads, water, pose):
+            ax.axvline(event.hoist, color="tab:green", lw=1, ls="-.")
+        loads.annotate(f"{event.name} {event.hoist:.3f} m", (event.hoist, 1.0),
+                       xycoords=blended_transform_factory(loads.transData, loads.transAxes),
+                       xytext=(3, -4), textcoords="offset points", rotation=90, va="top",
+                       fontsize=8, color="tab:green")
     for ax in (loads, water, pose):
         ax.grid(True, lw=0.3)
-    for hoist, _ in curve.failed:
-        loads.axvline(hoist, color="r", lw=0.5, alpha=0.5)
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig

@@ -25,22 +25,31 @@ def curve():
 
 
 def test_load_curve_balances_and_phases(curve):
-    """Every step: rope tensions + water force + ground reaction = W. Grounded first,
-    then afloat (constant loads while submerged), then clear of the water where the
-    ropes carry the weight plus the trapped water."""
+    """Every step: rope tensions + buoyancy + ground reaction = W + trapped water.
+    Grounded first, then hanging submerged (constant loads), piercing the surface, then
+    clear of the water where the ropes carry the weight plus the trapped water."""
     scene = example("sunken_block_lift")
+    trapped = RHO * 6 * 12 * 2  # the aft tank's water, a weight carried at every hoist
+    assert_allclose(curve.trapped_water, trapped, rtol=1e-12)  # sum of one box's volume
     total = curve.tensions.sum(axis=1) + curve.buoyancy + curve.ground_reaction
-    assert_allclose(total, scene.body.weight, rtol=1e-9)
+    # the solves close the forces to 1e-9 W (RESIDUAL_TOL); 1e-9 relative leaves round-off room
+    assert_allclose(total, scene.body.weight + trapped, rtol=1e-9)
     assert curve.state[0] == "grounded" and curve.state[-1] == "clear"
+    order = ["grounded", "hanging submerged", "piercing the surface", "clear"]
+    assert [s for k, s in enumerate(curve.state) if k == 0 or s != curve.state[k - 1]] == order
     assert curve.failed == ()
     steel = scene.body.weight / 7.85  # m3, flooded hull: steel only
     air = 5 * 12 * 2  # the intact fore tank
-    trapped = 6 * 12 * 2  # the aft tank's water
-    submerged = [k for k, s in enumerate(curve.state) if s == "afloat" and curve.hoist[k] < 10]
-    assert_allclose(curve.buoyancy[submerged], RHO * (steel + air), rtol=1e-9)
-    assert_allclose(curve.tensions[-1].sum(), scene.body.weight + RHO * trapped, rtol=1e-9)
-    load, lug, at = curve.max_load
-    assert load == curve.tensions.max() and at > 15.0
+    submerged = [k for k, s in enumerate(curve.state) if s == "hanging submerged"]
+    # submerged, both tanks displace water (the trapped tank's part cancels its weight)
+    assert_allclose(curve.buoyancy[submerged], RHO * (steel + air + 6 * 12 * 2), rtol=1e-9)
+    clear = [k for k, s in enumerate(curve.state) if s == "clear"]
+    assert np.all(curve.buoyancy[clear] == 0.0)
+    assert_allclose(curve.tensions[clear].sum(axis=1), scene.body.weight + trapped, rtol=1e-9)
+    m = curve.max_load
+    assert m.tension == curve.tensions.max()
+    assert m.lug == curve.lugs[int(np.argmax(curve.tensions.max(axis=0)))]
+    assert len(m.plateau) == 1 and m.plateau[0][0] > 15.0 and m.to_end
 
 
 def test_lift_cli_writes_figure_and_json(tmp_path):
@@ -51,6 +60,11 @@ def test_lift_cli_writes_figure_and_json(tmp_path):
         capture_output=True, text=True, check=True)
     data = json.loads(out.stdout)
     assert data["max_load"]["lug"] in data["lugs"] and data["lift_off"] is not None
+    assert [e["event"] for e in data["events"]] == ["lift-off", "surface", "clear"]
+    assert data["lift_off"] == data["events"][0]["hoist"]
+    (plateau,) = data["max_load"]["plateau"]
+    assert plateau["from"] < plateau["to"] and "hoist" not in data["max_load"]
+    assert data["trapped_water"] > 0 and min(r["buoyancy"] for r in data["curve"]) >= 0.0
     assert figure.stat().st_size > 10_000
 
 
@@ -79,10 +93,10 @@ def test_hanging_submerged_piercing_and_clear(hook):
     """Hooks from deep (fully submerged) to high (clear): each solves and balances."""
     eq = solve(hanging(hook))
     a = eq.afloat
-    assert_allclose(sum(eq.tensions.values()) + a.buoyancy, eq.weight, rtol=1e-9)
-    expected = {36.0: "afloat", 60.0: "clear"}.get(hook)
-    if expected:
-        assert a.state == expected
+    # forces closed to 1e-9 W by the solve's acceptance
+    assert_allclose(sum(eq.tensions.values()) + a.buoyancy, eq.weight + a.trapped_water, rtol=1e-9)
+    expected = {36.0: "hanging submerged", 50.0: "piercing the surface", 52.0: "clear", 60.0: "clear"}
+    assert a.state == expected[hook]
 
 
 def test_no_water_scene_equals_rope_model_with_water_far_below():
@@ -108,4 +122,5 @@ def test_deck_awash_floating_box():
     scene = Scene(body=Body(RHO * 80.0, (0.0, 0.0, -0.2)), water=Water(RHO, 0.0), hull=box)
     eq = solve(scene)
     assert eq.pose.lift_height == pytest.approx(-1.0, abs=1e-6)
-    assert eq.afloat.volume == pytest.approx(80.0, rel=1e-6)
+    assert eq.afloat.displaced_volume == pytest.approx(80.0, rel=1e-6)
+    assert eq.afloat.state == "afloat" and eq.afloat.buoyancy == pytest.approx(eq.weight, rel=1e-9)
