@@ -86,12 +86,31 @@ def test_floats_free_when_ground_reaction_would_be_negative():
     grounded = Scene(ground=Ground((30.0, 0.0, -5.0)), attitude=Attitude(lift_height=-3.0), **light)
     eq = solve(grounded)
     free = solve(Scene(**light))
+    # floating free, no crane: the one case the word "afloat" is for
     assert eq.afloat.state == "afloat" and eq.afloat.ground_reaction == 0.0
     assert_allclose((eq.pose.heel, eq.pose.trim, eq.pose.lift_height),
                     (free.pose.heel, free.pose.trim, free.pose.lift_height), atol=1e-8)
     assert_allclose(free.afloat.buoyancy, 14000.0, rtol=1e-9)
     # a floating box: B and G on one vertical
     assert_allclose(free.afloat.centre_of_buoyancy[:2], free.afloat.centre_of_gravity[:2], atol=1e-6)
+
+
+def test_intact_hull_names_its_forces():
+    """Intact: the displaced volume is the envelope below the water, nothing is trapped,
+    B = density x displaced volume, and the console balances the ground reaction."""
+    from liftplan.planner.console import equilibrium_table
+
+    scene = barge((30.0, -2.0, -5.0))
+    eq = solve(scene)
+    a = eq.afloat
+    assert a.trapped_water == 0.0 and a.centre_of_trapped_water is None
+    assert a.displaced_volume == pytest.approx(a.immersed_volume, rel=1e-12)
+    assert a.buoyancy == pytest.approx(1.0273 * a.displaced_volume, rel=1e-12)
+    text = equilibrium_table(scene, eq)
+    assert f"ground reaction = W 20000.0 - B {a.buoyancy:.1f} = {a.ground_reaction:.1f} t" in text
+    assert "state: grounded (resting on the ground contact)" in text and "trapped" not in text
+    data = eq.to_json()
+    assert data["displaced_volume"] == data["immersed_volume"] and data["trapped_water"] == 0.0
 
 
 def test_sinking_hull_is_reported():
