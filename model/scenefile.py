@@ -155,8 +155,8 @@ class _SceneFile(Table):
     ground: _Ground | None = None
     rigging: _Rigging = _Rigging()
 
-# Tables of a planning scene (read by liftplan.planner.problemfile).
-PLAN_TABLES = ("candidates", "plan", "crane")
+# Tables of a planning scene (read by liftplan.planner.problemfile; [rules] by model.rules.table).
+PLAN_TABLES = ("candidates", "plan", "crane", "rules")
 
 
 def load_scene(path):

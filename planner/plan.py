@@ -2,8 +2,10 @@
 
 A :class:`Plan` holds the chosen lug set (labelled L1..Ln), the boom heights that dial in
 its level preload, the ranking of the best sets, and what an engineer hands over with it:
-crane capacity margins, skew load factors from the hook-height tolerance, and the
-operators' guidance table (tension change per step of heel and of trim).
+each crane's design load by the rules' chain (:mod:`.design_loads`, ``docs/design-loads.md``)
+against its chart SWL, skew load factors from the hook-height tolerance, and the operators'
+guidance table (tension change per step of heel and of trim). Coordinates a person reads
+(JSON, console, report) are in the frame of the planning file (:meth:`Plan.in_file_frame`).
 """
 
 from __future__ import annotations
@@ -15,10 +17,12 @@ import numpy as np
 
 from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible
+from liftplan.model.frames import zup_to_choi
 from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 
 from .bounds import AdmissibleTensions
-from .problem import DEFAULT_SKEW_FACTOR, PlanProblem, code_margin
+from .design_loads import CraneDesign, DesignBuilder, rope_skew
+from .problem import DEFAULT_SKEW_FACTOR, PlanProblem
 from .scenarios import LugSet, Scenario
 from .search import Interrupted, SearchStats, SetResult, search
 
@@ -26,49 +30,12 @@ from .search import Interrupted, SearchStats, SetResult, search
 GUIDANCE_STEP = 5.0
 GUIDANCE_STEPS = 2
 
+#: How each file frame is named in the outputs.
+FRAMES = {"z-up": "z-up (x forward, y to port, z up)",
+          "choi": "choi, the papers' frame (x forward, y up, z to starboard)"}
 
-@dataclass(frozen=True)
-class CraneCapacity:
-    """One crane's load against its capacity.
-
-    Parameters
-    ----------
-    label : str
-        Planned lug label.
-    crane : str
-        The crane on that lug.
-    radius : float  [m]   the crane's radius to the lug
-    nominal : float  [t]   level tension, nominal CG
-    worst : float  [t]   largest tension over the box and CG envelope
-    twist : float  [t]   largest increase from hook-height errors within the tolerance
-    design : float  [t]   worst + twist
-    swl : float  [t]   the crane's SWL at that radius (load chart)
-    required_margin : float  [-]   the multi-crane code margin over the share (0.2/0.33/0.5)
-    """
-
-    label: str
-    crane: str
-    radius: float
-    nominal: float
-    worst: float
-    twist: float
-    design: float
-    swl: float
-    required_margin: float
-
-    @property
-    def utilisation(self):
-        """Design load over SWL  [-]."""
-        return self.design / self.swl
-
-    @property
-    def margin(self):
-        """SWL over the nominal share, minus one  [-]: the code compares this with its margin."""
-        return self.swl / self.nominal - 1.0
-
-    @property
-    def ok(self):
-        return self.design <= self.swl and self.margin >= self.required_margin
+#: One crane's loads against its chart (the README's ``p.capacity[0].utilisation``).
+CraneCapacity = CraneDesign
 
 
 @dataclass(frozen=True)
@@ -238,41 +205,64 @@ class Plan:
             name=f"{problem.name or 'plan'}: chosen lugs",
         )
 
+    # -- frames -------------------------------------------------------------------------
+    @property
+    def frame(self):
+        """Frame of the planning file (``"z-up"`` or ``"choi"``): every output's coordinates."""
+        return self.problem.frame
+
+    def in_file_frame(self, vector):
+        """A z-up body-frame point or vector in the planning file's frame  [m]."""
+        vector = tuple(float(v) for v in vector)
+        return tuple(float(v) for v in zup_to_choi(vector)) if self.frame == "choi" else vector
+
+    def cog_at(self, scenario):
+        """The CG position of a scenario (nominal CG + its offset) in the file's frame  [m]."""
+        cog = np.asarray(self.problem.body.cog) + np.asarray(scenario.cog_offset)
+        return self.in_file_frame(cog)
+
+    def scenario_json(self, scenario):
+        """A scenario as JSON: heel, trim [deg], CG offset and CG position [m] in the file's frame."""
+        return {"heel": scenario.heel, "trim": scenario.trim,
+                "cog_offset": list(self.in_file_frame(scenario.cog_offset)),
+                "cog": list(self.cog_at(scenario)), "frame": self.frame}
+
     # -- checks to hand over ------------------------------------------------------------
     @cached_property
     def _twist_gain(self):
         return self.lugset.twist_gain(self.chosen.preload)
 
     @cached_property
+    def _design_builder(self):
+        return DesignBuilder(self.problem)
+
+    @cached_property
+    def design_loads(self):
+        """The rules' design loads of the chosen set (:class:`~.design_loads.DesignLoads`)."""
+        return self._design_builder.build(self.chosen, self.labels)
+
+    @cached_property
+    def ranked_design(self):
+        """The same design loads for every ranked set, best first (``ranked_design[0]`` is
+        :attr:`design_loads`)."""
+        return [self.design_loads] + [self._design_builder.build(r, self.labels)
+                                      for r in self.ranking[1:]]
+
+    @property
     def capacity(self):
-        """Per crane: nominal, worst, twist, design load against SWL and the code margin."""
-        chosen = self.chosen
-        twist = self.problem.hook_tolerance * np.abs(self._twist_gain).sum(axis=1)
-        required = code_margin(len(self.labels))
-        return [
-            CraneCapacity(label=label, crane=name, radius=float(r), nominal=float(t0),
-                          worst=float(tw), twist=float(dt), design=float(tw + dt), swl=float(swl),
-                          required_margin=required)
-            for label, name, r, t0, tw, dt, swl in zip(
-                self.labels, chosen.crane_names, chosen.radius, chosen.preload, chosen.rope_max,
-                twist, chosen.swl)
-        ]
+        """Per crane (L1..Ln): static loads, where they occur, and the design hook load against
+        the chart SWL (:class:`~.design_loads.CraneDesign`; ``utilisation`` = design / SWL)."""
+        return list(self.design_loads.cranes)
 
     @cached_property
     def checks(self):
         """Every check of the plan that can fail, as :class:`~liftplan.model.checks.Check`.
 
-        Per crane: the design load (worst in the box and CG envelope, plus the hook-height
-        twist) against its SWL at its radius, and the crane code's capacity margin over the
-        nominal share; per rope: the lowest tension in the box against min_tension.
+        The rules' chain: per crane the design hook load against the chart SWL at its radius
+        and the crane code's margin over the calculated share, per lug with a ``capacity`` its
+        design load; per plan: the lowest tension in the box against min_tension.
         """
-        out = []
-        for c in self.capacity:
-            where = f"{c.label} ({c.crane})"
-            out.append(Check.upper("design_load", where, c.design, c.swl, "t",
-                                   note=f"worst in box + twist, SWL at radius {c.radius:.1f} m"))
-            out.append(Check.lower("code_margin", where, 100 * c.margin, 100 * c.required_margin,
-                                   "%", note="SWL over the nominal share, minus one"))
+        out = list(self.design_loads.checks)
         out.append(Check.lower("min_tension", "all ropes", self.chosen.tension_range[0],
                                self.problem.min_tension, "t", note="lowest tension in the box"))
         return out
@@ -282,10 +272,9 @@ class Plan:
         """Skew loads: each rope, and for four lugs each diagonal pair (plan order)."""
         delta = self.problem.hook_tolerance
         gain, preload = self._twist_gain, self.chosen.preload
-        out = [
-            SkewLoad((label, ), float(t), float(t + delta * np.abs(gain[i]).sum()))
-            for i, (label, t) in enumerate(zip(self.labels, preload))
-        ]
+        skewed = rope_skew(self.lugset, preload, delta)
+        out = [SkewLoad((label, ), float(t), float(ts))
+               for label, t, ts in zip(self.labels, preload, skewed)]
         for i, j in self.diagonals:
             out.append(SkewLoad(
                 (self.labels[i], self.labels[j]),
@@ -383,8 +372,13 @@ class Plan:
 
     # -- output -------------------------------------------------------------------------
     def to_json(self):
-        """The JSON object of ``liftplan plan --json`` (keys fixed by CONTRACT.md first)."""
-        worst = self.chosen.worst
+        """The JSON object of ``liftplan plan --json`` (keys fixed by CONTRACT.md first).
+
+        ``utilisation`` is the contract's nominal T / SWL; the plan's design utilisation
+        (design hook load / chart SWL) is ``capacity[].utilisation`` and
+        ``design_loads.cranes[].utilisation``. Coordinates are in the file's ``frame``.
+        """
+        design = self.design_loads
         return {
             "lugs": self.lugs,
             "boom_heights": self.boom_heights,
@@ -397,17 +391,12 @@ class Plan:
             "swl": self.swl,
             "utilisation": self.utilisation,
             "worst_utilisation_spread": self.worst_utilisation_spread,
-            "ranking": [_ranking_entry(r) for r in self.ranking],
-            "worst_attitude": {"heel": worst.heel, "trim": worst.trim,
-                               "cog_offset": list(worst.cog_offset)},
+            "ranking": [self._ranking_entry(r, d) for r, d in zip(self.ranking, self.ranked_design)],
+            "frame": self.frame,
+            "worst_attitude": self.scenario_json(self.chosen.worst),
             "bound": self.chosen.bound,
-            "capacity": [
-                {"lug": c.label, "crane": c.crane, "radius": c.radius, "nominal": c.nominal,
-                 "worst": c.worst, "twist": c.twist,
-                 "design": c.design, "swl": c.swl, "utilisation": c.utilisation,
-                 "margin": c.margin, "required_margin": c.required_margin, "ok": c.ok}
-                for c in self.capacity
-            ],
+            "capacity": [self._capacity_entry(c) for c in self.capacity],
+            "design_loads": design.to_json(),
             "skew": [{"lugs": list(s.lugs), "nominal": s.nominal, "skewed": s.skewed,
                       "factor": s.factor} for s in self.skew],
             "guidance": [{"angle": g.angle, "from": g.start, "to": g.end, "change": g.change,
@@ -423,22 +412,37 @@ class Plan:
             "checks": [c.to_json() for c in self.checks],
         }
 
+    def _capacity_entry(self, c):
+        tilt = None
+        if c.tilt is not None:
+            tilt = {"load": c.tilt.load, "tilt": c.tilt.tilt, "axis": list(self.in_file_frame(c.tilt.axis)),
+                    "cog_offset": list(self.in_file_frame(c.tilt.cog_offset)),
+                    "cog": list(self.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))), "frame": self.frame}
+        ok = c.design is not None and c.design.check.ok and (
+            c.design.code_margin is None or c.design.code_margin.ok)
+        return {"lug": c.label, "candidate": c.lug, "crane": c.crane, "radius": c.radius, "swl": c.swl,
+                "nominal": c.nominal, "worst": c.worst, "worst_at": self.scenario_json(c.worst_at),
+                "tilt_share": c.tilt.load if c.tilt is not None else None, "tilt_at": tilt,
+                "skewed": c.skewed, "skew": c.skew,
+                "design_hook_load": c.design_hook_load if c.design is not None else None,
+                "utilisation": c.utilisation if c.design is not None else None, "ok": ok}
 
-def _ranking_entry(result):
-    return {
-        "lugs": list(result.lugs),
-        "cranes": list(result.crane_names),
-        "nominal_spread": result.nominal_spread,
-        "worst_spread": result.worst_spread,
-        "worst_utilisation_spread": result.worst_utilisation_spread,
-        "worst_attitude": {"heel": result.worst.heel, "trim": result.worst.trim,
-                           "cog_offset": list(result.worst.cog_offset)},
-        "bound": result.bound,
-        "max_utilisation": result.max_utilisation,
-        "boom_heights": result.boom_heights.tolist(),
-        "preload": result.preload.tolist(),
-        "converged": result.converged,
-    }
+    def _ranking_entry(self, result, design):
+        return {
+            "lugs": list(result.lugs),
+            "cranes": list(result.crane_names),
+            "nominal_spread": result.nominal_spread,
+            "worst_spread": result.worst_spread,
+            "worst_utilisation_spread": result.worst_utilisation_spread,
+            "worst_attitude": self.scenario_json(result.worst),
+            "bound": result.bound,
+            "highest_in_box_load_over_swl": result.max_utilisation,
+            "design_utilisation": design.max_utilisation if design.chain is not None else None,
+            "design_ok": design.ok,
+            "boom_heights": result.boom_heights.tolist(),
+            "preload": result.preload.tolist(),
+            "converged": result.converged,
+        }
 
 
 def plan(problem, top=None):

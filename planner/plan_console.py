@@ -1,6 +1,14 @@
-"""The plan's console summary (``liftplan plan`` without ``--json``)."""
+"""The plan's console summary (``liftplan plan`` without ``--json``).
+
+One utilisation: design hook load (the rules' chain, ``docs/design-loads.md``) over the chart
+SWL at the crane's radius. Every other figure is named for what it is; every worst case names
+its heel, trim and CG position; coordinates are in the planning file's frame, named once.
+"""
 
 from __future__ import annotations
+
+from .plan import FRAMES
+from .scenarios import Scenario
 
 
 def plan_table(plan):
@@ -15,14 +23,16 @@ def plan_table(plan):
     str
     """
     problem, chosen = plan.problem, plan.chosen
-    worst = chosen.worst
     stats = plan.stats
     fleet = "" if problem.equal_cranes else \
         f" x crane assignments in reach: {stats.rows} pairs ({stats.out_of_reach} out of reach)"
     swl = sorted(set(plan.swl.values()))
     swl_text = f"{swl[0]:g} t" if len(swl) == 1 else "each crane's chart SWL at its radius"
+    design = plan.design_loads
     lines = [
         problem.name or "lift plan",
+        f"coordinates: the file's frame, {FRAMES[plan.frame]}; heel > 0 starboard down, "
+        "trim > 0 bow down",
         f"{stats.sets} lug sets of {problem.cranes} among {len(problem.candidates)} candidates"
         f"{fleet}: {stats.screened_out} ruled out by screening, {stats.evaluated} evaluated, "
         f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)",
@@ -31,29 +41,31 @@ def plan_table(plan):
         "objective: " + ("max - min of T / SWL (utilisation spread)" if plan.objective ==
                          "utilisation" else "max - min tension (spread)"),
         "",
-        f"{'lug':<5}{'candidate':<12}{'crane':<14}{'radius [m]':>11}{'SWL [t]':>9}"
-        f"{'H [m]':>9}{'level T [t]':>12}{'worst [t]':>11}{'design [t]':>12}{'util. [%]':>11}",
+        f"{'lug':<4}{'candidate':<10}{'crane':<12}{'R [m]':>8}{'SWL [t]':>8}{'H [m]':>8}"
+        f"{'level T [t]':>12}{'worst [t]':>10}{'tilt [t]':>9}{'design [t]':>11}{'util. [%]':>10}  check",
     ]
-    for cap in plan.capacity:
-        label = cap.label
+    for c in plan.capacity:
+        radius = "-" if c.radius is None else f"{c.radius:.1f}"
+        tilt = "-" if c.tilt is None else f"{c.tilt.load:.2f}"
+        ok = c.design is not None and c.design.check.ok
         lines.append(
-            f"{label:<5}{plan.lugs[label]:<12}{cap.crane[:13]:<14}{cap.radius:>11.1f}{cap.swl:>9.1f}"
-            f"{plan.boom_heights[label]:>9.3f}{plan.tensions[label]:>12.2f}{cap.worst:>11.2f}"
-            f"{cap.design:>12.2f}{100 * cap.utilisation:>11.1f}"
+            f"{c.label:<4}{c.lug[:9]:<10}{c.crane[:11]:<12}{radius:>8}{c.swl:>8.1f}"
+            f"{plan.boom_heights[c.label]:>8.3f}{c.nominal:>12.2f}{c.worst:>10.2f}{tilt:>9}"
+            f"{c.design_hook_load:>11.2f}{100 * c.utilisation:>10.1f}  {'ok' if ok else 'FAIL'}"
         )
-    lines.append("(design = worst in the box and CG envelope + hook-tolerance twist; "
-                 "util. = design / SWL)")
+    lines.append("(level T: nominal CG, level; worst: largest in the box over the CG envelope; tilt: at "
+                 "the rules' tilt; design: the rules' design hook load; util. = design / chart SWL)")
+    lines += _chain_lines(plan, design)
     if not chosen.converged:
         lines.append(f"WARNING: the worst-case search still exceeded the LP bound by "
                      f"{chosen.worst_value - chosen.bound:.4g} after {chosen.rounds} rounds; "
                      "the worst shown is the largest found")
-    offset = _file_vector(problem, worst.cog_offset)
-    where = (f"heel {worst.heel:+.2f} deg, trim {worst.trim:+.2f} deg, CG offset "
-             f"({offset[0]:+.2f}, {offset[1]:+.2f}, {offset[2]:+.2f}) m")
+    where = _where(plan, chosen.worst)
     if plan.objective == "utilisation":
-        summary = (f"utilisation spread: nominal {100 * chosen.nominal_utilisation_spread:.1f} %, "
-                   f"worst {100 * chosen.worst_value:.1f} % at {where}; tension spread: nominal "
-                   f"{plan.spread:.2f} t, worst {plan.worst_spread:.2f} t")
+        summary = (f"utilisation spread (max - min of T / SWL): nominal "
+                   f"{100 * chosen.nominal_utilisation_spread:.1f} %, worst {100 * chosen.worst_value:.1f} % "
+                   f"at {where}; tension spread: nominal {plan.spread:.2f} t, "
+                   f"worst {plan.worst_spread:.2f} t")
     else:
         summary = (f"spread: nominal {plan.spread:.2f} t, worst {plan.worst_spread:.2f} t at "
                    f"{where} (convex bound {chosen.bound:.2f} t)")
@@ -64,19 +76,63 @@ def plan_table(plan):
         + ", ".join(f"{'+'.join(s.lugs)} {s.factor:.3f}" for s in plan.skew)
         + f" (Noble Denton default {plan.default_skew_factor:.2f})",
     ]
-    unit = "[%]" if plan.objective == "utilisation" else "[t]"
-    lines += ["", f"{'rank':<6}{'lugs (crane)':<64}{'nominal ' + unit:>14}{'worst ' + unit:>12}"]
-    for k, r in enumerate(plan.ranking):
-        scale = 100.0 if plan.objective == "utilisation" else 1.0
-        names = " ".join(lug if problem.equal_cranes else f"{lug}({crane})"
-                         for lug, crane in zip(r.lugs, r.crane_names))
-        lines.append(f"{k + 1:<6}{names:<64}{scale * r.nominal_value:>14.2f}"
-                     f"{scale * r.worst_value:>12.2f}")
+    lines += _ranking_lines(plan)
     return "\n".join(lines)
 
 
-def _file_vector(problem, vector):
-    """A z-up vector in the frame of the problem's file."""
-    from liftplan.model.frames import zup_to_choi
+def _chain_lines(plan, design):
+    if design.chain is None:
+        return ["", f"design loads NOT computed: {design.missing}"]
+    lines = ["", f"design-load chain: tilt {design.tilt_note}",
+             f"{'crane':<12}{'contingency':>12}{'tilt':>8}{'skew':>8}{'DAF':>7}{'rigging [t]':>13}"
+             f"{'static hook [t]':>17}{'code margin [t]':>17}  check"]
+    for c in plan.capacity:
+        r = c.design
+        factor = {f.name: f for f in r.factors}
+        skew = factor["skew"].value if factor["skew"].applies_to.startswith("hook") else 1.0
+        margin, margin_ok = ("-", True) if r.code_margin is None else \
+            (f"{r.code_margin.value:.1f} <= {r.code_margin.limit:.1f}" if r.code_margin.ok else
+             f"{r.code_margin.value:.1f} > {r.code_margin.limit:.1f}", r.code_margin.ok)
+        lines.append(f"{c.crane[:11]:<12}{factor['weight_contingency'].value:>12.3f}"
+                     f"{factor['tilt'].value:>8.4f}{skew:>8.4f}{factor['daf'].value:>7.3f}"
+                     f"{r.rigging_weight:>13.2f}{r.static_hook_load:>17.2f}{margin:>17}  "
+                     f"{'ok' if margin_ok else 'FAIL'}")
+    lines.append("(static hook = max(worst, tilt) x contingency x skew + rigging; design = static hook x "
+                 "DAF; code margin: (level T x contingency + rigging) x (1 + margin) <= SWL)")
+    lines.append("worst cases (CG position in the file's frame):")
+    for c in plan.capacity:
+        text = f"  {c.label} {c.crane}: worst {c.worst:.2f} t at {_where(plan, c.worst_at)}"
+        if c.tilt is not None:
+            axis = plan.in_file_frame(c.tilt.axis)
+            cog = plan.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))
+            text += (f"; tilt {c.tilt.load:.2f} t at {c.tilt.tilt:.2f} deg about axis "
+                     f"({axis[0]:+.3f}, {axis[1]:+.3f}, {axis[2]:+.3f}), CG {_xyz(cog)} m")
+        lines.append(text)
+    return lines
 
-    return tuple(zup_to_choi(vector)) if problem.frame == "choi" else tuple(vector)
+
+def _ranking_lines(plan):
+    problem = plan.problem
+    unit = "[%]" if plan.objective == "utilisation" else "[t]"
+    scale = 100.0 if plan.objective == "utilisation" else 1.0
+    lines = ["", f"{'rank':<6}{'lugs (crane)':<64}{'nominal ' + unit:>13}{'worst ' + unit:>12}"
+                 f"{'design util. [%]':>18}"]
+    for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design)):
+        names = " ".join(lug if problem.equal_cranes else f"{lug}({crane})"
+                         for lug, crane in zip(r.lugs, r.crane_names))
+        util = "n/a" if d.chain is None else f"{100 * d.max_utilisation:.1f}" + ("" if d.ok else " FAIL")
+        lines.append(f"{k + 1:<6}{names:<64}{scale * r.nominal_value:>13.2f}"
+                     f"{scale * r.worst_value:>12.2f}{util:>18}")
+        lines.append(f"{'':<6}worst at {_where(plan, r.worst)}")
+    lines.append("(nominal / worst: the objective, level and largest in the box; design util.: the highest "
+                 "design hook load / chart SWL of the set's cranes, FAIL if any design check fails)")
+    return lines
+
+
+def _where(plan, scenario):
+    return (f"heel {scenario.heel:+.2f} deg, trim {scenario.trim:+.2f} deg, CG "
+            f"{_xyz(plan.cog_at(scenario))} m")
+
+
+def _xyz(values):
+    return "(" + ", ".join(f"{v:.2f}" for v in values) + ")"

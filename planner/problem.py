@@ -16,26 +16,19 @@ import numpy as np
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
+from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
 from liftplan.model.scene import Body, finite, point, positive
 
 from .fleet import FleetCrane, crane_classes, equal_fleet, reach_table
 
-#: Crane-code capacity margin over the calculated share for cranes lifting together
-#: (2, 3, 4 or more cranes): 20 / 33 / 50 %.
-CODE_MARGIN = {2: 0.20, 3: 0.33}
-CODE_MARGIN_MANY = 0.50
-#: Noble Denton 0027/ND default skew load factor for indeterminate 4-sling lifts.
-DEFAULT_SKEW_FACTOR = 1.25
+# the rules' constants, imported here too by the planner's modules
+__all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate", "CogEnvelope",
+           "CraneSpec", "PlanProblem", "code_margin"]
 
 MAX_CRANES = 8
 OBJECTIVES = ("spread", "utilisation")
 #: Lug sets the planner will enumerate; beyond this the search would take hours.
 MAX_SETS = 5_000_000
-
-
-def code_margin(cranes):
-    """Capacity margin a multi-crane lift code asks over each crane's share  [-]."""
-    return CODE_MARGIN.get(cranes, CODE_MARGIN_MANY)
 
 
 def _set(obj, name, value):
@@ -53,16 +46,22 @@ class Candidate:
         Body frame.
     bulkhead : str
         Grouping label (e.g. ``"BH2"``), may be empty.
+    capacity : float or None  [t]
+        The lug's allowed design load (its own strength check against the rules' lug design
+        load); None: no lug check.
     """
 
     name: str
     at: tuple[float, float, float]
     bulkhead: str = ""
+    capacity: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise InvalidScene(f"candidates.name = {self.name!r}: expected a non-empty string")
         _set(self, "at", point(f"candidates[{self.name}].at", self.at))
+        if self.capacity is not None:
+            _set(self, "capacity", positive(f"candidates[{self.name}].capacity", self.capacity))
 
 
 @dataclass(frozen=True)
@@ -188,6 +187,9 @@ class PlanProblem:
         Relative optimality gap at which the search may stop (0: prove the optimum).
     time_limit : float or None  [s]
         Stop the search after this long with the best plan and its honest gap.
+    rules : Rules
+        The lifting rules' settings for the design-load chain (``[rules]``; default: the
+        rules' defaults, see ``docs/design-loads.md``).
     """
 
     body: Body
@@ -209,6 +211,7 @@ class PlanProblem:
     objective: str | None = None
     gap: float = 0.0
     time_limit: float | None = None
+    rules: Rules = field(default_factory=Rules)
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -288,6 +291,13 @@ class PlanProblem:
             _set(self, "objective", "spread" if equal else "utilisation")
         if self.objective not in OBJECTIVES:
             raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread or utilisation")
+        if not isinstance(self.rules, Rules):
+            raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
+        if isinstance(self.rules.rigging_weight, dict):
+            unknown = sorted(set(self.rules.rigging_weight) - set(names))
+            if unknown:
+                raise InvalidScene(f"rules.rigging_weight.{unknown[0]}: no such crane, expected one of "
+                                   f"{', '.join(names)}")
         radius, swl = self.reach
         for j, crane in enumerate(fleet):
             if np.all(np.isnan(swl[:, j])):

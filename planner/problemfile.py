@@ -1,7 +1,8 @@
 """Read planning scene files (TOML, CONTRACT.md "Planning") into :class:`PlanProblem`.
 
 The file's shape is checked by pydantic, its values by the dataclasses, with the scene
-reader's one-line messages. Coordinates (candidates, CG, outline, CG tolerance) are read in
+reader's one-line messages; ``[rules]`` (the design-load chain's settings) is read by
+:mod:`liftplan.model.rules.table`. Coordinates (candidates, CG, outline, CG tolerance) are read in
 the file's frame and converted to ``z-up``.
 """
 
@@ -13,6 +14,7 @@ from pydantic import Field, Strict, ValidationError
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
+from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene import Body
 from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
 
@@ -31,6 +33,7 @@ class _Candidate(Table):
     name: Text
     at: Point
     bulkhead: Text = ""
+    capacity: Num | None = None
 
 
 class _Tolerance(Table):
@@ -93,6 +96,7 @@ class _PlanFile(Table):
     cranes: list[_FleetCrane] = []
     ropes: _Ropes = _Ropes()
     attitude: _Attitude = _Attitude()
+    rules: RulesTable | None = None
 
 
 def load_problem(path):
@@ -213,7 +217,8 @@ def _to_problem(data):
     return PlanProblem(
         body=Body(weight=data.body.weight, cog=to_zup(data.body.cog)),
         candidates=tuple(
-            Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead) for c in data.candidates
+            Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead, capacity=c.capacity)
+            for c in data.candidates
         ),
         cranes=cranes,
         crane=_default_spec(data),
@@ -232,4 +237,5 @@ def _to_problem(data):
         outline=tuple(to_zup(p)[:2] for p in data.plan.outline),
         name=data.name,
         frame=data.frame,
+        rules=rules_from_table(data.rules),
     )

@@ -2,7 +2,8 @@
 installed), plus the chosen plan as a scene file that ``liftplan solve`` reads back.
 
 Figures are embedded as base64 PNG, so the HTML file can be mailed on its own. Every
-table states its units in its header; inputs are echoed in the frame of the scene file.
+table states its units in its header; every coordinate is in the frame of the planning file,
+named once at the top; ``plan_scene.toml`` keeps that frame and the candidate names.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from pathlib import Path
 from liftplan.model.frames import zup_to_choi
 
 from . import figures
+from .plan import FRAMES
+from .scenarios import Scenario
 
 ASSUMPTIONS = (
     "Ropes hang vertically (each hook above its lug) and the body is rigid.",
@@ -32,8 +35,13 @@ ASSUMPTIONS = (
     "Skew loads: every hook within +-hook_tolerance of its planned height, the pose held; "
     "the worst combination per rope and per diagonal pair (a rigid body: hull flexibility, "
     "which lowers skew loads, is ignored).",
-    "Design load = worst tension in the box + worst twist increase (both at once: "
-    "conservative). Code margin: 20 / 33 / 50 % over the nominal share for 2 / 3 / 4+ cranes.",
+    "Design load: the design hook load of the lifting rules' chain (GL Noble Denton 0027/ND "
+    "Rev 11, docs/design-loads.md): the larger of the worst tension in the box (over the CG "
+    "envelope) and the load at the rules' tilt, x weight contingency x skew (computed from the "
+    "hook tolerance, with four or more hooks) + rigging weight, x the dynamic amplification "
+    "factor; checked against the chart SWL at the crane's radius. Utilisation = design hook "
+    "load / chart SWL. Code margin (a separate check): (level share x contingency + rigging) "
+    "x (1 + 20 / 33 / 50 % for 2 / 3 / 4+ cranes) <= SWL.",
 )
 
 
@@ -114,11 +122,14 @@ def _xyz(problem, point):
     return ", ".join(f"{v:.2f}" for v in _shown(problem, point))
 
 
+def _where(plan, scenario):
+    return (f"{scenario.heel:+.2f}, {scenario.trim:+.2f}",
+            ", ".join(f"{v:.2f}" for v in plan.cog_at(scenario)))
+
+
 def render_html(plan):
     """The report as one HTML string."""
     problem, chosen = plan.problem, plan.chosen
-    frame = ("the papers' frame (x forward, y up, z to starboard)" if problem.frame == "choi"
-             else "z-up (x forward, y to port, z up)")
     candidates = dict(zip(problem.names, problem.candidates))
     sections = []
     sections.append(_table(
@@ -140,7 +151,7 @@ def render_html(plan):
             ("lift height (body origin above datum)", f"{problem.lift_height:g}", "m"),
             ("candidates", len(problem.candidates), "-"),
         ],
-        f"Inputs (coordinates in {frame})",
+        "Inputs",
     ))
     sections.append(_table(
         ["crane", "slew centre x, y, z [m]", "load chart (radius m: SWL t)", "rope EA [t]",
@@ -156,7 +167,7 @@ def render_html(plan):
     ))
     sections.append(_table(
         ["lug", "candidate (bulkhead)", "position x, y, z [m]", "crane", "radius [m]",
-         "chart SWL [t]", "boom height H [m]", "level tension [t]", "T / SWL [%]"],
+         "chart SWL [t]", "boom height H [m]", "level tension [t]", "level T / chart SWL [%]"],
         [
             (label, f"{name} ({candidates[name].bulkhead})" if candidates[name].bulkhead else name,
              _xyz(problem, candidates[name].at),
@@ -174,7 +185,8 @@ def render_html(plan):
             ("nominal spread (level, nominal CG)", f"{plan.spread:.2f}", "t"),
             ("worst spread over the box", f"{plan.worst_spread:.2f}", "t"),
             ("... at heel, trim", f"{worst.heel:+.2f}, {worst.trim:+.2f}", "deg"),
-            ("... with CG offset (x, y, z)",
+            ("... with the CG at (x, y, z)", _where(plan, worst)[1], "m"),
+            ("... that is, CG offset (x, y, z)",
              ", ".join(f"{v:+.2f}" for v in _shown(problem, worst.cog_offset)), "m"),
             ("worst utilisation spread (max - min of T / SWL)",
              f"{100 * plan.worst_utilisation_spread:.1f}", "%"),
@@ -186,32 +198,22 @@ def render_html(plan):
     ))
     sections.append(_table(
         ["rank", "lugs (crane)", "nominal spread [t]", "worst spread [t]",
-         "worst utilisation spread [%]", "worst at heel, trim [deg]",
-         "highest in-box load / SWL [%]", "boom heights H [m]"],
+         "worst utilisation spread [%]", "worst at heel, trim [deg]", "... with the CG at x, y, z [m]",
+         "highest in-box load / SWL [%]", "design utilisation [%]", "design checks",
+         "boom heights H [m]"],
         [
             (k + 1, " ".join(f"{lug} ({crane})" for lug, crane in zip(r.lugs, r.crane_names)),
              f"{r.nominal_spread:.2f}", f"{r.worst_spread:.2f}",
-             f"{100 * r.worst_utilisation_spread:.1f}",
-             f"{r.worst.heel:+.2f}, {r.worst.trim:+.2f}",
+             f"{100 * r.worst_utilisation_spread:.1f}", *_where(plan, r.worst),
              f"{100 * r.max_utilisation:.1f}",
+             "n/a" if d.chain is None else f"{100 * d.max_utilisation:.1f}",
+             "ok" if d.ok else "FAIL",
              " ".join(f"{h:.3f}" for h in r.boom_heights))
-            for k, r in enumerate(plan.ranking)
+            for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design))
         ],
         f"Ranking of lug sets (best {len(plan.ranking)} of {plan.stats.sets})",
     ))
-    sections.append(_table(
-        ["lug", "crane", "radius [m]", "nominal [t]", "worst in box [t]", "twist increase [t]",
-         "design load [t]", "chart SWL [t]", "utilisation [%]", "margin over share [%]",
-         "code margin [%]", "check"],
-        [
-            (c.label, c.crane, f"{c.radius:.1f}", f"{c.nominal:.2f}", f"{c.worst:.2f}",
-             f"{c.twist:.2f}", f"{c.design:.2f}", f"{c.swl:.1f}", f"{100 * c.utilisation:.1f}",
-             f"{100 * c.margin:.1f}", f"{100 * c.required_margin:.0f}",
-             "ok" if c.ok else "NOT MET")
-            for c in plan.capacity
-        ],
-        "Crane capacity (multi-crane lift)",
-    ))
+    sections.append(_design_table(plan))
     sections.append(_table(
         ["rope or diagonal pair", "nominal load [t]", "skewed load [t]",
          "skew load factor [-]", "Noble Denton default [-]"],
@@ -261,6 +263,7 @@ def render_html(plan):
         ],
         "Search",
     ))
+    design_extra = _design_details(plan)
     figs = [
         _png(figures.plan_view(plan), "plan view"),
         _png(figures.tension_curves(plan), "tension against heel and trim"),
@@ -268,14 +271,17 @@ def render_html(plan):
     ]
     body = "\n".join(
         [f"<h1>{html.escape(problem.name or 'Lift plan')}</h1>",
-         f"<p>liftplan recommendation, {date.today().isoformat()}. Angles: heel &gt; 0 "
+         f"<p>liftplan recommendation, {date.today().isoformat()}. All coordinates are in the "
+         f"planning file's frame: {html.escape(FRAMES[plan.frame])}. Angles: heel &gt; 0 "
          "starboard down, trim &gt; 0 bow down.</p>",
-         sections[1], sections[2], "<h2>Figures</h2>", *figs,
-         "<h2>Checks to hand over</h2>", sections[4], sections[5], sections[6],
-         "<h2>Alternatives</h2>", sections[3], sections[7], "<h2>Inputs</h2>", sections[0],
+         "<h2>Recommendation</h2>", sections[2], sections[3],
+         "<h2>Checks to hand over</h2>", sections[5], *design_extra, sections[6], sections[7],
+         "<h2>Figures</h2>", *figs,
+         "<h2>Alternatives</h2>", sections[4],
+         "<h2>Inputs</h2>", sections[0], sections[1],
          "<h2>Assumptions</h2>",
          "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in ASSUMPTIONS) + "</ul>",
-         sections[8]]
+         "<h2>Engineering appendix</h2>", sections[8], sections[9]]
     )
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
@@ -294,28 +300,101 @@ img {{ max-width: 100%; display: block; margin: 1em 0; }}
 """
 
 
+def _design_table(plan):
+    """Per crane: the static loads and the rules' chain to the design hook load and its check."""
+    design = plan.design_loads
+    if design.chain is None:
+        return (f"<p><b>Design loads not computed:</b> {html.escape(design.missing)}</p>")
+    rows = []
+    for c in plan.capacity:
+        r = c.design
+        factor = {f.name: f for f in r.factors}
+        skew = factor["skew"].value if factor["skew"].applies_to.startswith("hook") else 1.0
+        margin = "-" if r.code_margin is None else (
+            f"{r.code_margin.value:.1f} {'<=' if r.code_margin.ok else '>'} {r.code_margin.limit:.1f}")
+        ok = r.check.ok and (r.code_margin is None or r.code_margin.ok)
+        rows.append((c.label, c.crane, "-" if c.radius is None else f"{c.radius:.1f}", f"{c.swl:.1f}",
+                     f"{c.nominal:.2f}", f"{c.worst:.2f}", f"{c.tilt.load:.2f}",
+                     f"{factor['weight_contingency'].value:.3f}", f"{skew:.4f}",
+                     f"{factor['daf'].value:.3f}", f"{r.rigging_weight:.2f}",
+                     f"{r.static_hook_load:.2f}", f"{r.design_hook_load:.2f}",
+                     f"{100 * r.utilisation:.1f}", margin, "ok" if ok else "FAIL"))
+    return _table(
+        ["lug", "crane", "radius [m]", "chart SWL [t]", "level tension [t]", "worst in box [t]",
+         "at the rules' tilt [t]", "weight contingency [-]", "skew on hook [-]", "DAF [-]",
+         "rigging [t]", "static hook load [t]", "design hook load [t]", "utilisation [%]",
+         "code margin: share x (1 + margin) vs SWL [t]", "check"],
+        rows,
+        "Design loads per crane (0027/ND chain; utilisation = design hook load / chart SWL; "
+        f"tilt {design.tilt_note})",
+    )
+
+
+def _design_details(plan):
+    """Where each crane's worst cases occur, the chain's factors with their sources, lug loads."""
+    design = plan.design_loads
+    if design.chain is None:
+        return []
+    worst = _table(
+        ["lug", "crane", "worst in box [t]", "heel, trim [deg]", "CG x, y, z [m]",
+         "at the rules' tilt [t]", "tilt [deg]", "tilt axis x, y, z [-]", "CG at tilt x, y, z [m]"],
+        [(c.label, c.crane, f"{c.worst:.2f}", *_where(plan, c.worst_at), f"{c.tilt.load:.2f}",
+          f"{c.tilt.tilt:.2f}", ", ".join(f"{v:+.3f}" for v in plan.in_file_frame(c.tilt.axis)),
+          _where(plan, Scenario(0.0, 0.0, c.tilt.cog_offset))[1])
+         for c in plan.capacity],
+        "Where each crane's worst static load occurs (CG position in the file's frame)",
+    )
+    results = [c.design for c in plan.capacity]
+    factors = _table(
+        ["factor", *(f"{r.crane} [-]" for r in results), "applies to", "source"],
+        [(f.name, *(f"{r.factors[k].value:.4f}" for r in results), f.applies_to, f.source)
+         for k, f in enumerate(results[0].factors)],
+        "Design-load factors and where they come from",
+    )
+    lugs = _table(
+        ["lug", "crane", "static share [t]", "vertical design [t]", "sling angle [deg]", "leg load [t]",
+         "lug design load [t]", "lug capacity [t]", "check"],
+        [(lug.lug, lug.crane, f"{lug.share:.2f}", f"{lug.vertical:.2f}", f"{lug.sling_angle:.1f}",
+          f"{lug.leg_load:.2f}", f"{lug.design_load:.2f}",
+          "-" if lug.check is None else f"{lug.check.limit:.1f}",
+          "not given" if lug.check is None else ("ok" if lug.check.ok else "FAIL"))
+         for r in results for lug in r.lugs],
+        "Lug design loads (leg load x consequence factor; checked where the candidate gives a capacity)",
+    )
+    return [worst, factors, lugs]
+
+
 # -- scene file of the chosen plan ---------------------------------------------------------
 def scene_toml(plan):
-    """The chosen plan as a scene file (z-up frame) for ``liftplan solve``."""
-    scene = plan.scene
+    """The chosen plan as a scene file for ``liftplan solve``, in the planning file's frame.
+
+    Lugs carry their candidate names and each crane table names its crane; ``liftplan solve``
+    on it gives the plan's level tensions (keyed by candidate name).
+    """
+    scene, problem = plan.scene, plan.problem
+    names = plan.lugs  # label -> candidate
 
     def vec(values):
         return "[" + ", ".join(repr(float(v)) for v in values) + "]"
 
     lines = [
-        f"# Written by liftplan plan: the chosen lugs of {json.dumps(plan.problem.name)}.",
+        f"# Written by liftplan plan: the chosen lugs of {json.dumps(problem.name)}.",
         "# `liftplan solve` on this file gives the plan's level tensions.",
+        f"# Coordinates in the planning file's frame: {FRAMES[plan.frame]}.",
         f"name = {json.dumps(scene.name)}",
-        'frame = "z-up"',
+        f"frame = {json.dumps(plan.frame)}",
         "",
         "[body]",
         f"weight = {scene.body.weight!r}",
-        f"cog = {vec(scene.body.cog)}",
+        f"cog = {vec(plan.in_file_frame(scene.body.cog))}",
     ]
     for lug in scene.lugs:
-        lines += ["", "[[lugs]]", f"name = {json.dumps(lug.name)}", f"at = {vec(lug.at)}"]
+        lines += ["", "[[lugs]]", f"name = {json.dumps(names[lug.name])}",
+                  f"at = {vec(plan.in_file_frame(lug.at))}"]
     for crane in scene.cranes:
-        lines += ["", "[[cranes]]", f"lug = {json.dumps(crane.lug)}",
+        lines += ["", f"[[cranes]]                   # {plan.cranes[crane.lug]} (planned lug {crane.lug})",
+                  f"name = {json.dumps(plan.cranes[crane.lug])}",
+                  f"lug = {json.dumps(names[crane.lug])}",
                   f"boom_height = {crane.boom_height!r}", f"rope_length = {crane.rope_length!r}",
                   f"EA = {crane.EA!r}", f"swl = {crane.swl!r}"]
     att = scene.attitude

@@ -1,10 +1,12 @@
 """`liftplan plan` as a user drives it, and the report as a person sees it."""
 
+import html
 import html.parser
 import json
 import re
 import shutil
 import subprocess
+import tomllib
 
 import pytest
 from helpers import EXAMPLES
@@ -39,7 +41,26 @@ def test_written_scene_solves_to_the_plan_tensions(report_dir):
     result = run("solve", str(out / "plan_scene.toml"), "--json")
     assert result.returncode == 0, result.stderr
     solved = json.loads(result.stdout)
-    assert solved["tensions"] == pytest.approx(data["tensions"], abs=1e-6)
+    # the scene keeps the candidate names as lug names: map the plan's labels to them
+    by_candidate = {data["lugs"][label]: t for label, t in data["tensions"].items()}
+    assert solved["tensions"] == pytest.approx(by_candidate, abs=1e-6)
+
+
+def test_written_scene_keeps_the_file_frame_names_and_cranes(report_dir):
+    out, data = report_dir
+    text = (out / "plan_scene.toml").read_text(encoding="utf-8")
+    scene = tomllib.loads(text)
+    assert scene["frame"] == "choi"  # tanker_plan.toml is in the papers' frame
+    assert scene["body"]["cog"] == [35.86, 2.5, 6.0]  # as the planning file writes it
+    planning = tomllib.loads(open(TANKER, encoding="utf-8").read())
+    at = {c["name"]: c["at"] for c in planning["candidates"]}
+    assert [lug["name"] for lug in scene["lugs"]] == list(data["lugs"].values())
+    for lug in scene["lugs"]:
+        # choi -> z-up -> choi is a sign flip and a swap: exact
+        assert lug["at"] == at[lug["name"]]
+    assert [(c["name"], c["lug"]) for c in scene["cranes"]] == [
+        (data["cranes"][label], name) for label, name in data["lugs"].items()]
+    assert "# crane 1 (planned lug L1)" in text
 
 
 class _Tables(html.parser.HTMLParser):
@@ -81,8 +102,14 @@ def test_report_embeds_figures_and_every_table_has_units(report_dir):
         has_unit_column = "unit" in headers
         with_units = [h for h in headers if re.search(r"\[[^\]]+\]", h)]
         assert has_unit_column or len(with_units) >= len(headers) - 3, headers
-    for text in ("Assumptions", "Operator guidance", "Skew loads", "Crane capacity"):
+    page = html.unescape(page)
+    for text in ("Assumptions", "Operator guidance", "Skew loads", "Design loads per crane",
+                 "Where each crane's worst static load occurs", "Design-load factors"):
         assert text in page
+    # the frame is named once, at the top, and the coordinates follow it
+    assert page.count("All coordinates are in the planning file's frame") == 1
+    assert page.index("All coordinates are in") < page.index("<table")
+    assert "papers' frame (x forward, y up, z to starboard)" in page
 
 
 def test_report_pdf_when_weasyprint_is_installed(report_dir):

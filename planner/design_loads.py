@@ -1,0 +1,284 @@
+"""Each crane's design load for a planned lug set: the rules' chain fed by the planner.
+
+The plan's one defined design load per crane is the design hook load of
+:class:`liftplan.model.rules.DesignLoadChain` (``docs/design-loads.md``), built from what the
+planner found for the lug set:
+
+* ``nominal``: the level tension T* the plan dials in (nominal CG);
+* ``worst``: the rope's largest tension over the heel/trim box and the CG envelope, on the
+  search's dense grid (the same grid and values as the search's ``rope_max``), with the
+  scenario where it occurs;
+* ``tilt``: the hook's largest load at the rules' tilt (0027/ND 5.4: the worse of the tilt
+  and the hook elevation difference over the least hook spacing), the hoists holding T*,
+  over every tilt axis and the CG envelope's vertices;
+* ``skew``: the computed factor of the rope from the hook-height tolerance
+  (:func:`rope_skew`), because the searched worst does not include the hook tolerance;
+* ``swl`` and ``radius``: the crane's chart SWL at its radius to the lug.
+
+Then the chain's factors (weight contingency, DAF, rigging weight; yaw only with slings) turn
+it into the design hook load, checked against the chart SWL, with the crane-code margin and,
+where a candidate has a ``capacity``, the lug's design load. Utilisation is design hook load
+/ chart SWL; every output uses this one figure.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads, TiltGeometry, governing_tilt
+
+from .scenarios import LugSet, Scenario, box_attitudes
+from .search import DENSE
+
+
+def rope_skew(lugset, preload, delta):
+    """Each rope's load with every hook within +-``delta`` of its planned height, pose held.
+
+    Parameters
+    ----------
+    lugset : LugSet
+    preload : (n,)  [t]
+    delta : float  [m]
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,)  [t]
+        T*_i + delta sum_j |dT_i / dH_j|.
+    """
+    gain = lugset.twist_gain(preload)
+    return np.asarray(preload, dtype=float) + delta * np.abs(gain).sum(axis=1)
+
+
+@dataclass(frozen=True)
+class TiltCase:
+    """Where a hook's load at the rules' tilt is largest.
+
+    Parameters
+    ----------
+    load : float  [t]
+    tilt : float  [deg]
+    axis : tuple of 3 float  [-]
+        Unit vector of the tilt axis, z-up body frame (the body turns right-handed about it).
+    cog_offset : tuple of 3 float  [m]
+        CG-envelope vertex, z-up body frame.
+    """
+
+    load: float
+    tilt: float
+    axis: tuple
+    cog_offset: tuple
+
+
+@dataclass(frozen=True)
+class CraneDesign:
+    """One crane of a planned lug set: its static loads, where they occur, its design load.
+
+    Parameters
+    ----------
+    label : str
+        Planned lug label (L1..Ln).
+    crane : str
+    lug : str
+        Candidate name.
+    radius : float or None  [m]
+        None: a crane with no position (no chart).
+    swl : float  [t]
+        Chart SWL at the radius.
+    nominal : float  [t]
+        Level tension, nominal CG.
+    worst : float  [t]
+        Largest tension over the box and the CG envelope.
+    worst_at : Scenario
+        Where ``worst`` occurs (z-up CG offset).
+    tilt : TiltCase
+    skewed : float  [t]
+        Level tension with the hooks within the hook tolerance.
+    design : CraneDesignLoad or None
+        The chain's result; None when the chain could not be built (see
+        :attr:`DesignLoads.missing`).
+    """
+
+    label: str
+    crane: str
+    lug: str
+    radius: float | None
+    swl: float
+    nominal: float
+    worst: float
+    worst_at: Scenario
+    tilt: TiltCase
+    skewed: float
+    design: object = None
+
+    @property
+    def skew(self):
+        """Computed skew factor, skewed / nominal  [-] (None at a zero nominal load)."""
+        return self.skewed / self.nominal if self.nominal > 0.0 else None
+
+    @property
+    def design_hook_load(self):
+        """The design hook load  [t] (NaN when not computed)."""
+        return self.design.design_hook_load if self.design is not None else float("nan")
+
+    @property
+    def utilisation(self):
+        """Design hook load / chart SWL at the radius  [-]: the plan's one utilisation."""
+        return self.design_hook_load / self.swl
+
+
+@dataclass(frozen=True)
+class DesignLoads:
+    """The rules' design loads of one planned lug set.
+
+    Parameters
+    ----------
+    cranes : tuple of CraneDesign
+        In the lug set's order (L1..Ln).
+    tilt : float  [deg]
+        The governing tilt used.
+    tilt_note : str
+    chain : DesignLoadChain or None
+    missing : str or None
+        Why no design load could be computed (a one-line reason), else None.
+    """
+
+    cranes: tuple
+    tilt: float
+    tilt_note: str
+    chain: DesignLoadChain | None
+    missing: str | None = None
+
+    @property
+    def ok(self):
+        """True when every design check is met (False when none could be computed)."""
+        return self.missing is None and all(c.ok for c in self.checks)
+
+    @property
+    def max_utilisation(self):
+        """Largest design hook load / chart SWL over the cranes  [-] (NaN when not computed)."""
+        return max(c.utilisation for c in self.cranes)
+
+    @property
+    def checks(self):
+        """Design hook load per crane, code margin per crane, lug design loads (with a capacity)."""
+        if self.chain is None:
+            return [Check("design_loads", "all cranes", float("nan"), float("nan"), "-", False,
+                          note=f"not computed: {self.missing}")]
+        return self.chain.checks
+
+    def crane(self, label):
+        """The :class:`CraneDesign` of a planned lug label."""
+        return next(c for c in self.cranes if c.label == label)
+
+    def to_json(self):
+        """The chain's JSON (``docs/design-loads.md``) with the tilt used; None parts when missing."""
+        out = {"tilt": self.tilt, "tilt_note": self.tilt_note, "missing": self.missing}
+        if self.chain is not None:
+            out.update(self.chain.to_json())
+        return out
+
+
+class DesignBuilder:
+    """Builds :class:`DesignLoads` for lug sets of one problem (shares the dense grid)."""
+
+    def __init__(self, problem):
+        self.problem = problem
+        offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
+        grid = box_attitudes(problem, DENSE, DENSE)
+        self.dense = [Scenario(float(h), float(t), o) for o in offsets for h, t in grid]
+        # at a fixed pose a hook's load is affine in the CG offset and the nominal CG is the
+        # vertices' mean, so the vertices alone hold the worst
+        self.vertices = offsets[1:] if len(offsets) > 1 else offsets
+        self.searched = any(w > 0.0 for w in problem.cog_envelope.half_widths)
+
+    def build(self, result, labels):
+        problem = self.problem
+        lugset = LugSet(problem, result.indices, result.cranes)
+        preload = np.asarray(result.preload, dtype=float)
+        tensions = lugset.tensions(preload, self.dense)
+        where = np.argmax(tensions, axis=0)
+        skewed = rope_skew(lugset, preload, problem.hook_tolerance)
+        names = lugset.crane_names
+        tilt, tilt_note, at_tilt, missing = self._tilt(lugset, preload)
+        fleet = [problem.fleet[j] for j in lugset.cranes]
+        cranes = []
+        for k, label in enumerate(labels):
+            case = at_tilt.get(names[k])
+            cranes.append(CraneDesign(
+                label=label, crane=names[k], lug=lugset.names[k],
+                radius=None if fleet[k].position is None else float(lugset.radius[k]),
+                swl=float(lugset.swl[k]), nominal=float(preload[k]),
+                worst=float(tensions[where[k], k]), worst_at=self.dense[where[k]],
+                tilt=case, skewed=float(skewed[k])))
+        chain = None
+        if missing is None:
+            try:
+                chain = DesignLoadChain(
+                    cranes=tuple(self._loads(c) for c in cranes), weight=problem.body.weight,
+                    rules=problem.rules, cog_searched=self.searched, tilt_note=tilt_note)
+                results = chain.results
+            except InvalidScene as err:
+                chain, missing = None, str(err)
+            else:
+                cranes = [replace(c, design=r) for c, r in zip(cranes, results)]
+        return DesignLoads(cranes=tuple(cranes), tilt=tilt, tilt_note=tilt_note, chain=chain,
+                           missing=missing)
+
+    def _tilt(self, lugset, preload):
+        """(tilt [deg], note, {crane: TiltCase}, missing reason or None)."""
+        problem = self.problem
+        names = lugset.crane_names
+        geometry = TiltGeometry(
+            {n: tuple(p) for n, p in zip(names, lugset.points)}, problem.body.cog, problem.body.weight,
+            preload=dict(zip(names, preload.tolist())),
+            stiffness=dict(zip(names, lugset.stiffness.tolist())))
+        design_tilt, elevation = problem.rules.design_tilt()
+        spacing = geometry.least_spacing()
+        try:
+            tilt = governing_tilt(design_tilt, elevation, spacing)
+        except InvalidScene as err:
+            return float("nan"), "", {}, str(err)
+        from_elevation = float(np.degrees(np.arcsin(elevation / spacing)))
+        note = (f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m hook elevation "
+                f"difference over the least hook spacing {spacing:.2f} m ({from_elevation:.2f} deg)")
+        try:
+            worst = geometry.worst(tilt, self.vertices)
+        except EquilibriumNotFound as err:
+            return tilt, note, {}, f"at the rules' tilt {tilt:.2f} deg: {err}"
+        cases = {}
+        for name, load in worst.items():
+            psi = np.radians(load.direction)
+            cases[name] = TiltCase(load=float(load.load), tilt=float(load.tilt),
+                                   axis=(float(np.cos(psi)), float(np.sin(psi)), 0.0),
+                                   cog_offset=tuple(load.cog_offset))
+        return tilt, note, cases, None
+
+    def _loads(self, crane):
+        candidate = self.problem.candidates[self.problem.names.index(crane.lug)]
+        return CraneLoads(
+            name=crane.crane, nominal=crane.nominal, worst=max(crane.worst, crane.nominal),
+            tilt=crane.tilt.load, swl=crane.swl, radius=crane.radius, skew=crane.skew,
+            lugs=(LugLoads(name=crane.lug, share=max(crane.worst, crane.nominal),
+                           capacity=candidate.capacity),))
+
+
+def design_loads(problem, results, labels):
+    """The rules' design loads of lug sets of one problem.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    results : sequence of SetResult
+    labels : sequence of str
+        Planned lug labels, in each set's lug order.
+
+    Returns
+    -------
+    list of DesignLoads
+    """
+    builder = DesignBuilder(problem)
+    return [builder.build(r, labels) for r in results]
