@@ -15,6 +15,9 @@ the pose on the near side, until the bracket is at most ``EVENT_TOL`` wide:
 * ``surface``: the hull's highest point first reaches the surface from below;
 * ``clear``: its lowest point leaves the water.
 
+The two solved ends of each final bracket join the curve's rows, so a kink (lift-off, say)
+is drawn where it is, not smeared over a step.
+
 The maximum crane load is reported with its plateau: the hoist ranges where the largest
 rope load is within ``PLATEAU_REL`` of the peak, their ends bisected the same way. Clear
 of the water (or hanging submerged) the loads are constant, so the peak has no single
@@ -118,7 +121,8 @@ class LoadCurve:
     ----------
     lugs : tuple of str
     hoist : numpy.ndarray, shape (k,)  [m]
-        Hoists that solved.
+        Hoists that solved: the steps, and the two ends of each event's and plateau
+        end's final bracket (so the curve shows each kink where it is).
     tensions : numpy.ndarray, shape (k, n)  [t]
     heel, trim : numpy.ndarray, shape (k,)  [deg]
     buoyancy : numpy.ndarray, shape (k,)  [t]
@@ -237,6 +241,7 @@ class _Lift:
     def __init__(self, scene):
         self.scene = scene
         self.setup = WaterSetup(scene)
+        self.brackets = []  # the solved ends of every final bracket, added to the curve
 
     def at(self, hoist, start=None):
         """The solved :class:`_Point` at ``hoist`` [m]; raises EquilibriumNotFound."""
@@ -253,18 +258,18 @@ class _Lift:
 
         Returns (middle, half-width) [m] of the last bracket: a solve that fails inside it
         stops the bisection there, and the wider bracket is what is reported."""
-        a, b, start = lo.hoist, hi.hoist, lo.start
-        while b - a > EVENT_TOL:
-            mid = 0.5 * (a + b)
+        while hi.hoist - lo.hoist > EVENT_TOL:
+            mid = 0.5 * (lo.hoist + hi.hoist)
             try:
-                point = self.at(mid, start)
+                point = self.at(mid, lo.start)
             except EquilibriumNotFound:
                 break
             if test(point):
-                b = mid
+                hi = point
             else:
-                a, start = mid, point.start
-        return 0.5 * (a + b), 0.5 * (b - a)
+                lo = point
+        self.brackets += [lo, hi]
+        return 0.5 * (lo.hoist + hi.hoist), 0.5 * (hi.hoist - lo.hoist)
 
 
 def _adjacent(points, failed):
@@ -361,6 +366,13 @@ def load_curve(scene, stop=None, step=0.25):
         start = point.start
     if not points:
         raise EquilibriumNotFound(f"lift: no hoist step solved; first failure: {failed[0][1]}")
+    tensions = np.array([list(p.eq.tensions.values()) for p in points])
+    events = _events(lift, points, failed)
+    max_load = _max_load(lift, points, failed, scene.lug_names, tensions)
+    # the bracket ends are equilibria too: on the curve, they show each kink where it is
+    by_hoist = {p.hoist: p for p in lift.brackets}
+    by_hoist.update({p.hoist: p for p in points})
+    points = [by_hoist[h] for h in sorted(by_hoist)]
     afloat = [p.eq.afloat for p in points]
     tensions = np.array([list(p.eq.tensions.values()) for p in points])
     return LoadCurve(
@@ -379,7 +391,7 @@ def load_curve(scene, stop=None, step=0.25):
         weight=scene.body.weight,
         trapped_water=lift.setup.trapped,
         density=scene.water.density,
-        events=_events(lift, points, failed),
-        max_load=_max_load(lift, points, failed, scene.lug_names, tensions),
+        events=events,
+        max_load=max_load,
         name=scene.name or "",
     )

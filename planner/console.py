@@ -135,10 +135,12 @@ def load_curve_table(scene, curve, rows=25):
     ]
     every = max(1, len(curve.hoist) // rows)
     keep = set(range(0, len(curve.hoist), every)) | {len(curve.hoist) - 1}
-    keep |= {k for k in range(1, len(curve.hoist)) if curve.state[k] != curve.state[k - 1]}
+    for k in range(1, len(curve.hoist)):
+        if curve.state[k] != curve.state[k - 1]:  # both sides of a change of state
+            keep |= {k - 1, k}
     for k in sorted(keep):
         lines.append(
-            f"{curve.hoist[k]:>10.2f}" + "".join(f"{t:>12.1f}" for t in curve.tensions[k])
+            f"{curve.hoist[k]:>10.4f}" + "".join(f"{t:>12.1f}" for t in curve.tensions[k])
             + f"{curve.crane_load[k]:>11.1f}{curve.heel[k]:>12.2f}{curve.trim[k]:>12.2f}"
             f"{curve.buoyancy[k]:>14.1f}{curve.ground_reaction[k]:>12.1f}  {curve.state[k]}"
         )
@@ -150,11 +152,17 @@ def load_curve_table(scene, curve, rows=25):
     lines.append(f"events (bisected between steps to {1e3 * EVENT_TOL:g} mm):")
     for e in curve.events:
         lines.append(f"  {e.name}: hoist {e.hoist:.4f} m +- {1e3 * e.tolerance:.2f} mm ({e.description})")
-    for name, why in (("lift-off", "the hull never rested on the ground or did not leave it"),
-                      ("surface", "already piercing the surface at the start, or not reached"),
-                      ("clear", "not clear of the water within the hoist range")):
+    why = {
+        "lift-off": "free of the ground from the start" if curve.state[0] != "grounded"
+        else "still on the ground at the last hoist",
+        "surface": "out of the water in part from the start" if curve.top[0] >= 0.0
+        else "the top stays under water to the last hoist",
+        "clear": "clear from the start" if curve.bottom[0] >= 0.0
+        else "not clear of the water at the last hoist",
+    }
+    for name, reason in why.items():
         if curve.event(name) is None:
-            lines.append(f"  {name}: none ({why})")
+            lines.append(f"  {name}: none within the range ({reason})")
     for hoist, reason in curve.failed:
         lines.append(f"no equilibrium at hoist {hoist:.2f} m: {reason}")
     return "\n".join(lines)
