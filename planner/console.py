@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
-from .plan_console import plan_table
-
 __all__ = ["batch_table", "equilibrium_table", "load_curve_table", "plan_table"]
+
+
+def plan_table(plan):
+    """The plan summary (:func:`liftplan.planner.plan_console.plan_table`); imported here
+    on use, so ``solve`` never loads the planner."""
+    from .plan_console import plan_table as table
+
+    return table(plan)
 
 
 def equilibrium_table(scene, eq):
