@@ -456,7 +456,8 @@ def plan(problem, top=None):
 
     Returns
     -------
-    Plan
+    Plan or SlingPlan
+        A :class:`~liftplan.planner.slings.SlingPlan` for two cranes on slings.
 
     Raises
     ------
@@ -464,6 +465,10 @@ def plan(problem, top=None):
         No lug set can hold the body within the tolerances and limits; the message names
         the causes and how many sets each ruled out.
     """
+    if problem.cranes == 2:  # two cranes on slings: the determinate sling-lift planner
+        from .slings import plan_two_slings
+
+        return plan_two_slings(problem, top)
     try:
         ranking, stats = search(problem, top)
     except Interrupted as stop:

@@ -16,12 +16,16 @@ def plan_table(plan):
 
     Parameters
     ----------
-    plan : Plan
+    plan : Plan or SlingPlan
 
     Returns
     -------
     str
     """
+    if plan.problem.cranes == 2:  # a two-crane sling lift
+        from .sling_console import sling_table
+
+        return sling_table(plan)
     problem, chosen = plan.problem, plan.chosen
     stats = plan.stats
     fleet = "" if problem.equal_cranes else \

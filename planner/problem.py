@@ -168,7 +168,8 @@ class PlanProblem:
         level.
     yaw : float  [deg]
     hook_tolerance : float  [m]
-        Hook-height tolerance of the operators (twist), for the skew load factors.
+        Hook-height tolerance of the operators (twist), for the skew load factors; 0 (the
+        default) assumes no hook error, and the plan says so.
     cog_envelope : CogEnvelope
     top : int
         How many lug sets to rank.
@@ -190,6 +191,8 @@ class PlanProblem:
     rules : Rules
         The lifting rules' settings for the design-load chain (``[rules]``; default: the
         rules' defaults, see ``docs/design-loads.md``).
+    min_sling_angle : float  [deg]
+        Lowest sling-leg angle from the horizontal (``[rigging]``; slings only).
     """
 
     body: Body
@@ -201,7 +204,7 @@ class PlanProblem:
     min_tension: float = 0.0
     lift_height: float = 0.0
     yaw: float = 0.0
-    hook_tolerance: float = 0.05
+    hook_tolerance: float = 0.0
     cog_envelope: CogEnvelope = field(default_factory=CogEnvelope)
     top: int = 5
     outline: tuple[tuple[float, float], ...] = ()
@@ -212,6 +215,7 @@ class PlanProblem:
     gap: float = 0.0
     time_limit: float | None = None
     rules: Rules = field(default_factory=Rules)
+    min_sling_angle: float = 60.0
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -222,8 +226,9 @@ class PlanProblem:
         _set(self, "candidates", candidates)
         if not isinstance(self.cranes, int) or isinstance(self.cranes, bool):
             raise InvalidScene(f"plan.cranes = {self.cranes!r}: expected an integer 3 to {MAX_CRANES}")
-        if not 3 <= self.cranes <= MAX_CRANES:
-            raise InvalidScene(f"plan.cranes = {self.cranes}: expected 3 to {MAX_CRANES}")
+        if not 2 <= self.cranes <= MAX_CRANES:
+            raise InvalidScene(f"plan.cranes = {self.cranes}: expected 3 to {MAX_CRANES} (or 2 "
+                               "cranes with slings)")
         if len(candidates) < self.cranes:
             raise InvalidScene(
                 f"candidates: {len(candidates)} given for plan.cranes = {self.cranes}: "
@@ -282,6 +287,19 @@ class PlanProblem:
         if len(fleet) != self.cranes:
             raise InvalidScene(f"plan.cranes = {self.cranes}: {len(fleet)} [[cranes]] tables "
                                "given; expected one table per crane")
+        slings = [c.sling is not None for c in fleet]
+        if self.cranes == 2 and not all(slings):
+            raise InvalidScene("plan.cranes = 2: expected a sling on both cranes (two cranes on "
+                               "single ropes cannot hold a body level; give each [[cranes]] a "
+                               "sling = { legs = 2, length, diameter or EA }) or 3 cranes or more")
+        if any(slings) and self.cranes != 2:
+            raise InvalidScene(f"cranes.sling: planned for two cranes only (here {self.cranes}); "
+                               "expected two [[cranes]] with slings, or single ropes")
+        value = finite("rigging.min_sling_angle", self.min_sling_angle)
+        if not 0.0 < value <= 90.0:
+            raise InvalidScene(f"rigging.min_sling_angle = {value!r}: expected 0 to 90 deg "
+                               "from the horizontal")
+        _set(self, "min_sling_angle", value)
         names = [c.name for c in fleet]
         for name in names:
             if names.count(name) > 1:

@@ -18,7 +18,7 @@ from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene import Body
 from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
 
-from .fleet import FleetCrane
+from .fleet import FleetCrane, SlingSpec
 from .problem import Candidate, CogEnvelope, CraneSpec, PlanProblem
 
 Count = Annotated[int, Strict(), Field(ge=1)]
@@ -48,7 +48,7 @@ class _Plan(Table):
     time_limit: Num | None = None
     tolerance: _Tolerance = _Tolerance()
     min_tension: Num = 0.0
-    hook_tolerance: Num = 0.05
+    hook_tolerance: Num = 0.0
     cog_tolerance: Point = (0.0, 0.0, 0.0)
     cog_envelope: Literal["box", "cross"] = "box"
     top: Count = 5
@@ -67,6 +67,17 @@ class _Crane(Table):
     boom_height: _Range | None = None
 
 
+class _Sling(Table):
+    legs: Count = 2
+    length: Num
+    EA: Num | None = None
+    diameter: Num | None = None
+
+
+class _Rigging(Table):
+    min_sling_angle: Num = 60.0
+
+
 class _FleetCrane(Table):
     name: Text
     position: Point | None = None
@@ -75,6 +86,7 @@ class _FleetCrane(Table):
     EA: Num | None = None
     rope_length: Num | None = None
     boom_height: _Range | None = None
+    sling: _Sling | None = None
 
 
 class _Ropes(Table):
@@ -97,6 +109,7 @@ class _PlanFile(Table):
     ropes: _Ropes = _Ropes()
     attitude: _Attitude = _Attitude()
     rules: RulesTable | None = None
+    rigging: _Rigging = _Rigging()
 
 
 def load_problem(path):
@@ -197,6 +210,9 @@ def _fleet(data, to_zup):
             swl=swl,
             boom_min=boom.min if boom else float("-inf"),
             boom_max=boom.max if boom else float("inf"),
+            sling=None if entry.sling is None else SlingSpec(
+                length=entry.sling.length, legs=entry.sling.legs, EA=entry.sling.EA,
+                diameter=entry.sling.diameter),
         ))
     return tuple(fleet)
 
@@ -238,4 +254,5 @@ def _to_problem(data):
         name=data.name,
         frame=data.frame,
         rules=rules_from_table(data.rules),
+        min_sling_angle=data.rigging.min_sling_angle,
     )
