@@ -150,7 +150,8 @@ def plan_two_slings(problem, top=None):
     limit = problem.min_sling_angle
     options = [sling_pairs(problem, crane) for crane in fleet]
     counts = {"legs shorter than half the pair's spacing": 0, "sling angle below the limit": 0,
-              "beyond the crane's reach": 0, "lugs shared by both slings": 0, "hook load over SWL / 1.2 (code margin)": 0,
+              "beyond the crane's reach": 0, "lugs shared by both slings": 0,
+              "hook load over SWL / 1.2 (code margin)": 0,
               "a hook load over the SWL within the tolerance": 0,
               "roll about the hook line beyond the tolerance": 0}
     per_crane = []
