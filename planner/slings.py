@@ -82,6 +82,23 @@ class SlingOption:
     worst_cog_offset: tuple
 
 
+def apex(a, b, length):
+    """Hook of an equal-legged 2-leg sling on lugs a, b: in the vertical plane through a and
+    b, above them, at ``length`` from both (the sling hinges freely about the line ab, so it
+    hangs in that plane whatever the body's attitude)  [m].
+
+    Parameters
+    ----------
+    a, b : (..., 3)  [m]
+    length : float  [m]
+    """
+    half = 0.5 * np.linalg.norm(b - a, axis=-1)
+    along = (b - a) / (2 * half)[..., None]
+    up = np.array([0.0, 0.0, 1.0]) - along[..., 2:3] * along  # vertical, square to ab
+    up = up / np.linalg.norm(up, axis=-1, keepdims=True)
+    return 0.5 * (a + b) + np.sqrt(length**2 - half**2)[..., None] * up
+
+
 def sling_pairs(problem, crane):
     """Candidate pairs a crane's 2-leg sling can take, with the hook apex and leg angles.
 
@@ -95,16 +112,21 @@ def sling_pairs(problem, crane):
     points = problem.points
     pairs = np.array(list(combinations(range(len(points)), 2)), dtype=np.int64).reshape(-1, 2)
     a, b = points[pairs[:, 0]], points[pairs[:, 1]]
-    half = 0.5 * np.linalg.norm(b - a, axis=1)
-    ok = half < sling.length
-    pairs, a, b, half = pairs[ok], a[ok], b[ok], half[ok]
-    along = (b - a) / (2 * half)[:, None]
-    up = np.array([0.0, 0.0, 1.0]) - along[:, 2:3] * along  # vertical, square to ab
-    up /= np.linalg.norm(up, axis=1, keepdims=True)
-    apex = 0.5 * (a + b) + np.sqrt(sling.length**2 - half**2)[:, None] * up
-    angles = np.degrees(np.arcsin(np.clip(np.stack([apex[:, 2] - a[:, 2], apex[:, 2] - b[:, 2]],
+    ok = 0.5 * np.linalg.norm(b - a, axis=1) < sling.length
+    pairs, a, b = pairs[ok], a[ok], b[ok]
+    top = apex(a, b, sling.length)
+    angles = np.degrees(np.arcsin(np.clip(np.stack([top[:, 2] - a[:, 2], top[:, 2] - b[:, 2]],
                                                    axis=1) / sling.length, -1.0, 1.0)))
-    return pairs, apex, angles
+    return pairs, top, angles
+
+
+def _turn(axis, angle, points):
+    """Points turned by ``angle`` about a horizontal ``axis`` through the origin (Rodrigues).
+
+    axis : (N, 3) unit; angle : (N,) [rad]; points : (N, 3) -> (N, 3)
+    """
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    return points * c + np.cross(axis, points) * s + axis * (axis * points).sum(1, keepdims=True) * (1 - c)
 
 
 def _leg_split(apex, a, b, load):
@@ -156,17 +178,17 @@ def plan_two_slings(problem, top=None):
               "roll about the hook line beyond the tolerance": 0}
     per_crane = []
     every = len(problem.candidates) * (len(problem.candidates) - 1) // 2
-    for crane, (pairs, apex, angles) in zip(fleet, options):
+    for crane, (pairs, tops, angles) in zip(fleet, options):
         counts["legs shorter than half the pair's spacing"] += every - len(pairs)
         steep = np.all(angles >= limit - 1e-9, axis=1)
         counts["sling angle below the limit"] += int(np.sum(~steep))
-        plan_xy = (apex @ yaw.T)[:, :2]
+        plan_xy = (tops @ yaw.T)[:, :2]
         radius = crane.radius(plan_xy)
         swl = crane.swl_at(radius)
         reach = ~np.isnan(swl)
         counts["beyond the crane's reach"] += int(np.sum(steep & ~reach))
         keep = steep & reach
-        per_crane.append((pairs[keep], apex[keep], angles[keep], radius[keep], swl[keep]))
+        per_crane.append((pairs[keep], tops[keep], angles[keep], radius[keep], swl[keep]))
     (p1, x1, g1, r1, s1), (p2, x2, g2, r2, s2) = per_crane
     if len(p1) == 0 or len(p2) == 0:
         raise PlanInfeasible(_no_plan(problem, counts))
@@ -187,17 +209,23 @@ def plan_two_slings(problem, top=None):
     tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance)
     roll_tol = np.where(longitudinal, problem.heel_tolerance, problem.trim_tolerance)
     tilts = np.stack([-tilt_tol, 0 * tilt_tol, tilt_tol], axis=1)  # (N, 3) deg
-    # horizontal position along the hook line at tilt t: s = d.e cos t - d_z sin t
-    # (the hook line turns about the horizontal axis square to it; + lifts hook 2)
-    cos_t, sin_t = np.cos(np.radians(tilts)), np.sin(np.radians(tilts))
-    loads = []
-    for offset in offsets:
-        g = cog + offset - hook1  # (N, 3)
-        s_g = (g * e).sum(1)[:, None] * cos_t - g[:, 2:3] * sin_t
-        s_2 = (axis * e).sum(1)[:, None] * cos_t - axis[:, 2:3] * sin_t
-        share2 = weight * s_g / s_2
-        loads.append(np.stack([weight - share2, share2], axis=-1))  # (N, 3 tilts, 2)
-    loads = np.stack(loads, axis=1)  # (N, CG, tilt, 2)
+    # The operators tilt the body about the horizontal axis square to the hook line; each
+    # sling then hangs in the vertical plane through its (turned) lugs, so its hook is the
+    # apex of the turned pair, and the hook loads follow by the lever rule along the line.
+    turn_axis = np.cross(np.array([0.0, 0.0, 1.0]), e)  # + tilt lowers hook 2's side
+    lugs = [problem.points[p1[i1]], problem.points[p2[i2]]]  # (N, 2, 3) each
+    lengths = [fleet[0].sling.length, fleet[1].sling.length]
+    loads = np.empty((len(i1), len(offsets), 3, 2))
+    for k in range(3):
+        angle = np.radians(tilts[:, k])
+        hooks = []
+        for lug, length in zip(lugs, lengths):
+            a, b = (_turn(turn_axis, angle, lug[:, j]) for j in (0, 1))
+            hooks.append((apex(a, b, length) * e).sum(1))  # along the hook line
+        for m, offset in enumerate(offsets):
+            g = (_turn(turn_axis, angle, np.broadcast_to(cog + offset, (len(i1), 3))) * e).sum(1)
+            share2 = weight * (g - hooks[0]) / (hooks[1] - hooks[0])
+            loads[:, m, k] = np.stack([weight - share2, share2], axis=-1)
     nominal = loads[:, 0, 1]  # nominal CG, level
     # roll to bring the CG under the hook line: its offset square to the line, over its depth
     rolls = []

@@ -54,12 +54,33 @@ def test_symmetric_block_closed_form():
     sin_a = math.sqrt(81.0 - 12.25) / 9.0
     np.testing.assert_allclose(chosen.legs_nominal, 45.0 / sin_a, rtol=1e-9)
     np.testing.assert_allclose(chosen.sling_angles, math.degrees(math.asin(sin_a)), atol=1e-9)
-    # tilt of 2 deg along the 11 m hook line with the CG 1.3 m below the deck and the hooks
-    # h = 8.29 m above it: the lever arm moves by (3 - 1.3 + h) tan 2 deg
-    h = 9.0 * sin_a
-    shift = (3.0 - 1.3 + h) * math.tan(math.radians(2.0))
-    share = 90.0 + 180.0 * shift * math.cos(math.radians(2.0)) / (11.0 * math.cos(math.radians(2.0)))
+    # tilt of 2 deg along the 11 m hook line: each sling hangs in the vertical plane of its
+    # (transverse) pair, so the hook stays above the pair's midpoint on the deck, and the lever
+    # arm moves by the CG's depth below the deck, (3 - 1.3) tan 2 deg
+    share = 90.0 + 180.0 * (3.0 - 1.3) * math.tan(math.radians(2.0)) / 11.0
     assert max(chosen.hook_worst) == pytest.approx(share, rel=1e-9)
+
+
+def test_tilted_lift_matches_the_rigging_model():
+    """Raise one hook so the block trims by about 2 deg: the rigging model (free hooks,
+    elastic legs) gives the hook loads the plan's kinematics predict at that trim."""
+    result = plan(block_problem())
+    scene = result.scene
+    cranes = list(scene.cranes)
+    k = next(i for i, c in enumerate(cranes) if c.name == "FWD")
+    tip = cranes[k].tip
+    raised = dataclasses.replace(cranes[k], boom_height=cranes[k].boom_height + 0.4,
+                                 tip=(tip[0], tip[1], tip[2] + 0.4))
+    cranes[k] = raised
+    eq = solve_rigging(dataclasses.replace(scene, cranes=tuple(cranes)))
+    theta = math.radians(eq.pose.trim)  # + bow down: FWD raised gives bow up (< 0)
+    assert -3.0 < eq.pose.trim < -1.0
+    # lever rule at the solved trim with the hooks above the pairs' midpoints (x = +-5.5,
+    # z = 3) and the CG at (0, 1.3): the CG sits 1.7 m below the lugs, so the raised end
+    # takes W (0.5 + 1.7 tan|t| / 11)
+    fwd = 180.0 * (0.5 + 1.7 * math.tan(-theta) / 11.0)
+    # 0.2 % of W: the legs stretch (the model) where the plan takes them inextensible
+    assert eq.tensions["FWD"] == pytest.approx(fwd, abs=2e-3 * 180)
 
 
 def test_plan_agrees_with_the_rigging_model():
