@@ -175,7 +175,8 @@ def plan_two_slings(problem, top=None):
               "beyond the crane's reach": 0, "lugs shared by both slings": 0,
               "hook load over SWL / 1.2 (code margin)": 0,
               "a hook load over the SWL within the tolerance": 0,
-              "roll about the hook line beyond the tolerance": 0}
+              "roll about the hook line beyond the tolerance": 0,
+              "the two hooks (nearly) coincide": 0, "a hook unloaded (the CG beyond a hook)": 0}
     per_crane = []
     every = len(problem.candidates) * (len(problem.candidates) - 1) // 2
     for crane, (pairs, tops, angles) in zip(fleet, options):
@@ -205,6 +206,7 @@ def plan_two_slings(problem, top=None):
     length = np.linalg.norm(axis_h, axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         e = axis_h / length[:, None]
+    span = np.ptp(problem.points, axis=0).max()
     longitudinal = np.abs(e[:, 0]) >= np.abs(e[:, 1])
     tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance)
     roll_tol = np.where(longitudinal, problem.heel_tolerance, problem.trim_tolerance)
@@ -241,10 +243,12 @@ def plan_two_slings(problem, top=None):
     worst_load = loads.max(axis=(1, 2))
     bad = np.zeros(len(values), dtype=np.int64)
     checks = [
+        ((length <= 1e-6 * span) | ~np.all(np.isfinite(loads), axis=(1, 2, 3)),
+         "the two hooks (nearly) coincide"),
+        (np.any(loads <= 0, axis=(1, 2, 3)), "a hook unloaded (the CG beyond a hook)"),
         (np.any(nominal > swl / (1 + TWO_CRANE_MARGIN), axis=1), "hook load over SWL / 1.2 (code margin)"),
         (np.any(worst_load > swl, axis=1), "a hook load over the SWL within the tolerance"),
-        ((roll > roll_tol + 1e-9) | (length <= 0), "roll about the hook line beyond the tolerance"),
-        (np.any(loads <= 0, axis=(1, 2, 3)), "a hook load over the SWL within the tolerance"),
+        (roll > roll_tol + 1e-9, "roll about the hook line beyond the tolerance"),
     ]
     for k, (failed, text) in enumerate(checks, start=1):
         fresh = failed & (bad == 0)
