@@ -198,7 +198,7 @@ def test_rules_are_read_from_the_planning_file():
 ])
 def test_bad_rules_are_one_line_errors(rules, message):
     text = FLEET.read_text(encoding="utf-8")
-    head = text[:text.index("[rules]")]
+    head = text[:text.index("\n[rules]")]
     with pytest.raises(InvalidScene, match=message.replace(".", r"\.")) as err:
         loads_problem(head + "[rules]\n" + rules + "\n")
     assert "\n" not in str(err.value)
