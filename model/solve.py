@@ -213,8 +213,8 @@ def solve_rigid(scene):
         )
     start = time.perf_counter()
     x = _given_x(scene)
-    a_mat, b_vec, _, _ = rope_model(n).statics(x, pack_params(scene, "rigid"))
-    a_mat, b_vec = np.asarray(a_mat), np.asarray(b_vec).ravel()
+    a_flat, b_vec, _, _ = rope_model(n).statics_fast(x, pack_params(scene, "rigid"))
+    a_mat = a_flat.reshape(n, 3).T  # casadi's column-major 3 x n
     names = scene.lug_names
     given = {r.lug: r.tension for r in red}
     held = np.array([name in given for name in names])

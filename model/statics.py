@@ -178,6 +178,11 @@ class RopeModel:
         )
 
     @cached_property
+    def statics_fast(self):
+        """``statics`` for one pose as a :class:`FastCall`: (x, p) -> flat (A, b, lugs, cog)."""
+        return FastCall(self.statics)
+
+    @cached_property
     def paper_elastic(self):
         """(x, p) -> (T, l, residual): Choi & Shin (2003)'s closure, a 3x3 normal system."""
         lugs, _, a_mat, b_vec = self._pose
