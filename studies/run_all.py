@@ -1,6 +1,6 @@
 """Run every study in order; each writes its data to studies/out/ first, then its summary.
 
-Run:  python studies/run_all.py            (about 5 minutes on 2 cores)
+Run:  python studies/run_all.py            (about 10 minutes on 2 cores)
       python studies/run_all.py --skip report_screenshot   (no Chromium on this machine)
 """
 
@@ -15,7 +15,7 @@ from pathlib import Path
 HERE = Path(__file__).parent
 #: In order: stranded_methods feeds speed_accuracy's hydrostatics panel.
 STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
-           "benchmarks", "report_screenshot"]
+           "fleet_objectives", "benchmarks", "jit_cache", "report_screenshot"]
 
 
 def main():
