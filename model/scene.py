@@ -445,7 +445,10 @@ class Scene:
         if not self.lugs:
             return 0.0
         plan = self._lug_array[:, :2]
-        return float(np.max(np.linalg.norm(plan[:, None, :] - plan[None, :, :], axis=-1)))
+        # the farthest pair are corners of the convex hull: O(n log n), where all pairs of
+        # thousands of lugs would take gigabytes
+        corners = plan[_convex_hull([tuple(p) for p in plan]) or [0]]
+        return float(np.max(np.linalg.norm(corners[:, None, :] - corners[None, :, :], axis=-1)))
 
     def crane_values(self, field, model):
         """Every crane's ``field`` in lug order; a missing one is an InvalidScene naming the

@@ -2,7 +2,9 @@
 
 Everything numeric in :mod:`liftplan.model.solve` (linear systems, residuals, Jacobians,
 the Newton root-finder, the energy NLP, batched maps) is generated from the expressions
-built here, once per rope count n, and cached.
+built here, once per rope count n and each on first use, and cached. Nothing limits n: a
+64-rope elastic solve costs ~0.1 ms, and building its functions ~13 ms
+(``studies/many_points.py``).
 
 Physics (``z-up`` frame, see :mod:`liftplan.model.frames`)
 ---------------------------------------------------------

@@ -246,6 +246,8 @@ def draw(data):
         ax.set_ylabel("wall time [ms]")
         ax.set_title(title)
         ax.grid(True, which="major", alpha=0.3)
+        low, high = ax.get_ylim()
+        ax.set_ylim(low, high * 30)  # room above the curves for the legend
         ax.legend(fontsize=7, loc="upper left")
     load = max(entry["load_1min"] for entry in data["load"])
     fig.suptitle(f"liftplan solve with many ropes (154 m hull), one process on {data['machine']}; "
