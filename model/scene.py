@@ -364,9 +364,11 @@ class Scene:
                 f"lugs: {len(lugs)} given: expected three or more (two ropes cannot hold a body)"
             )
         names = [lug.name for lug in lugs]
+        seen_names = set()
         for name in names:
-            if names.count(name) > 1:
+            if name in seen_names:
                 raise InvalidScene(f"lugs.name = {name!r}: duplicate, expected unique lug names")
+            seen_names.add(name)
         holder = {}
         for crane in cranes:
             for lug in crane.lugs:
