@@ -229,3 +229,46 @@ def reach_table(fleet, plan_points):
     radius = np.column_stack([crane.radius(plan_points) for crane in fleet])
     swl = np.column_stack([crane.swl_at(radius[:, j]) for j, crane in enumerate(fleet)])
     return radius, swl
+
+
+def rule_limits(problem, swl, cranes):
+    """Tension limits the search holds every rope to, from the rules' design-load chain.
+
+    The chain checks (worst x contingency + rigging) x DAF against the chart SWL and
+    (nominal x contingency + rigging) x (1 + code margin) against it too (docs/design-loads.md);
+    solved for the tension, these are linear limits, so the search keeps them exactly. The
+    rules' tilt and the computed skew factor are checked on the plan afterwards.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    swl : array_like, shape (..., n)  [t]   chart SWL of each rope's crane at its radius
+    cranes : array_like of int, shape (..., n)   fleet indices
+
+    Returns
+    -------
+    in_box : numpy.ndarray  [t]   the largest tension allowed anywhere in the box
+    share : numpy.ndarray  [t]   the largest level (nominal) tension the code margin allows
+    """
+    from liftplan.model.rules import code_margin, dynamic_amplification
+
+    rules = problem.rules
+    swl = np.asarray(swl, dtype=float)
+    cranes = np.asarray(cranes)
+    n = swl.shape[-1]
+    rigging = np.array([rules.rigging_for(c.name) for c in problem.fleet])[cranes]
+    contingency = rules.weight_contingency
+    if rules.chart_includes_dynamics:
+        daf = 1.0
+    elif rules.daf is not None:
+        daf = rules.daf
+    else:
+        # Table 5-1 at the design weight; below 100 t its factor falls with the hook load, so
+        # the hook load is taken as the whole weight: the smallest factor (a limit the chain
+        # can only tighten)
+        weight = problem.body.weight * contingency
+        daf = dynamic_amplification(weight, rules.location, static_hook_load=weight)
+    margin = code_margin(n, rules.code_margin)
+    in_box = (swl / daf - rigging) / contingency
+    share = (swl / (1.0 + margin) - rigging) / contingency
+    return in_box, share

@@ -31,7 +31,7 @@ import numpy as np
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.statics import BLOCK, rope_model
 
-from .problem import code_margin
+from .fleet import rule_limits
 
 
 def run_block(block, n, attitudes, params):
@@ -177,6 +177,8 @@ class LugSet:
         self.radius = radius[list(self.indices), list(self.cranes)]
         #: SWL of each crane at its radius [t] (NaN: the crane cannot reach its lug)
         self.swl = swl[list(self.indices), list(self.cranes)]
+        #: tension limits from the rules' chain: anywhere in the box, and at level [t]
+        self.limit, self.share_limit = rule_limits(problem, self.swl, self.cranes)
         #: what the objective's spread is taken of: s_i T_i
         self.scale = 1.0 / self.swl if problem.objective == "utilisation" else np.ones(self.n)
         # boom heights with every rope just unstretched at the level pose
@@ -196,11 +198,6 @@ class LugSet:
         cog = rot @ (np.array(problem.body.cog) + np.array(scenario.cog_offset))
         a_mat = np.vstack([np.ones(self.n), plan.T])
         return a_mat, problem.body.weight * np.array([1.0, cog[0], cog[1]])
-
-    @property
-    def share_limit(self):
-        """Largest level tension the crane code allows each crane: SWL / (1 + margin)  [t]."""
-        return self.swl / (1.0 + code_margin(self.n))
 
     def preload_range(self):
         """Bounds on T* from the boom-height range and the crane code's margin  [t]."""

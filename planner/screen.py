@@ -30,7 +30,7 @@ import numpy as np
 
 from liftplan.model.statics import rope_model
 
-from .problem import code_margin
+from .fleet import rule_limits
 from .scenarios import box_attitudes, pack, run_block
 
 # Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
@@ -46,12 +46,15 @@ BOX_OVERLOAD = 6
 REASONS = {
     COLLINEAR: "the lugs are collinear in plan (the statics are singular)",
     CG_OUTSIDE: "the CG lies outside the lugs' polygon in plan",
-    LEVEL_SWL: "level tensions need more than the crane SWL",
+    LEVEL_SWL: "level tensions need more than the crane SWL allows (chart SWL / DAF, less the "
+               "rigging, over the weight contingency)",
     LEVEL_MIN_TENSION: "level tensions cannot all reach min_tension",
-    CODE_MARGIN: "a level tension exceeds the crane's SWL / (1 + the multi-crane code margin)",
+    CODE_MARGIN: "a level tension exceeds the crane's SWL / (1 + the multi-crane code margin), "
+                 "less the rigging, over the weight contingency",
     BOOM_RANGE: "the boom heights needed lie outside the crane's boom-height range",
     BOX_SLACK: "a rope falls below min_tension somewhere in the tolerance box",
-    BOX_OVERLOAD: "a rope exceeds the crane SWL somewhere in the tolerance box",
+    BOX_OVERLOAD: "a rope exceeds the crane SWL (with the rules' DAF, contingency and rigging) "
+                  "somewhere in the tolerance box",
 }
 
 CHUNK = 8192
@@ -227,10 +230,10 @@ def _screen_chunk(problem, sets, cranes, scenarios):
     inside = _cog_inside(plan_x, plan_y, b_level[1] / weight, b_level[2] / weight)
     boom_min = np.array([c.boom_min for c in fleet])[cranes]
     boom_max = np.array([c.boom_max for c in fleet])[cranes]
-    share_limit = swl / (1.0 + code_margin(n))
+    limit, share_limit = rule_limits(problem, swl, cranes)
     preload_low = stiffness * (boom_min - boom_zero)
     preload_high = np.minimum(stiffness * (boom_max - boom_zero), share_limit)
-    limits = (problem.min_tension, swl, share_limit)
+    limits = (problem.min_tension, limit, share_limit)
     # particular level solution (least norm) and null space of the level statics
     collinear = _collinear(plan_x, plan_y)
     gram = a_level @ a_level.transpose(0, 2, 1)

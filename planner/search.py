@@ -279,7 +279,7 @@ class SetEvaluator:
         lugset = LugSet(self.problem, indices, cranes)
         scenarios = list(self.start)
         a_level, b_level = lugset.level_statics
-        low_limit, high_limit = self.problem.min_tension, lugset.swl
+        low_limit, high_limit = self.problem.min_tension, lugset.limit
         rounds, converged = 0, False
         while True:
             rounds += 1
@@ -347,7 +347,7 @@ class SetEvaluator:
             j = int(np.argmax(values))
             if values[j] > worst[0]:
                 worst = (float(values[j]), local[j])
-        excess = tensions - lugset.swl
+        excess = tensions - lugset.limit
         lowest = np.unravel_index(np.argmin(tensions), tensions.shape)[0]
         over = np.unravel_index(np.argmax(excess), excess.shape)[0]
         return DenseSearch(
@@ -375,7 +375,7 @@ class SetEvaluator:
 
     def diagnose(self, lugset, scenarios):
         """The first constraint group that makes a set infeasible (a key of REASONS)."""
-        problem, swl = self.problem, lugset.swl
+        problem, swl = self.problem, lugset.limit
         a_level, b_level = lugset.level_statics
         level = [Scenario(0.0, 0.0)]
         g_level, q_level = lugset.affine(level)

@@ -42,32 +42,33 @@ def _by_crane(result):
 # -- the tanker fleet by hand ------------------------------------------------------------------
 # Inputs (examples/tanker_fleet.toml, papers' frame -> z-up (x, -z, y)): W = 904 t, CG
 # (35.86, -6, 2.5); lugs at z = 6; [rules] inshore, separate vessels, contingency 1.05, rigging
-# 8 t per sheerleg and 4 t per crane. The plan puts Sheerleg A on BH3-P (16.2, 0), Crane C on
-# BH4-S (28.55, -12), Sheerleg B on BH7-S (65.6, -12), Crane D on BH8-S (73.6, -12).
+# 8 t per sheerleg and 4 t per crane. The plan puts Crane C on BH2-S (12.2, -12), Sheerleg B
+# on BH4-P (28.55, 0), Sheerleg A on BH6-P (53.25, 0), Crane D on BH6-S (53.25, -12).
 W = 904.0
 DAF = 1.10  # Table 5-1: design weight 904 x 1.05 = 949.2 t, 300 < W <= 1000, inshore (5.5.2)
 CONTINGENCY = 1.05
 RIGGING = {"Sheerleg A": 8.0, "Crane C": 4.0, "Sheerleg B": 8.0, "Crane D": 4.0}
 # Tilt (5.4.4/5.4.5 and the chain's reading for more than two hooks): separate vessels, 5 deg,
-# or 1.0 m over the least hook spacing, BH7-S to BH8-S = 73.6 - 65.6 = 8.0 m:
-# asin(1/8) = 7.18 deg > 5 deg, so 7.18 deg governs.
-TILT = math.degrees(math.asin(1.0 / 8.0))
-# Radii, plan distance slew centre -> lug (z-up): A (20, 25) -> (16.2, 0); C (20, -37) ->
-# (28.55, -12); B (60, 25) -> (65.6, -12); D (60, -37) -> (73.6, -12); SWL linear in the chart.
-RADIUS = {"Sheerleg A": math.hypot(3.8, 25.0), "Crane C": math.hypot(8.55, 25.0),
-          "Sheerleg B": math.hypot(5.6, 37.0), "Crane D": math.hypot(13.6, 25.0)}
-SWL = {"Sheerleg A": 800.0 - 200.0 * (RADIUS["Sheerleg A"] - 20.0) / 10.0,
-       "Crane C": 300.0 - 80.0 * (RADIUS["Crane C"] - 25.0) / 7.0,
-       "Sheerleg B": 600.0 - 180.0 * (RADIUS["Sheerleg B"] - 30.0) / 10.0,
-       "Crane D": 300.0 - 80.0 * (RADIUS["Crane D"] - 25.0) / 7.0}
-# The planner's static loads (t) and computed skew factors for C, B and D, as it prints them
-# (the held-preload model with unequal stiffness is tested against the elastic solve in
-# test_planner.py; here they are the chain's inputs): level T*, worst in the box, at the tilt.
-STATIC = {"Crane C": (150.36, 205.24, 235.89, 1.0458), "Sheerleg B": (174.81, 180.76, 183.92, 1.2219),
-          "Crane D": (126.83, 143.46, 150.42, 1.2516)}
-# printed to 2 decimals (0.005 t), skew to 4 (5e-5): through x 1.05 x 1.25 x 1.1 the hand
-# design loads carry up to ~0.02 t of that rounding
-PRINTED = dict(rtol=0.0, atol=0.02)
+# or 1.0 m over the least hook spacing, BH6-P to BH6-S = 12 m: asin(1/12) = 4.78 deg < 5 deg,
+# so 5 deg governs.
+TILT = 5.0
+# Radii, plan distance slew centre -> lug (z-up): C (20, -37) -> (12.2, -12); B (60, 25) ->
+# (28.55, 0); A (20, 25) -> (53.25, 0); D (60, -37) -> (53.25, -12); SWL linear in the chart
+# (sheerlegs 525 t at 40 m, 375 t at 50 m; cranes 450 t at 25 m, 330 t at 32 m).
+RADIUS = {"Crane C": math.hypot(7.8, 25.0), "Sheerleg B": math.hypot(31.45, 25.0),
+          "Sheerleg A": math.hypot(33.25, 25.0), "Crane D": math.hypot(6.75, 25.0)}
+SWL = {"Crane C": 450.0 - 120.0 * (RADIUS["Crane C"] - 25.0) / 7.0,
+       "Sheerleg B": 525.0 - 150.0 * (RADIUS["Sheerleg B"] - 40.0) / 10.0,
+       "Sheerleg A": 525.0 - 150.0 * (RADIUS["Sheerleg A"] - 40.0) / 10.0,
+       "Crane D": 450.0 - 120.0 * (RADIUS["Crane D"] - 25.0) / 7.0}
+# The planner's static loads (t) and computed skew factors, as it prints them (the held-preload
+# model with unequal stiffness is tested against the elastic solve in test_planner.py; here they
+# are the chain's inputs): level T*, worst in the box, at the tilt, skew.
+STATIC = {"Crane C": (246.95, 267.93, 272.63, 1.1012), "Sheerleg B": (226.04, 254.08, 262.02, 1.1837),
+          "Sheerleg A": (225.96, 246.47, 251.31, 1.1838), "Crane D": (205.05, 234.37, 242.42, 1.1218)}
+# printed to 2 decimals (0.005 t), skew to 4 (5e-5): through x 1.05 x 1.18 x 1.1 the hand
+# design loads carry 0.005 x 1.36 + 5e-5 x 272.6 x 1.16 = 0.023 t of that rounding at most
+PRINTED = dict(rtol=0.0, atol=0.025)
 # closed forms in float64, a handful of operations: agreement to ~1e-12 relative
 EXACT = dict(rtol=1e-9, atol=1e-9)
 
@@ -75,37 +76,58 @@ EXACT = dict(rtol=1e-9, atol=1e-9)
 def test_fleet_radii_and_chart_swl_by_hand(fleet_plan):
     got = _by_crane(fleet_plan)
     assert {c.crane: c.lug for c in got.values()} == {
-        "Sheerleg A": "BH3-P", "Crane C": "BH4-S", "Sheerleg B": "BH7-S", "Crane D": "BH8-S"}
+        "Crane C": "BH2-S", "Sheerleg B": "BH4-P", "Sheerleg A": "BH6-P", "Crane D": "BH6-S"}
     for name in RADIUS:
         assert_allclose(got[name].radius, RADIUS[name], **EXACT)
         assert_allclose(got[name].swl, SWL[name], **EXACT)
     assert_allclose(fleet_plan.design_loads.tilt, TILT, **EXACT)
 
 
-def test_sheerleg_a_entirely_by_hand(fleet_plan):
-    """BH4-S, BH7-S and BH8-S lie on one line (the starboard deck edge, y = -12 m): Sheerleg A's
-    load is determinate, the moment about that line."""
-    a = _by_crane(fleet_plan)["Sheerleg A"]
-    # level, nominal CG 6 m from the line, BH3-P 12 m from it: T = W 6 / 12 = 452 t
-    assert_allclose(a.nominal, W * 6.0 / 12.0, **EXACT)
-    # at the tilt about x (a heel raising the port side), CG offset (0.5, +0.3, -0.2) (towards
-    # port, low): lever of the CG (6.3 cos a + 3.7 sin a) against 12 cos a, lugs 3.7 m above it
-    tan = math.tan(math.radians(TILT))
-    tilt_share = W * (6.3 + 3.7 * tan) / 12.0
-    assert_allclose(a.tilt.load, tilt_share, rtol=1e-9)  # golden-section to ~1e-9 deg
-    assert a.tilt.load > a.worst  # the rules' 7.18 deg governs the 2 deg box
-    # a twist of the hooks moves no load onto a lug off the line of the other three: skew 1
-    assert_allclose(a.skew, 1.0, rtol=0, atol=1e-9)
-    static = tilt_share * CONTINGENCY * 1.0 + RIGGING["Sheerleg A"]  # 543.20 t
-    design = static * DAF  # 597.52 t
-    assert_allclose(a.design.static_hook_load, static, rtol=1e-9)
-    assert_allclose(a.design_hook_load, design, rtol=1e-9)
-    assert_allclose(a.utilisation, design / SWL["Sheerleg A"], rtol=1e-9)  # 0.861
-    assert a.design.check.ok
-    # code margin, 4 cranes 50 %: (452 x 1.05 + 8) x 1.5 = 723.9 t > 694.26 t: FAILS
-    margin = a.design.code_margin
-    assert_allclose(margin.value, (452.0 * CONTINGENCY + 8.0) * 1.5, **EXACT)
-    assert not margin.ok
+def test_three_cranes_entirely_by_hand():
+    """Three equal cranes on a triangle of lugs: statically determinate, every number of the
+    chain by hand (offshore defaults, no rigging, CG envelope +-0.5 m along x)."""
+    text = """
+name = "three cranes by hand"
+[body]
+weight = 904.0
+cog = [35.86, -6.0, 2.5]
+[[candidates]]
+name = "P1"
+at = [16.2, 0.0, 6.0]
+[[candidates]]
+name = "P2"
+at = [16.2, -12.0, 6.0]
+[[candidates]]
+name = "P3"
+at = [65.6, -6.0, 6.0]
+[plan]
+cranes = 3
+tolerance = { heel = 2.0, trim = 2.0 }
+cog_tolerance = [0.5, 0.0, 0.0]
+[crane]
+EA = 50000.0
+rope_length = 30.0
+swl = 700.0
+"""
+    result = plan(loads_problem(text))
+    p3 = {c.lug: c for c in result.capacity}["P3"]
+    # level, nominal CG: moments about the P1-P2 line, T3 = W (35.86 - 16.2) / (65.6 - 16.2)
+    assert_allclose(p3.nominal, W * 19.66 / 49.4, **EXACT)
+    # the rules' tilt: one vessel, 3 deg, or 1 m over the least hook spacing (P1-P2, 12 m):
+    # asin(1/12) = 4.78 deg governs; T3 is largest turning about y with the CG 0.5 m forward:
+    # its lever grows by its depth below the lugs (3.5 m) x tan a
+    alpha = math.asin(1.0 / 12.0)
+    tilt_share = W * (19.66 + 0.5 + 3.5 * math.tan(alpha)) / 49.4
+    assert_allclose(p3.tilt.load, tilt_share, rtol=1e-9)  # golden-section to ~1e-9 deg
+    assert_allclose(p3.skew, 1.0, rtol=0, atol=1e-9)  # three ropes: determinate, no skew
+    daf = 1.20  # Table 5-1 offshore (the default), 949.2 t design weight
+    static = tilt_share * 1.05
+    assert_allclose(p3.design.static_hook_load, static, rtol=1e-9)
+    assert_allclose(p3.design_hook_load, static * daf, rtol=1e-9)
+    assert_allclose(p3.utilisation, static * daf / 700.0, rtol=1e-9)
+    # code margin, 3 cranes 33 %: (T3 x 1.05) x 1.33 <= 700
+    assert_allclose(p3.design.code_margin.value, W * 19.66 / 49.4 * 1.05 * 1.33, **EXACT)
+    assert all(c.ok for c in result.checks)
 
 
 @pytest.mark.parametrize("name", list(STATIC))
@@ -118,18 +140,27 @@ def test_fleet_design_hook_loads_equal_the_hand_calculation(fleet_plan, name):
     static = max(worst, tilt) * CONTINGENCY * skew + RIGGING[name]
     assert_allclose(c.design.static_hook_load, static, **PRINTED)
     assert_allclose(c.design_hook_load, static * DAF, **PRINTED)
-    # C: 235.89 x 1.05 x 1.0458 + 4 = 263.03 t, x 1.1 = 289.34 t > 283.75 t; B: 268.38 t; D: 221.85 t
+    # C: 272.63 x 1.05 x 1.1012 + 4 = 319.22 t, x 1.1 = 351.14 t <= 429.6 t
     assert c.design.check.ok == (static * DAF <= SWL[name])
+    assert c.design.check.ok
     assert_allclose(c.design.code_margin.value, (nominal * CONTINGENCY + RIGGING[name]) * 1.5, **PRINTED)
 
 
-def test_fleet_checks_and_exit_code():
+def test_fleet_checks_and_exit_code(tmp_path):
     out = run("plan", str(FLEET), "--json")
-    assert out.returncode == 4, out.stderr
+    assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
-    failed = {(c["name"], c["subject"]) for c in data["checks"] if not c["ok"]}
-    # Crane C: 289.34 t > 283.75 t; Sheerleg A: 723.9 t > 694.26 t (see the hand calculation)
-    assert failed == {("design_hook_load", "Crane C"), ("code_margin", "Sheerleg A")}
+    assert data["checks"] and all(c["ok"] for c in data["checks"])
+    # the 800 t / 400 t classes of the first draft of this example: by the rules' limits no
+    # set and assignment can lift her; the reason counts the causes
+    weak = FLEET.read_text(encoding="utf-8").replace(
+        "[[20.0, 1000.0], [30.0, 750.0], [40.0, 525.0], [50.0, 375.0]]",
+        "[[20.0, 800.0], [30.0, 600.0], [40.0, 420.0], [50.0, 300.0]]").replace(
+        "[[15.0, 600.0], [25.0, 450.0], [32.0, 330.0]]", "[[15.0, 400.0], [25.0, 300.0], [32.0, 220.0]]")
+    path = tmp_path / "weak.toml"
+    path.write_text(weak, encoding="utf-8")
+    out = run("plan", str(path))
+    assert out.returncode == 1 and "code margin" in out.stderr and "DAF" in out.stderr
 
 
 # -- one utilisation in every output -------------------------------------------------------------
@@ -152,7 +183,7 @@ def test_one_utilisation_in_json_console_ranking_and_report(fleet_plan):
     for row in data["capacity"]:
         shown = f"{100 * row['utilisation']:.1f}"
         assert shown in table and f"<td>{shown}</td>" in page
-    assert f"{100 * highest:.1f} FAIL" in table  # the ranking's figure, with its checks
+    assert f"{100 * highest:.1f}" in table  # the ranking's figure
 
 
 # -- every worst case names its scenario, in the file's frame ------------------------------------
@@ -214,16 +245,16 @@ def test_a_plain_scene_with_rules_is_refused():
 # -- lug capacity and the missing CoG factor -----------------------------------------------------
 def test_lug_capacity_gives_a_lug_design_load_check(fleet_plan):
     problem = fleet_plan.problem
-    candidates = tuple(dataclasses.replace(c, capacity=350.0) if c.name == "BH4-S" else c
+    candidates = tuple(dataclasses.replace(c, capacity=350.0) if c.name == "BH4-P" else c
                        for c in problem.candidates)
     design = DesignBuilder(dataclasses.replace(problem, candidates=candidates)).build(
         fleet_plan.chosen, fleet_plan.labels)
     checks = [c for c in design.checks if c.name == "lug_design_load"]
-    assert [c.subject for c in checks] == ["BH4-S"]
+    assert [c.subject for c in checks] == ["BH4-P"]
     crane = design.crane("L2")
     # vertical rope (90 deg): max(worst, tilt) x 1.05 x DAF x skew x yaw 1, x consequence 1.30
     expected = crane.tilt.load * CONTINGENCY * DAF * crane.skew * 1.30
-    assert_allclose(checks[0].value, expected, rtol=1e-12)  # 1.30 x 236.5 = 368.1 t > 350 t
+    assert_allclose(checks[0].value, expected, rtol=1e-12)  # 1.30 x 357.7 = 465 t > 350 t
     assert not checks[0].ok and checks[0].limit == 350.0
 
 

@@ -82,7 +82,7 @@ def linprog_minimax(lugset, scenarios):
             down = -s * g
             down[n + m + k] = 1.0
             rows.append(down), rhs.append(s * offsets[k, i])
-            rows.append(g), rhs.append(lugset.swl[i] - offsets[k, i])
+            rows.append(g), rhs.append(lugset.limit[i] - offsets[k, i])
             rows.append(-g), rhs.append(offsets[k, i] - problem.min_tension)
         spread = np.zeros(size)
         spread[n + k], spread[n + m + k], spread[-1] = 1.0, -1.0, -1.0

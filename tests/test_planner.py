@@ -83,7 +83,7 @@ def linprog_minimax(lugset, scenarios):
             down = -g
             down[n + m + k] = 1.0  # low_k - T_ki <= q
             rows.append(down), rhs.append(offsets[k, i])
-            rows.append(g), rhs.append(problem.crane.swl - offsets[k, i])
+            rows.append(g), rhs.append(lugset.limit[i] - offsets[k, i])
             rows.append(-g), rhs.append(offsets[k, i] - problem.min_tension)
         spread = np.zeros(size)
         spread[n + k], spread[n + m + k], spread[-1] = 1.0, -1.0, -1.0
@@ -143,7 +143,7 @@ def test_preload_lp_agrees_with_scipy(tanker_problem):
     m, n = gains.shape[:2]
     result = PreloadMinimax(n, 30).solve(
         gains, offsets, *lugset.level_statics, lugset.preload_range(),
-        (np.full((m, n), tanker_problem.min_tension), np.full((m, n), tanker_problem.crane.swl)),
+        (np.full((m, n), tanker_problem.min_tension), np.tile(lugset.limit, (m, 1))),
     )
     reference = linprog_minimax(lugset, scenarios)
     # Clarabel's interior point stops at ~1e-8 relative; the tie-break adds 1e-3 x spread
