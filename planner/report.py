@@ -70,7 +70,7 @@ def write_report(plan, directory):
 
     Parameters
     ----------
-    plan : Plan
+    plan : Plan or SlingPlan
     directory : str or os.PathLike
 
     Returns
@@ -79,11 +79,16 @@ def write_report(plan, directory):
     """
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
-    page = render_html(plan)
+    if plan.problem.cranes == 2:  # a two-crane sling lift: its own tables and scene file
+        from . import sling_report
+
+        page, scene_text = sling_report.render_html(plan), sling_report.scene_toml(plan)
+    else:
+        page, scene_text = render_html(plan), scene_toml(plan)
     html_path = out / "report.html"
     html_path.write_text(page, encoding="utf-8")
     scene_path = out / "plan_scene.toml"
-    scene_path.write_text(scene_toml(plan), encoding="utf-8")
+    scene_path.write_text(scene_text, encoding="utf-8")
     json_path = out / "plan.json"
     json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
     pdf_path = None

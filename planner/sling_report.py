@@ -44,7 +44,7 @@ def plan_view(plan):
         points = np.atleast_2d(points)
         return np.column_stack([points[:, 0], -points[:, 1]]) if choi else points[:, :2]
 
-    fig = Figure(figsize=(9, 5), layout="constrained")
+    fig = Figure(figsize=(9, 5.5), layout="constrained")
     ax = fig.subplots()
     pts = xy(problem.points)
     ax.scatter(pts[:, 0], pts[:, 1], s=16, color="0.6", label="candidates")
@@ -72,7 +72,7 @@ def plan_view(plan):
     ax.set_xlabel("x [m] (forward)")
     ax.set_ylabel("z [m] (to starboard)" if choi else "y [m] (to port)")
     ax.grid(True, lw=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    fig.legend(fontsize=8, loc="outside lower center", ncols=2)
     ax.set_title("Plan view: lug pairs, hooks (triangles) and cranes (squares), seen from above")
     return fig
 

@@ -169,3 +169,12 @@ def test_sling_report_and_scene_file(tmp_path):
                                                             abs=1e-6)
         assert solved.tensions[crane.name] == pytest.approx(result.chosen.hook_nominal[c],
                                                             abs=2e-3 * 180)
+
+
+def test_report_of_a_sling_plan(tmp_path):
+    code = main(["plan", str(BLOCK), "--report", str(tmp_path / "out")])
+    assert code == 0
+    page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    assert "Sling legs" in page and "Crawler FWD" in page
+    data = json.loads((tmp_path / "out" / "plan.json").read_text(encoding="utf-8"))
+    assert data["lift"] == "two-crane slings"
