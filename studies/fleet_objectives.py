@@ -83,8 +83,8 @@ def fleets():
         dataclasses.replace(small_d, position=at(20.0, 37.0)),
     ))
     return {
-        "tanker_fleet": (tanker, "examples/tanker_fleet.toml: both 800 t-class sheerlegs off the "
-                                 "port side (x = 20, 60 m), both 400 t-class cranes off starboard"),
+        "tanker_fleet": (tanker, "examples/tanker_fleet.toml: both sheerlegs off the port side "
+                                 "(x = 20, 60 m), both smaller cranes off starboard"),
         "diagonal_fleet": (diagonal, "the same hull, candidates, charts and rules; sheerleg A port "
                                      "quarter, sheerleg B starboard bow, crane C port bow, crane D "
                                      "starboard quarter: the big cranes on one diagonal"),
@@ -344,7 +344,9 @@ def _sweep(ax, f, color, which):
         else:
             text = f"{objective} plan: no crane at SWL up to {weights[-1]:.0f} t"
         if which == "design" and held["first_failed_check"] is not None:
-            text += f"; first failed check at {held['first_failed_check']['weight']:.0f} t"
+            failed = held["first_failed_check"]
+            ax.axvline(failed["weight"], color="0.45", ls=ls, lw=0.9)
+            text += f"; first failed check {', '.join(failed['checks'])} at {failed['weight']:.0f} t (grey)"
         limit = entry["replanned"]["weight"]
         if which == "in_box" and limit is not None:
             ax.axvline(limit, color="tab:red", ls=ls, lw=0.9)
