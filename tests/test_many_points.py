@@ -316,3 +316,26 @@ def test_rope_rows_refuses_hook_loads(hull26):
     eq = solve(hull26)
     with pytest.raises(ValueError, match="one rope per lug"):
         rope_rows(hull26, dataclasses.replace(eq, tensions={"crane A": 9000.0}))
+
+
+def test_held_tensions_is_held_without_the_jacobian(hull26):
+    """The check's map (no n x n sensitivities) gives the planner's held tensions, bit for bit
+    uncompiled at n = 26, and through the compiled column maps at n = 4."""
+    from liftplan.model.solve import pack_params
+    from liftplan.model.statics import BLOCK
+
+    p = pack_params(hull26, "elastic")
+    x = np.array([0.1, np.radians(1.0), np.radians(-0.5)])
+    model = rope_model(26)
+    full, light = model.held(x, p), model.held_tensions(x, p)
+    for k in range(2):
+        assert np.array_equal(np.asarray(light[k]), np.asarray(full[k]))
+    small = hull_scene(2, seed=4)
+    model = rope_model(4)
+    columns_x = np.tile(x, BLOCK)
+    columns_p = np.tile(pack_params(small, "elastic"), BLOCK)
+    t_full, dh_full, _ = model.held_columns(columns_x, columns_p)
+    t_light, dh_light = model.held_tensions_columns(columns_x, columns_p)
+    # two compiled builds of the same expressions: equal to round-off of the 3x3 solve
+    assert_allclose(t_light, t_full, rtol=1e-12, atol=1e-12 * small.body.weight)
+    assert_allclose(dh_light, dh_full, rtol=1e-12, atol=1e-12)
