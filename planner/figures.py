@@ -9,17 +9,33 @@ import numpy as np
 from matplotlib.figure import Figure
 
 _SPAN = 10.0  # deg: the curves run over +-max(this, 2 x tolerance), as the papers' Figs 7-8
+_MM = 1 / 25.4  # inches per mm: figures are drawn at the size they are printed
+_WIDTH = 170.0  # mm: the report's A4 text width
+_FONT = 7.5  # pt: lettering at print size
+_SMALL = 6.5  # pt: legends, point names
+
+
+def _style(ax):
+    """Print-size lettering on one axes (ticks are made at draw time, so set here)."""
+    ax.tick_params(labelsize=_SMALL)
+    ax.xaxis.label.set_size(_FONT)
+    ax.yaxis.label.set_size(_FONT)
+    ax.title.set_size(_FONT + 1)
+    ax.grid(True, lw=0.3)
 
 
 def tension_curves(plan):
     """Tension of every rope against heel (trim 0) and against trim (heel 0).
 
     The style of Choi & Shin (2003) Figs 7-8, with the plan's preload held; the tolerance
-    band is shaded, SWL and min_tension drawn.
+    band is shaded, SWL and min_tension drawn. Heel and trim are on the horizontal axis, as
+    in every figure of the plan; the legend sits below the axes, clear of the lines.
     """
     problem = plan.problem
-    fig = Figure(figsize=(10, 4), layout="constrained")
+    fig = Figure(figsize=(_WIDTH * _MM, 100 * _MM), layout="constrained")
     axes = fig.subplots(1, 2, sharey=True)
+    swl = plan.swl
+    equal = len(set(swl.values())) == 1
     for ax, angle, tol in zip(axes, ("heel", "trim"),
                               (problem.heel_tolerance, problem.trim_tolerance)):
         span = max(_SPAN, 2 * tol)
@@ -27,24 +43,32 @@ def tension_curves(plan):
         zero = np.zeros_like(values)
         tensions = plan.tensions_at(values, zero) if angle == "heel" else \
             plan.tensions_at(zero, values)
-        swl = plan.swl
-        equal = len(set(swl.values())) == 1
         for label, column in zip(plan.labels, tensions.T):
-            line, = ax.plot(values, column, label=f"{label} ({plan.lugs[label]}, {plan.cranes[label]})")
+            extra = "" if equal else f", SWL {swl[label]:.0f} t"
+            line, = ax.plot(values, column, lw=1.3,
+                            label=f"{label} ({plan.lugs[label]}, {plan.cranes[label]}{extra})")
             if not equal:
-                ax.axhline(swl[label], color=line.get_color(), ls="--", lw=1,
-                           label=f"SWL {label} {swl[label]:.0f} t")
-        ax.axvspan(-tol, tol, color="0.9", label="tolerance")
+                ax.axhline(swl[label], color=line.get_color(), ls="--", lw=0.9)
+        ax.axvspan(-tol, tol, color="0.9", label=f"tolerance box +-{tol:g} deg")
         if equal:
-            ax.axhline(next(iter(swl.values())), color="k", ls="--", lw=1, label="SWL")
+            ax.axhline(next(iter(swl.values())), color="k", ls="--", lw=0.9,
+                       label=f"SWL {next(iter(swl.values())):.0f} t")
+        else:
+            ax.plot([], [], color="0.3", ls="--", lw=0.9, label="SWL (dashed, in the rope's colour)")
         if problem.min_tension > 0:
-            ax.axhline(problem.min_tension, color="k", ls=":", lw=1, label="min tension")
+            ax.axhline(problem.min_tension, color="k", ls=":", lw=0.9,
+                       label=f"min tension {problem.min_tension:g} t")
         sign = "starboard down" if angle == "heel" else "bow down"
         ax.set_xlabel(f"{angle} [deg] (+ {sign})")
-        ax.grid(True, lw=0.3)
+        ax.set_xlim(-span, span)
+        ax.set_title(f"against {angle} ({'trim' if angle == 'heel' else 'heel'} 0)")
+        _style(ax)
     axes[0].set_ylabel("rope tension [t]")
-    axes[1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
-    fig.suptitle("Tensions with the plan's preload held (nominal CG)")
+    axes[0].set_ylim(bottom=0.0)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=2 if not equal else 3,
+               fontsize=_SMALL, frameon=False)
+    fig.suptitle("Rope tensions with the plan's preload held (nominal CG)", fontsize=_FONT + 1)
     return fig
 
 
@@ -63,59 +87,107 @@ def _file_point(problem, point):
     return tuple(zup_to_choi(point)) if problem.frame == "choi" else tuple(point)
 
 
+def _plan_extent(problem, plan):
+    """(low, high) corners of what the plan view must show, file-frame plan coordinates [m]."""
+    pts, _ = _file_plan(problem, problem.points[:, :2])
+    seen = [pts]
+    if problem.outline:
+        seen.append(_file_plan(problem, np.array(problem.outline))[0])
+    seen += [_file_plan(problem, np.array([c.position]))[0]
+             for c in problem.fleet if c.position is not None]
+    seen = np.vstack(seen)
+    return seen.min(axis=0), seen.max(axis=0)
+
+
+def plan_figure(low, high, legend_rows=2, width=_WIDTH):
+    """A Figure sized so an equal-aspect plan of the box low..high fills it (no blank bands).
+
+    Parameters
+    ----------
+    low, high : (2,) array  [m]
+        Corners of the data to show, margins included.
+    legend_rows : int
+        Rows of the legend drawn below the axes.
+    width : float  [mm]
+    """
+    span = np.maximum(np.asarray(high) - np.asarray(low), 1e-9)
+    axes_width = width - 18.0  # the y label and tick labels
+    axes_height = float(np.clip(axes_width * span[1] / span[0], 25.0, 190.0))
+    height = axes_height + 16.0 + 4.0 * legend_rows  # title, x label, legend
+    return Figure(figsize=(width * _MM, height * _MM), layout="constrained")
+
+
 def plan_view(plan):
-    """Plan view in the file's frame: hull outline, candidates, CG and its envelope, chosen
-    lugs with their boom heights, and the cranes (slew centre, chart reach, the lug each
+    """Plan view in the file's frame: hull outline, candidates (named outside the hull), CG
+    and its envelope, chosen lugs, and the cranes (slew centre, chart reach, the lug each
     takes, its radius and SWL there)."""
     problem = plan.problem
-    fig = Figure(figsize=(10, 6 if _positioned(problem) else 4.5), layout="constrained")
+    choi = problem.frame == "choi"
+    low, high = _plan_extent(problem, plan)
+    pad = 0.06 * max(high - low) + 2.0  # room for the names outside the hull
+    low, high = low - pad, high + pad
+    fig = plan_figure(low, high)
     ax = fig.subplots()
     if problem.outline:
         outline, _ = _file_plan(problem, np.array(problem.outline + problem.outline[:1]))
-        ax.plot(outline[:, 0], outline[:, 1], color="0.3", lw=1.2, label="hull outline")
+        ax.plot(outline[:, 0], outline[:, 1], color="0.3", lw=1.0, label="hull outline")
     pts, side = _file_plan(problem, problem.points[:, :2])
-    ax.scatter(pts[:, 0], pts[:, 1], s=18, color="0.6", label="candidates", zorder=2)
-    mid = np.mean(pts[:, 1])
-    for name, (x, y) in zip(problem.names, pts):
-        ax.annotate(name, (x, y), fontsize=6, color="0.4", ha="center",
-                    xytext=(0, 6 if y >= mid else -10), textcoords="offset points")
-    chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
+    ax.scatter(pts[:, 0], pts[:, 1], s=12, color="0.55", label="candidates", zorder=2)
     (cog, ), _ = _file_plan(problem, np.array([problem.body.cog[:2]]))
+    centre = np.mean(pts, axis=0)
+    chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
+    taken = {plan.lugs[label] for label in plan.labels}
+    for name, (x, y) in zip(problem.names, pts):
+        # away from the body's middle, on screen (the papers' frame draws its z axis down)
+        up = (y >= centre[1]) != choi
+        ax.annotate(name, (x, y), fontsize=_SMALL - 0.5, color="0.25" if name in taken else "0.45",
+                    ha="center", va="bottom" if up else "top",
+                    xytext=(0, 4 if up else -4), textcoords="offset points")
     order = _around(chosen, cog)
     order = np.r_[order, order[:1]]
-    ax.plot(chosen[order, 0], chosen[order, 1], color="tab:blue", lw=1, ls="--")
-    ax.scatter(chosen[:, 0], chosen[:, 1], s=70, color="tab:blue", label="chosen lugs", zorder=3)
+    ax.plot(chosen[order, 0], chosen[order, 1], color="tab:blue", lw=0.8, ls="--")
+    ax.scatter(chosen[:, 0], chosen[:, 1], s=45, color="tab:blue", label="chosen lugs", zorder=3)
     for label, (x, y) in zip(plan.labels, chosen):
-        ax.annotate(f"{label}  H={plan.boom_heights[label]:.2f} m", (x, y), fontsize=8,
-                    color="tab:blue", xytext=(4, 10 if y >= mid else -16),
-                    textcoords="offset points")
+        inward = (y < centre[1]) != choi  # the lug's name goes inside the hull
+        ax.annotate(label, (x, y), fontsize=_FONT, color="tab:blue", fontweight="bold",
+                    ha="center", va="bottom" if inward else "top",
+                    xytext=(0, 5 if inward else -5), textcoords="offset points")
     if _positioned(problem):
         _draw_cranes(ax, plan)
-        # frame the hull and the slew centres; the reach circles are cut at the edge
-        if problem.outline:
-            seen_outline = _file_plan(problem, np.array(problem.outline))[0]
-        else:
-            seen_outline = pts
-        seen = [pts, chosen, seen_outline] + [_file_plan(problem, np.array([c.position]))[0]
-                                for c in problem.fleet if c.position is not None]
-        seen = np.vstack(seen)
-        low, high = seen.min(axis=0) - 8.0, seen.max(axis=0) + 8.0
-        ax.set_xlim(low[0], high[0])
-        ax.set_ylim(low[1], high[1])
-    dx, dy = problem.cog_envelope.half_widths[:2]
-    if dx or dy:
-        ax.add_patch(_rectangle(cog[0] - dx, cog[1] - dy, 2 * dx, 2 * dy))
-    ax.scatter([cog[0]], [cog[1]], marker="x", s=80, color="tab:red", label="CG", zorder=4)
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
+    _cog_envelope(ax, problem, cog, high - low)
+    ax.scatter([cog[0]], [cog[1]], marker="+", s=50, lw=1.2, color="tab:red", label="CG (nominal)",
+               zorder=5)
     ax.set_aspect("equal")
-    if problem.frame == "choi":
+    if choi:
         ax.invert_yaxis()  # seen from above with x to the right, starboard is down
     ax.set_xlabel("x [m] (forward)")
     ax.set_ylabel(side)
-    ax.grid(True, lw=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    frame = "papers' frame" if problem.frame == "choi" else "z-up frame"
+    frame = "papers' frame" if choi else "z-up frame"
     ax.set_title(f"Plan view ({frame}, seen from above)")
+    _style(ax)
+    fig.legend(loc="outside lower center", ncols=4, fontsize=_SMALL, frameon=False)
     return fig
+
+
+def _cog_envelope(ax, problem, cog, span):
+    """The CG envelope in plan; drawn enlarged, and said so, when too small to see."""
+    from matplotlib.patches import Rectangle
+
+    # half-widths along the plan axes (the papers' z is -y: the same magnitude)
+    dx, dy = (abs(float(v)) for v in problem.cog_envelope.half_widths[:2])
+    if not (dx or dy):
+        return
+    size = f"{2 * dx:.2f} x {2 * dy:.2f} m"
+    smallest = 0.025 * max(span)  # [m] below this the box is a speck at print size
+    scale = max(1.0, smallest / max(dx, dy))
+    scale = float(np.ceil(scale)) if scale > 1.0 else 1.0
+    label = (f"CG envelope {size}" if scale == 1.0 else
+             f"CG envelope {size}, drawn x{scale:g}")
+    ax.add_patch(Rectangle((cog[0] - scale * dx, cog[1] - scale * dy), 2 * scale * dx,
+                           2 * scale * dy, fc=(0.84, 0.15, 0.16, 0.15), ec="tab:red", lw=0.9,
+                           ls="-" if scale == 1.0 else "--", label=label, zorder=4))
 
 
 def _positioned(problem):
@@ -123,11 +195,14 @@ def _positioned(problem):
 
 
 def _draw_cranes(ax, plan):
-    """Each crane's slew centre, its chart reach, and a line to the lug it takes."""
+    """Each crane's slew centre (named, with the lug it takes, its radius and SWL there), its
+    chart reach, and a line to its lug."""
     from matplotlib.patches import Circle
 
     problem = plan.problem
+    choi = problem.frame == "choi"
     chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
+    centre = np.mean(_file_plan(problem, problem.points[:, :2])[0], axis=0)
     lug_of = {name: k for k, name in enumerate(plan.chosen.crane_names)}
     colors = ["tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
               "tab:cyan", "tab:gray"]
@@ -136,57 +211,59 @@ def _draw_cranes(ax, plan):
             continue
         color = colors[j % len(colors)]
         ((cx, cy), ), _ = _file_plan(problem, np.array([crane.position]))
-        ax.scatter([cx], [cy], marker="s", s=60, color=color, zorder=4)
-        ax.annotate(crane.name, (cx, cy), fontsize=8, color=color, xytext=(0, 8),
-                    textcoords="offset points", ha="center")
+        ax.scatter([cx], [cy], marker="s", s=40, color=color, zorder=4)
         if np.isfinite(crane.reach):
-            ax.add_patch(Circle((cx, cy), crane.reach, fill=False, ec=color, ls=":", lw=0.8))
+            ax.add_patch(Circle((cx, cy), crane.reach, fill=False, ec=color, ls=":", lw=0.7))
         k = lug_of.get(crane.name)
+        text = crane.name
         if k is not None:
             x, y = chosen[k]
             label = plan.labels[k]
-            ax.plot([cx, x], [cy, y], color=color, lw=1.2)
-            ax.annotate(f"{label}: {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.0f} t",
-                        ((cx + x) / 2, (cy + y) / 2), fontsize=7, color=color, ha="center",
-                        bbox={"fc": "white", "ec": "none", "alpha": 0.7, "pad": 0.5})
-    ax.plot([], [], color="0.4", ls=":", lw=0.8, label="crane reach (chart)")
+            ax.plot([cx, x], [cy, y], color=color, lw=1.1)
+            text += f"\n{label}: radius {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.0f} t"
+        # the crane's text away from the hull, on screen
+        up = (cy >= centre[1]) != choi
+        ax.annotate(text, (cx, cy), fontsize=_SMALL, color=color, ha="center",
+                    va="bottom" if up else "top", xytext=(0, 5 if up else -5),
+                    textcoords="offset points",
+                    bbox={"fc": "white", "ec": "none", "alpha": 0.8, "pad": 0.5})
+    ax.plot([], [], color="0.4", ls=":", lw=0.7, label="crane reach (chart)")
     ax.scatter([], [], marker="s", color="0.4", label="crane slew centre")
 
 
 def spread_map(plan, count=41):
     """The plan's objective (tension spread, or utilisation spread) over the tolerance box,
-    at each attitude the worst over the CG envelope."""
+    at each attitude the worst over the CG envelope; heel on the horizontal axis as in the
+    tension curves."""
     utilisation = plan.objective == "utilisation"
     heel, trim, spread = plan.spread_map(count, utilisation=utilisation)
-    fig = Figure(figsize=(6, 4.5), layout="constrained")
+    fig = Figure(figsize=(125 * _MM, 100 * _MM), layout="constrained")
     ax = fig.subplots()
-    mesh = ax.pcolormesh(trim, heel, spread, shading="auto", cmap="viridis")
+    mesh = ax.pcolormesh(heel, trim, spread.T, shading="auto", cmap="viridis")
     unit = "max - min of T / SWL [-]" if utilisation else "max - min tension [t]"
-    fig.colorbar(mesh, ax=ax, label=unit)
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label(unit, size=_FONT)
+    bar.ax.tick_params(labelsize=_SMALL)
     worst = plan.chosen.worst
     dx, dy, dz = _file_point(plan.problem, worst.cog_offset)
     value = f"{plan.chosen.worst_value:.3f}" if utilisation else f"{plan.worst_spread:.1f} t"
-    ax.scatter([worst.trim], [worst.heel], marker="*", s=160, color="tab:red",
-               label=f"worst {value}\nCG offset ({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m")
-    ax.set_xlabel("trim [deg] (+ bow down)")
-    ax.set_ylabel("heel [deg] (+ starboard down)")
-    ax.legend(fontsize=8, loc="lower right")
+    ax.scatter([worst.heel], [worst.trim], marker="*", s=120, color="tab:red", edgecolors="white",
+               linewidths=0.6, label=f"worst {value} at heel {worst.heel:+.2f}, trim "
+                                     f"{worst.trim:+.2f} deg, CG offset ({dx:+.2f}, {dy:+.2f}, "
+                                     f"{dz:+.2f}) m")
+    ax.set_xlabel("heel [deg] (+ starboard down)")
+    ax.set_ylabel("trim [deg] (+ bow down)")
     what = "Utilisation spread" if utilisation else "Tension spread"
-    ax.set_title(f"{what} over the tolerance box\n(each point: worst CG of the envelope)",
-                 fontsize=10)
+    ax.set_title(f"{what} over the tolerance box\n(each point: worst CG of the envelope)")
+    _style(ax)
+    ax.grid(False)
+    fig.legend(loc="outside lower center", fontsize=_SMALL, frameon=False)
     return fig
 
 
 def _around(points, cog):
     plan = points[:, :2] - np.array(cog[:2])
     return np.argsort(np.arctan2(plan[:, 1], plan[:, 0]))
-
-
-def _rectangle(x, y, width, height):
-    from matplotlib.patches import Rectangle
-
-    return Rectangle((x, y), width, height, fill=False, ec="tab:red", ls=":",
-                     label="CG envelope")
 
 
 _PHASE_COLOURS = {"grounded": "#c9b79c", "hanging submerged": "#9ecae1", "piercing the surface": "#c6dbef",

@@ -20,6 +20,7 @@ from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FAC
 from liftplan.model.scene import Body, finite, point, positive
 
 from .fleet import FleetCrane, crane_classes, equal_fleet, reach_table
+from .report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
 __all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate", "CogEnvelope",
@@ -193,6 +194,9 @@ class PlanProblem:
         rules' defaults, see ``docs/design-loads.md``).
     min_sling_angle : float  [deg]
         Lowest sling-leg angle from the horizontal (``[rigging]``; slings only).
+    report : ReportInfo
+        The report's title block (``[report]``: project, client, revision, signatures);
+        default all empty.
     """
 
     body: Body
@@ -216,6 +220,7 @@ class PlanProblem:
     time_limit: float | None = None
     rules: Rules = field(default_factory=Rules)
     min_sling_angle: float = 60.0
+    report: ReportInfo = field(default_factory=ReportInfo)
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -274,6 +279,8 @@ class PlanProblem:
             if value <= 0.0:
                 raise InvalidScene(f"plan.time_limit = {value!r}: expected > 0 s")
             _set(self, "time_limit", value)
+        if not isinstance(self.report, ReportInfo):
+            raise InvalidScene(f"report = {self.report!r}: expected a ReportInfo (the [report] table)")
         self._check_fleet()
 
     def _check_fleet(self):

@@ -20,6 +20,7 @@ from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_lin
 
 from .fleet import FleetCrane, SlingSpec
 from .problem import Candidate, CogEnvelope, CraneSpec, PlanProblem
+from .report_info import ReportInfo
 
 Count = Annotated[int, Strict(), Field(ge=1)]
 
@@ -94,6 +95,17 @@ class _Ropes(Table):
 
 
 class _Attitude(Table):
+class _Report(Table):
+    project: Text = ""
+    client: Text = ""
+    document: Text = ""
+    revision: Text = ""
+    prepared_by: Text = ""
+    checked_by: Text = ""
+    approved_by: Text = ""
+    date: Text = ""
+
+
     lift_height: Num = 0.0
     yaw: Num = 0.0
 
@@ -111,6 +123,7 @@ class _PlanFile(Table):
     rules: RulesTable | None = None
     rigging: _Rigging = _Rigging()
 
+    report: _Report = _Report()
 
 def load_problem(path):
     """Read and validate a planning scene file.
@@ -256,3 +269,4 @@ def _to_problem(data):
         rules=rules_from_table(data.rules),
         min_sling_angle=data.rigging.min_sling_angle,
     )
+        report=ReportInfo(**data.report.model_dump()),

@@ -8,17 +8,14 @@ named once at the top; ``plan_scene.toml`` keeps that frame and the candidate na
 
 from __future__ import annotations
 
-import base64
 import html
-import io
 import json
 from dataclasses import dataclass
-from datetime import date
 from pathlib import Path
 
 from liftplan.model.frames import zup_to_choi
 
-from . import figures
+from . import figures, report_page
 from .plan import FRAMES
 from .scenarios import Scenario
 
@@ -103,19 +100,12 @@ def write_report(plan, directory):
 
 
 # -- HTML ---------------------------------------------------------------------------------
-def _png(fig, alt):
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=110)
-    data = base64.b64encode(buffer.getvalue()).decode("ascii")
-    return f'<img alt="{html.escape(alt)}" src="data:image/png;base64,{data}">'
+def _png(fig, alt, caption=""):
+    return report_page.figure(fig, alt, caption)
 
 
-def _table(headers, rows, caption):
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
-    body = "".join(
-        "<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows
-    )
-    return f"<table><caption>{html.escape(caption)}</caption><tr>{head}</tr>{body}</table>"
+def _table(headers, rows, caption, **options):
+    return report_page.table(headers, rows, caption, **options)
 
 
 def _shown(problem, point):
@@ -132,45 +122,25 @@ def _where(plan, scenario):
             ", ".join(f"{v:.2f}" for v in plan.cog_at(scenario)))
 
 
-def render_html(plan):
-    """The report as one HTML string."""
+def render_html(plan, today=None):
+    """The report as one HTML string, laid out for A4 print.
+
+    Client-facing part first (title block, recommendation, basis, checks, figures,
+    alternatives, assumptions), then the engineering appendix (the optimisation's bounds
+    and the search) on its own pages.
+
+    Parameters
+    ----------
+    plan : Plan
+    today : datetime.date, optional
+        The date printed when ``[report] date`` is not given (default: today).
+    """
     problem, chosen = plan.problem, plan.chosen
     candidates = dict(zip(problem.names, problem.candidates))
-    sections = []
-    sections.append(_table(
-        ["quantity", "value", "unit"],
-        [
-            ("weight W", f"{problem.body.weight:.2f}", "t"),
-            ("CG (file frame)", _xyz(problem, problem.body.cog), "m"),
-            ("CG envelope half-widths (x, y, z)",
-             ", ".join(f"{abs(v):.2f}" for v in _shown(problem, problem.cog_envelope.half_widths)),
-             "m"),
-            ("CG envelope shape", problem.cog_envelope.shape, "-"),
-            ("cranes", problem.cranes, "-"),
-            ("objective", "max - min of T / SWL (utilisation)" if plan.objective == "utilisation"
-             else "max - min tension (spread)", "-"),
-            ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
-            ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
-            ("min tension", f"{problem.min_tension:g}", "t"),
-            ("hook-height tolerance", f"+-{problem.hook_tolerance:g}", "m"),
-            ("lift height (body origin above datum)", f"{problem.lift_height:g}", "m"),
-            ("candidates", len(problem.candidates), "-"),
-        ],
-        "Inputs",
-    ))
-    sections.append(_table(
-        ["crane", "slew centre x, y, z [m]", "load chart (radius m: SWL t)", "rope EA [t]",
-         "rope length l0 [m]", "boom height range [m]"],
-        [
-            (c.name, "-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
-             f"{c.swl:g} t at any radius" if c.swl is not None else
-             ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
-             f"{c.EA:.0f}", f"{c.rope_length:.2f}", f"{c.boom_min:g} to {c.boom_max:g}")
-            for c in problem.fleet
-        ],
-        "Crane fleet",
-    ))
-    sections.append(_table(
+    name = problem.name or "Lift plan"
+    worst = chosen.worst
+    unequal = not problem.equal_cranes
+    lugs = _table(
         ["lug", "candidate (bulkhead)", "position x, y, z [m]", "crane", "radius [m]",
          "chart SWL [t]", "boom height H [m]", "level tension [t]", "level T / chart SWL [%]"],
         [
@@ -181,33 +151,68 @@ def render_html(plan):
              f"{100 * plan.utilisation[label]:.1f}")
             for label, name in plan.lugs.items()
         ],
-        "Recommended lugs, cranes and boom heights",
-    ))
-    worst = chosen.worst
-    sections.append(_table(
+        "Recommended lugs, cranes and boom heights", text_columns=(1, 3),
+    )
+    summary = _table(
         ["quantity", "value", "unit"],
         [
-            ("nominal spread (level, nominal CG)", f"{plan.spread:.2f}", "t"),
-            ("worst spread over the box", f"{plan.worst_spread:.2f}", "t"),
+            ("tension spread, level with the nominal CG", f"{plan.spread:.2f}", "t"),
+            ("worst tension spread over the tolerance box", f"{plan.worst_spread:.2f}", "t"),
             ("... at heel, trim", f"{worst.heel:+.2f}, {worst.trim:+.2f}", "deg"),
             ("... with the CG at (x, y, z)", _where(plan, worst)[1], "m"),
             ("... that is, CG offset (x, y, z)",
              ", ".join(f"{v:+.2f}" for v in _shown(problem, worst.cog_offset)), "m"),
             ("worst utilisation spread (max - min of T / SWL)",
              f"{100 * plan.worst_utilisation_spread:.1f}", "%"),
-            ("convex bound (LP optimum for this set)", f"{chosen.bound:.2f}", "t"),
             ("tension range over the box", f"{chosen.tension_range[0]:.2f} to "
                                            f"{chosen.tension_range[1]:.2f}", "t"),
+            ("highest design utilisation (design hook load / chart SWL)",
+             "n/a" if plan.design_loads.chain is None else
+             f"{100 * max(c.design.utilisation for c in plan.capacity):.1f}", "%"),
         ],
-        "Plan summary",
-    ))
-    sections.append(_table(
+        "Plan summary", full=False, text_columns=(0,),
+    )
+    inputs = _table(
+        ["quantity", "value", "unit"],
+        [
+            ("weight W", f"{problem.body.weight:.2f}", "t"),
+            ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
+            ("CG envelope half-widths (x, y, z)",
+             ", ".join(f"{abs(v):.2f}" for v in _shown(problem, problem.cog_envelope.half_widths)),
+             "m"),
+            ("CG envelope shape", problem.cog_envelope.shape, "-"),
+            ("cranes", problem.cranes, "-"),
+            ("the plan keeps small", "max - min of T / SWL (utilisation spread)"
+             if plan.objective == "utilisation" else "max - min tension (spread)", "-"),
+            ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
+            ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
+            ("min tension", f"{problem.min_tension:g}", "t"),
+            ("hook-height tolerance", f"+-{problem.hook_tolerance:g}", "m"),
+            ("lift height (body origin above datum)", f"{problem.lift_height:g}", "m"),
+            ("candidate lug points", len(problem.candidates), "-"),
+        ],
+        "Inputs", full=False, text_columns=(0,),
+    )
+    fleet = _table(
+        ["crane", "slew centre x, y, z [m]", "load chart (radius m: SWL t)", "rope EA [t]",
+         "rope length l0 [m]", "boom height range [m]"],
+        [
+            (c.name, "-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
+             f"{c.swl:g} t at any radius" if c.swl is not None else
+             ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
+             f"{c.EA:.0f}", f"{c.rope_length:.2f}", f"{c.boom_min:g} to {c.boom_max:g}")
+            for c in problem.fleet
+        ],
+        "Crane fleet", text_columns=(0, 2),
+    )
+    ranking = _table(
         ["rank", "lugs (crane)", "nominal spread [t]", "worst spread [t]",
          "worst utilisation spread [%]", "worst at heel, trim [deg]", "... with the CG at x, y, z [m]",
          "highest in-box load / SWL [%]", "design utilisation [%]", "design checks",
          "boom heights H [m]"],
         [
-            (k + 1, " ".join(f"{lug} ({crane})" for lug, crane in zip(r.lugs, r.crane_names)),
+            (k + 1, ", ".join(f"{lug} ({crane})" if unequal else lug
+                              for lug, crane in zip(r.lugs, r.crane_names)),
              f"{r.nominal_spread:.2f}", f"{r.worst_spread:.2f}",
              f"{100 * r.worst_utilisation_spread:.1f}", *_where(plan, r.worst),
              f"{100 * r.max_utilisation:.1f}",
@@ -216,10 +221,10 @@ def render_html(plan):
              " ".join(f"{h:.3f}" for h in r.boom_heights))
             for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design))
         ],
-        f"Ranking of lug sets (best {len(plan.ranking)} of {plan.stats.sets})",
-    ))
-    sections.append(_design_table(plan))
-    sections.append(_table(
+        f"Ranking of lug sets (the best {len(plan.ranking)} of {plan.stats.sets}; rank 1 is the "
+        "recommendation)", text_columns=(1,),
+    )
+    skew = _table(
         ["rope or diagonal pair", "nominal load [t]", "skewed load [t]",
          "skew load factor [-]", "Noble Denton default [-]"],
         [
@@ -228,8 +233,8 @@ def render_html(plan):
             for s in plan.skew
         ],
         f"Skew loads for hook heights within +-{problem.hook_tolerance:g} m",
-    ))
-    sections.append(_table(
+    )
+    guidance = _table(
         ["step", "from [deg]", "to [deg]", *(f"dT {label} [t]" for label in plan.labels),
          "note"],
         [
@@ -239,8 +244,68 @@ def render_html(plan):
             for g in plan.guidance
         ],
         "Operator guidance: tension change per step of heel (trim 0) and of trim (heel 0)",
-    ))
-    sections.append(_table(
+        text_columns=(0, 3 + len(plan.labels)),
+    )
+    checks = _table(
+        ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
+        [(c.name, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit,
+          "ok" if c.ok else "FAIL", c.note) for c in plan.checks],
+        "Every check of the plan", text_columns=(0, 1, 6),
+    )
+    figs = [
+        _png(figures.plan_view(plan), "plan view",
+             "Plan view, seen from above: the chosen lugs (L1...), the cranes and the CG."),
+        _png(figures.tension_curves(plan), "tension against heel and trim",
+             "Rope tensions with the plan's preload held, against heel (left) and trim (right); "
+             "the tolerance box shaded."),
+        _png(figures.spread_map(plan), "spread over the tolerance box",
+             "The plan's spread over the heel/trim tolerance box, at each point the worst CG "
+             "position of the envelope; the star marks the worst case."),
+    ]
+    info = problem.report
+    body = "\n".join(
+        [report_page.title_block(info, name, f"Lift plan: {problem.cranes} cranes, lugs chosen by "
+                                 "liftplan, preload held by the boom heights", today),
+         f"<p>All coordinates are in the planning file's frame: {html.escape(FRAMES[plan.frame])}. "
+         "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
+         "lengths in m.</p>",
+         report_page.status(plan.checks),
+         "<h2>1 Recommendation</h2>", lugs, summary,
+         "<h2>2 Basis of the plan</h2>", inputs, fleet,
+         "<h2>3 Checks to hand over</h2>", checks, _design_table(plan), *_design_details(plan),
+         skew, guidance,
+         "<h2>4 Figures</h2>", *figs,
+         "<h2>5 Alternatives</h2>", ranking,
+         "<h2>6 Assumptions</h2>",
+         "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in ASSUMPTIONS) + "</ul>",
+         *_appendix(plan)]
+    )
+    return report_page.document(name, body, report_page.running_header(info, name),
+                                report_page.running_footer(info))
+
+
+def _appendix(plan):
+    """The engineering appendix: how good the plan is proved to be, the admissible tension
+    bounds, and what the search did."""
+    stats, chosen = plan.stats, plan.chosen
+    unit = "-" if plan.objective == "utilisation" else "t"
+    fmt = "{:.4f}" if unit == "-" else "{:.2f}"
+    optimality = _table(
+        ["quantity", "value", "unit"],
+        [
+            ("worst value of the plan over the box (the objective)", fmt.format(stats.best), unit),
+            ("lower bound from the optimisation: no lug set and crane assignment does better",
+             fmt.format(stats.lower_bound), unit),
+            ("gap between the two", fmt.format(stats.gap), unit),
+            ("relative gap", f"{100 * stats.relative_gap:.2f}", "%"),
+            ("why the search ended", stats.stopped, "-"),
+            ("least worst spread for the recommended lugs (linear programme over the preloads)",
+             f"{chosen.bound:.2f}", "t"),
+        ],
+        "Optimality: how far the recommendation can be from the best plan", full=False,
+        text_columns=(0,),
+    )
+    admissible = _table(
         ["heel [deg]", "trim [deg]", "least spread [t]",
          *(f"{label} range [t]" for label in plan.labels)],
         [
@@ -250,67 +315,36 @@ def render_html(plan):
                if b is not None else ["no admissible set"] + [""] * len(plan.labels)))
             for s, b in plan.admissible
         ],
-        "Convex bounds: every statically admissible tension set within min_tension and SWL "
-        "(nominal CG)",
-    ))
-    stats = plan.stats
-    sections.append(_table(
+        "Admissible tensions of the recommended lugs: the range of each tension over every "
+        "statically admissible set within min_tension and SWL (nominal CG)",
+    )
+    search = _table(
         ["quantity", "value", "unit"],
         [
             ("lug sets", stats.sets, "-"),
             ("(set, crane assignment) pairs in reach", stats.rows, "-"),
             ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
             ("ruled out by screening", stats.screened_out, "-"),
-            ("evaluated (LP + dense search)", stats.evaluated, "-"),
-            ("pruned by the bound", stats.pruned, "-"),
+            ("evaluated (linear programme + dense search of the box)", stats.evaluated, "-"),
+            ("not evaluated: their bound could not beat the ranked sets", stats.pruned, "-"),
             *((f"infeasible: {text}", n, "sets") for text, n in stats.infeasible.items()),
             ("search time", f"{stats.seconds:.2f}", "s"),
         ],
-        "Search",
-    ))
-    design_extra = _design_details(plan)
-    figs = [
-        _png(figures.plan_view(plan), "plan view"),
-        _png(figures.tension_curves(plan), "tension against heel and trim"),
-        _png(figures.spread_map(plan), "spread over the tolerance box"),
-    ]
-    body = "\n".join(
-        [f"<h1>{html.escape(problem.name or 'Lift plan')}</h1>",
-         f"<p>liftplan recommendation, {date.today().isoformat()}. All coordinates are in the "
-         f"planning file's frame: {html.escape(FRAMES[plan.frame])}. Angles: heel &gt; 0 "
-         "starboard down, trim &gt; 0 bow down.</p>",
-         "<h2>Recommendation</h2>", sections[2], sections[3],
-         "<h2>Checks to hand over</h2>", sections[5], *design_extra, sections[6], sections[7],
-         "<h2>Figures</h2>", *figs,
-         "<h2>Alternatives</h2>", sections[4],
-         "<h2>Inputs</h2>", sections[0], sections[1],
-         "<h2>Assumptions</h2>",
-         "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in ASSUMPTIONS) + "</ul>",
-         "<h2>Engineering appendix</h2>", sections[8], sections[9]]
+        "Search", full=False, text_columns=(0,),
     )
-    return f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8">
-<title>{html.escape(problem.name or 'Lift plan')}</title>
-<style>
-body {{ font-family: sans-serif; max-width: 1100px; margin: 2em auto; color: #222; }}
-table {{ border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }}
-caption {{ text-align: left; font-weight: bold; padding: 0.3em 0; }}
-th, td {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}
-th {{ background: #eee; }}
-img {{ max-width: 100%; display: block; margin: 1em 0; }}
-</style></head>
-<body>
-{body}
-</body></html>
-"""
+    return ['<h2 class="appendix">Engineering appendix</h2>',
+            "<p>For the engineer checking the plan: how close the recommendation is proved to be "
+            "to the best possible plan, the statically admissible tensions of the recommended "
+            "lugs, and what the search did.</p>",
+            optimality, admissible, search]
 
 
 def _design_table(plan):
-    """Per crane: the static loads and the rules' chain to the design hook load and its check."""
+    """The rules' chain per crane, one column per crane (a calculation read top down)."""
     design = plan.design_loads
     if design.chain is None:
         return (f"<p><b>Design loads not computed:</b> {html.escape(design.missing)}</p>")
-    rows = []
+    columns = []
     for c in plan.capacity:
         r = c.design
         factor = {f.name: f for f in r.factors}
@@ -318,20 +352,23 @@ def _design_table(plan):
         margin = "-" if r.code_margin is None else (
             f"{r.code_margin.value:.1f} {'<=' if r.code_margin.ok else '>'} {r.code_margin.limit:.1f}")
         ok = r.check.ok and (r.code_margin is None or r.code_margin.ok)
-        rows.append((c.label, c.crane, "-" if c.radius is None else f"{c.radius:.1f}", f"{c.swl:.1f}",
-                     f"{c.nominal:.2f}", f"{c.worst:.2f}", f"{c.tilt.load:.2f}",
-                     f"{factor['weight_contingency'].value:.3f}", f"{skew:.4f}",
-                     f"{factor['daf'].value:.3f}", f"{r.rigging_weight:.2f}",
-                     f"{r.static_hook_load:.2f}", f"{r.design_hook_load:.2f}",
-                     f"{100 * r.utilisation:.1f}", margin, "ok" if ok else "FAIL"))
+        columns.append([c.crane, "-" if c.radius is None else f"{c.radius:.1f}", f"{c.swl:.1f}",
+                        f"{c.nominal:.2f}", f"{c.worst:.2f}", f"{c.tilt.load:.2f}",
+                        f"{factor['weight_contingency'].value:.3f}", f"{skew:.4f}",
+                        f"{r.rigging_weight:.2f}", f"{r.static_hook_load:.2f}",
+                        f"{factor['daf'].value:.3f}", f"{r.design_hook_load:.2f}",
+                        f"{100 * r.utilisation:.1f}", margin, "ok" if ok else "FAIL"])
+    quantities = ["crane", "radius [m]", "chart SWL [t]", "level tension [t]",
+                  "worst in the box [t]", "at the rules' tilt [t]", "x weight contingency [-]",
+                  "x skew on the hook [-]", "+ rigging [t]", "= static hook load [t]",
+                  "x DAF [-]", "= design hook load [t]", "utilisation: design / chart SWL [%]",
+                  "code margin: share x (1 + margin) vs SWL [t]", "check"]
+    rows = [(q, *(col[k] for col in columns)) for k, q in enumerate(quantities[1:], start=1)]
     return _table(
-        ["lug", "crane", "radius [m]", "chart SWL [t]", "level tension [t]", "worst in box [t]",
-         "at the rules' tilt [t]", "weight contingency [-]", "skew on hook [-]", "DAF [-]",
-         "rigging [t]", "static hook load [t]", "design hook load [t]", "utilisation [%]",
-         "code margin: share x (1 + margin) vs SWL [t]", "check"],
+        ["quantity", *(f"{c.label} ({col[0]})" for c, col in zip(plan.capacity, columns))],
         rows,
         "Design loads per crane (0027/ND chain; utilisation = design hook load / chart SWL; "
-        f"tilt {design.tilt_note})",
+        f"tilt {design.tilt_note})", text_columns=(0,),
     )
 
 
@@ -348,13 +385,16 @@ def _design_details(plan):
           _where(plan, Scenario(0.0, 0.0, c.tilt.cog_offset))[1])
          for c in plan.capacity],
         "Where each crane's worst static load occurs (CG position in the file's frame)",
+        text_columns=(1,),
     )
     results = [c.design for c in plan.capacity]
     factors = _table(
         ["factor", *(f"{r.crane} [-]" for r in results), "applies to", "source"],
-        [(f.name, *(f"{r.factors[k].value:.4f}" for r in results), f.applies_to, f.source)
+        [(f.name.replace("_", " "), *(f"{r.factors[k].value:.4f}" for r in results), f.applies_to,
+          f.source)
          for k, f in enumerate(results[0].factors)],
-        "Design-load factors and where they come from",
+        "Design-load factors and where they come from", text_columns=(0, len(results) + 1,
+                                                                      len(results) + 2),
     )
     lugs = _table(
         ["lug", "crane", "static share [t]", "vertical design [t]", "sling angle [deg]", "leg load [t]",
@@ -365,6 +405,7 @@ def _design_details(plan):
           "not given" if lug.check is None else ("ok" if lug.check.ok else "FAIL"))
          for r in results for lug in r.lugs],
         "Lug design loads (leg load x consequence factor; checked where the candidate gives a capacity)",
+        text_columns=(1,),
     )
     return [worst, factors, lugs]
 

@@ -64,23 +64,28 @@ def test_written_scene_keeps_the_file_frame_names_and_cranes(report_dir):
 
 
 class _Tables(html.parser.HTMLParser):
-    """Collects each table's header cells and the images."""
+    """Collects each table's header cells, the first cell of each body row, and the images."""
 
     def __init__(self):
         super().__init__()
-        self.tables, self.images, self._cell = [], [], None
+        self.tables, self.row_labels, self.images, self._cell = [], [], [], None
+        self._first = False
 
     def handle_starttag(self, tag, attrs):
         if tag == "table":
             self.tables.append([])
-        elif tag == "th":
-            self._cell = ""
+            self.row_labels.append([])
+        elif tag == "tr":
+            self._first = True
+        elif tag == "th" or (tag == "td" and self._first):
+            self._cell, self._tag = "", tag
+            self._first = False
         elif tag == "img":
             self.images.append(dict(attrs)["src"])
 
     def handle_endtag(self, tag):
-        if tag == "th":
-            self.tables[-1].append(self._cell)
+        if self._cell is not None and tag == self._tag:
+            (self.tables if tag == "th" else self.row_labels)[-1].append(self._cell)
             self._cell = None
 
     def handle_data(self, data):
@@ -97,18 +102,31 @@ def test_report_embeds_figures_and_every_table_has_units(report_dir):
     assert all(src.startswith("data:image/png;base64,") for src in parsed.images)
     assert "src=\"http" not in page and "<link" not in page  # self-contained
     assert len(parsed.tables) >= 7
-    for headers in parsed.tables:
-        # a units column, or a unit in brackets on every numeric column's header
+    for headers, labels in zip(parsed.tables, parsed.row_labels):
+        if not headers:
+            continue  # the title block: fields, not numbers
+        # a units column, a unit in brackets on every numeric column's header, or (a table
+        # with one column per crane) on every row's label
         has_unit_column = "unit" in headers
         with_units = [h for h in headers if re.search(r"\[[^\]]+\]", h)]
-        assert has_unit_column or len(with_units) >= len(headers) - 3, headers
+        labelled = [r for r in labels if re.search(r"\[[^\]]+\]", r)]
+        assert (has_unit_column or len(with_units) >= len(headers) - 3
+                or (headers[0] == "quantity" and len(labelled) >= len(labels) - 1)), headers
     page = html.unescape(page)
     for text in ("Assumptions", "Operator guidance", "Skew loads", "Design loads per crane",
                  "Where each crane's worst static load occurs", "Design-load factors"):
         assert text in page
     # the frame is named once, at the top, and the coordinates follow it
     assert page.count("All coordinates are in the planning file's frame") == 1
-    assert page.index("All coordinates are in") < page.index("<table")
+    assert page.index("All coordinates are in") < page.index("<caption")  # before any data table
+    # the client-facing part first, the engineering appendix (bounds, search) last
+    sections = [page.index(f">{h}<") for h in ("1 Recommendation", "3 Checks to hand over",
+                                                "4 Figures", "5 Alternatives", "Engineering appendix")]
+    assert sections == sorted(sections)
+    appendix = sections[-1]
+    for jargon in ("lower bound from the optimisation", "Search<", "Admissible tensions"):
+        assert page.index(jargon) > appendix, jargon
+    assert "convex bound" not in page.lower() and "LP optimum" not in page
     assert "papers' frame (x forward, y up, z to starboard)" in page
 
 

@@ -1,0 +1,202 @@
+"""The page both report kinds share: A4 print layout, title block, tables and figures.
+
+One HTML file that reads the same on screen and on paper: the text column is the A4 text
+width (170 mm) in both; in print (WeasyPrint) every page carries a running header (project
+and plan name) and "page n of N", table rows never split across pages and table headers
+repeat on each page. Figures are drawn at the width they are printed, so their lettering
+prints at its real size.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+
+#: A4 text width [mm]: 210 mm less 20 mm margins each side. Figures are drawn to it.
+TEXT_WIDTH_MM = 170.0
+#: Page margins [mm]: top, right, bottom, left.
+MARGINS_MM = (18.0, 20.0, 18.0, 20.0)
+#: Figure lettering [pt] at print size.
+FONT_PT = 7.5
+
+_CSS = """
+@page {
+  size: A4;
+  margin: %(top)smm %(right)smm %(bottom)smm %(left)smm;
+  @top-center { content: %(header)s; font: 7.5pt sans-serif; color: #555; }
+  @bottom-left { content: %(footer)s; font: 7.5pt sans-serif; color: #555; }
+  @bottom-right { content: "page " counter(page) " of " counter(pages);
+                  font: 7.5pt sans-serif; color: #555; }
+}
+@media screen {
+  body { max-width: %(width)smm; margin: 2em auto; padding: 0 1em; }
+}
+body { font-family: sans-serif; font-size: 9pt; line-height: 1.3; color: #222; }
+h1 { font-size: 16pt; margin: 0.2em 0 0.4em; }
+h2 { font-size: 12pt; margin: 1.2em 0 0.3em; border-bottom: 1px solid #999;
+     break-after: avoid; }
+h3 { font-size: 10pt; margin: 1em 0 0.3em; break-after: avoid; }
+p { margin: 0.4em 0; }
+h2.appendix { break-before: page; }
+table { border-collapse: collapse; margin: 0.6em 0 1em; font-size: 7.5pt; }
+table.full { width: 100%%; }
+table.keep { break-inside: avoid; }
+caption { caption-side: top; text-align: left; font-weight: bold; font-size: 8pt;
+          padding: 0.2em 0; break-after: avoid; }
+thead { display: table-header-group; }
+tr { break-inside: avoid; }
+th, td { border: 1px solid #bbb; padding: 0.2em 0.35em; text-align: right;
+         vertical-align: top; overflow-wrap: break-word; }
+th { background: #eee; font-weight: bold; hyphens: auto; }
+td:first-child, th:first-child { text-align: left; }
+td.text, th.text { text-align: left; }
+table.title-block { width: 100%%; font-size: 9pt; margin-top: 0; }
+table.title-block td { text-align: left; height: 1.6em; vertical-align: middle; }
+table.title-block td.k { width: 17%%; background: #eee; font-weight: bold; }
+table.sign-off td:nth-child(3) { width: 30%%; }
+.status { font-weight: bold; padding: 0.3em 0.5em; border: 1px solid #999; }
+.status.fail { color: #a00; border-color: #a00; }
+figure { margin: 0.8em 0; break-inside: avoid; }
+figure img { display: block; max-width: 100%%; }
+figcaption { font-size: 8pt; color: #333; margin-top: 0.2em; }
+ul { margin: 0.3em 0; padding-left: 1.4em; }
+li { margin: 0.2em 0; }
+"""
+
+
+def css_string(text):
+    """``text`` as a quoted CSS string, safe inside a ``<style>`` element."""
+    out = []
+    for ch in text:
+        out.append(f"\\{ord(ch):x} " if ch in '\\"<>&' or ord(ch) < 32 else ch)
+    return '"' + "".join(out) + '"'
+
+
+def document(title, body, header, footer=""):
+    """The whole HTML page.
+
+    Parameters
+    ----------
+    title : str
+        The document's title (browser tab, PDF metadata).
+    body : str
+        HTML of the body.
+    header : str
+        Running header printed at the top of every page.
+    footer : str
+        Printed at the bottom left of every page (document number and revision).
+    """
+    top, right, bottom, left = MARGINS_MM
+    css = _CSS % {"top": top, "right": right, "bottom": bottom, "left": left,
+                  "width": TEXT_WIDTH_MM, "header": css_string(header), "footer": css_string(footer)}
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>{html.escape(title)}</title>
+<style>{css}</style></head>
+<body>
+{body}
+</body></html>
+"""
+
+
+def table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
+    """An HTML table with a caption, a repeated header and unsplittable rows.
+
+    Parameters
+    ----------
+    headers : list of str
+    rows : list of sequences
+    caption : str
+    full : bool
+        Span the text width (columns share it); False: as narrow as the content.
+    keep : bool, optional
+        Keep the whole table on one page; default: when it has at most 16 rows.
+    text_columns : tuple of int
+        Columns of words (left-aligned); numbers are right-aligned.
+    """
+    keep = len(rows) <= 16 if keep is None else keep
+    classes = " ".join(c for c, on in (("full", full), ("keep", keep)) if on)
+
+    def cell(tag, k, value):
+        align = ' class="text"' if k in text_columns else ""
+        return f"<{tag}{align}>{html.escape(str(value))}</{tag}>"
+
+    head = "".join(cell("th", k, h) for k, h in enumerate(headers))
+    body = "".join("<tr>" + "".join(cell("td", k, c) for k, c in enumerate(row)) + "</tr>"
+                   for row in rows)
+    return (f'<table class="{classes}"><caption>{html.escape(caption)}</caption>'
+            f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")
+
+
+def figure(fig, alt, caption=""):
+    """A matplotlib Figure embedded as a base64 PNG, printed at the width it was drawn
+    (at most the text width), so its lettering prints at the size it was set in.
+    """
+    width_mm = min(fig.get_figwidth() * 25.4, TEXT_WIDTH_MM)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=160)
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    note = f"<figcaption>{html.escape(caption)}</figcaption>" if caption else ""
+    return (f'<figure><img alt="{html.escape(alt)}" style="width: {width_mm:g}mm" '
+            f'src="data:image/png;base64,{data}">{note}</figure>')
+
+
+def figure_size(height_mm, width_mm=TEXT_WIDTH_MM):
+    """(width, height) in inches for a Figure printed ``width_mm`` wide."""
+    return width_mm / 25.4, height_mm / 25.4
+
+
+def title_block(info, plan_name, kind, today=None):
+    """Page 1's title block: the plan's name, then project, client, document, revision,
+    date, and who prepared, checked and approved it, each with room to sign.
+
+    Parameters
+    ----------
+    info : ReportInfo
+    plan_name : str
+    kind : str
+        What the document is, e.g. "Lift plan: four cranes, held preload".
+    today : datetime.date, optional
+    """
+    fields = dict(info.rows(today))
+    esc = html.escape
+
+    def row(*pairs):
+        return "<tr>" + "".join(f'<td class="k">{esc(k)}</td><td>{esc(v)}</td>' for k, v in pairs) + "</tr>"
+
+    project = ("<table class=\"title-block keep\"><tbody>"
+               + row(("Project", fields["Project"]), ("Document no.", fields["Document no."]))
+               + row(("Client", fields["Client"]), ("Revision", fields["Revision"]))
+               + row(("Subject", plan_name), ("Date", fields["Date"]))
+               + "</tbody></table>")
+    sign = ("<table class=\"title-block sign-off keep\"><tbody>"
+            '<tr><td class="k"></td><td class="k">name</td><td class="k">signature</td>'
+            '<td class="k">date</td></tr>'
+            + "".join(f'<tr><td class="k">{esc(role)}</td><td>{esc(fields[role])}</td><td></td><td></td></tr>'
+                      for role in ("Prepared by", "Checked by", "Approved by"))
+            + "</tbody></table>")
+    return (f"<h1>{esc(plan_name or 'Lift plan')}</h1><p>{esc(kind)}</p>{project}{sign}")
+
+
+def running_header(info, plan_name):
+    """The line printed at the top of every page: project and plan name."""
+    return " \u2014 ".join(t for t in (info.project, plan_name) if t) or "Lift plan"
+
+
+def running_footer(info):
+    """The line printed at the bottom left of every page: document number and revision."""
+    parts = [info.document] if info.document else []
+    if info.revision:
+        parts.append(f"rev. {info.revision}")
+    return ", ".join(parts)
+
+
+def status(checks):
+    """One line: every check passed, or how many failed and which."""
+    failed = [c for c in checks if not c.ok]
+    if not failed:
+        return f'<p class="status">All {len(checks)} checks pass (listed under "Checks to hand over").</p>'
+    names = "; ".join(f"{c.name} {c.subject}" for c in failed)
+    return (f'<p class="status fail">{len(failed)} of {len(checks)} checks FAIL: '
+            f"{html.escape(names)}. Do not lift on this plan as it stands.</p>")
