@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import cvxpy as cp
 import numpy as np
+from scipy import sparse
 
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 
@@ -147,6 +148,31 @@ class AdmissibleTensions:
         return TensionBounds(lower=low, upper=high, least_spread=spread, even=even)
 
 
+def hook_margins(count, n, scale, hook):
+    """Largest effect of hook-height errors within their tolerance, per scenario.
+
+    Parameters
+    ----------
+    count, n : int
+    scale : (n,)   the objective's s_i
+    hook : (G, delta) or None   G (count, n, n) [t/m], delta (n,) [m]
+
+    Returns
+    -------
+    margin : (count, n)  [t]   sum_m |G_im| delta_m
+    pair_margin : (count, n (n - 1))  [t or -]   sum_m |s_i G_im - s_j G_jm| delta_m for
+        every ordered pair i != j (the order of :class:`PreloadMinimax`)
+    """
+    first, second = np.nonzero(~np.eye(n, dtype=bool))
+    if hook is None:
+        return np.zeros((count, n)), np.zeros((count, len(first)))
+    gain, delta = np.asarray(hook[0], dtype=float), np.asarray(hook[1], dtype=float)
+    margin = np.abs(gain) @ delta
+    scaled = gain * scale[None, :, None]
+    pair_margin = np.abs(scaled[:, first] - scaled[:, second]) @ delta
+    return margin, pair_margin
+
+
 @dataclass(frozen=True)
 class MinimaxResult:
     """Optimal level preload of :class:`PreloadMinimax`.
@@ -189,11 +215,18 @@ class PreloadMinimax:
     def __init__(self, n, slots):
         self.n, self.slots = n, slots
         m = slots
+        first, second = np.nonzero(~np.eye(n, dtype=bool))  # ordered pairs i != j
+        pairs = len(first)
         self.gain = cp.Parameter((m * n, n), name="P")
         self.offset = cp.Parameter(m * n, name="q")
         # the objective's rows: s_i T_i (s = 1 for the spread, 1 / SWL_i for utilisation)
         self.spread_gain = cp.Parameter((m * n, n), name="SP")
         self.spread_offset = cp.Parameter(m * n, name="Sq")
+        # hook-height errors within the tolerance: each tension's largest rise / fall and each
+        # ordered pair's largest rise of s_i T_i - s_j T_j (exact: the tensions are affine in
+        # the errors at a given attitude)
+        self.margin = cp.Parameter(m * n, nonneg=True, name="hook_margin")
+        self.pair_margin = cp.Parameter(m * pairs, nonneg=True, name="pair_margin")
         self.level_scale = cp.Parameter((n, n), name="S0")
         self.a_level = cp.Parameter((3, n), name="A0")
         self.b_level = cp.Parameter(3, name="b0")
@@ -202,21 +235,21 @@ class PreloadMinimax:
         self.tension_low = cp.Parameter(m * n, name="tension_low")
         self.tension_high = cp.Parameter(m * n, name="tension_high")
         preload = cp.Variable(n, name="T_star")
-        high, low = cp.Variable(m, name="high"), cp.Variable(m, name="low")
         worst = cp.Variable(name="worst")
         nominal_high, nominal_low = cp.Variable(), cp.Variable()
-        spread_of = np.kron(np.eye(m), np.ones((n, 1)))  # scenario k's bound on its n ropes
+        difference = np.zeros((pairs, n))
+        difference[np.arange(pairs), first] = 1.0
+        difference[np.arange(pairs), second] = -1.0
+        pair_rows = sparse.kron(sparse.eye(m), difference, format="csr")  # scenario k's pairs
         tensions = self.gain @ preload + self.offset
         scaled = self.spread_gain @ preload + self.spread_offset
         constraints = [
             self.a_level @ preload == self.b_level,
             preload >= self.preload_low,
             preload <= self.preload_high,
-            tensions >= self.tension_low,
-            tensions <= self.tension_high,
-            scaled <= spread_of @ high,
-            scaled >= spread_of @ low,
-            high - low <= worst,
+            tensions - self.margin >= self.tension_low,
+            tensions + self.margin <= self.tension_high,
+            pair_rows @ scaled + self.pair_margin <= worst,
             self.level_scale @ preload <= nominal_high,
             self.level_scale @ preload >= nominal_low,
         ]
@@ -224,8 +257,10 @@ class PreloadMinimax:
         self.problem = _checked(cp.Problem(objective, constraints), "preload minimax")
         self._preload, self._worst = preload, worst
         self._nominal = (nominal_high, nominal_low)
+        self._pairs = (first, second)
 
-    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range, scale=None):
+    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range, scale=None,
+              hook=None):
         """Solve for the scenarios given.
 
         Parameters
@@ -243,6 +278,11 @@ class PreloadMinimax:
         scale : array_like, shape (n,), optional
             What the spread is taken of: s_i T_i (default 1: tension spread [t];
             1 / SWL_i: utilisation spread [-]).
+        hook : (array_like, array_like), optional
+            ``(G, delta)``: dT/dH at each scenario, shape (k, n, n) [t/m], and each hook's
+            height tolerance, shape (n,) [m]. The worst over the hook errors is then exact:
+            T_i +- sum_m |G_im| delta_m against the limits, and for each pair
+            s_i T_i - s_j T_j + sum_m |s_i G_im - s_j G_jm| delta_m in the spread.
 
         Returns
         -------
@@ -269,6 +309,9 @@ class PreloadMinimax:
         tension_range = (clip(tension_range[0]), clip(tension_range[1]))
         preload_range = (clip(preload_range[0]), clip(preload_range[1]))
         scale = np.ones(n) if scale is None else np.asarray(scale, dtype=float)
+        margin, pair_margin = hook_margins(gains.shape[0], n, scale, hook)
+        self.margin.value = margin[pad].ravel()
+        self.pair_margin.value = pair_margin[pad].ravel()
         self.gain.value = gains[pad].reshape(self.slots * n, n)
         self.offset.value = np.asarray(offsets, dtype=float)[pad].ravel()
         rows = np.tile(scale, self.slots)

@@ -5,14 +5,15 @@ The plan's one defined design load per crane is the design hook load of
 planner found for the lug set:
 
 * ``nominal``: the level tension T* the plan dials in (nominal CG);
-* ``worst``: the rope's largest tension over the heel/trim box and the CG envelope, on the
-  search's dense grid (the same grid and values as the search's ``rope_max``), with the
-  scenario where it occurs;
+* ``worst``: the rope's largest tension over the heel/trim box, the CG envelope and the
+  hook-height tolerance, on the search's dense grid (the same grid and values as the search's
+  ``rope_max``: T + sum_j |dT/dH_j| delta_j at each attitude), with the scenario where it occurs;
 * ``tilt``: the hook's largest load at the rules' tilt (0027/ND 5.4: the worse of the tilt
   and the hook elevation difference over the least hook spacing), the hoists holding T*,
   over every tilt axis and the CG envelope's vertices;
-* ``skew``: the computed factor of the rope from the hook-height tolerance
-  (:func:`rope_skew`), because the searched worst does not include the hook tolerance;
+* ``skew``: 1, because the searched worst already holds every hook error within the
+  tolerance (the skew the rules' 1.25 stands for; the plan's skew table shows the computed
+  factors beside it);
 * ``swl`` and ``radius``: the crane's chart SWL at its radius to the lug.
 
 Then the chain's factors (weight contingency, DAF, rigging weight; yaw only with slings) turn
@@ -199,9 +200,10 @@ class DesignBuilder:
         problem = self.problem
         lugset = LugSet(problem, result.indices, result.cranes)
         preload = np.asarray(result.preload, dtype=float)
-        tensions = lugset.tensions(preload, self.dense)
+        tensions, gain = lugset.tensions_and_gain(preload, self.dense)
+        tensions = tensions + np.abs(gain) @ lugset.hook_tolerance  # the hook errors' worst
         where = np.argmax(tensions, axis=0)
-        skewed = rope_skew(lugset, preload, problem.hook_tolerance)
+        skewed = preload  # the hook tolerance is in the worst: no skew factor on top
         names = lugset.crane_names
         tilt, tilt_note, at_tilt, missing = self._tilt(lugset, preload)
         fleet = [problem.fleet[j] for j in lugset.cranes]

@@ -89,6 +89,8 @@ class FleetCrane:
     sling : SlingSpec or None
         A sling set on the hook (``rope_length`` and ``EA`` are then the hoist rope's, tip
         to hook).
+    hook_tolerance : float or None  [m]
+        This hook's height tolerance, overriding ``[plan] hook_tolerance``.
     """
 
     name: str
@@ -101,11 +103,17 @@ class FleetCrane:
     boom_max: float = math.inf
     from_defaults: bool = field(default=False, compare=False)
     sling: SlingSpec | None = None
+    hook_tolerance: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise InvalidScene(f"cranes.name = {self.name!r}: expected a non-empty string")
         key = f"cranes[{self.name}]"
+        if self.hook_tolerance is not None:
+            value = finite(f"{key}.hook_tolerance", self.hook_tolerance)
+            if value < 0.0:
+                raise InvalidScene(f"{key}.hook_tolerance = {value!r}: expected >= 0 m")
+            _set(self, "hook_tolerance", value)
         _set(self, "EA", positive(f"{key}.EA", self.EA))
         _set(self, "rope_length", positive(f"{key}.rope_length", self.rope_length))
         if self.position is not None:
@@ -175,7 +183,7 @@ class FleetCrane:
     def same_as(self, other):
         """True when the two cranes are interchangeable (all but the name equal)."""
         keys = ("EA", "rope_length", "position", "load_chart", "swl", "boom_min", "boom_max",
-                "sling")
+                "sling", "hook_tolerance")
         return all(getattr(self, k) == getattr(other, k) for k in keys)
 
 

@@ -72,16 +72,29 @@ def plan_table(plan):
                    f"worst {plan.worst_spread:.2f} t")
     else:
         summary = (f"spread: nominal {plan.spread:.2f} t, worst {plan.worst_spread:.2f} t at "
-                   f"{where} (convex bound {chosen.bound:.2f} t)")
+                   f"{where} (this set's LP bound {chosen.bound:.2f} t)")
     lines += [
         "",
         summary,
-        "skew load factors (hook tolerance +-" f"{problem.hook_tolerance:g} m): "
-        + ", ".join(f"{'+'.join(s.lugs)} {s.factor:.3f}" for s in plan.skew)
-        + f" (Noble Denton default {plan.default_skew_factor:.2f})",
+        _hook_line(plan),
     ]
     lines += _ranking_lines(plan)
     return "\n".join(lines)
+
+
+def _hook_line(plan):
+    """What the plan assumed of the hooks' heights."""
+    problem = plan.problem
+    deltas = sorted({problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
+                     for c in problem.fleet})
+    if deltas == [0.0]:
+        return ("hook heights: no hook-height error assumed (hook_tolerance = 0); the worst "
+                "case holds every hook at its planned height")
+    text = " / ".join(f"{d:g}" for d in deltas)
+    return (f"hook heights: every hook within +-{text} m of its plan, independently, in the "
+            "worst case and every limit; computed skew factors "
+            + ", ".join(f"{'+'.join(s.lugs)} {s.factor:.3f}" for s in plan.skew)
+            + f" (Noble Denton's default {plan.default_skew_factor:.2f})")
 
 
 def _chain_lines(plan, design):

@@ -88,13 +88,13 @@ class _FleetCrane(Table):
     rope_length: Num | None = None
     boom_height: _Range | None = None
     sling: _Sling | None = None
+    hook_tolerance: Num | None = None
 
 
 class _Ropes(Table):
     EA: Num | None = None
 
 
-class _Attitude(Table):
 class _Report(Table):
     project: Text = ""
     client: Text = ""
@@ -106,6 +106,7 @@ class _Report(Table):
     date: Text = ""
 
 
+class _Attitude(Table):
     lift_height: Num = 0.0
     yaw: Num = 0.0
 
@@ -122,8 +123,8 @@ class _PlanFile(Table):
     attitude: _Attitude = _Attitude()
     rules: RulesTable | None = None
     rigging: _Rigging = _Rigging()
-
     report: _Report = _Report()
+
 
 def load_problem(path):
     """Read and validate a planning scene file.
@@ -223,6 +224,7 @@ def _fleet(data, to_zup):
             swl=swl,
             boom_min=boom.min if boom else float("-inf"),
             boom_max=boom.max if boom else float("inf"),
+            hook_tolerance=entry.hook_tolerance,
             sling=None if entry.sling is None else SlingSpec(
                 length=entry.sling.length, legs=entry.sling.legs, EA=entry.sling.EA,
                 diameter=entry.sling.diameter),
@@ -268,5 +270,5 @@ def _to_problem(data):
         frame=data.frame,
         rules=rules_from_table(data.rules),
         min_sling_angle=data.rigging.min_sling_angle,
-    )
         report=ReportInfo(**data.report.model_dump()),
+    )

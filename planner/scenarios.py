@@ -177,6 +177,9 @@ class LugSet:
         self.radius = radius[list(self.indices), list(self.cranes)]
         #: SWL of each crane at its radius [t] (NaN: the crane cannot reach its lug)
         self.swl = swl[list(self.indices), list(self.cranes)]
+        #: each hook's height tolerance [m] (the crane's, else the plan's)
+        self.hook_tolerance = np.array([problem.hook_tolerance if c.hook_tolerance is None
+                                        else c.hook_tolerance for c in fleet])
         #: tension limits from the rules' chain: anywhere in the box, and at level [t]
         self.limit, self.share_limit = rule_limits(problem, self.swl, self.cranes)
         #: what the objective's spread is taken of: s_i T_i
@@ -252,6 +255,18 @@ class LugSet:
         Exact while every rope is taut (a negative value means that rope went slack).
         """
         return self._evaluate(scenarios, self.boom_heights(preload))[0]
+
+    def tensions_and_gain(self, preload, scenarios):
+        """Tensions (m, n) [t] and dT/dH (m, n, n) [t/m] at each scenario, preload held: a
+        hook-height error e at a scenario's attitude changes the tensions by dT/dH e, exactly
+        while every rope is taut."""
+        tensions, _, gain = self._evaluate(scenarios, self.boom_heights(preload))
+        return tensions, gain
+
+    @property
+    def hook_uncertain(self):
+        """True when any hook has a height tolerance."""
+        return bool(np.any(self.hook_tolerance > 0.0))
 
     def hook_shifts(self, preload, scenarios):
         """Rigid-body hook motions (dH, m) that bring the body to each scenario's attitude."""

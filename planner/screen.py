@@ -234,6 +234,7 @@ def _screen_chunk(problem, sets, cranes, scenarios):
     preload_low = stiffness * (boom_min - boom_zero)
     preload_high = np.minimum(stiffness * (boom_max - boom_zero), share_limit)
     limits = (problem.min_tension, limit, share_limit)
+    hook = _hook_margins(problem, cranes, gain * stiffness[:, None, None, :], scale)
     # particular level solution (least norm) and null space of the level statics
     collinear = _collinear(plan_x, plan_y)
     gram = a_level @ a_level.transpose(0, 2, 1)
@@ -242,16 +243,43 @@ def _screen_chunk(problem, sets, cranes, scenarios):
     particular = np.einsum("kji,kj->ki", a_level, np.linalg.solve(gram, rhs)[..., 0])
     if n == 3:
         bound, reason = _screen_fixed(particular, q, gain, inside, limits,
-                                      (preload_low, preload_high), scale)
+                                      (preload_low, preload_high), scale, hook)
     elif n == 4:
         bound, reason = _screen_line(particular, _null_vector(a_level), q, gain, inside, limits,
-                                     (preload_low, preload_high), scale)
+                                     (preload_low, preload_high), scale, hook)
     else:
         bound, reason = _screen_pairs(particular, a_level, points[..., 2], q, gain, inside,
-                                      limits, weight, scale)
+                                      limits, weight, scale, hook)
     bound[collinear] = np.inf
     reason[collinear] = COLLINEAR
     return bound, reason
+
+
+def _hook_margins(problem, cranes, gain, scale):
+    """Largest effect of the hook-height errors within their tolerance at each screening
+    scenario (exact: affine in the errors at a given attitude), or None without tolerances.
+
+    gain : (N, m, n, n) dT/dH [t/m]; scale : (N, n) the objective's s_i.
+
+    Returns
+    -------
+    margin : (N, m, n)  [t]   sum_j |G_ij| delta_j
+    pair : (N, m, n, n)  [t or -]   sum_j |s_a G_aj - s_b G_bj| delta_j for every pair (a, b)
+    """
+    delta = np.array([problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
+                      for c in problem.fleet])[cranes]  # (N, n)
+    if not np.any(delta > 0.0):
+        return None
+    margin = np.einsum("kmij,kj->kmi", np.abs(gain), delta)
+    scaled = gain * scale[:, None, :, None]
+    pair = np.einsum("kmabj,kj->kmab", np.abs(scaled[:, :, :, None] - scaled[:, :, None, :]), delta)
+    return margin, pair
+
+
+def _worst_pairs(values, pair):
+    """max over scenarios and ordered pairs of values_a - values_b + pair_ab, (N,)."""
+    spread = values[..., :, None] - values[..., None, :] + pair
+    return spread.reshape(len(values), -1).max(axis=1)
 
 
 def _collinear(plan_x, plan_y):
@@ -310,14 +338,18 @@ def _golden(f, lo, hi, lipschitz):
     return np.minimum(fc, fd) - lipschitz * (b - a)
 
 
-def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale):
+def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale, hook):
     tensions = np.einsum("kmij,kj->kmi", gain, preload) + q
-    reason = _classify_point(preload, tensions, inside, limits, preload_range)
-    bound = np.ptp(scale[:, None, :] * tensions, axis=2).max(axis=1)
+    margin = 0.0 if hook is None else hook[0]
+    reason = _classify_point(preload, tensions, inside, limits, preload_range, margin)
+    if hook is None:
+        bound = np.ptp(scale[:, None, :] * tensions, axis=2).max(axis=1)
+    else:
+        bound = _worst_pairs(scale[:, None, :] * tensions, hook[1])
     return np.where(reason == FEASIBLE, bound, np.inf), reason
 
 
-def _classify_point(preload, tensions, inside, limits, preload_range):
+def _classify_point(preload, tensions, inside, limits, preload_range, margin=0.0):
     low, high, share = limits  # high, share: (N, n)
     reason = np.full(len(preload), FEASIBLE)
     checks = [
@@ -326,18 +358,22 @@ def _classify_point(preload, tensions, inside, limits, preload_range):
         (np.any(preload < low, axis=1), LEVEL_MIN_TENSION),
         (np.any(preload > share, axis=1), CODE_MARGIN),
         (np.any((preload < preload_range[0]) | (preload > preload_range[1]), axis=1), BOOM_RANGE),
-        (np.any(tensions < low, axis=(1, 2)), BOX_SLACK),
-        (np.any(tensions > high[:, None, :], axis=(1, 2)), BOX_OVERLOAD),
+        (np.any(tensions - margin < low, axis=(1, 2)), BOX_SLACK),
+        (np.any(tensions + margin > high[:, None, :], axis=(1, 2)), BOX_OVERLOAD),
     ]
     for failed, code in reversed(checks):  # the first failing check wins
         reason = np.where(failed, code, reason)
     return reason
 
 
-def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale):
+def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale, hook):
     count, m, n = q.shape
     low, high, share = limits  # high, share: (N, n)
     box_high = np.tile(high, (1, m))
+    box_low = low
+    if hook is not None:  # every tension within its limits for every hook error
+        box_low = low + hook[0].reshape(count, -1)
+        box_high = box_high - hook[0].reshape(count, -1)
     alpha = np.einsum("kmij,kj->kmi", gain, particular) + q  # T_k = alpha + t beta
     beta = np.einsum("kmij,kj->kmi", gain, null)
     lo = np.full(count, -np.inf)
@@ -349,7 +385,7 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
         (particular, null, low, np.inf, LEVEL_MIN_TENSION),
         (particular, null, low, share, CODE_MARGIN),
         (particular, null, preload_range[0], preload_range[1], BOOM_RANGE),
-        (alpha.reshape(count, -1), beta.reshape(count, -1), low, np.inf, BOX_SLACK),
+        (alpha.reshape(count, -1), beta.reshape(count, -1), box_low, np.inf, BOX_SLACK),
         (alpha.reshape(count, -1), beta.reshape(count, -1), -np.inf, box_high, BOX_OVERLOAD),
     ]
     for a_rows, b_rows, row_low, row_high, code in steps:
@@ -360,17 +396,20 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
     if np.any(ok):
         sc = scale[ok][:, None, :]
         al, be = sc * alpha[ok], sc * beta[ok]
+        pair = None if hook is None else hook[1][ok]
 
         def worst(t):
             values = al + t[:, None, None] * be
-            return np.ptp(values, axis=2).max(axis=1)
+            if pair is None:
+                return np.ptp(values, axis=2).max(axis=1)
+            return _worst_pairs(values, pair)
 
         lipschitz = np.ptp(be, axis=2).max(axis=1)
         bound[ok] = _golden(worst, lo[ok], hi[ok], lipschitz)
     return bound, reason
 
 
-def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight, scale):
+def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight, scale, hook):
     count, m, n = q.shape
     reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
     reason = np.where(inside & (weight > limits[1].sum(axis=1)), LEVEL_SWL, reason)
@@ -400,9 +439,16 @@ def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight,
     lo = np.where(coplanar, 0.0, lo)
     hi = np.where(coplanar, 0.0, hi)
 
+    if hook is None:
+        up = down = np.zeros_like(g)
+    else:  # the hook errors' widening of each pair, both ways
+        up, down = hook[1][ok][..., first, second], hook[1][ok][..., second, first]
+
     def half_range(u):
+        # spread_k >= d_k + c + up_k and >= -(d_k + c) + down_k for the pair's unknown
+        # preload offset c; the least over c of the largest is half their sum
         values = g + u[:, None, None] * h
-        return 0.5 * np.ptp(values, axis=1).max(axis=1)
+        return 0.5 * ((values + up).max(axis=1) + (down - values).max(axis=1)).max(axis=1)
 
     lipschitz = 0.5 * np.ptp(h, axis=1).max(axis=1)
     bound[ok] = np.maximum(_golden(half_range, lo, hi, lipschitz), 0.0)

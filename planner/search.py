@@ -233,6 +233,40 @@ class DenseSearch:
     utilisation_spread: float
 
 
+def robust(tensions, gain, lugset):
+    """Each scenario's worst over the hook-height errors within their tolerance (exact:
+    at a given attitude the tensions are affine in the errors while every rope is taut).
+
+    Parameters
+    ----------
+    tensions : (m, n)  [t]
+    gain : (m, n, n)  [t/m]   dT/dH at each scenario
+    lugset : LugSet   (its ``scale`` and ``hook_tolerance``)
+
+    Returns
+    -------
+    value : (m,)   the objective's worst: max - min of s_i T_i [t or -]
+    low, high : (m, n)  [t]   each tension's lowest and highest
+    spread : (m,)  [t]   the worst tension spread
+    utilisation : (m,)  [-]   the worst max - min of T_i / SWL_i
+    """
+    m, n = tensions.shape
+    delta = lugset.hook_tolerance
+    margin = np.abs(gain) @ delta
+    first, second = np.nonzero(~np.eye(n, dtype=bool))
+
+    def pairwise(scale):
+        scaled = gain * scale[None, :, None]
+        extra = np.abs(scaled[:, first] - scaled[:, second]) @ delta
+        values = tensions * scale
+        return (values[:, first] - values[:, second] + extra).max(axis=1)
+
+    spread = pairwise(np.ones(n))
+    utilisation = pairwise(1.0 / lugset.swl)
+    value = utilisation if lugset.problem.objective == "utilisation" else spread
+    return value, tensions - margin, tensions + margin, spread, utilisation
+
+
 def _limits(count, low, high):
     """(min_tension, SWL) per scenario and rope, each (count, n)  [t]."""
     high = np.asarray(high, dtype=float)
@@ -284,11 +318,13 @@ class SetEvaluator:
         while True:
             rounds += 1
             gains, offsets = lugset.affine(scenarios)
+            hook = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) \
+                if lugset.hook_uncertain else None
             try:
                 result = self.minimax.solve(gains, offsets, a_level, b_level,
                                             lugset.preload_range(),
                                             _limits(len(scenarios), low_limit, high_limit),
-                                            scale=lugset.scale)
+                                            scale=lugset.scale, hook=hook)
             except PlanInfeasible:
                 raise SetInfeasible(self.diagnose(lugset, scenarios)) from None
             found = self._search(lugset, result.preload)
@@ -336,29 +372,31 @@ class SetEvaluator:
         return self.tol if self.problem.objective == "spread" else self.tol / float(np.min(lugset.swl))
 
     def _search(self, lugset, preload):
-        """The dense search over the box with T* held: see :class:`DenseSearch`."""
-        tensions = lugset.tensions(preload, self.dense)
-        value = np.ptp(tensions * lugset.scale, axis=1)
+        """The dense search over the box with T* held: see :class:`DenseSearch`.
+
+        With hook-height tolerances each scenario's values are the exact worst over the hook
+        errors too (:func:`robust`)."""
+        tensions, gain = lugset.tensions_and_gain(preload, self.dense)
+        value, low, high, spread, util = robust(tensions, gain, lugset)
         k = int(np.argmax(value))
         worst = (float(value[k]), self.dense[k])
         for _ in range(ZOOM_ROUNDS):
             local = self._around(worst[1])
-            values = np.ptp(lugset.tensions(preload, local) * lugset.scale, axis=1)
+            values = robust(*lugset.tensions_and_gain(preload, local), lugset)[0]
             j = int(np.argmax(values))
             if values[j] > worst[0]:
                 worst = (float(values[j]), local[j])
-        excess = tensions - lugset.limit
-        lowest = np.unravel_index(np.argmin(tensions), tensions.shape)[0]
+        excess = high - lugset.limit
+        lowest = np.unravel_index(np.argmin(low), low.shape)[0]
         over = np.unravel_index(np.argmax(excess), excess.shape)[0]
         return DenseSearch(
             worst=worst,
-            low=(float(tensions.min()), self.dense[lowest]),
+            low=(float(low.min()), self.dense[lowest]),
             over=(float(excess.max()), self.dense[over]),
-            highest=float(tensions.max()),
-            rope_max=tensions.max(axis=0),
-            spread=max(float(np.ptp(tensions, axis=1).max()),
-                       worst[0] if self.problem.objective == "spread" else 0.0),
-            utilisation_spread=max(float(np.ptp(tensions / lugset.swl, axis=1).max()),
+            highest=float(high.max()),
+            rope_max=high.max(axis=0),
+            spread=max(float(spread.max()), worst[0] if self.problem.objective == "spread" else 0.0),
+            utilisation_spread=max(float(util.max()),
                                    worst[0] if self.problem.objective == "utilisation" else 0.0),
         )
 
