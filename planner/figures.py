@@ -113,7 +113,7 @@ def plan_figure(low, high, legend_rows=2, width=_WIDTH):
     span = np.maximum(np.asarray(high) - np.asarray(low), 1e-9)
     axes_width = width - 18.0  # the y label and tick labels
     axes_height = float(np.clip(axes_width * span[1] / span[0], 25.0, 190.0))
-    height = axes_height + 16.0 + 4.0 * legend_rows  # title, x label, legend
+    height = axes_height + 22.0 + 4.0 * legend_rows  # title, x label, legend
     return Figure(figsize=(width * _MM, height * _MM), layout="constrained")
 
 
@@ -137,12 +137,15 @@ def plan_view(plan):
     centre = np.mean(pts, axis=0)
     chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
     taken = {plan.lugs[label] for label in plan.labels}
-    for name, (x, y) in zip(problem.names, pts):
+    metres_per_mm = (high[0] - low[0]) / (_WIDTH - 18.0)
+    for name, (x, y), row in zip(problem.names, pts, _label_rows(problem.names, pts, centre,
+                                                                  metres_per_mm)):
         # away from the body's middle, on screen (the papers' frame draws its z axis down)
         up = (y >= centre[1]) != choi
+        rise = 4 + 7 * row
         ax.annotate(name, (x, y), fontsize=_SMALL - 0.5, color="0.25" if name in taken else "0.45",
                     ha="center", va="bottom" if up else "top",
-                    xytext=(0, 4 if up else -4), textcoords="offset points")
+                    xytext=(0, rise if up else -rise), textcoords="offset points")
     order = _around(chosen, cog)
     order = np.r_[order, order[:1]]
     ax.plot(chosen[order, 0], chosen[order, 1], color="tab:blue", lw=0.8, ls="--")
@@ -169,6 +172,22 @@ def plan_view(plan):
     _style(ax)
     fig.legend(loc="outside lower center", ncols=4, fontsize=_SMALL, frameon=False)
     return fig
+
+
+def _label_rows(names, points, centre, metres_per_mm):
+    """Row (0 or 1) of each point's name: a name that would run into its neighbour's on the
+    same side of the body steps out one row."""
+    width = [len(n) * 0.62 * (_SMALL - 0.5) * 0.3528 * metres_per_mm + 1.5 * metres_per_mm
+             for n in names]  # [m]: characters x em fraction x pt -> mm -> m, plus a gap
+    rows = [0] * len(names)
+    for side in (points[:, 1] >= centre[1], points[:, 1] < centre[1]):
+        last = {}  # row -> (x, half width) of the last name placed in it
+        for k in sorted(np.flatnonzero(side), key=lambda k: points[k, 0]):
+            x, half = points[k, 0], width[k] / 2
+            free = [r for r in (0, 1) if r not in last or x - last[r][0] >= last[r][1] + half]
+            rows[k] = free[0] if free else 1
+            last[rows[k]] = (x, half)
+    return rows
 
 
 def _cog_envelope(ax, problem, cog, span):

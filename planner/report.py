@@ -254,7 +254,10 @@ def render_html(plan, today=None):
     )
     figs = [
         _png(figures.plan_view(plan), "plan view",
-             "Plan view, seen from above: the chosen lugs (L1...), the cranes and the CG."),
+             "Plan view, seen from above: the chosen lugs (L1...), the cranes and the CG."
+             if any(c.position is not None for c in problem.fleet) else
+             "Plan view, seen from above: the chosen lugs (L1...) and the CG; the boom heights "
+             "are in the table of section 1."),
         _png(figures.tension_curves(plan), "tension against heel and trim",
              "Rope tensions with the plan's preload held, against heel (left) and trim (right); "
              "the tolerance box shaded."),

@@ -8,11 +8,12 @@ from __future__ import annotations
 
 import html
 import json
-from datetime import date
 
 import numpy as np
 
 from liftplan.model.frames import zup_to_choi
+
+from . import report_page
 
 FRAMES = {"z-up": "z-up (x forward, y to port, z up)",
           "choi": "the papers' frame (x forward, y up, z to starboard)"}
@@ -26,16 +27,18 @@ def _xyz(problem, point):
     return ", ".join(f"{v:.2f}" for v in _in_file(problem, point))
 
 
-def _table(headers, rows, caption):
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>"
-                   for row in rows)
-    return f"<table><caption>{html.escape(caption)}</caption><tr>{head}</tr>{body}</table>"
+def _table(headers, rows, caption, **options):
+    return report_page.table(headers, rows, caption, **options)
+
+
+def _png(fig, alt, caption=""):
+    return report_page.figure(fig, alt, caption)
 
 
 def plan_view(plan):
-    """Plan view in the file's frame: candidates, CG, the chosen pairs, hooks and cranes."""
-    from matplotlib.figure import Figure
+    """Plan view in the file's frame: candidates, CG and its envelope, the chosen pairs,
+    hooks and cranes, drawn at the report's print width."""
+    from .figures import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 
     problem, chosen = plan.problem, plan.chosen
     choi = problem.frame == "choi"
@@ -44,54 +47,73 @@ def plan_view(plan):
         points = np.atleast_2d(points)
         return np.column_stack([points[:, 0], -points[:, 1]]) if choi else points[:, :2]
 
-    fig = Figure(figsize=(9, 5.5), layout="constrained")
-    ax = fig.subplots()
     pts = xy(problem.points)
-    ax.scatter(pts[:, 0], pts[:, 1], s=16, color="0.6", label="candidates")
+    seen = [pts] + [xy(np.array([[*c.position, 0.0]])) for c in problem.fleet if c.position is not None]
+    seen = np.vstack(seen)
+    low, high = seen.min(axis=0), seen.max(axis=0)
+    pad = 0.08 * max(high - low) + 1.0
+    low, high = low - pad, high + pad
+    fig = plan_figure(low, high)
+    ax = fig.subplots()
+    ax.scatter(pts[:, 0], pts[:, 1], s=10, color="0.6", label="candidates")
     colors = ("tab:orange", "tab:green")
     for c, (crane, pair) in enumerate(zip(problem.fleet, chosen.pairs)):
         lugs = xy(problem.points[list(pair)])
         hook = xy(chosen.apex[c])[0]
         for lug in lugs:
-            ax.plot([hook[0], lug[0]], [hook[1], lug[1]], color=colors[c], lw=1.5)
-        ax.scatter(lugs[:, 0], lugs[:, 1], s=60, color=colors[c], zorder=3)
-        ax.scatter([hook[0]], [hook[1]], marker="^", s=80, color=colors[c], zorder=3,
+            ax.plot([hook[0], lug[0]], [hook[1], lug[1]], color=colors[c], lw=1.3)
+        ax.scatter(lugs[:, 0], lugs[:, 1], s=40, color=colors[c], zorder=3)
+        ax.scatter([hook[0]], [hook[1]], marker="^", s=55, color=colors[c], zorder=3,
                    label=f"{crane.name}: hook {chosen.hook_nominal[c]:.1f} t, "
                          f"SWL {chosen.swl[c]:.0f} t at {chosen.radius[c]:.1f} m")
         if crane.position is not None:
             centre = xy(np.array([[*crane.position, 0.0]]))[0]
-            ax.scatter([centre[0]], [centre[1]], marker="s", s=50, color=colors[c])
+            ax.scatter([centre[0]], [centre[1]], marker="s", s=40, color=colors[c])
             ax.plot([centre[0], hook[0]], [centre[1], hook[1]], color=colors[c], ls=":", lw=1)
-            ax.annotate(crane.name, centre, fontsize=8, color=colors[c], xytext=(0, 8),
+            ax.annotate(crane.name, centre, fontsize=_SMALL, color=colors[c], xytext=(0, 6),
                         textcoords="offset points", ha="center")
+    for label, name in plan.lugs.items():
+        x, y = xy(problem.points[problem.names.index(name)])[0]
+        ax.annotate(label, (x, y), fontsize=_FONT, fontweight="bold", color="0.2", ha="left",
+                    va="bottom", xytext=(3, 3), textcoords="offset points")
     cog = xy(np.array(problem.body.cog))[0]
-    ax.scatter([cog[0]], [cog[1]], marker="x", s=80, color="tab:red", label="CG", zorder=4)
+    _cog_envelope(ax, problem, cog, high - low)
+    ax.scatter([cog[0]], [cog[1]], marker="+", s=50, lw=1.2, color="tab:red", label="CG (nominal)",
+               zorder=4)
+    ax.set_xlim(low[0], high[0])
+    ax.set_ylim(low[1], high[1])
     ax.set_aspect("equal")
     if choi:
         ax.invert_yaxis()
     ax.set_xlabel("x [m] (forward)")
     ax.set_ylabel("z [m] (to starboard)" if choi else "y [m] (to port)")
-    ax.grid(True, lw=0.3)
-    fig.legend(fontsize=8, loc="outside lower center", ncols=2)
-    ax.set_title("Plan view: lug pairs, hooks (triangles) and cranes (squares), seen from above")
+    ax.set_title("Plan view, seen from above: hooks (triangles), cranes (squares)")
+    _style(ax)
+    fig.legend(fontsize=_SMALL, loc="outside lower center", ncols=2, frameon=False)
     return fig
 
 
-def render_html(plan):
-    """The sling lift's report as one HTML page."""
-    from .report import _png
+def render_html(plan, today=None):
+    """The sling lift's report as one HTML page, laid out for A4 print.
 
+    Parameters
+    ----------
+    plan : SlingPlan
+    today : datetime.date, optional
+        The date printed when ``[report] date`` is not given (default: today).
+    """
     problem, chosen = plan.problem, plan.chosen
     names = [c.name for c in problem.fleet]
+    name = problem.name or "Lift plan"
     cranes = _table(
         ["crane", "lugs", "hook position x, y, z [m]", "radius [m]", "chart SWL [t]",
          "boom height H [m]", "hook load, level [t]", "hook load, worst [t]", "worst / SWL [%]"],
-        [(name, " + ".join(problem.names[i] for i in chosen.pairs[c]),
+        [(crane, " + ".join(problem.names[i] for i in chosen.pairs[c]),
           _xyz(problem, chosen.apex[c]), f"{chosen.radius[c]:.1f}", f"{chosen.swl[c]:.1f}",
           f"{plan.crane_boom_heights[c]:.3f}", f"{chosen.hook_nominal[c]:.2f}",
           f"{chosen.hook_worst[c]:.2f}", f"{100 * chosen.hook_worst[c] / chosen.swl[c]:.1f}")
-         for c, name in enumerate(names)],
-        "Recommended lug pairs, cranes and boom heights",
+         for c, crane in enumerate(names)],
+        "Recommended lug pairs, cranes and boom heights", text_columns=(1,),
     )
     legs = _table(
         ["lug", "candidate", "position x, y, z [m]", "crane", "sling angle [deg]",
@@ -100,52 +122,60 @@ def render_html(plan):
           plan.cranes[label], f"{a:.1f}", f"{t0:.2f}", f"{tw:.2f}")
          for label, a, t0, tw in zip(plan.labels, np.ravel(chosen.sling_angles),
                                      np.ravel(chosen.legs_nominal), np.ravel(chosen.legs_worst))],
-        "Sling legs",
+        "Sling legs", text_columns=(1, 3),
     )
     checks = _table(
-        ["check", "subject", "value", "limit", "unit", "result"],
-        [(c.name, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL")
+        ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
+        [(c.name, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL",
+          c.note)
          for c in plan.checks],
-        "Checks",
+        "Every check of the plan", text_columns=(0, 1, 6),
     )
     dx, dy, dz = _in_file(problem, chosen.worst_cog_offset)
     inputs = _table(
         ["quantity", "value", "unit"],
         [("weight W", f"{problem.body.weight:.2f}", "t"),
-         ("CG", _xyz(problem, problem.body.cog), "m"),
+         ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
+         ("CG envelope half-widths (x, y, z)",
+          ", ".join(f"{abs(v):.2f}" for v in _in_file(problem, problem.cog_envelope.half_widths)), "m"),
          ("tilt tolerance along the hook line", f"+-{plan.tolerances[0]:g}", "deg"),
          ("roll allowed about the hook line", f"{plan.tolerances[1]:g}", "deg"),
-         ("lowest sling angle allowed", f"{problem.min_sling_angle:g}", "deg"),
-         ("roll about the hook line (CG under it)", f"{chosen.roll:.2f}", "deg"),
-         ("worst case: tilt along the hook line", f"{chosen.worst_tilt:+.2f}", "deg"),
-         ("worst case: CG offset", f"{dx:+.2f}, {dy:+.2f}, {dz:+.2f}", "m"),
-         ("pairs of lug pairs considered", plan.options, "-")]
-        + [(f"ruled out: {text}", n, "options") for text, n in plan.ruled_out.items()],
-        f"Inputs and search (coordinates in {FRAMES[problem.frame]})",
+         ("lowest sling angle allowed", f"{problem.min_sling_angle:g}", "deg")],
+        "Inputs", full=False, text_columns=(0,),
     )
+    result = _table(
+        ["quantity", "value", "unit"],
+        [("roll about the hook line (CG under it)", f"{chosen.roll:.2f}", "deg"),
+         ("worst case: tilt along the hook line", f"{chosen.worst_tilt:+.2f}", "deg"),
+         ("worst case: CG offset (x, y, z)", f"{dx:+.2f}, {dy:+.2f}, {dz:+.2f}", "m")],
+        "Where the hook loads are worst", full=False, text_columns=(0,),
+    )
+    search = _table(
+        ["quantity", "value", "unit"],
+        [("pairs of lug pairs considered", plan.options, "-")]
+        + [(f"ruled out: {text}", n, "options") for text, n in plan.ruled_out.items()],
+        "Search (every pair of lug pairs and both crane assignments)", full=False,
+        text_columns=(0,),
+    )
+    info = problem.report
     body = "\n".join([
-        f"<h1>{html.escape(problem.name or 'Lift plan')}</h1>",
-        f"<p>liftplan recommendation, {date.today().isoformat()}: a two-crane lift on 2-leg "
-        f"slings. Coordinates in {html.escape(FRAMES[problem.frame])}. Hook loads by the "
-        "lever rule along the hook line (the hooks above the pairs' midpoints), checked on the "
-        "rigging model with free hooks and elastic legs.</p>",
-        cranes, legs, checks, _png(plan_view(plan), "plan view"), inputs,
+        report_page.title_block(info, name, "Lift plan: two cranes on 2-leg slings, lug pairs "
+                                "chosen by liftplan", today),
+        f"<p>All coordinates are in the planning file's frame: {html.escape(FRAMES[problem.frame])}. "
+        "Hook loads by the lever rule along the hook line (the hooks above the pairs' midpoints), "
+        "checked on the rigging model with free hooks and elastic legs. Forces in t "
+        "(tonne-force), lengths in m.</p>",
+        report_page.status(plan.checks),
+        "<h2>1 Recommendation</h2>", cranes, legs, result,
+        "<h2>2 Basis of the plan</h2>", inputs,
+        "<h2>3 Checks to hand over</h2>", checks,
+        "<h2>4 Figures</h2>",
+        _png(plan_view(plan), "plan view",
+             "Plan view, seen from above: each crane's lug pair, its hook and the CG."),
+        '<h2 class="appendix">Engineering appendix</h2>', search,
     ])
-    return f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8">
-<title>{html.escape(problem.name or 'Lift plan')}</title>
-<style>
-body {{ font-family: sans-serif; max-width: 1000px; margin: 2em auto; color: #222; }}
-table {{ border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }}
-caption {{ text-align: left; font-weight: bold; padding: 0.3em 0; }}
-th, td {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}
-th {{ background: #eee; }}
-img {{ max-width: 100%; display: block; margin: 1em 0; }}
-</style></head>
-<body>
-{body}
-</body></html>
-"""
+    return report_page.document(name, body, report_page.running_header(info, name),
+                                report_page.running_footer(info))
 
 
 def scene_toml(plan):

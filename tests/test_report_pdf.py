@@ -1,0 +1,211 @@
+"""The reports as printed: WeasyPrint's PDF rendered page by page with poppler.
+
+Each of the three example plans (four equal cranes, an unequal fleet, a two-crane sling
+lift) is written with ``write_report``; every PDF page is rendered to PNG (``pdftoppm``) and
+read back as text (``pdftotext``). Checked: the page count, that nothing is printed to the
+right of the A4 text width (a table or figure wider than the page overflows into the right
+margin), the running header and "page n of N" on every page, and the ``[report]`` title
+block in both the HTML and the PDF. Skipped, and said so, without WeasyPrint or poppler-utils
+(Debian: ``apt-get install poppler-utils``).
+"""
+
+from __future__ import annotations
+
+import html
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+from helpers import EXAMPLES
+
+from liftplan.model.errors import InvalidScene
+from liftplan.planner.problemfile import loads_problem
+from liftplan.planner.report_info import ReportInfo
+from liftplan.planner.report_page import MARGINS_MM, document, table
+
+DPI = 40  # enough to see a column of ink; 8 pages render in well under a second
+A4_WIDTH_MM = 210.0
+# anti-aliasing spreads ink by up to a pixel (0.64 mm at 40 dpi) past an edge
+EDGE_MM = 1.0
+
+SLING_REPORT = """
+[report]
+project = "Block 12 erection, Müller & Søn <A/S>"
+client = "Yard \\"Nord\\""
+document = "BLK-12-LP"
+revision = "C"
+prepared_by = "R. Rigger"
+checked_by = "S. Checker"
+approved_by = "T. Approver"
+date = "2026-04-01"
+"""
+
+
+def _missing():
+    try:
+        import weasyprint  # noqa: F401
+    except (ImportError, OSError):
+        return "WeasyPrint (the [pdf] extra) not installed or its Pango library missing"
+    for tool in ("pdftoppm", "pdftotext"):
+        if shutil.which(tool) is None:
+            return f"{tool} not found (Debian package poppler-utils)"
+    return None
+
+
+needs_pdf = pytest.mark.skipif(_missing() is not None, reason=_missing() or "")
+
+
+def ink_extent_mm(png):
+    """(leftmost, rightmost) column with ink on a rendered page  [mm from the left edge];
+    None for a blank page."""
+    from PIL import Image
+
+    with Image.open(png) as image:
+        grey = np.asarray(image.convert("L"))
+    columns = np.flatnonzero((grey < 200).any(axis=0))
+    if columns.size == 0:
+        return None
+    mm_per_px = 25.4 / DPI
+    return columns[0] * mm_per_px, (columns[-1] + 1) * mm_per_px
+
+
+def render(pdf, out):
+    """Every page of ``pdf`` as PNG at DPI, in page order; and the text of each page."""
+    subprocess.run(["pdftoppm", "-png", "-r", str(DPI), str(pdf), str(out / "page")],
+                   check=True, capture_output=True, timeout=120)
+    pages = sorted(out.glob("page-*.png"), key=lambda p: int(p.stem.split("-")[-1]))
+    text = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], check=True,
+                          capture_output=True, text=True, timeout=120).stdout
+    return pages, text.split("\f")[:len(pages)]
+
+
+CASES = {
+    # name: (planning file, extra TOML, expected page range)
+    "tanker_plan": ("tanker_plan.toml", "", (5, 9)),
+    "tanker_fleet": ("tanker_fleet.toml", "", (5, 9)),
+    "block_sling_plan": ("block_sling_plan.toml", SLING_REPORT, (2, 4)),
+}
+
+
+@pytest.fixture(scope="module", params=list(CASES))
+def printed(request, tmp_path_factory):
+    from liftplan.planner.plan import plan
+    from liftplan.planner.report import write_report
+
+    if _missing():
+        pytest.skip(_missing())
+    filename, extra, pages = CASES[request.param]
+    text = (EXAMPLES / filename).read_text(encoding="utf-8") + extra
+    problem = loads_problem(text)
+    out = tmp_path_factory.mktemp(request.param)
+    files = write_report(plan(problem), out)
+    assert files.pdf is not None
+    images, texts = render(files.pdf, out)
+    return request.param, problem, files, images, texts, pages
+
+
+@needs_pdf
+def test_page_count_is_in_the_expected_range(printed):
+    name, _, _, images, texts, (low, high) = printed
+    assert low <= len(images) <= high, f"{name}: {len(images)} pages"
+    assert len(texts) == len(images)
+
+
+@needs_pdf
+def test_nothing_is_printed_beyond_the_text_width(printed):
+    name, _, _, images, _, _ = printed
+    top, right, bottom, left = MARGINS_MM
+    for k, png in enumerate(images, start=1):
+        extent = ink_extent_mm(png)
+        assert extent is not None, f"{name} page {k} is blank"
+        first, last = extent
+        assert last <= A4_WIDTH_MM - right + EDGE_MM, (
+            f"{name} page {k}: ink at {last:.1f} mm, the text ends at {A4_WIDTH_MM - right:.0f} mm "
+            "(a table or figure wider than the page)")
+        assert first >= left - EDGE_MM, f"{name} page {k}: ink at {first:.1f} mm from the left edge"
+
+
+@needs_pdf
+def test_every_page_has_the_running_header_and_its_number(printed):
+    name, problem, _, _, texts, _ = printed
+    header = problem.report.project or problem.name
+    for k, text in enumerate(texts, start=1):
+        flat = " ".join(text.split())
+        assert f"page {k} of {len(texts)}" in flat, f"{name} page {k}"
+        assert " ".join(header.split())[:40] in flat, f"{name} page {k}: no running header"
+
+
+@needs_pdf
+def test_title_block_fields_are_in_the_html_and_the_pdf(printed):
+    name, problem, files, _, texts, _ = printed
+    page = html.unescape(files.html.read_text(encoding="utf-8"))
+    first = " ".join(texts[0].split())
+    fields = [v for v in (problem.report.project, problem.report.client, problem.report.document,
+                          problem.report.revision, problem.report.prepared_by,
+                          problem.report.checked_by, problem.report.approved_by,
+                          problem.report.date) if v]
+    assert len(fields) >= 5, name  # every example here fills most of its title block
+    for value in fields:
+        assert value in page, f"{name}: {value!r} not in the HTML"
+        assert value in first, f"{name}: {value!r} not on page 1 of the PDF"
+    for label in ("Prepared by", "Checked by", "Approved by", "Revision", "Document no."):
+        assert label in first
+
+
+@needs_pdf
+def test_engineering_appendix_comes_after_the_recommendation(printed):
+    name, _, _, _, texts, _ = printed
+    whole = "\f".join(texts)
+    assert whole.index("1 Recommendation") < whole.index("3 Checks to hand over") < \
+        whole.index("Engineering appendix"), name
+    # the appendix starts a page of its own: its heading is the first line under the header
+    page = next(t for t in texts if "Engineering appendix" in t)
+    lines = [line.strip() for line in page.splitlines() if line.strip()]
+    assert lines[1] == "Engineering appendix", lines[:3]
+
+
+@needs_pdf
+def test_the_margin_check_sees_a_table_wider_than_the_page(tmp_path):
+    # the check above must be able to fail: 30 columns of long numbers cannot fit 170 mm
+    import weasyprint
+
+    wide = table([f"column {k} [t]" for k in range(30)],
+                 [[f"{123456.789 + k:.3f}" for k in range(30)]], "too wide")
+    pdf = tmp_path / "wide.pdf"
+    weasyprint.HTML(string=document("wide", wide, "header")).write_pdf(pdf)
+    images, _ = render(pdf, tmp_path)
+    _, last = ink_extent_mm(images[0])
+    assert last > A4_WIDTH_MM - MARGINS_MM[1] + EDGE_MM
+
+
+# -- the [report] table --------------------------------------------------------------------
+def test_report_table_is_optional_and_read_as_given():
+    text = (EXAMPLES / "tanker_plan.toml").read_text(encoding="utf-8")
+    problem = loads_problem(text)
+    assert problem.report.project.startswith("Salvage of a 1500 GT tanker")
+    assert problem.report.checked_by == ""  # left blank to sign by hand
+    block = loads_problem((EXAMPLES / "block_sling_plan.toml").read_text(encoding="utf-8"))
+    assert block.report == ReportInfo()
+
+
+@pytest.mark.parametrize(("table_text", "fragment"), [
+    ('revision = 3', "report.revision = 3"),
+    ('projekt = "X"', "report.projekt"),
+    (f'project = "{"x" * 201}"', "report.project"),
+])
+def test_report_table_errors_name_the_key(table_text, fragment):
+    text = (EXAMPLES / "block_sling_plan.toml").read_text(encoding="utf-8")
+    with pytest.raises(InvalidScene) as err:
+        loads_problem(text + f"\n[report]\n{table_text}\n")
+    message = str(err.value)
+    assert fragment in message and "\n" not in message
+
+
+def test_report_info_refuses_line_breaks_and_defaults_the_date():
+    import datetime
+
+    with pytest.raises(InvalidScene, match=r"report.client = .*one line"):
+        ReportInfo(client="a\nb")
+    rows = dict(ReportInfo(project="P").rows(today=datetime.date(2026, 1, 2)))
+    assert rows["Date"] == "2026-01-02" and rows["Project"] == "P" and rows["Checked by"] == ""
