@@ -1,15 +1,18 @@
-"""The tanker plan's report, rendered as a person sees it: headless Chromium screenshot.
+"""The example plans' reports, rendered as a person sees them: the printed PDF page by page
+(poppler's pdftoppm) and the HTML in headless Chromium.
 
 Run:  python studies/report_screenshot.py
-      (writes studies/out/tanker_report/ and studies/out/tanker_report.png; needs the
-      Debian package chromium)
+      (writes studies/out/<example>_report/ (report.html, report.pdf, plan.json,
+      plan_scene.toml) for each of tanker_plan, tanker_fleet and block_sling_plan, every PDF
+      page side by side in studies/out/<example>_pages.png, and the tanker plan's HTML in
+      Chromium as studies/out/tanker_report.png; needs the [pdf] extra and the Debian
+      packages poppler-utils and chromium; what is missing is skipped and said so)
 """
 
 from __future__ import annotations
 
 import shutil
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
@@ -18,24 +21,61 @@ from liftplan.planner.problemfile import load_problem
 from liftplan.planner.report import write_report
 
 HERE = Path(__file__).parent
+EXAMPLES = ("tanker_plan", "tanker_fleet", "block_sling_plan")
+DPI = 60  # a page is 496 x 702 px: every table and label can be read on screen
+
+
+def pages(pdf, out):
+    """Every page of ``pdf`` as out/page-N.png; the paths in page order."""
+    subprocess.run(["pdftoppm", "-png", "-r", str(DPI), str(pdf), str(out / "page")], check=True,
+                   capture_output=True, timeout=120)
+    return sorted(out.glob("page-*.png"), key=lambda p: int(p.stem.split("-")[-1]))
+
+
+def contact_sheet(images, path, columns=4):
+    """The pages side by side, ``columns`` to a row, as one PNG."""
+    from PIL import Image
+
+    opened = [Image.open(p) for p in images]
+    width, height = opened[0].size
+    rows = -(-len(opened) // columns)
+    sheet = Image.new("RGB", (width * min(columns, len(opened)), height * rows), "white")
+    for k, image in enumerate(opened):
+        sheet.paste(image, ((k % columns) * width, (k // columns) * height))
+    sheet.save(path)
+
+
+def chromium(html_path, shot):
+    with tempfile.TemporaryDirectory() as profile:
+        subprocess.run(
+            ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+             "--no-first-run", "--disable-background-networking", "--disable-component-update",
+             "--disable-sync", f"--user-data-dir={profile}", "--hide-scrollbars",
+             "--window-size=900,3600", f"--screenshot={shot}", html_path.as_uri()],
+            check=True, capture_output=True, timeout=120,
+        )
 
 
 def main():
-    browser = shutil.which("chromium")
-    if browser is None:
-        sys.exit("report_screenshot: Debian's chromium is needed (apt-get install chromium)")
-    problem = load_problem(HERE.parent / "examples" / "tanker_plan.toml")
-    files = write_report(plan(problem), HERE / "out" / "tanker_report")
-    shot = HERE / "out" / "tanker_report.png"
-    with tempfile.TemporaryDirectory() as profile:
-        subprocess.run(
-            [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-             "--no-first-run", "--disable-background-networking", "--disable-component-update",
-             "--disable-sync", f"--user-data-dir={profile}", "--hide-scrollbars",
-             "--window-size=1200,3600", f"--screenshot={shot}", files.html.as_uri()],
-            check=True, capture_output=True, timeout=120,
-        )
-    print(f"wrote {files.html} and {shot}")
+    out = HERE / "out"
+    for name in EXAMPLES:
+        files = write_report(plan(load_problem(HERE.parent / "examples" / f"{name}.toml")),
+                             out / f"{name}_report")
+        if files.pdf is None:
+            print(f"{name}: no PDF (pip install -e '.[pdf]'); wrote {files.html}")
+        elif shutil.which("pdftoppm") is None:
+            print(f"{name}: wrote {files.pdf}; pdftoppm missing (apt-get install poppler-utils)")
+        else:
+            with tempfile.TemporaryDirectory() as folder:
+                images = pages(files.pdf, Path(folder))
+                contact_sheet(images, out / f"{name}_pages.png")
+            print(f"{name}: {len(images)} pages -> {out / f'{name}_pages.png'}")
+        if name == "tanker_plan":
+            if shutil.which("chromium") is None:
+                print("tanker_plan: chromium missing (apt-get install chromium); no screenshot")
+            else:
+                chromium(files.html, out / "tanker_report.png")
+                print(f"tanker_plan: HTML in Chromium -> {out / 'tanker_report.png'}")
 
 
 if __name__ == "__main__":
