@@ -140,13 +140,16 @@ def render_html(plan, today=None):
     name = problem.name or "Lift plan"
     worst = chosen.worst
     unequal = not problem.equal_cranes
+    positions = {c.name: c.position for c in problem.fleet}
     lugs = _table(
         ["lug", "candidate (bulkhead)", "position x, y, z [m]", "crane", "radius [m]",
          "chart SWL [t]", "boom height H [m]", "level tension [t]", "level T / chart SWL [%]"],
         [
             (label, f"{name} ({candidates[name].bulkhead})" if candidates[name].bulkhead else name,
              _xyz(problem, candidates[name].at),
-             plan.cranes[label], f"{plan.radius[label]:.1f}", f"{plan.swl[label]:.1f}",
+             plan.cranes[label],
+             "-" if positions[plan.cranes[label]] is None else f"{plan.radius[label]:.1f}",
+             f"{plan.swl[label]:.1f}",
              f"{plan.boom_heights[label]:.3f}", f"{plan.tensions[label]:.2f}",
              f"{100 * plan.utilisation[label]:.1f}")
             for label, name in plan.lugs.items()
@@ -206,7 +209,7 @@ def render_html(plan, today=None):
         "Crane fleet", text_columns=(0, 2),
     )
     ranking = _table(
-        ["rank", "lugs (crane)", "nominal spread [t]", "worst spread [t]",
+        ["rank", "lugs (crane)" if unequal else "lugs", "nominal spread [t]", "worst spread [t]",
          "worst utilisation spread [%]", "worst at heel, trim [deg]", "... with the CG at x, y, z [m]",
          "highest in-box load / SWL [%]", "design utilisation [%]", "design checks",
          "boom heights H [m]"],
