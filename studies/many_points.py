@@ -16,9 +16,11 @@ acceptance, result):
   over fresh processes;
 * first call, build: the first solve at this n in a process that has solved before (the
   per-n cache emptied): building this n's casadi functions alone; median of repeats;
-* the batched paper-elastic map (``paper_elastic_tensions``: planner screening, batch
-  check) at each n: compiled to C with an empty cache, loaded from the cache in a fresh
-  process, and its cost per attitude.
+* the batched column maps at each n, compiled to C with an empty cache, then loaded from
+  the cache in a fresh process: the paper-elastic map (``paper_elastic_tensions``, with its
+  cost per attitude), the held-preload map with its n x n sensitivities dT/dH
+  (``held_columns``: planner screening) and without them (``held_tensions_columns``: what a
+  check of a fixed plan needs).
 
 Peers (``tests/many_points_peer.py``, written from the physics): ``elastic`` against
 ``scipy.optimize.root`` (MINPACK hybr, finite-difference Jacobian) on a numpy residual and
@@ -29,7 +31,7 @@ against numpy least squares on [A; held rows]. Accuracy: max |T - T_peer| / W.
 Timing waits while the 1-minute load average is above 1.5 (the machine is shared) and
 records the load.
 
-Run:  python studies/many_points.py            (~2 minutes, more while the load waits;
+Run:  python studies/many_points.py            (~3 minutes, more while the load waits;
                                                  writes studies/out/many_points.json, then
                                                  draws studies/out/many_points.png from it)
       python studies/many_points.py --plot     (redraw the figure from the JSON)
@@ -67,6 +69,9 @@ from liftplan.model.statics import BLOCK, rope_model  # noqa: E402
 COUNTS = [4, 8, 12, 26, 64]
 MODELS = ["elastic", "paper-elastic", "rigid"]
 COLD_PROCESSES = 5
+#: Batched column maps timed (compile, then load): paper-elastic tensions; the held-preload
+#: tensions with their n x n sensitivities (planner screening) and without (a plan's check).
+BATCH_MAPS = ["paper_elastic_block", "held_columns", "held_tensions_columns"]
 MAX_LOAD = 1.5
 
 
@@ -113,16 +118,18 @@ def worker_cold(model, n):
 
 
 def worker_batch(n, stage):
-    """In a fresh process (cache folder from $LIFTPLAN_CACHE): make the batched map."""
+    """In a fresh process (cache folder from $LIFTPLAN_CACHE): make the batched maps."""
     scene = hull_scene(n // 2, seed=1)
-    start = time.perf_counter()
     model = rope_model(n)
-    _ = model.paper_elastic_block
-    made = time.perf_counter() - start
+    seconds = {}
+    for name in BATCH_MAPS:
+        start = time.perf_counter()
+        getattr(model, name)
+        seconds[name] = time.perf_counter() - start
     heel = np.linspace(-2.0, 2.0, 4 * BLOCK)
     trim = np.linspace(1.0, -1.0, 4 * BLOCK)
     per_attitude = median_time(lambda: paper_elastic_tensions(scene, heel, trim), least=3) / heel.size
-    print(json.dumps({"stage": stage, "seconds": made, "backend": model.batch_backend,
+    print(json.dumps({"stage": stage, "seconds": seconds, "backend": model.batch_backend,
                       "per_attitude_s": per_attitude}))
 
 
@@ -196,11 +203,14 @@ def measure_batch(log):
             env = dict(os.environ, LIFTPLAN_CACHE=cache)
             compiled = run_worker("batch", n, "compile", env=env)
             loaded = run_worker("batch", n, "load", env=env)
-        rows.append({"n": n, "backend": compiled["backend"], "compile_s": compiled["seconds"],
-                     "load_s": loaded["seconds"], "per_attitude_s": loaded["per_attitude_s"]})
-        print(f"batched paper-elastic n={n:>2}: compile {compiled['seconds']:.2f} s, "
-              f"load {loaded['seconds']:.3f} s, {1e9 * loaded['per_attitude_s']:.0f} ns/attitude "
-              f"({compiled['backend']})", flush=True)
+        for name in BATCH_MAPS:
+            rows.append({"n": n, "map": name, "backend": compiled["backend"],
+                         "compile_s": compiled["seconds"][name], "load_s": loaded["seconds"][name]})
+            print(f"batched {name} n={n:>2}: compile {compiled['seconds'][name]:.2f} s, "
+                  f"load {loaded['seconds'][name]:.3f} s ({compiled['backend']})", flush=True)
+        rows[-len(BATCH_MAPS)]["per_attitude_s"] = loaded["per_attitude_s"]
+        print(f"paper_elastic_tensions n={n:>2}: {1e9 * loaded['per_attitude_s']:.0f} ns/attitude",
+              flush=True)
     return rows
 
 
@@ -231,11 +241,14 @@ def draw(data):
                    color=COLOURS[model], label=f"{model}: first call, fresh process")
         right.plot([r["n"] for r in mine], [1e3 * r["first_build_s"] for r in mine], "--o",
                    color=COLOURS[model], alpha=0.7, label=f"{model}: building this n's functions")
-    batch = data["batch"]
-    right.plot([r["n"] for r in batch], [1e3 * r["compile_s"] for r in batch], "-D", color="tab:red",
-               label="batched paper-elastic map: C compile (empty cache)")
-    right.plot([r["n"] for r in batch], [1e3 * r["load_s"] for r in batch], "--D", color="tab:red",
-               alpha=0.7, label="batched map: load from the cache")
+    for name, colour, label in (("paper_elastic_block", "tab:red", "paper-elastic map"),
+                                ("held_columns", "tab:purple", "held map with dT/dH"),
+                                ("held_tensions_columns", "tab:brown", "held map, tensions only")):
+        batch = [r for r in data["batch"] if r["map"] == name]
+        right.plot([r["n"] for r in batch], [1e3 * r["compile_s"] for r in batch], "-D", color=colour,
+                   label=f"batched {label}: C compile (empty cache)")
+        right.plot([r["n"] for r in batch], [1e3 * r["load_s"] for r in batch], "--D", color=colour,
+                   alpha=0.7, label=f"batched {label}: load from the cache")
     for ax, title in ((left, "per solve (median of repeats)"),
                       (right, "first call: construction and compile")):
         ax.set_xscale("log")
