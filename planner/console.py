@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from .rope_table import GROUPED_FROM, rope_rows
+
 __all__ = ["batch_table", "equilibrium_table", "load_curve_table", "plan_table"]
 
 
@@ -34,10 +36,24 @@ def equilibrium_table(scene, eq):
         f"(+ bow down), lift height {pose.lift_height:.3f} m",
         "",
     ]
-    if eq.tensions:
-        who = "crane" if eq.rigging is not None else "lug"
-        lines.append(f"{who:<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
-                     f"{'utilisation [%]':>17}")
+    if eq.tensions and eq.rigging is None and len(eq.tensions) >= GROUPED_FROM:
+        lines += rope_rows(scene, eq)  # many ropes: one line per station, port beside starboard
+    else:
+        lines += _rope_lines(eq)
+    if eq.rigging is not None:
+        lines += _rigging_lines(eq)
+    if eq.afloat is not None:
+        lines += _afloat_lines(eq)
+    return "\n".join(lines)
+
+
+def _rope_lines(eq):
+    """One line per rope (or per crane with slings), the total and the spread."""
+    if not eq.tensions:
+        return []
+    who = "crane" if eq.rigging is not None else "lug"
+    lines = [f"{who:<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
+             f"{'utilisation [%]':>17}"]
     for name, tension in eq.tensions.items():
         swl = eq.swl[name]
         util = eq.utilisation[name]
@@ -47,15 +63,10 @@ def equilibrium_table(scene, eq):
             f"{(f'{100 * util:.1f}' if util is not None else '-'):>17}"
             + ("  slack" if name in eq.slack else "")
         )
-    if eq.tensions:
-        total = sum(eq.tensions.values())
-        lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
-        lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
-    if eq.rigging is not None:
-        lines += _rigging_lines(eq)
-    if eq.afloat is not None:
-        lines += _afloat_lines(eq)
-    return "\n".join(lines)
+    total = sum(eq.tensions.values())
+    lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
+    lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
+    return lines
 
 
 def _rigging_lines(eq):
