@@ -1,0 +1,175 @@
+"""Monte-Carlo check of a plan against hook-height errors, on the forward elastic model.
+
+Each draw moves every hook off its planned height by an independent error (uniform within
+the tolerance, or normal with the tolerance as its standard deviation) and solves the full
+elastic model (the body finds its own pose; slack ropes carry nothing), accepted by the same
+test as every elastic answer (:mod:`liftplan.model.acceptance`). The planner's worst case
+holds every error within the tolerance box exactly, so no uniform draw may exceed the plan's
+worst spread or any rope's largest load (``tests/test_montecarlo.py``); the draws show how
+likely the crew is to see what, and what happens when they are worse than assumed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from liftplan.model.acceptance import judge
+from liftplan.model.errors import InvalidScene
+from liftplan.model.solve import pack_params
+from liftplan.model.statics import rope_model
+
+DISTRIBUTIONS = ("uniform", "normal")
+
+
+@dataclass(frozen=True)
+class HookMonteCarlo:
+    """Draws of hook-height errors on a plan and what the elastic model gives for each.
+
+    Parameters
+    ----------
+    labels : tuple of str
+        The plan's lug labels.
+    tolerance : numpy.ndarray, shape (n,)  [m]
+        Each hook's error scale: the half-width (uniform) or standard deviation (normal).
+    distribution : {"uniform", "normal"}
+    seed : int
+    errors : numpy.ndarray, shape (draws, n)  [m]
+    tensions : numpy.ndarray, shape (draws, n)  [t]
+        NaN where no stable upright equilibrium was found (counted in ``failed``).
+    heel, trim : numpy.ndarray, shape (draws,)  [deg]
+    plan_worst_spread : float  [t]
+        The plan's worst spread over everything it declared uncertain.
+    plan_rope_max : numpy.ndarray, shape (n,)  [t]
+        The plan's largest load of each rope.
+    design_load, swl : numpy.ndarray, shape (n,)  [t]
+        Each crane's design hook load and chart SWL.
+    """
+
+    labels: tuple
+    tolerance: np.ndarray
+    distribution: str
+    seed: int
+    errors: np.ndarray
+    tensions: np.ndarray
+    heel: np.ndarray
+    trim: np.ndarray
+    plan_worst_spread: float
+    plan_rope_max: np.ndarray
+    design_load: np.ndarray
+    swl: np.ndarray
+
+    @property
+    def draws(self):
+        return len(self.errors)
+
+    @property
+    def solved(self):
+        """Draws with an accepted equilibrium (bool, (draws,))."""
+        return np.all(np.isfinite(self.tensions), axis=1)
+
+    @property
+    def failed(self):
+        return int(np.sum(~self.solved))
+
+    @property
+    def spread(self):
+        """max - min tension of each solved draw  [t]."""
+        return np.ptp(self.tensions[self.solved], axis=1)
+
+    @property
+    def inside(self):
+        """Draws with every error within its hook's tolerance (bool, (draws,))."""
+        return np.all(np.abs(self.errors) <= self.tolerance * (1 + 1e-12), axis=1)
+
+    def probability(self, event):
+        """Share of solved draws where ``event`` (bool per solved draw) holds  [-]."""
+        event = np.asarray(event)
+        return float(np.mean(event)) if event.size else float("nan")
+
+    def summary(self):
+        """The figures a crew and a checker read: spread percentiles, per-rope maxima, and
+        the chance of exceeding the plan's worst spread, a design load or an SWL."""
+        solved = self.tensions[self.solved]
+        spread = self.spread
+        slack = np.any(solved <= 0.0, axis=1)
+        return {
+            "draws": self.draws,
+            "failed": self.failed,
+            "distribution": self.distribution,
+            "seed": self.seed,
+            "tolerance": dict(zip(self.labels, self.tolerance.tolist())),
+            "heel_max": float(np.nanmax(np.abs(self.heel))) if self.draws else 0.0,
+            "trim_max": float(np.nanmax(np.abs(self.trim))) if self.draws else 0.0,
+            "spread_p50": float(np.percentile(spread, 50)),
+            "spread_p95": float(np.percentile(spread, 95)),
+            "spread_max": float(spread.max()),
+            "rope_max": dict(zip(self.labels, solved.max(axis=0).tolist())),
+            "p_spread_above_plan_worst": self.probability(spread > self.plan_worst_spread + 1e-6),
+            "p_above_design_load": self.probability(np.any(solved > self.design_load, axis=1)),
+            "p_above_swl": self.probability(np.any(solved > self.swl, axis=1)),
+            "p_slack": self.probability(slack),
+            "plan_worst_spread": self.plan_worst_spread,
+        }
+
+
+def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform", seed=0):
+    """Solve the plan's elastic model under random hook-height errors.
+
+    Parameters
+    ----------
+    plan : Plan
+    draws : int
+    tolerance : float or array_like of n floats, optional  [m]
+        Error scale per hook (default: the plan's hook tolerances).
+    distribution : {"uniform", "normal"}
+        ``uniform``: within +-tolerance; ``normal``: standard deviation = tolerance.
+    seed : int
+        The draws are reproducible from it.
+
+    Returns
+    -------
+    HookMonteCarlo
+    """
+    if not isinstance(draws, int) or isinstance(draws, bool) or draws < 1:
+        raise InvalidScene(f"draws = {draws!r}: expected an integer >= 1")
+    if distribution not in DISTRIBUTIONS:
+        raise InvalidScene(f"distribution = {distribution!r}: expected uniform or normal")
+    n = len(plan.labels)
+    scale = plan.lugset.hook_tolerance if tolerance is None else \
+        np.broadcast_to(np.asarray(tolerance, dtype=float), (n,))
+    if not np.all(np.isfinite(scale)) or np.any(scale < 0):
+        raise InvalidScene(f"tolerance = {tolerance!r}: expected finite hook tolerances >= 0 m")
+    rng = np.random.default_rng(seed)
+    if distribution == "uniform":
+        errors = rng.uniform(-1.0, 1.0, (draws, n)) * scale
+    else:
+        errors = rng.normal(0.0, 1.0, (draws, n)) * scale
+    scene = plan.scene
+    # the plan's scene lists its cranes in label order; its parameter vector holds the boom
+    # heights at [1 + 3 n + 3 + 1, + n) (the casadi model's Layout)
+    p0 = pack_params(scene, "elastic")
+    boom = slice(3 * n + 5, 4 * n + 5)
+    solver = rope_model(n).elastic_solver
+    weight, diameter = scene.body.weight, scene.plan_diameter
+    tensions = np.full((draws, n), np.nan)
+    heel = np.full(draws, np.nan)
+    trim = np.full(draws, np.nan)
+    p = p0.copy()
+    for k in range(draws):
+        p[boom] = p0[boom] + errors[k]
+        x, t, _, residual, minors = solver(p)
+        r = np.abs(np.ravel(residual))  # force; moments over the plan diameter, as solve does
+        worst = max(r[0], r[1] / diameter, r[2] / diameter) / weight
+        verdict = judge(worst, x[1], x[2], minors=minors)
+        if verdict.ok:
+            tensions[k] = np.ravel(t)
+            heel[k], trim[k] = np.degrees(x[1]), np.degrees(x[2])
+    return HookMonteCarlo(
+        labels=plan.labels, tolerance=np.asarray(scale, dtype=float), distribution=distribution,
+        seed=seed, errors=errors, tensions=tensions, heel=heel, trim=trim,
+        plan_worst_spread=plan.worst_spread, plan_rope_max=np.asarray(plan.chosen.rope_max),
+        design_load=np.array([c.design_hook_load for c in plan.capacity]),
+        swl=np.asarray(plan.chosen.swl, dtype=float),
+    )
