@@ -23,8 +23,8 @@ from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 from .bounds import AdmissibleTensions
 from .design_loads import CraneDesign, DesignBuilder, rope_skew
 from .problem import DEFAULT_SKEW_FACTOR, PlanProblem
-from .scenarios import LugSet, Scenario
-from .search import Interrupted, SearchStats, SetResult, search
+from .scenarios import LugSet, Scenario, box_attitudes
+from .search import DENSE, Interrupted, SearchStats, SetResult, robust, search
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
 GUIDANCE_STEP = 5.0
@@ -78,6 +78,37 @@ class GuidanceStep:
     end: float
     change: dict[str, float]
     within_model: bool
+
+
+@dataclass(frozen=True)
+class CrewMargin:
+    """The plan held (lugs, boom heights) with the hooks worse than assumed.
+
+    Parameters
+    ----------
+    factor : float  [-]   the hook tolerance multiplied by this
+    tolerance : numpy.ndarray  [m]   each hook's tolerance at that factor
+    worst_spread : float  [t]   over the box, the CG envelope and the hook errors
+    rope_max : numpy.ndarray  [t]   each rope's largest tension
+    lowest : float  [t]   the lowest tension (below 0: a rope would go slack, the affine
+        form no longer holds, and the figures are only an estimate)
+    limit : numpy.ndarray  [t]   the search's limit of each rope (chart SWL / DAF, less
+        rigging, over contingency)
+    swl : numpy.ndarray  [t]
+    """
+
+    factor: float
+    tolerance: np.ndarray
+    worst_spread: float
+    rope_max: np.ndarray
+    lowest: float
+    limit: np.ndarray
+    swl: np.ndarray
+
+    @property
+    def within_limits(self):
+        """Every rope within its limit and above zero."""
+        return bool(np.all(self.rope_max <= self.limit + 1e-9) and self.lowest > 0.0)
 
 
 @dataclass(frozen=True)
@@ -281,6 +312,45 @@ class Plan:
                 float(preload[i] + preload[j]),
                 float(preload[i] + preload[j] + delta * np.abs(gain[i] + gain[j]).sum()),
             ))
+        return out
+
+    @cached_property
+    def hook_sensitivity(self):
+        """dT_i / dH_j at level, nominal CG, the pose held  [t per cm]: what a load-cell
+        watcher sees for each centimetre of one hook off its height, (n, n), row = rope."""
+        return self._twist_gain / 100.0
+
+    @cached_property
+    def twist_stiffness(self):
+        """Largest tension change of any rope per centimetre of every hook off its height in
+        the worst combination (the hooks' errors all 1 cm, signs the worst)  [t/cm]."""
+        return float(np.abs(self.hook_sensitivity).sum(axis=1).max())
+
+    def crew_margin(self, factors=(1.0, 2.0, 5.0)):
+        """The plan as it stands (lugs, boom heights, preload) with the hook tolerance
+        multiplied by each factor: what a crew worse than assumed would see.
+
+        Returns
+        -------
+        list of CrewMargin
+        """
+        import copy
+
+        problem = self.problem
+        grid = box_attitudes(problem, DENSE, DENSE)
+        scenarios = [Scenario(float(h), float(t), tuple(map(float, o)))
+                     for o in problem.cog_envelope.offsets() for h, t in grid]
+        tensions, gain = self.lugset.tensions_and_gain(self.chosen.preload, scenarios)
+        base = self.lugset.hook_tolerance
+        out = []
+        for factor in factors:
+            scaled = copy.copy(self.lugset)
+            scaled.hook_tolerance = base * factor
+            _, low, high, spread, _ = robust(tensions, gain, scaled)
+            out.append(CrewMargin(factor=float(factor), tolerance=scaled.hook_tolerance,
+                                  worst_spread=float(spread.max()), rope_max=high.max(axis=0),
+                                  lowest=float(low.min()), limit=self.lugset.limit,
+                                  swl=self.lugset.swl))
         return out
 
     @cached_property

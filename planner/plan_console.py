@@ -7,6 +7,8 @@ its heel, trim and CG position; coordinates are in the planning file's frame, na
 
 from __future__ import annotations
 
+import numpy as np
+
 from .plan import FRAMES
 from .scenarios import Scenario
 
@@ -77,6 +79,7 @@ def plan_table(plan):
         "",
         summary,
         _hook_line(plan),
+        *_crew_lines(plan),
     ]
     lines += _ranking_lines(plan)
     return "\n".join(lines)
@@ -95,6 +98,25 @@ def _hook_line(plan):
             "worst case and every limit; computed skew factors "
             + ", ".join(f"{'+'.join(s.lugs)} {s.factor:.3f}" for s in plan.skew)
             + f" (Noble Denton's default {plan.default_skew_factor:.2f})")
+
+
+def _crew_lines(plan):
+    """Tension change per centimetre of each hook (load-cell watchers act on it) and what a
+    crew worse than assumed would see."""
+    own = np.diag(plan.hook_sensitivity)
+    lines = ["tension change per cm of a hook off its height (own rope, pose held): "
+             + ", ".join(f"{label} {v:.2f}" for label, v in zip(plan.labels, own))
+             + f" t/cm; worst combination of 1 cm errors: {plan.twist_stiffness:.2f} t/cm"]
+    if not np.any(plan.lugset.hook_tolerance > 0.0):
+        return lines
+    for margin in plan.crew_margin((2.0, 5.0)):
+        k = int(np.argmax(margin.rope_max / margin.limit))
+        verdict = "within the limits" if margin.within_limits else "EXCEEDS the limits"
+        lines.append(
+            f"hooks {margin.factor:g}x worse (+-{margin.tolerance.max():g} m): worst spread "
+            f"{margin.worst_spread:.1f} t, {plan.labels[k]} up to {margin.rope_max[k]:.1f} t "
+            f"(limit {margin.limit[k]:.1f} t), lowest {margin.lowest:.1f} t: {verdict}")
+    return lines
 
 
 def _chain_lines(plan, design):

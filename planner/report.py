@@ -13,6 +13,8 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from liftplan.model.frames import zup_to_choi
 
 from . import figures, report_page
@@ -29,13 +31,14 @@ ASSUMPTIONS = (
     "The worst spread is searched on a 21 x 21 heel-trim grid for every CG-envelope vertex, "
     "then on finer grids around the worst point; the CG envelope is exact at its vertices "
     "(the spread is convex in the CG position).",
-    "Skew loads: every hook within +-hook_tolerance of its planned height, the pose held; "
-    "the worst combination per rope and per diagonal pair (a rigid body: hull flexibility, "
-    "which lowers skew loads, is ignored).",
+    "Hook heights: every hook within +-hook_tolerance of its planned height, independently, "
+    "is part of the worst case and of every limit (exact: the tensions are affine in the hook "
+    "heights at a given attitude while every rope is taut); a rigid body (hull flexibility, "
+    "which lowers skew loads, is ignored). With hook_tolerance = 0 no hook error is assumed.",
     "Design load: the design hook load of the lifting rules' chain (GL Noble Denton 0027/ND "
     "Rev 11, docs/design-loads.md): the larger of the worst tension in the box (over the CG "
-    "envelope) and the load at the rules' tilt, x weight contingency x skew (computed from the "
-    "hook tolerance, with four or more hooks) + rigging weight, x the dynamic amplification "
+    "envelope and the hook errors) and the load at the rules' tilt, x weight contingency "
+    "(skew 1: the hook errors are in the worst) + rigging weight, x the dynamic amplification "
     "factor; checked against the chart SWL at the crane's radius. Utilisation = design hook "
     "load / chart SWL. Code margin (a separate check): (level share x contingency + rigging) "
     "x (1 + 20 / 33 / 50 % for 2 / 3 / 4+ cranes) <= SWL.",
@@ -237,6 +240,25 @@ def render_html(plan, today=None):
         ],
         f"Skew loads for hook heights within +-{problem.hook_tolerance:g} m",
     )
+    own = np.diag(plan.hook_sensitivity)
+    crew = plan.crew_margin((1.0, 2.0, 5.0)) if np.any(plan.lugset.hook_tolerance > 0) else []
+    hooks = _table(
+        ["hooks", "tolerance [m]", "worst spread [t]", *(f"{label} largest [t]" for label in
+                                                         plan.labels), "lowest [t]", "result"],
+        [(f"{c.factor:g} x as planned", f"+-{c.tolerance.max():g}", f"{c.worst_spread:.1f}",
+          *(f"{v:.1f}" for v in c.rope_max), f"{c.lowest:.1f}",
+          "within limits" if c.within_limits else "EXCEEDS")
+         for c in crew],
+        "Hook accuracy: the plan held, the hooks as planned and worse (limits: chart SWL / DAF, "
+        "less rigging, over contingency)", text_columns=(0, 4 + len(plan.labels)),
+    ) if crew else "<p>No hook-height error was assumed (hook_tolerance = 0).</p>"
+    sensitivity = _table(
+        ["rope", *plan.labels],
+        [("tension change per cm of its own hook [t/cm]", *(f"{v:+.2f}" for v in own))],
+        f"Load-cell guidance: each rope's change per centimetre of its own hook off its height "
+        f"(pose held); the worst combination of 1 cm errors moves a rope by "
+        f"{plan.twist_stiffness:.2f} t", text_columns=(0,),
+    )
     guidance = _table(
         ["step", "from [deg]", "to [deg]", *(f"dT {label} [t]" for label in plan.labels),
          "note"],
@@ -279,7 +301,7 @@ def render_html(plan, today=None):
          "<h2>1 Recommendation</h2>", lugs, summary,
          "<h2>2 Basis of the plan</h2>", inputs, fleet,
          "<h2>3 Checks to hand over</h2>", checks, _design_table(plan), *_design_details(plan),
-         skew, guidance,
+         hooks, sensitivity, skew, guidance,
          "<h2>4 Figures</h2>", *figs,
          "<h2>5 Alternatives</h2>", ranking,
          "<h2>6 Assumptions</h2>",
