@@ -253,8 +253,8 @@ def render_html(plan, today=None):
         "less rigging, over contingency)", text_columns=(0, 4 + len(plan.labels)),
     ) if crew else "<p>No hook-height error was assumed (hook_tolerance = 0).</p>"
     sensitivity = _table(
-        ["rope", *plan.labels],
-        [("tension change per cm of its own hook [t/cm]", *(f"{v:+.2f}" for v in own))],
+        ["rope", *(f"{label} [t/cm]" for label in plan.labels)],
+        [("tension change per cm of its own hook", *(f"{v:+.2f}" for v in own))],
         f"Load-cell guidance: each rope's change per centimetre of its own hook off its height "
         f"(pose held); the worst combination of 1 cm errors moves a rope by "
         f"{plan.twist_stiffness:.2f} t", text_columns=(0,),
