@@ -24,7 +24,7 @@ from .errors import InvalidScene
 from .frames import choi_to_zup
 from .hull import Compartment, Hull
 from .rigging_gear import Leg, RiggingLimits, Sling, Spreader
-from .scene import MODELS, Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Water
+from .scene import MODELS, Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Strength, Water
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -39,9 +39,13 @@ class Table(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
+Pair = tuple[Num, Num]
+
+
 class _Body(Table):
     weight: Num
     cog: Point
+    weight_curve: list[Pair] | None = None  # [x m, t/m]; x is the same axis in both frames
 
 
 class _Lug(Table):
@@ -141,6 +145,11 @@ class _Rigging(Table):
     min_sling_angle: Num = RiggingLimits.min_sling_angle
 
 
+class _Strength(Table):
+    bending_moment: list[Pair] | None = None  # [x m, t m]
+    shear_force: list[Pair] | None = None     # [x m, t]
+
+
 class _SceneFile(Table):
     name: Text = ""
     frame: Literal["z-up", "choi"] = "z-up"
@@ -154,6 +163,7 @@ class _SceneFile(Table):
     hull: _Hull | None = None
     ground: _Ground | None = None
     rigging: _Rigging = _Rigging()
+    strength: _Strength | None = None
 
 # Tables of a planning scene (read by liftplan.planner.problemfile; [rules] by model.rules.table).
 PLAN_TABLES = ("candidates", "plan", "crane", "rules")
@@ -300,7 +310,8 @@ def _to_scene(data, base):
     red = [] if red is None else [red] if isinstance(red, _Redundant) else red
     return Scene(
         name=data.name,
-        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog)),
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog),
+                  weight_curve=data.body.weight_curve),
         lugs=tuple(lugs),
         cranes=tuple(cranes),
         attitude=Attitude(**data.attitude.model_dump()),
@@ -314,6 +325,7 @@ def _to_scene(data, base):
                 if data.ground is not None else None),
         rigging=RiggingLimits(min_sling_angle=data.rigging.min_sling_angle),
         frame=data.frame,
+        strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
     )
 
 
