@@ -1,25 +1,27 @@
 """What each objective picks on the same unequal fleet: ``spread`` against ``utilisation``.
 
-Conclusion, as measured (studies/out/fleet_objectives.json; W0 = 904 t, the tanker example's
-1000 t-class sheerlegs and 600 t-class cranes, its [rules]; "first at SWL" with every crane
-keeping its planned share as the weight grows):
+Conclusion, as measured (studies/out/fleet_objectives.json, which a re-run rewrites; W0 =
+904 t, the tanker example's 1000 t-class sheerlegs and 600 t-class cranes and its [rules],
+the hook-height tolerance in the worst case; "first at SWL" with every crane keeping its
+planned share as the weight grows):
 
 1. ``utilisation`` does keep the cranes at more even fractions of their SWL: worst
-   utilisation spread 0.214 against 0.309 (tanker fleet) and 0.096 against 0.417 (diagonal
-   fleet). ``spread`` evens the tensions instead (worst spread 45 t against 78 t, and 45 t
-   against 184 t), and with unequal cranes that loads the small cranes to a higher fraction
-   of their SWL: level T*/SWL 0.53 and 0.52 on the 600 t-class cranes against 0.30 and 0.29
-   on the sheerlegs (tanker), 0.60 and 0.52 against 0.27 and 0.29 (diagonal).
+   utilisation spread 0.295 against 0.388 (tanker fleet) and 0.174 against 0.389 (diagonal
+   fleet). ``spread`` evens the tensions instead (worst spread 91 t against 141 t, and 92 t
+   against 239 t), and with unequal cranes that loads the small cranes to a higher fraction
+   of their SWL: level T*/SWL 0.53 and 0.50 on the 600 t-class cranes against 0.31 and 0.28
+   on the sheerlegs (tanker), 0.55 and 0.54 against 0.31 and 0.31 (diagonal).
 2. Whether that carries more weight depends on the fleet, because ``utilisation`` minimises
    the *difference* of T/SWL between cranes, not the *largest* T/SWL:
    * diagonal fleet (big cranes on one diagonal): yes, by far. Highest design load / SWL
-     0.60 against 0.89; in the box no crane reaches its SWL up to 2 W0 (1808 t) against
-     crane D at 1347 t; the first design check fails at 1538 t against 935 t.
+     0.55 against 0.77; in the box no crane reaches its SWL up to 2 W0 (1808 t) against
+     crane D at 1439 t; the first design check fails at 1571 t against 1031 t (52 % more
+     weight), the first design hook load reaches its SWL at 1795 t against 1239 t.
    * tanker fleet (the example, both sheerlegs on one side): no. To bring the sheerlegs up to
-     0.43-0.45 of their SWL the utilisation plan takes a set that puts crane C at 0.575,
-     where the spread plan leaves it at 0.53: highest design load / SWL 0.817 against 0.790,
-     crane C at its SWL in the box at 1450 t against 1583 t, first design check failing at
-     985 t against 1069 t (crane C's code margin in both).
+     0.42-0.47 of their SWL the utilisation plan takes a set that puts crane C at 0.55,
+     where the spread plan leaves it at 0.53: highest design load / SWL 0.770 against 0.753,
+     crane C at its SWL in the box at 1420 t against 1473 t, first design check failing at
+     1027 t against 1077 t (crane C's code margin in both).
 3. Re-planned at every weight, both objectives reach the same limit (1108 t tanker fleet,
    1605 t diagonal fleet, the same lugs and cranes there): whether a body can be held within
    every limit over the box does not depend on the objective, which only chooses among the
