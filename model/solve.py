@@ -8,7 +8,9 @@
   found by casadi's Newton root-finder, with IPOPT on the potential energy as fallback.
 * ``inclined`` and ``rigging`` (:mod:`liftplan.model.inclined`, :mod:`liftplan.model.rigging`):
   the 6-DOF body with crane tips in the world, hooks and spreader bars as free points.
-* ``hydrostatic`` (:mod:`liftplan.model.water`): a hull in water.
+* ``hydrostatic`` (:mod:`liftplan.model.water`): a hull in water. ``rigid`` and
+  ``paper-elastic`` take a hull in water too, at the given attitude and lift height
+  (:mod:`liftplan.model.water_loads`: the buoyancy there is a known force).
 
 A result is returned only when it passes :mod:`liftplan.model.acceptance` (residual,
 stability, upright), whichever method found it; otherwise a typed error says why.
@@ -85,10 +87,10 @@ def solve(scene, model=None, method="newton"):
     model = model or pick_model(scene)
     if method != "newton" and model != "hydrostatic":
         raise InvalidScene(f"method = {method!r}: only for a stranded hull; expected 'newton'")
-    if scene.hull is not None and model != "hydrostatic":
+    if scene.hull is not None and model not in ("hydrostatic", *GIVEN_IN_WATER):
         raise InvalidScene(
-            f"model = {model!r} leaves out the scene's [water] and [hull]; expected 'hydrostatic' "
-            "(or no model: the least model the scene needs is picked)"
+            f"model = {model!r} leaves out the scene's [water] and [hull]; expected 'hydrostatic', "
+            "'rigid' or 'paper-elastic' (or no model: the least model the scene needs is picked)"
         )
     if scene.slings and model != "rigging":
         raise InvalidScene(
@@ -110,6 +112,8 @@ def solve(scene, model=None, method="newton"):
         return solve_rigging(scene)
     if model == "inclined":
         return solve_inclined(scene)
+    if model in GIVEN_IN_WATER and scene.hull is not None:
+        return _given_in_water(scene, model)
     if model == "rigid":
         return solve_rigid(scene)
     if model == "paper-elastic":
@@ -119,9 +123,48 @@ def solve(scene, model=None, method="newton"):
     raise InvalidScene(f"model = {model!r}: expected one of {', '.join(MODELS)}")
 
 
+# -- given-attitude models in water ----------------------------------------------------------
+#: The models that take the attitude as given, and with it the water forces.
+GIVEN_IN_WATER = ("rigid", "paper-elastic")
+
+
+def _given_in_water(scene, model):
+    """``rigid`` or ``paper-elastic`` on a hull in water, at the scene's attitude and lift height.
+
+    The buoyancy at that pose is a known vertical force (constant when fully submerged,
+    from the clipped hull otherwise: :mod:`liftplan.model.water_loads`), so the ropes carry
+    W + trapped water - B on the line through the forces' combined centre, and the linear
+    statics close it as they close W at G in air. A ground contact carries nothing (the
+    held pose is the lift-off instant; see :mod:`liftplan.model.water_loads`).
+    """
+    from .water_loads import held_loads
+
+    if scene.n < 3:
+        raise InvalidScene(f"lugs: {scene.n} given; the {model} model expected three or more ropes")
+    if any(c.tip is not None for c in scene.cranes):
+        raise InvalidScene(
+            "cranes.tip: inclined ropes on a hull in water are not modelled; expected tips "
+            "above the lugs (no tip: vertical ropes) for a scene with [hull] and [water]"
+        )
+    start = time.perf_counter()
+    loads = held_loads(scene)
+    body = (loads.net_weight, loads.net_point)
+    solver = solve_rigid if model == "rigid" else solve_paper_elastic
+    eq = solver(scene, body=body)
+    seconds = eq.solver.seconds + time.perf_counter() - start
+    method = "linear (constant buoyancy)" if loads.constant else "linear (clipped hull)"
+    return dataclasses.replace(eq, afloat=loads.afloat,
+                               solver=dataclasses.replace(eq.solver, method=method, seconds=seconds))
+
+
 # -- parameters -----------------------------------------------------------------------------
-def pack_params(scene, model):
-    """The flat parameter vector of :class:`~liftplan.model.statics.Layout` for a scene."""
+def pack_params(scene, model, body=None):
+    """The flat parameter vector of :class:`~liftplan.model.statics.Layout` for a scene.
+
+    ``body``: optional (weight [t], body-frame point [m]) that the ropes carry instead of
+    the body's W at G (the net vertical force of a hull in water).
+    """
+    weight, cog = body if body is not None else (scene.body.weight, scene.body.cog)
     n = scene.n
     ones = [1.0] * n
     boom = scene.crane_values("boom_height", model) if model != "rigid" else ones
@@ -130,8 +173,8 @@ def pack_params(scene, model):
     return np.concatenate([
         [math.radians(scene.attitude.yaw)],
         scene.lug_points().ravel(),
-        scene.body.cog,
-        [scene.body.weight],
+        cog,
+        [weight],
         boom,
         length,
         stiffness,
@@ -193,13 +236,16 @@ def _check_taut(scene, model, tensions):
 
 
 # -- given-attitude models (linear, exact) ------------------------------------------------
-def solve_rigid(scene):
+def solve_rigid(scene, body=None):
     """Choi et al. (2000): tensions from the statics with n - 3 tensions given.
 
     Parameters
     ----------
     scene : Scene
         ``scene.analysis.redundant`` names n - 3 lugs and their tensions [t].
+    body : tuple (float, sequence of 3 float), optional  [t, m]
+        The vertical force the ropes carry and a body-frame point on its line, instead of
+        W at G (see :func:`pack_params`).
 
     Returns
     -------
@@ -213,7 +259,7 @@ def solve_rigid(scene):
         )
     start = time.perf_counter()
     x = _given_x(scene)
-    a_flat, b_vec, _, _ = rope_model(n).statics_fast(x, pack_params(scene, "rigid"))
+    a_flat, b_vec, _, _ = rope_model(n).statics_fast(x, pack_params(scene, "rigid", body))
     a_mat = a_flat.reshape(n, 3).T  # casadi's column-major 3 x n
     names = scene.lug_names
     given = {r.lug: r.tension for r in red}
@@ -237,8 +283,14 @@ def solve_rigid(scene):
     return _equilibrium(scene, "rigid", x, tensions, residual, "linear", seconds)
 
 
-def solve_paper_elastic(scene):
+def solve_paper_elastic(scene, body=None):
     """Choi & Shin (2003): statics closed by coplanar lug elongations, attitude given.
+
+    Parameters
+    ----------
+    scene : Scene
+    body : tuple (float, sequence of 3 float), optional  [t, m]
+        As in :func:`solve_rigid`.
 
     Returns
     -------
@@ -246,7 +298,7 @@ def solve_paper_elastic(scene):
     """
     start = time.perf_counter()
     x = _given_x(scene)
-    p = pack_params(scene, "paper-elastic")
+    p = pack_params(scene, "paper-elastic", body)
     tensions, lengths, residual = rope_model(scene.n).paper_elastic_fast(x, p)
     seconds = time.perf_counter() - start
     for name, length in zip(scene.lug_names, lengths):
@@ -272,6 +324,11 @@ def paper_elastic_tensions(scene, heel, trim):
     numpy.ndarray, shape (N, n)  [t]
         Tensions in scene lug order. No slack or validity check: for screening.
     """
+    if scene.hull is not None:
+        raise InvalidScene(
+            "paper_elastic_tensions: the batched map leaves out the scene's [water] and [hull]; "
+            "expected solve(scene, model='paper-elastic') at each attitude for a hull in water"
+        )
     heel = np.atleast_1d(np.asarray(heel, dtype=float)).ravel()
     trim = np.broadcast_to(np.asarray(trim, dtype=float), heel.shape).ravel()
     count = heel.size
