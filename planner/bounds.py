@@ -21,6 +21,9 @@ other non-optimal status raises :class:`~liftplan.model.errors.SolverFailed`.
 
 from __future__ import annotations
 
+import contextlib
+import os
+import sys
 from dataclasses import dataclass
 
 import cvxpy as cp
@@ -40,7 +43,11 @@ def _run(problem, what):
     failure = None
     for solver in (SOLVER, FALLBACK):
         try:
-            problem.solve(solver=solver)
+            if solver == FALLBACK:
+                with _stdout_silenced():  # HiGHS prints its banner on stdout (a JSON stream)
+                    problem.solve(solver=solver)
+            else:
+                problem.solve(solver=solver)
         except cp.error.SolverError as err:
             failure = f"{solver} failed ({err})"
             continue
@@ -50,6 +57,20 @@ def _run(problem, what):
             return float(problem.value)
         failure = f"{solver} ended with status {problem.status!r}"
     raise SolverFailed(f"{what}: {failure}")
+
+
+@contextlib.contextmanager
+def _stdout_silenced():
+    """Send what native code writes to the process's stdout (fd 1) to /dev/null meanwhile."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+            yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
 
 
 def _checked(problem, name):

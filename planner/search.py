@@ -32,6 +32,7 @@ from .screen import (
     BOX_SLACK,
     CG_OUTSIDE,
     CODE_MARGIN,
+    COLLINEAR,
     FEASIBLE,
     FULL_COLUMNS,
     LEVEL_MIN_TENSION,
@@ -313,6 +314,8 @@ class SetEvaluator:
         lugset = LugSet(self.problem, indices, cranes)
         scenarios = list(self.start)
         a_level, b_level = lugset.level_statics
+        if np.linalg.matrix_rank(a_level[:, :], tol=1e-9 * np.abs(a_level).max()) < 3:
+            raise SetInfeasible(COLLINEAR)  # the statics are singular: no LP to solve
         low_limit, high_limit = self.problem.min_tension, lugset.limit
         rounds, converged = 0, False
         while True:

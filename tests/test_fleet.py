@@ -274,3 +274,12 @@ def test_file_objective_defaults():
 def test_file_errors(text, message):
     with pytest.raises(InvalidScene, match=message):
         loads_problem(text)
+
+
+def test_collinear_set_is_refused_with_its_cause():
+    from liftplan.planner.search import SetEvaluator, SetInfeasible
+
+    problem = load_problem(EXAMPLES / "tanker_fleet.toml")
+    # BH1-S, BH2-S, BH5-S and BH6-S all lie on the starboard deck edge
+    with pytest.raises(SetInfeasible, match="collinear"):
+        SetEvaluator(problem).evaluate((1, 3, 7, 9), (0, 2, 1, 3))
