@@ -61,6 +61,10 @@ def _parser():
         "--method", choices=["newton", "paper-newton"], default="newton",
         help="stranded hull: casadi Newton (default) or the paper's J^T D J iteration",
     )
+    solve_cmd.add_argument(
+        "--strength-figure", metavar="FILE",
+        help="draw weight, buoyancy, lift forces, shear force and bending moment along the body "
+             "(needs [body] weight_curve), .png, .pdf or .svg")
     lift_cmd = commands.add_parser(
         "lift", help="load curve of a lift off the seabed and through the waterline")
     lift_cmd.add_argument("scene", help="scene file with [hull], [water], cranes (and usually [ground])")
@@ -127,17 +131,53 @@ def _solve(args):
 
     from .console import equilibrium_table
 
+    figure = None
+    if args.strength_figure is not None:
+        from .output_paths import FIGURE_TYPES, output_file
+
+        figure = output_file(args.strength_figure, "--strength-figure", FIGURE_TYPES)
     scene = load_scene(args.scene)
+    if figure is not None and scene.body.weight_curve is None:
+        raise InvalidScene(f"--strength-figure {figure}: {args.scene} has no [body] weight_curve; "
+                           "expected a scene with a weight curve (the figure draws its shear force and "
+                           "bending moment)")
     _warn(scene_warnings(scene))
     eq = solve(scene, model=args.model, method=args.method)
     _warn(equilibrium_warnings(scene, eq))
     checks = equilibrium_checks(scene, eq) + rigging_checks(scene, eq)
+    girder = None
+    if scene.body.weight_curve is not None:
+        from liftplan.model.strength import hull_girder, strength_checks
+
+        girder = hull_girder(scene, eq)
+        checks += strength_checks(scene, eq, girder)
+    unwritten = None
+    if figure is not None:
+        unwritten = _strength_figure(scene, eq, girder, figure)
     if args.json:
-        print(json.dumps({**eq.to_json(), "checks": [c.to_json() for c in checks]}))
+        out = {**eq.to_json(), "checks": [c.to_json() for c in checks]}
+        if girder is not None:
+            out["strength"] = girder.to_json()
+        print(json.dumps(out))
     else:
-        print(equilibrium_table(scene, eq))
+        print(equilibrium_table(scene, eq, girder=girder))
     # CONTRACT: a converged solve exits 0; --strict turns a failed check into exit 4
-    return _verdict(checks, table=not args.json, strict=args.strict)
+    code = _verdict(checks, table=not args.json, strict=args.strict)
+    return _unwritten(unwritten) or code
+
+
+def _strength_figure(scene, eq, girder, figure):
+    """Save the strength figure; the reason it could not be written, or None."""
+    from .output_paths import make_parent
+    from .strength_figure import strength_figure
+
+    try:
+        make_parent(figure)
+        strength_figure(scene, eq, girder).savefig(figure, dpi=120)
+    except OSError as err:  # a full disk, a folder removed meanwhile: the result still prints
+        return f"--strength-figure {figure}: cannot write ({err.strerror or err})"
+    print(f"liftplan: wrote {figure}", file=sys.stderr)
+    return None
 
 
 def _plan(args):

@@ -15,13 +15,16 @@ def plan_table(plan):
     return table(plan)
 
 
-def equilibrium_table(scene, eq):
+def equilibrium_table(scene, eq, girder=None):
     """A readable report of one solve.
 
     Parameters
     ----------
     scene : Scene
     eq : Equilibrium
+    girder : GirderForces, optional
+        Shear force and bending moment of the state
+        (:func:`liftplan.model.strength.hull_girder`): a strength summary is added.
 
     Returns
     -------
@@ -44,7 +47,28 @@ def equilibrium_table(scene, eq):
         lines += _rigging_lines(eq)
     if eq.afloat is not None:
         lines += _afloat_lines(eq)
+    if girder is not None:
+        lines += _strength_lines(scene, eq, girder)
     return "\n".join(lines)
+
+
+def _strength_lines(scene, eq, girder):
+    """Largest |M| and |Q| with where they are, against the allowable there."""
+    lines = ["", "hull girder (body as a beam along x; Q, M of the part aft of the section, M > 0 sagging):"]
+    for name, peak, unit, symbol in (("bending_moment", girder.max_moment, "t m", "M"),
+                                      ("shear_force", girder.max_shear, "t", "Q")):
+        line = f"  max |{symbol}| {peak.value:10.1f} {unit:<3} at x = {peak.x:7.2f} m"
+        if symbol == "M" and peak.value > 0.0:
+            line += " (sagging)" if peak.signed > 0 else " (hogging)"
+        allowable = scene.strength.allowable(name, peak.x) if scene.strength is not None else None
+        if allowable is not None:
+            line += f"; allowable there {float(allowable):.1f} {unit} ({peak.value / allowable:.0%})"
+        lines.append(line)
+    added, moved = girder.correction
+    if abs(added) > 1e-9 * eq.weight or abs(moved) > 1e-9:
+        lines.append(f"  weight curve: {added:+.3g} t and its centroid {moved:+.3g} m spread linearly over "
+                     "its length to carry W at the CG's x")
+    return lines
 
 
 def _rope_lines(eq):
