@@ -354,6 +354,26 @@ class Plan:
         return out
 
     @cached_property
+    def hook_accuracy_needed(self):
+        """The largest hook-height error (the same on every hook) the plan holds with every
+        rope within its limits and above zero, its preload held  [m]; inf when no hook
+        error can break it (to 10 m)."""
+        problem = self.problem
+        grid = box_attitudes(problem, DENSE, DENSE)
+        scenarios = [Scenario(float(h), float(t), tuple(map(float, o)))
+                     for o in problem.cog_envelope.offsets() for h, t in grid]
+        tensions, gain = self.lugset.tensions_and_gain(self.chosen.preload, scenarios)
+        reach = np.abs(gain).sum(axis=2)  # per 1 m of error on every hook, the worst signs
+        limit = self.lugset.limit
+        low = problem.min_tension
+        # each constraint T + reach e <= limit and T - reach e >= low is linear in e
+        with np.errstate(divide="ignore", invalid="ignore"):
+            up = np.where(reach > 0, (limit - tensions) / reach, np.inf)
+            down = np.where(reach > 0, (tensions - max(low, 0.0)) / reach, np.inf)
+        value = float(min(up.min(), down.min()))
+        return value if value < 10.0 else float("inf")
+
+    @cached_property
     def diagonals(self):
         """Index pairs of the diagonals of a four-lug plan (lugs ordered round the CG)."""
         if len(self.labels) != 4:
@@ -471,6 +491,14 @@ class Plan:
                       "factor": s.factor} for s in self.skew],
             "guidance": [{"angle": g.angle, "from": g.start, "to": g.end, "change": g.change,
                           "within_model": g.within_model} for g in self.guidance],
+            "hooks": {
+                "tolerance": dict(zip(self.labels, self.lugset.hook_tolerance.tolist())),
+                "accuracy_needed": (self.hook_accuracy_needed
+                                    if np.isfinite(self.hook_accuracy_needed) else None),
+                "twist_stiffness": self.twist_stiffness,
+                "per_cm": {a: dict(zip(self.labels, row.tolist()))
+                           for a, row in zip(self.labels, self.hook_sensitivity)},
+            },
             "lower_bound": self.stats.lower_bound,
             "gap": self.stats.gap,
             "relative_gap": self.stats.relative_gap,
@@ -511,8 +539,15 @@ class Plan:
             "design_ok": design.ok,
             "boom_heights": result.boom_heights.tolist(),
             "preload": result.preload.tolist(),
+            "twist_stiffness": _twist_stiffness(self.problem, result),
             "converged": result.converged,
         }
+
+
+def _twist_stiffness(problem, result):
+    """A ranked set's largest tension change per cm of every hook off (worst signs)  [t/cm]."""
+    gain = LugSet(problem, result.indices, result.cranes).twist_gain(result.preload)
+    return float(np.abs(gain).sum(axis=1).max() / 100.0)
 
 
 def plan(problem, top=None):

@@ -107,6 +107,10 @@ def _crew_lines(plan):
     lines = ["tension change per cm of a hook off its height (own rope, pose held): "
              + ", ".join(f"{label} {v:.2f}" for label, v in zip(plan.labels, own))
              + f" t/cm; worst combination of 1 cm errors: {plan.twist_stiffness:.2f} t/cm"]
+    needed = plan.hook_accuracy_needed
+    lines.append("the plan's limits hold for hook errors up to "
+                 + (f"+-{needed:.3f} m on every hook" if np.isfinite(needed) else "any size")
+                 + " (preload held, worst signs)")
     if not np.any(plan.lugset.hook_tolerance > 0.0):
         return lines
     for margin in plan.crew_margin((2.0, 5.0)):

@@ -252,6 +252,12 @@ def render_html(plan, today=None):
         "Hook accuracy: the plan held, the hooks as planned and worse (limits: chart SWL / DAF, "
         "less rigging, over contingency)", text_columns=(0, 4 + len(plan.labels)),
     ) if crew else "<p>No hook-height error was assumed (hook_tolerance = 0).</p>"
+    needed = plan.hook_accuracy_needed
+    hooks += ("<p>The crew must hold every hook within "
+              + (f"+-{needed:.3f} m" if np.isfinite(needed) else "any error")
+              + " of its planned height for every rope to stay within its limits (the plan's "
+              f"preload held); the worst combination of 1 cm errors moves a rope by "
+              f"{plan.twist_stiffness:.2f} t.</p>")
     sensitivity = _table(
         ["rope", *(f"{label} [t/cm]" for label in plan.labels)],
         [("tension change per cm of its own hook", *(f"{v:+.2f}" for v in own))],

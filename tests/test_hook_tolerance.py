@@ -87,3 +87,16 @@ def test_zero_tolerance_is_todays_plan_and_the_search_stays_exact():
     assert today.worst_value >= held.worst_spread - 1e-6
     assert held.worst_spread > none.worst_spread  # the tolerance costs spread
     assert held.stats.lower_bound <= held.worst_spread
+
+
+def test_hook_accuracy_needed_is_where_the_limits_are_reached():
+    result = plan(load_problem(TANKER))
+    needed = result.hook_accuracy_needed
+    assert needed > 0.02  # the plan holds its own tolerance
+    factor = needed / 0.02
+    # just inside holds every limit, just outside does not (the bound is exact, affine)
+    inside, outside = result.crew_margin((factor * (1 - 1e-6), factor * (1 + 1e-3)))
+    assert inside.within_limits and not outside.within_limits
+    data = result.to_json()["hooks"]
+    assert data["accuracy_needed"] == pytest.approx(needed)
+    assert data["twist_stiffness"] == pytest.approx(result.twist_stiffness)
