@@ -103,16 +103,17 @@ def _load_panel(ax, girder, xx, weight):
                         textcoords="offset points", xytext=(0, 4), ha="center", fontsize=7)
     # both axes' zeros on one line: the distributed loads below, the lift forces above it
     low = -1.3 * max(float(np.max(down)), 1e-9)
-    high = max(1.3 * float(np.max(up)), 0.35 * -low)
+    high = max(1.3 * float(np.max(up)), 0.9 * -low)
     ax.set_ylim(low, high)
-    top = 1.35 * max([p.normal for p in points] + [1e-9 * weight])
+    top = 1.3 * max([p.normal for p in points] + [1e-9 * weight])
     bottom = min([p.normal for p in points] + [0.0])
     forces.set_ylim(min(low / high * top, 1.35 * bottom), top)
-    forces.set_ylabel("lift and ground forces [t] (stems)")
-    forces.plot([], [], color="C1", lw=2.0, label="rope / sling-leg force at its lug")
+    forces.set_ylabel("point forces [t]")
+    if any(p.name != "ground" for p in points):
+        forces.plot([], [], color="C1", lw=2.0, label="rope / sling-leg force at its lug")
     if any(p.name == "ground" for p in points):
         forces.plot([], [], color="C5", lw=2.0, label="ground reaction")
     handles, labels = ax.get_legend_handles_labels()
     more, more_labels = forces.get_legend_handles_labels()
-    forces.legend(handles + more, labels + more_labels, loc="upper left", bbox_to_anchor=(1.1, 1.0),
+    forces.legend(handles + more, labels + more_labels, loc="upper left", bbox_to_anchor=(1.13, 1.0),
                   fontsize=8, frameon=False)
