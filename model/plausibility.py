@@ -62,8 +62,10 @@ def scene_warnings(scene):
     """
     swl = [c.swl for c in scene.cranes]
     total = sum(swl) if swl and all(swl) else None
+    # a stranded ship with no ropes is no crane lift: its weight may be anything
+    lifted = weight_warnings("body.weight", scene.body.weight, total) if scene.cranes else []
     return [
-        *weight_warnings("body.weight", scene.body.weight, total),
+        *lifted,
         *height_warnings("attitude.lift_height", scene.attitude.lift_height),
         *coordinate_warnings("lugs", [(lug.name, lug.at) for lug in scene.lugs]),
     ]

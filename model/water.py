@@ -481,7 +481,8 @@ def submerged_scene(setup):
         return None
     cog = (setup.gravity * setup.cog - buoy * centre) / net
     rope_scene = dataclasses.replace(
-        scene, water=None, hull=None, ground=None, body=dataclasses.replace(scene.body, weight=net, cog=cog),
+        scene, water=None, hull=None, ground=None,
+        body=dataclasses.replace(scene.body, weight=net, cog=cog, weight_curve=None),
         analysis=dataclasses.replace(scene.analysis, model="elastic"),
     )
     return rope_scene

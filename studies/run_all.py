@@ -15,7 +15,8 @@ from pathlib import Path
 HERE = Path(__file__).parent
 #: In order: stranded_methods feeds speed_accuracy's hydrostatics panel.
 STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
-           "fleet_objectives", "many_points", "strength_timing", "benchmarks", "jit_cache", "report_screenshot"]
+           "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "benchmarks",
+           "jit_cache", "report_screenshot"]
 
 
 def main():
