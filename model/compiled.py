@@ -227,7 +227,9 @@ def _load(function, entry):
             loaded = ca.external(function.name(), str(library))
             if not _same(function, loaded):
                 loaded = None
-        except RuntimeError:  # not a loadable library of this function (other ABI, symbol)
+        except RuntimeError as err:  # not a loadable library of this function (ABI, symbol)
+            if "KeyboardInterrupt" in str(err):  # casadi's wrapping of a Ctrl-C: not a bad entry
+                raise KeyboardInterrupt from None
             loaded = None
     if loaded is None:
         if entry.is_dir():

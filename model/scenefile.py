@@ -165,7 +165,7 @@ class _SceneFile(Table):
     rigging: _Rigging = _Rigging()
     strength: _Strength | None = None
 
-# Tables of a planning scene (read by liftplan.planner.problemfile; [rules] by model.rules.table).
+# Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).
 PLAN_TABLES = ("candidates", "plan", "crane", "rules")
 
 

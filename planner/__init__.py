@@ -17,9 +17,9 @@ import types
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
     **dict.fromkeys(("CraneCapacity", "GuidanceStep", "Plan", "SkewLoad", "plan"), "plan"),
-    **dict.fromkeys(("Candidate", "CogEnvelope", "CraneSpec", "PlanProblem"), "problem"),
-    **dict.fromkeys(("load_problem", "loads_problem"), "problemfile"),
-    "write_report": "report",
+    **dict.fromkeys(("Candidate", "CogEnvelope", "CraneSpec", "PlanProblem"), "problem.definition"),
+    **dict.fromkeys(("load_problem", "loads_problem"), "problem.file"),
+    "write_report": "output.report",
 }
 
 __all__ = sorted(_EXPORTS)

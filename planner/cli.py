@@ -128,12 +128,11 @@ def _solve(args):
     from liftplan.model.scenefile import load_scene
     from liftplan.model.solve import solve
     from liftplan.model.solve_checks import equilibrium_checks
-
-    from .console import equilibrium_table
+    from liftplan.planner.output.console import equilibrium_table
 
     figure = None
     if args.strength_figure is not None:
-        from .output_paths import FIGURE_TYPES, output_file
+        from liftplan.planner.output.paths import FIGURE_TYPES, output_file
 
         figure = output_file(args.strength_figure, "--strength-figure", FIGURE_TYPES)
     scene = load_scene(args.scene)
@@ -168,8 +167,8 @@ def _solve(args):
 
 def _strength_figure(scene, eq, girder, figure):
     """Save the strength figure; the reason it could not be written, or None."""
-    from .output_paths import make_parent
-    from .strength_figure import strength_figure
+    from liftplan.planner.output.paths import make_parent
+    from liftplan.planner.output.strength_figure import strength_figure
 
     try:
         make_parent(figure)
@@ -181,21 +180,21 @@ def _strength_figure(scene, eq, girder, figure):
 
 
 def _plan(args):
-    from .output_paths import output_folder
+    from liftplan.planner.output.paths import output_folder
 
     if args.top is not None and args.top < 1:
         raise InvalidScene(f"--top {args.top}: expected an integer >= 1")
     report = output_folder(args.report, "--report") if args.report else None
-    from .plausibility import problem_warnings
-    from .problemfile import load_problem
+    from liftplan.planner.problem.file import load_problem
+    from liftplan.planner.problem.plausibility import problem_warnings
 
     problem = load_problem(args.scene)
     if abs(problem.yaw) > MAX_YAW:
         raise InvalidScene(f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
                            f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg")
     _warn(problem_warnings(problem))
-    from .plan import plan
-    from .search import Interrupted
+    from liftplan.planner.plan import plan
+    from liftplan.planner.search.branch import Interrupted
 
     try:
         result = plan(problem, top=args.top)
@@ -208,7 +207,7 @@ def _plan(args):
         return INTERRUPTED
     unwritten = None
     if report is not None:
-        from .report import write_report  # matplotlib only when a report is asked for
+        from liftplan.planner.output.report import write_report  # matplotlib only when a report is asked for
 
         try:
             files = write_report(result, report)
@@ -231,7 +230,7 @@ def _unwritten(message):
 
 
 def _print_plan(result, args, interrupted=False):
-    from .console import plan_table
+    from liftplan.planner.output.console import plan_table
 
     if args.json:
         out = {**result.to_json(), "checks": [c.to_json() for c in result.checks]}
@@ -247,7 +246,7 @@ def _print_plan(result, args, interrupted=False):
 def _lift(args):
     from pathlib import Path
 
-    from .output_paths import FIGURE_TYPES, make_parent, output_file
+    from liftplan.planner.output.paths import FIGURE_TYPES, make_parent, output_file
 
     for option, value in (("--to", args.to), ("--step", args.step)):
         if value is not None and not (math.isfinite(value) and value > 0):
@@ -257,9 +256,8 @@ def _lift(args):
     from liftplan.model.lift import load_curve
     from liftplan.model.plausibility import scene_warnings
     from liftplan.model.scenefile import load_scene
-
-    from .console import load_curve_table
-    from .figures import load_curve as draw
+    from liftplan.planner.output.console import load_curve_table
+    from liftplan.planner.output.figures import load_curve as draw
 
     scene = load_scene(scene_path)
     _warn(scene_warnings(scene))
@@ -281,10 +279,10 @@ def _lift(args):
 
 
 def _batch(args):
-    from .batch import run_study
-    from .console import batch_table
-    from .output_paths import output_file
-    from .study import load_study
+    from liftplan.planner.batch.run import run_study
+    from liftplan.planner.batch.study import load_study
+    from liftplan.planner.output.console import batch_table
+    from liftplan.planner.output.paths import output_file
 
     if args.workers is not None and args.workers < 1:
         raise InvalidScene(f"--workers {args.workers}: expected an integer >= 1")

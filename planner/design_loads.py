@@ -31,9 +31,8 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads, TiltGeometry, governing_tilt
-
-from .scenarios import LugSet, Scenario, box_attitudes
-from .search import DENSE
+from liftplan.planner.search.branch import DENSE
+from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
 
 def rope_skew(lugset, preload, delta):

@@ -19,12 +19,11 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.frames import zup_to_choi
 from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
-
-from .bounds import AdmissibleTensions
-from .design_loads import CraneDesign, DesignBuilder, rope_skew
-from .problem import DEFAULT_SKEW_FACTOR, PlanProblem
-from .scenarios import LugSet, Scenario, box_attitudes
-from .search import DENSE, Interrupted, SearchStats, SetResult, robust, search
+from liftplan.planner.design_loads import CraneDesign, DesignBuilder, rope_skew
+from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
+from liftplan.planner.search.bounds import AdmissibleTensions
+from liftplan.planner.search.branch import DENSE, Interrupted, SearchStats, SetResult, robust, search
+from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
 GUIDANCE_STEP = 5.0
@@ -571,7 +570,7 @@ def plan(problem, top=None):
         the causes and how many sets each ruled out.
     """
     if problem.cranes == 2:  # two cranes on slings: the determinate sling-lift planner
-        from .slings import plan_two_slings
+        from liftplan.planner.slings import plan_two_slings
 
         return plan_two_slings(problem, top)
     try:

@@ -150,7 +150,7 @@ def plan_two_slings(problem, top=None):
     Parameters
     ----------
     problem : PlanProblem
-        Two cranes, each with a 2-leg :class:`~liftplan.planner.fleet.SlingSpec`.
+        Two cranes, each with a 2-leg :class:`~liftplan.planner.problem.fleet.SlingSpec`.
     top : int, optional
 
     Returns

@@ -21,10 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from liftplan.planner.problem import Candidate
-from liftplan.planner.scenarios import LugSet
-from liftplan.planner.screen import screen
-from liftplan.planner.search import SetEvaluator, SetInfeasible
+from liftplan.planner.problem.definition import Candidate
+from liftplan.planner.search.branch import SetEvaluator, SetInfeasible
+from liftplan.planner.search.scenarios import LugSet
+from liftplan.planner.search.screen import screen
 
 #: Brute force longer than this is timed on a seeded random sample and extrapolated  [s].
 FULL_BRUTE_FORCE_LIMIT = 300.0

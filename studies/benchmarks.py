@@ -52,7 +52,7 @@ from speed_accuracy import numpy_residual  # noqa: E402
 from liftplan.model import load_scene, paper_elastic_tensions  # noqa: E402
 from liftplan.model.lift import load_curve  # noqa: E402
 from liftplan.planner.plan import plan  # noqa: E402
-from liftplan.planner.problemfile import load_problem  # noqa: E402
+from liftplan.planner.problem.file import load_problem  # noqa: E402
 
 EXAMPLES = HERE.parent / "examples"
 OUT = HERE / "out"
@@ -152,7 +152,7 @@ def plans():
 
 
 def fleet():
-    from liftplan.planner.search import tolerance
+    from liftplan.planner.search.branch import tolerance
 
     problem = load_problem(EXAMPLES / "tanker_fleet.toml")
     ours = median_time(lambda: plan(problem), 9)
@@ -217,9 +217,9 @@ def lift():
 def batch_check():
     from dask.distributed import Client, LocalCluster
 
-    from liftplan.planner.batch import run_study
-    from liftplan.planner.check import CheckCases, check_plan
-    from liftplan.planner.study import load_study
+    from liftplan.planner.batch.check import CheckCases, check_plan
+    from liftplan.planner.batch.run import run_study
+    from liftplan.planner.batch.study import load_study
 
     problem = load_problem(EXAMPLES / "tanker_plan.toml")
     chosen = plan(problem).chosen

@@ -59,7 +59,7 @@ from liftplan.model.errors import PlanInfeasible
 from liftplan.model.frames import choi_to_zup
 from liftplan.planner.design_loads import design_loads
 from liftplan.planner.plan import plan
-from liftplan.planner.problemfile import load_problem
+from liftplan.planner.problem.file import load_problem
 
 HERE = Path(__file__).parent
 EXAMPLES = HERE.parent / "examples"

@@ -16,9 +16,9 @@ import subprocess
 import tempfile
 from pathlib import Path
 
+from liftplan.planner.output.report import write_report
 from liftplan.planner.plan import plan
-from liftplan.planner.problemfile import load_problem
-from liftplan.planner.report import write_report
+from liftplan.planner.problem.file import load_problem
 
 HERE = Path(__file__).parent
 EXAMPLES = ("tanker_plan", "tanker_fleet", "block_sling_plan")

@@ -12,11 +12,11 @@ from helpers import EXAMPLES
 
 from liftplan.model import Body, InvalidScene, LiftPlanError
 from liftplan.planner import load_problem, plan
-from liftplan.planner.batch import run_study
-from liftplan.planner.check import CheckCases, check_plan
+from liftplan.planner.batch.check import CheckCases, check_plan
+from liftplan.planner.batch.run import run_study
+from liftplan.planner.batch.study import load_study
 from liftplan.planner.cli import main
-from liftplan.planner.scenarios import LugSet, Scenario
-from liftplan.planner.study import load_study
+from liftplan.planner.search.scenarios import LugSet, Scenario
 
 PLAN_STUDY = """
 [study]

@@ -21,12 +21,12 @@ from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import Rules
 from liftplan.model.scenefile import loads_scene
 from liftplan.planner.design_loads import DesignBuilder
+from liftplan.planner.output.plan_console import plan_table
+from liftplan.planner.output.report import render_html
 from liftplan.planner.plan import plan
-from liftplan.planner.plan_console import plan_table
-from liftplan.planner.problem import CogEnvelope
-from liftplan.planner.problemfile import load_problem, loads_problem
-from liftplan.planner.report import render_html
-from liftplan.planner.scenarios import Scenario
+from liftplan.planner.problem.definition import CogEnvelope
+from liftplan.planner.problem.file import load_problem, loads_problem
+from liftplan.planner.search.scenarios import Scenario
 
 FLEET = EXAMPLES / "tanker_fleet.toml"
 

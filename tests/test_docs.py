@@ -27,8 +27,8 @@ import pytest
 from pydantic import BaseModel
 
 from liftplan.model.scenefile import _SceneFile, loads_scene
-from liftplan.planner.problemfile import _PlanFile, loads_problem
-from liftplan.planner.study import _StudyFile, loads_study
+from liftplan.planner.batch.study import _StudyFile, loads_study
+from liftplan.planner.problem.file import _PlanFile, loads_problem
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "scene-files.md"

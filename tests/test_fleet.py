@@ -15,12 +15,12 @@ from scipy.optimize import linprog
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene import Body
-from liftplan.planner.fleet import FleetCrane
 from liftplan.planner.plan import plan
-from liftplan.planner.problem import Candidate, CogEnvelope, PlanProblem
-from liftplan.planner.problemfile import load_problem, loads_problem
-from liftplan.planner.scenarios import LugSet, Scenario, box_attitudes
-from liftplan.planner.search import search
+from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
+from liftplan.planner.problem.file import load_problem, loads_problem
+from liftplan.planner.problem.fleet import FleetCrane
+from liftplan.planner.search.branch import search
+from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -277,7 +277,7 @@ def test_file_errors(text, message):
 
 
 def test_collinear_set_is_refused_with_its_cause():
-    from liftplan.planner.search import SetEvaluator, SetInfeasible
+    from liftplan.planner.search.branch import SetEvaluator, SetInfeasible
 
     problem = load_problem(EXAMPLES / "tanker_fleet.toml")
     # BH1-S, BH2-S, BH5-S and BH6-S all lie on the starboard deck edge

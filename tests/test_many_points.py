@@ -30,7 +30,7 @@ from numpy.testing import assert_allclose
 from liftplan.model import Body, InvalidScene, Lug, Redundant, load_scene, paper_elastic_tensions, solve
 from liftplan.model.solve import solve_elastic
 from liftplan.model.statics import rope_model
-from liftplan.planner.rope_table import rope_rows, stations
+from liftplan.planner.output.rope_table import rope_rows, stations
 
 EXAMPLE = EXAMPLES / "hull154_26_points.toml"
 

@@ -7,9 +7,9 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.model.errors import InvalidScene
-from liftplan.planner.montecarlo import hook_monte_carlo
+from liftplan.planner.batch.montecarlo import hook_monte_carlo
 from liftplan.planner.plan import plan
-from liftplan.planner.problemfile import load_problem
+from liftplan.planner.problem.file import load_problem
 
 
 @pytest.fixture(scope="module")

@@ -105,7 +105,7 @@ def test_example_command_runs(line, argv, workdir, capsys):
 
 
 def test_study_block_is_a_valid_study(workdir):
-    from liftplan.planner.study import loads_study
+    from liftplan.planner.batch.study import loads_study
 
     studies = [(line, code) for line, code in blocks("toml") if "[study]" in code]
     assert studies, "the README's batch section shows a study file"

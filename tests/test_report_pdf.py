@@ -20,9 +20,9 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.model.errors import InvalidScene
-from liftplan.planner.problemfile import loads_problem
-from liftplan.planner.report_info import ReportInfo
-from liftplan.planner.report_page import MARGINS_MM, document, table
+from liftplan.planner.output.report_page import MARGINS_MM, document, table
+from liftplan.planner.problem.file import loads_problem
+from liftplan.planner.problem.report_info import ReportInfo
 
 DPI = 40  # enough to see a column of ink; 8 pages render in well under a second
 A4_WIDTH_MM = 210.0
@@ -90,8 +90,8 @@ CASES = {
 
 @pytest.fixture(scope="module", params=list(CASES))
 def printed(request, tmp_path_factory):
+    from liftplan.planner.output.report import write_report
     from liftplan.planner.plan import plan
-    from liftplan.planner.report import write_report
 
     if _missing():
         pytest.skip(_missing())

@@ -98,7 +98,7 @@ def test_floats_free_when_ground_reaction_would_be_negative():
 def test_intact_hull_names_its_forces():
     """Intact: the displaced volume is the envelope below the water, nothing is trapped,
     B = density x displaced volume, and the console balances the ground reaction."""
-    from liftplan.planner.console import equilibrium_table
+    from liftplan.planner.output.console import equilibrium_table
 
     scene = barge((30.0, -2.0, -5.0))
     eq = solve(scene)

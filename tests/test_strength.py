@@ -403,7 +403,7 @@ def test_strength_figure_written_and_refused_without_a_curve(tmp_path, capsys):
 
 def test_console_summary():
     scene = load_scene(EXAMPLES / "tanker_strength.toml")
-    from liftplan.planner.console import equilibrium_table
+    from liftplan.planner.output.console import equilibrium_table
 
     eq = solve(scene)
     g = hull_girder(scene, eq)

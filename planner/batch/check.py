@@ -16,8 +16,7 @@ import numpy as np
 
 from liftplan.model.scene import _convex_hull
 from liftplan.model.statics import rope_model
-
-from .scenarios import LugSet, pack, run_block
+from liftplan.planner.search.scenarios import LugSet, pack, run_block
 
 #: Outcomes of a checked case.
 OK, UNSAFE, FAILED, INVALID = "ok", "unsafe", "failed", "invalid"

@@ -29,9 +29,8 @@ from itertools import combinations, permutations
 import numpy as np
 
 from liftplan.model.statics import rope_model
-
-from .fleet import rule_limits
-from .scenarios import box_attitudes, pack, run_block
+from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.scenarios import box_attitudes, pack, run_block
 
 # Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
 FEASIBLE = 0

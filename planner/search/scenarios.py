@@ -16,7 +16,7 @@ so with every rope taut the tensions at scenario k (attitude, CG position) are e
     T_k = P_k T* + q_k.
 
 The worst spread over a set of scenarios is then a convex (piecewise-linear) function of
-T*, and choosing T* is a linear program (:class:`liftplan.planner.bounds.PreloadMinimax`).
+T*, and choosing T* is a linear program (:class:`liftplan.planner.search.bounds.PreloadMinimax`).
 With n = 3 there is no preload to choose (P_k = 0).
 """
 
@@ -30,8 +30,7 @@ import numpy as np
 
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.statics import BLOCK, rope_model
-
-from .fleet import rule_limits
+from liftplan.planner.problem.fleet import rule_limits
 
 
 def run_block(block, n, attitudes, params):

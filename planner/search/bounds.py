@@ -9,7 +9,7 @@ with ``is_dcp(dpp=True)`` at build time, and re-solved by assigning parameter va
     achievable spread (max - min tension).
 :class:`PreloadMinimax`
     The planner's convex core: tensions at each scenario k (attitude, CG) are affine in the
-    level preload T* (see :mod:`liftplan.planner.scenarios`): T_k = P_k T* + q_k. Choose T*
+    level preload T* (see :mod:`liftplan.planner.search.scenarios`): T_k = P_k T* + q_k. Choose T*
     (level statics, boom-height range) to minimise the largest spread over the scenarios,
     with every tension in [min_tension, SWL]. Its value over a finite set of scenarios is a
     lower bound on the worst spread over the whole tolerance box.

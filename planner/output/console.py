@@ -2,15 +2,15 @@
 
 from __future__ import annotations
 
-from .rope_table import GROUPED_FROM, rope_rows
+from liftplan.planner.output.rope_table import GROUPED_FROM, rope_rows
 
 __all__ = ["batch_table", "equilibrium_table", "load_curve_table", "plan_table"]
 
 
 def plan_table(plan):
-    """The plan summary (:func:`liftplan.planner.plan_console.plan_table`); imported here
+    """The plan summary (:func:`liftplan.planner.output.plan_console.plan_table`); imported here
     on use, so ``solve`` never loads the planner."""
-    from .plan_console import plan_table as table
+    from liftplan.planner.output.plan_console import plan_table as table
 
     return table(plan)
 

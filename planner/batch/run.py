@@ -1,4 +1,4 @@
-"""Run a batch study (:mod:`~liftplan.planner.study`) on Dask and write a tidy table.
+"""Run a batch study (:mod:`~liftplan.planner.batch.study`) on Dask and write a tidy table.
 
 One row per case, failed cases included with their reason; never an aborted sweep. Rows
 are appended to a journal (``OUTPUT.partial``) as tasks finish, so an interrupted run
@@ -27,9 +27,8 @@ import numpy as np
 
 from liftplan.model.errors import InvalidScene, LiftPlanError, PlanInfeasible
 from liftplan.model.frames import choi_to_zup
-
-from .check import CheckCases, check_plan
-from .plan import plan
+from liftplan.planner.batch.check import CheckCases, check_plan
+from liftplan.planner.plan import plan
 
 #: Result columns of each kind of study (after ``case``, the parameters, status, reason).
 RESULTS = {

@@ -17,10 +17,9 @@ from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene import Body
 from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
-
-from .fleet import FleetCrane, SlingSpec
-from .problem import Candidate, CogEnvelope, CraneSpec, PlanProblem
-from .report_info import ReportInfo
+from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
+from liftplan.planner.problem.fleet import FleetCrane, SlingSpec
+from liftplan.planner.problem.report_info import ReportInfo
 
 Count = Annotated[int, Strict(), Field(ge=1)]
 

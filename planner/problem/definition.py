@@ -18,9 +18,8 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
 from liftplan.model.scene import Body, finite, point, positive
-
-from .fleet import FleetCrane, crane_classes, equal_fleet, reach_table
-from .report_info import ReportInfo
+from liftplan.planner.problem.fleet import FleetCrane, crane_classes, equal_fleet, reach_table
+from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
 __all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate", "CogEnvelope",

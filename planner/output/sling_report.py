@@ -1,6 +1,6 @@
 """The report of a two-crane sling lift: HTML page, scene file and figure.
 
-The held-preload plan's report is :mod:`liftplan.planner.report`; this module writes the
+The held-preload plan's report is :mod:`liftplan.planner.output.report`; this module writes the
 sling lift's own tables (cranes, slings, legs, checks) in the planning file's frame.
 """
 
@@ -12,8 +12,7 @@ import json
 import numpy as np
 
 from liftplan.model.frames import zup_to_choi
-
-from . import report_page
+from liftplan.planner.output import report_page
 
 FRAMES = {"z-up": "z-up (x forward, y to port, z up)",
           "choi": "the papers' frame (x forward, y up, z to starboard)"}
@@ -38,7 +37,7 @@ def _png(fig, alt, caption=""):
 def plan_view(plan):
     """Plan view in the file's frame: candidates, CG and its envelope, the chosen pairs,
     hooks and cranes, drawn at the report's print width."""
-    from .figures import _FONT, _SMALL, _cog_envelope, _style, plan_figure
+    from liftplan.planner.output.figures import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 
     problem, chosen = plan.problem, plan.chosen
     choi = problem.frame == "choi"

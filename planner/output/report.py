@@ -16,10 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model.frames import zup_to_choi
-
-from . import figures, report_page
-from .plan import FRAMES
-from .scenarios import Scenario
+from liftplan.planner.output import figures, report_page
+from liftplan.planner.plan import FRAMES
+from liftplan.planner.search.scenarios import Scenario
 
 ASSUMPTIONS = (
     "Ropes hang vertically (each hook above its lug) and the body is rigid.",
@@ -80,7 +79,7 @@ def write_report(plan, directory):
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
     if plan.problem.cranes == 2:  # a two-crane sling lift: its own tables and scene file
-        from . import sling_report
+        from liftplan.planner.output import sling_report
 
         page, scene_text = sling_report.render_html(plan), sling_report.scene_toml(plan)
     else:

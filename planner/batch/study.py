@@ -46,8 +46,7 @@ from pydantic import Field, Strict, ValidationError
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
-
-from .problemfile import problem_from_dict
+from liftplan.planner.problem.file import problem_from_dict
 
 Count = Annotated[int, Strict(), Field(ge=1)]
 Value = Annotated[float, Strict()] | Annotated[int, Strict()] | str | list

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .plan import FRAMES
-from .scenarios import Scenario
+from liftplan.planner.plan import FRAMES
+from liftplan.planner.search.scenarios import Scenario
 
 
 def plan_table(plan):
@@ -25,7 +25,7 @@ def plan_table(plan):
     str
     """
     if plan.problem.cranes == 2:  # a two-crane sling lift
-        from .sling_console import sling_table
+        from liftplan.planner.output.sling_console import sling_table
 
         return sling_table(plan)
     problem, chosen = plan.problem, plan.chosen

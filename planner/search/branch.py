@@ -1,6 +1,6 @@
 """Branch and bound over lug sets, and the exact evaluation of one set.
 
-1. :func:`~liftplan.planner.screen.screen` gives every set a lower bound on its worst
+1. :func:`~liftplan.planner.search.screen.screen` gives every set a lower bound on its worst
    spread (and rules out the sets it can prove infeasible).
 2. Sets are evaluated best bound first. Evaluating a set solves the preload minimax LP
    (cvxpy / Clarabel) on a growing list of scenarios (cutting planes): after each solve the
@@ -23,10 +23,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
-
-from .bounds import PreloadMinimax
-from .scenarios import LugSet, Scenario, box_attitudes
-from .screen import (
+from liftplan.planner.search.bounds import PreloadMinimax
+from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.screen import (
     BOOM_RANGE,
     BOX_OVERLOAD,
     BOX_SLACK,
