@@ -12,9 +12,7 @@ The names below are loaded on first use (PEP 562), so ``import liftplan.model`` 
 command line's ``--help``) does not pay for casadi, numpy or pydantic until they are needed.
 """
 
-import importlib
-import sys
-import types
+from .lazy import lazy_package
 
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
@@ -29,34 +27,13 @@ _EXPORTS = {
     **dict.fromkeys(("load_scene", "loads_scene"), "scenefile"),
     **dict.fromkeys(("paper_elastic_tensions", "pick_model", "solve", "solve_elastic",
                      "solve_paper_elastic", "solve_rigid"), "solve"),
+    **dict.fromkeys(("rigging_checks", "solve_rigging"), "rigging"),
+    **dict.fromkeys(("Leg", "RiggingLimits", "Sling", "Spreader", "sling_ea"), "rigging_gear"),
+    "RiggingState": "results",
+    **dict.fromkeys(("hull_girder", "strength_checks"), "strength"),
+    **dict.fromkeys(("HullForm", "Particulars", "fitted_hull"), "hullfit"),
 }
 
 __all__ = sorted(_EXPORTS)
 
-
-def __getattr__(name):
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
-
-
-class _Package(types.ModuleType):
-    """Keeps the function ``solve`` as the package attribute when the submodule of the same
-    name is first imported (the import system would otherwise bind the module there)."""
-
-    def __setattr__(self, name, value):
-        if (isinstance(value, types.ModuleType) and _EXPORTS.get(name) == name
-                and value.__name__ == f"{__name__}.{name}"):
-            value = getattr(value, name)
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
+__getattr__, __dir__ = lazy_package(__name__, _EXPORTS)

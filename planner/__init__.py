@@ -10,9 +10,7 @@ The names below are loaded on first use (PEP 562): the command line imports this
 for every command, and only ``plan`` needs cvxpy.
 """
 
-import importlib
-import sys
-import types
+from liftplan.model.lazy import lazy_package
 
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
@@ -24,30 +22,4 @@ _EXPORTS = {
 
 __all__ = sorted(_EXPORTS)
 
-
-def __getattr__(name):
-    try:
-        module = _EXPORTS[name]
-    except KeyError:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
-
-
-class _Package(types.ModuleType):
-    """Keeps the function ``plan`` as the package attribute when the submodule of the same
-    name is first imported (the import system would otherwise bind the module there)."""
-
-    def __setattr__(self, name, value):
-        if (isinstance(value, types.ModuleType) and _EXPORTS.get(name) == name
-                and value.__name__ == f"{__name__}.{name}"):
-            value = getattr(value, name)
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
+__getattr__, __dir__ = lazy_package(__name__, _EXPORTS)
