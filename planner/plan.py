@@ -432,14 +432,16 @@ class Plan:
                 ))
         return rows
 
-    def spread_map(self, count=41, utilisation=False):
-        """Spread over a heel x trim grid, worst over the CG envelope.
+    def spread_map(self, count=41, utilisation=False, largest=False):
+        """Spread over a heel x trim grid, worst over the CG envelope (hooks as planned).
 
         Parameters
         ----------
         count : int
         utilisation : bool
             Map max - min of T_i / SWL_i instead of the tension spread.
+        largest : bool
+            Map the largest T_i / SWL_i instead (the ``reserve`` objective).
 
         Returns
         -------
@@ -453,9 +455,9 @@ class Plan:
         spread = np.zeros(hh.size)
         for offset in self.problem.cog_envelope.offsets():
             tensions = self.tensions_at(hh.ravel(), tt.ravel(), offset)
-            if utilisation:
+            if utilisation or largest:
                 tensions = tensions / self.chosen.swl
-            values = np.ptp(tensions, axis=1)
+            values = tensions.max(axis=1) if largest else np.ptp(tensions, axis=1)
             spread = np.maximum(spread, values)
         return heel, trim, spread.reshape(hh.shape)
 
@@ -541,6 +543,12 @@ class Plan:
             "twist_stiffness": _twist_stiffness(self.problem, result),
             "converged": result.converged,
         }
+
+
+#: What each objective keeps small, in words.
+OBJECTIVE_TEXT = {"spread": "max - min tension (spread)",
+                  "utilisation": "max - min of T / SWL (utilisation spread)",
+                  "reserve": "the largest T / SWL (reserve: load left before the first crane's SWL)"}
 
 
 def _twist_stiffness(problem, result):

@@ -237,8 +237,11 @@ def plan_two_slings(problem, top=None):
         lateral = np.linalg.norm(side[:, :2], axis=1)
         rolls.append(np.degrees(np.arctan2(lateral, -side[:, 2])))
     roll = np.max(rolls, axis=0)
-    scale = 1.0 / swl if problem.objective == "utilisation" else np.ones_like(swl)
-    values = np.abs(loads[..., 0] * scale[:, None, None, 0] - loads[..., 1] * scale[:, None, None, 1])
+    scale = np.ones_like(swl) if problem.objective == "spread" else 1.0 / swl
+    scaled = loads * scale[:, None, None, :]
+    # reserve: the larger hook load / SWL; otherwise the difference of the two
+    values = scaled.max(axis=-1) if problem.objective == "reserve" else \
+        np.abs(scaled[..., 0] - scaled[..., 1])
     worst_value = values.reshape(len(values), -1).max(axis=1)
     worst_load = loads.max(axis=(1, 2))
     bad = np.zeros(len(values), dtype=np.int64)
@@ -395,8 +398,8 @@ class SlingPlan:
     @property
     def worst_utilisation_spread(self):
         worst = self.chosen.hook_worst / self.chosen.swl
-        return float(abs(worst[0] - worst[1])) if self.objective == "spread" else \
-            self.chosen.worst_value
+        return self.chosen.worst_value if self.objective == "utilisation" else \
+            float(abs(worst[0] - worst[1]))
 
     @cached_property
     def scene(self):

@@ -71,22 +71,29 @@ def linprog_minimax(lugset, scenarios):
     n, m = lugset.n, len(scenarios)
     size = n + 2 * m + 1
     rows, rhs = [], []
+    reserve = problem.objective == "reserve"
     for k in range(m):
         for i in range(n):
             g = np.zeros(size)
             g[:n] = gains[k, i]
             s = lugset.scale[i]
-            up = s * g
-            up[n + k] = -1.0
-            rows.append(up), rhs.append(-s * offsets[k, i])
-            down = -s * g
-            down[n + m + k] = 1.0
-            rows.append(down), rhs.append(s * offsets[k, i])
+            if reserve:  # the largest s_i T_i itself: s_i T_i - worst <= 0
+                up = s * g
+                up[-1] = -1.0
+                rows.append(up), rhs.append(-s * offsets[k, i])
+            else:
+                up = s * g
+                up[n + k] = -1.0
+                rows.append(up), rhs.append(-s * offsets[k, i])
+                down = -s * g
+                down[n + m + k] = 1.0
+                rows.append(down), rhs.append(s * offsets[k, i])
             rows.append(g), rhs.append(lugset.limit[i] - offsets[k, i])
             rows.append(-g), rhs.append(offsets[k, i] - problem.min_tension)
-        spread = np.zeros(size)
-        spread[n + k], spread[n + m + k], spread[-1] = 1.0, -1.0, -1.0
-        rows.append(spread), rhs.append(0.0)
+        if not reserve:
+            spread = np.zeros(size)
+            spread[n + k], spread[n + m + k], spread[-1] = 1.0, -1.0, -1.0
+            rows.append(spread), rhs.append(0.0)
     a_level, b_level = lugset.level_statics
     a_eq = np.hstack([a_level, np.zeros((3, size - n))])
     low, high = lugset.preload_range()
@@ -112,7 +119,7 @@ def brute_force(problem, grid=7):
     return best
 
 
-@pytest.mark.parametrize("objective", ["utilisation", "spread"])
+@pytest.mark.parametrize("objective", ["utilisation", "spread", "reserve"])
 @pytest.mark.parametrize("cranes", [3, 4, 5])
 def test_search_equals_brute_force_over_sets_and_assignments(cranes, objective):
     problem = fleet_problem(cranes, objective)

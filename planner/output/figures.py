@@ -254,12 +254,14 @@ def spread_map(plan, count=41):
     """The plan's objective (tension spread, or utilisation spread) over the tolerance box,
     at each attitude the worst over the CG envelope; heel on the horizontal axis as in the
     tension curves."""
-    utilisation = plan.objective == "utilisation"
-    heel, trim, spread = plan.spread_map(count, utilisation=utilisation)
+    utilisation = plan.objective != "spread"
+    largest = plan.objective == "reserve"
+    heel, trim, spread = plan.spread_map(count, utilisation=utilisation, largest=largest)
     fig = Figure(figsize=(125 * _MM, 100 * _MM), layout="constrained")
     ax = fig.subplots()
     mesh = ax.pcolormesh(heel, trim, spread.T, shading="auto", cmap="viridis")
-    unit = "max - min of T / SWL [-]" if utilisation else "max - min tension [t]"
+    unit = ("largest T / SWL [-]" if largest else "max - min of T / SWL [-]") if utilisation \
+        else "max - min tension [t]"
     bar = fig.colorbar(mesh, ax=ax)
     bar.set_label(unit, size=_FONT)
     bar.ax.tick_params(labelsize=_SMALL)
@@ -272,7 +274,7 @@ def spread_map(plan, count=41):
                                      f"{dz:+.2f}) m")
     ax.set_xlabel("heel [deg] (+ starboard down)")
     ax.set_ylabel("trim [deg] (+ bow down)")
-    what = "Utilisation spread" if utilisation else "Tension spread"
+    what = ("Largest T / SWL" if largest else "Utilisation spread") if utilisation else "Tension spread"
     ax.set_title(f"{what} over the tolerance box\n(each point: worst CG of the envelope)")
     _style(ax)
     ax.grid(False)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from liftplan.planner.plan import FRAMES
+from liftplan.planner.plan import FRAMES, OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
 
 
@@ -44,8 +44,7 @@ def plan_table(plan):
         f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)",
         f"tolerance box: heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g}"
         f" deg; tensions {problem.min_tension:g} t to {swl_text}",
-        "objective: " + ("max - min of T / SWL (utilisation spread)" if plan.objective ==
-                         "utilisation" else "max - min tension (spread)"),
+        "objective: " + OBJECTIVE_TEXT[plan.objective],
         "",
         f"{'lug':<4}{'candidate':<10}{'crane':<12}{'R [m]':>8}{'SWL [t]':>8}{'H [m]':>8}"
         f"{'level T [t]':>12}{'worst [t]':>10}{'tilt [t]':>9}{'design [t]':>11}{'util. [%]':>10}  check",
@@ -67,7 +66,11 @@ def plan_table(plan):
                      f"{chosen.worst_value - chosen.bound:.4g} after {chosen.rounds} rounds; "
                      "the worst shown is the largest found")
     where = _where(plan, chosen.worst)
-    if plan.objective == "utilisation":
+    if plan.objective == "reserve":
+        summary = (f"largest T / SWL: nominal {100 * chosen.nominal_value:.1f} %, worst "
+                   f"{100 * chosen.worst_value:.1f} % at {where}; tension spread: nominal "
+                   f"{plan.spread:.2f} t, worst {plan.worst_spread:.2f} t")
+    elif plan.objective == "utilisation":
         summary = (f"utilisation spread (max - min of T / SWL): nominal "
                    f"{100 * chosen.nominal_utilisation_spread:.1f} %, worst {100 * chosen.worst_value:.1f} % "
                    f"at {where}; tension spread: nominal {plan.spread:.2f} t, "
@@ -156,8 +159,8 @@ def _chain_lines(plan, design):
 
 def _ranking_lines(plan):
     problem = plan.problem
-    unit = "[%]" if plan.objective == "utilisation" else "[t]"
-    scale = 100.0 if plan.objective == "utilisation" else 1.0
+    unit = "[t]" if plan.objective == "spread" else "[%]"
+    scale = 1.0 if plan.objective == "spread" else 100.0
     lines = ["", f"{'rank':<6}{'lugs (crane)':<64}{'nominal ' + unit:>13}{'worst ' + unit:>12}"
                  f"{'design util. [%]':>18}"]
     for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design)):

@@ -17,7 +17,7 @@ import numpy as np
 
 from liftplan.model.frames import zup_to_choi
 from liftplan.planner.output import figures, report_page
-from liftplan.planner.plan import FRAMES
+from liftplan.planner.plan import FRAMES, OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
 
 ASSUMPTIONS = (
@@ -187,8 +187,7 @@ def render_html(plan, today=None):
              "m"),
             ("CG envelope shape", problem.cog_envelope.shape, "-"),
             ("cranes", problem.cranes, "-"),
-            ("the plan keeps small", "max - min of T / SWL (utilisation spread)"
-             if plan.objective == "utilisation" else "max - min tension (spread)", "-"),
+            ("the plan keeps small", OBJECTIVE_TEXT[plan.objective], "-"),
             ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
             ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
             ("min tension", f"{problem.min_tension:g}", "t"),
@@ -352,7 +351,7 @@ def _appendix(plan):
     """The engineering appendix: how good the plan is proved to be, the admissible tension
     bounds, and what the search did."""
     stats, chosen = plan.stats, plan.chosen
-    unit = "-" if plan.objective == "utilisation" else "t"
+    unit = "t" if plan.objective == "spread" else "-"
     fmt = "{:.4f}" if unit == "-" else "{:.2f}"
     optimality = _table(
         ["quantity", "value", "unit"],

@@ -20,7 +20,8 @@ def sling_table(plan):
         f"(both assignments); ruled out: "
         + (", ".join(f"{n} {text}" for text, n in plan.ruled_out.items()) or "none"),
         "tilt along the hook line within the tolerance, CG envelope; objective: "
-        + ("max - min of hook load / SWL" if plan.objective == "utilisation"
+        + ("the larger hook load / SWL" if plan.objective == "reserve" else
+           "max - min of hook load / SWL" if plan.objective == "utilisation"
            else "max - min hook load"),
         "",
         f"{'crane':<16}{'lugs':<22}{'radius [m]':>11}{'SWL [t]':>9}{'H [m]':>9}"
@@ -52,8 +53,8 @@ def sling_table(plan):
         "rigging model (free hooks, elastic legs) at level: hook loads "
         + ", ".join(f"{n} {solved.tensions[n]:.2f} t" for n in names),
     ]
-    unit = "[%]" if plan.objective == "utilisation" else "[t]"
-    scale = 100.0 if plan.objective == "utilisation" else 1.0
+    unit = "[t]" if plan.objective == "spread" else "[%]"
+    scale = 1.0 if plan.objective == "spread" else 100.0
     lines += ["", f"{'rank':<6}{'lug pairs (crane)':<64}{'worst ' + unit:>12}"]
     for k, option in enumerate(plan.ranking):
         text = "  ".join(f"{'+'.join(problem.names[i] for i in pair)} ({name})"

@@ -26,7 +26,7 @@ __all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate"
            "CraneSpec", "PlanProblem", "code_margin"]
 
 MAX_CRANES = 8
-OBJECTIVES = ("spread", "utilisation")
+OBJECTIVES = ("spread", "utilisation", "reserve")
 #: Lug sets the planner will enumerate; beyond this the search would take hours.
 MAX_SETS = 5_000_000
 
@@ -181,9 +181,11 @@ class PlanProblem:
         inputs as the engineer wrote them.
     fleet : tuple of FleetCrane
         The cranes, one per lug (default: ``cranes`` equal cranes from ``crane``).
-    objective : {"spread", "utilisation"} or None
-        What the plan keeps small over the box: max - min tension [t], or max - min of
-        T_i / SWL_i [-]. None: ``spread`` for equal cranes, ``utilisation`` when they differ.
+    objective : {"spread", "utilisation", "reserve"} or None
+        What the plan keeps small over the box: max - min tension [t], max - min of
+        T_i / SWL_i [-], or the largest T_i / SWL_i (``reserve``: the most load left before
+        the first crane reaches its SWL) [-]. None: ``spread`` for equal cranes,
+        ``utilisation`` when they differ.
     gap : float  [-]
         Relative optimality gap at which the search may stop (0: prove the optimum).
     time_limit : float or None  [s]
@@ -314,7 +316,8 @@ class PlanProblem:
             equal = len(crane_classes(fleet)) == 1
             _set(self, "objective", "spread" if equal else "utilisation")
         if self.objective not in OBJECTIVES:
-            raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread or utilisation")
+            raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread, utilisation "
+                               "or reserve")
         if not isinstance(self.rules, Rules):
             raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
         if isinstance(self.rules.rigging_weight, dict):

@@ -43,7 +43,7 @@ class _Tolerance(Table):
 
 class _Plan(Table):
     cranes: Count | None = None
-    objective: Literal["spread", "utilisation"] | None = None
+    objective: Literal["spread", "utilisation", "reserve"] | None = None
     gap: Num = 0.0
     time_limit: Num | None = None
     tolerance: _Tolerance = _Tolerance()

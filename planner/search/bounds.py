@@ -24,6 +24,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import warnings
 from dataclasses import dataclass
 
 import cvxpy as cp
@@ -43,11 +44,13 @@ def _run(problem, what):
     failure = None
     for solver in (SOLVER, FALLBACK):
         try:
-            if solver == FALLBACK:
-                with _stdout_silenced():  # HiGHS prints its banner on stdout (a JSON stream)
+            with warnings.catch_warnings():  # an inaccurate status is handled below
+                warnings.simplefilter("ignore", UserWarning)
+                if solver == FALLBACK:
+                    with _stdout_silenced():  # HiGHS prints its banner on stdout (JSON)
+                        problem.solve(solver=solver)
+                else:
                     problem.solve(solver=solver)
-            else:
-                problem.solve(solver=solver)
         except cp.error.SolverError as err:
             failure = f"{solver} failed ({err})"
             continue
@@ -169,7 +172,7 @@ class AdmissibleTensions:
         return TensionBounds(lower=low, upper=high, least_spread=spread, even=even)
 
 
-def hook_margins(count, n, scale, hook):
+def hook_margins(count, n, scale, hook, objective="spread"):
     """Largest effect of hook-height errors within their tolerance, per scenario.
 
     Parameters
@@ -182,13 +185,17 @@ def hook_margins(count, n, scale, hook):
     -------
     margin : (count, n)  [t]   sum_m |G_im| delta_m
     pair_margin : (count, n (n - 1))  [t or -]   sum_m |s_i G_im - s_j G_jm| delta_m for
-        every ordered pair i != j (the order of :class:`PreloadMinimax`)
+        every ordered pair i != j (the order of :class:`PreloadMinimax`); for the ``reserve``
+        objective (count, n): s_i sum_m |G_im| delta_m
     """
     first, second = np.nonzero(~np.eye(n, dtype=bool))
+    rows = n if objective == "reserve" else len(first)
     if hook is None:
-        return np.zeros((count, n)), np.zeros((count, len(first)))
+        return np.zeros((count, n)), np.zeros((count, rows))
     gain, delta = np.asarray(hook[0], dtype=float), np.asarray(hook[1], dtype=float)
     margin = np.abs(gain) @ delta
+    if objective == "reserve":
+        return margin, margin * scale
     scaled = gain * scale[None, :, None]
     pair_margin = np.abs(scaled[:, first] - scaled[:, second]) @ delta
     return margin, pair_margin
@@ -214,7 +221,8 @@ class MinimaxResult:
 
 
 class PreloadMinimax:
-    """min over T* of max over scenarios of (max_i - min_i) of s_i T_k,i, T_k = P_k T* + q_k.
+    """min over T* of max over scenarios of (max_i - min_i) of s_i T_k,i, T_k = P_k T* + q_k
+    (``objective = "reserve"``: of max_i s_i T_k,i).
 
     Parameters
     ----------
@@ -233,11 +241,12 @@ class PreloadMinimax:
 
     TIE_BREAK = 1e-3
 
-    def __init__(self, n, slots):
-        self.n, self.slots = n, slots
+    def __init__(self, n, slots, objective="spread"):
+        self.n, self.slots, self.objective = n, slots, objective
         m = slots
         first, second = np.nonzero(~np.eye(n, dtype=bool))  # ordered pairs i != j
-        pairs = len(first)
+        # reserve: the largest s_i T_i itself, one row per rope; otherwise every ordered pair
+        pairs = n if objective == "reserve" else len(first)
         self.gain = cp.Parameter((m * n, n), name="P")
         self.offset = cp.Parameter(m * n, name="q")
         # the objective's rows: s_i T_i (s = 1 for the spread, 1 / SWL_i for utilisation)
@@ -259,8 +268,11 @@ class PreloadMinimax:
         worst = cp.Variable(name="worst")
         nominal_high, nominal_low = cp.Variable(), cp.Variable()
         difference = np.zeros((pairs, n))
-        difference[np.arange(pairs), first] = 1.0
-        difference[np.arange(pairs), second] = -1.0
+        if objective == "reserve":
+            difference[np.arange(n), np.arange(n)] = 1.0
+        else:
+            difference[np.arange(pairs), first] = 1.0
+            difference[np.arange(pairs), second] = -1.0
         pair_rows = sparse.kron(sparse.eye(m), difference, format="csr")  # scenario k's pairs
         tensions = self.gain @ preload + self.offset
         scaled = self.spread_gain @ preload + self.spread_offset
@@ -330,7 +342,7 @@ class PreloadMinimax:
         tension_range = (clip(tension_range[0]), clip(tension_range[1]))
         preload_range = (clip(preload_range[0]), clip(preload_range[1]))
         scale = np.ones(n) if scale is None else np.asarray(scale, dtype=float)
-        margin, pair_margin = hook_margins(gains.shape[0], n, scale, hook)
+        margin, pair_margin = hook_margins(gains.shape[0], n, scale, hook, self.objective)
         self.margin.value = margin[pad].ravel()
         self.pair_margin.value = pair_margin[pad].ravel()
         self.gain.value = gains[pad].reshape(self.slots * n, n)

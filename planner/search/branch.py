@@ -142,7 +142,10 @@ class SetResult:
 
     @property
     def nominal_value(self):
-        """The objective at level: nominal spread [t] or nominal utilisation spread [-]."""
+        """The objective at level: nominal spread [t], nominal utilisation spread [-], or the
+        largest nominal T / SWL [-] (reserve)."""
+        if self.objective == "reserve":
+            return float(np.max(self.preload / self.swl))
         return self.nominal_spread if self.objective == "spread" else self.nominal_utilisation_spread
 
 
@@ -245,7 +248,8 @@ def robust(tensions, gain, lugset):
 
     Returns
     -------
-    value : (m,)   the objective's worst: max - min of s_i T_i [t or -]
+    value : (m,)   the objective's worst: max - min of s_i T_i [t or -], or for ``reserve``
+        the largest T_i / SWL_i [-]
     low, high : (m, n)  [t]   each tension's lowest and highest
     spread : (m,)  [t]   the worst tension spread
     utilisation : (m,)  [-]   the worst max - min of T_i / SWL_i
@@ -263,7 +267,11 @@ def robust(tensions, gain, lugset):
 
     spread = pairwise(np.ones(n))
     utilisation = pairwise(1.0 / lugset.swl)
-    value = utilisation if lugset.problem.objective == "utilisation" else spread
+    objective = lugset.problem.objective
+    if objective == "reserve":  # the largest T_i / SWL_i with every hook error
+        value = ((tensions + margin) / lugset.swl).max(axis=1)
+    else:
+        value = utilisation if objective == "utilisation" else spread
     return value, tensions - margin, tensions + margin, spread, utilisation
 
 
@@ -278,7 +286,7 @@ class SetEvaluator:
 
     def __init__(self, problem):
         self.problem = problem
-        self.minimax = PreloadMinimax(problem.cranes, SLOTS)
+        self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective)
         self.offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
         self.start = self._scenarios(3)
         self.dense = self._scenarios(DENSE)

@@ -182,7 +182,7 @@ class LugSet:
         #: tension limits from the rules' chain: anywhere in the box, and at level [t]
         self.limit, self.share_limit = rule_limits(problem, self.swl, self.cranes)
         #: what the objective's spread is taken of: s_i T_i
-        self.scale = 1.0 / self.swl if problem.objective == "utilisation" else np.ones(self.n)
+        self.scale = np.ones(self.n) if problem.objective == "spread" else 1.0 / self.swl
         # boom heights with every rope just unstretched at the level pose
         self.boom_zero = problem.lift_height + self.points[:, 2] + self.rope_length
         self._model = rope_model(self.n)

@@ -206,7 +206,7 @@ def _screen_chunk(problem, sets, cranes, scenarios):
     stiffness = rope_ea / rope_length
     boom_zero = problem.lift_height + points[..., 2] + rope_length
     swl = problem.reach[1][sets, cranes]  # (N, n)
-    scale = 1.0 / swl if problem.objective == "utilisation" else np.ones_like(swl)
+    scale = np.ones_like(swl) if problem.objective == "spread" else 1.0 / swl
 
     # level statics (yaw only)
     c, s = math.cos(yaw), math.sin(yaw)
@@ -240,15 +240,18 @@ def _screen_chunk(problem, sets, cranes, scenarios):
     gram[collinear] = np.eye(3)  # placeholder: these sets are ruled out below
     rhs = np.broadcast_to(b_level, (count, 3))[..., None]
     particular = np.einsum("kji,kj->ki", a_level, np.linalg.solve(gram, rhs)[..., 0])
+    reserve = problem.objective == "reserve"
     if n == 3:
         bound, reason = _screen_fixed(particular, q, gain, inside, limits,
-                                      (preload_low, preload_high), scale, hook)
+                                      (preload_low, preload_high), scale, hook, reserve)
     elif n == 4:
         bound, reason = _screen_line(particular, _null_vector(a_level), q, gain, inside, limits,
-                                     (preload_low, preload_high), scale, hook)
+                                     (preload_low, preload_high), scale, hook, reserve)
     else:
         bound, reason = _screen_pairs(particular, a_level, points[..., 2], q, gain, inside,
                                       limits, weight, scale, hook)
+        if reserve:  # every scenario carries W on the ropes: max T_i / SWL_i >= W / sum SWL_i
+            bound = np.where(np.isfinite(bound), weight / swl.sum(axis=1), bound)
     bound[collinear] = np.inf
     reason[collinear] = COLLINEAR
     return bound, reason
@@ -337,11 +340,13 @@ def _golden(f, lo, hi, lipschitz):
     return np.minimum(fc, fd) - lipschitz * (b - a)
 
 
-def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale, hook):
+def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale, hook, reserve=False):
     tensions = np.einsum("kmij,kj->kmi", gain, preload) + q
     margin = 0.0 if hook is None else hook[0]
     reason = _classify_point(preload, tensions, inside, limits, preload_range, margin)
-    if hook is None:
+    if reserve:
+        bound = (scale[:, None, :] * (tensions + margin)).max(axis=(1, 2))
+    elif hook is None:
         bound = np.ptp(scale[:, None, :] * tensions, axis=2).max(axis=1)
     else:
         bound = _worst_pairs(scale[:, None, :] * tensions, hook[1])
@@ -365,7 +370,8 @@ def _classify_point(preload, tensions, inside, limits, preload_range, margin=0.0
     return reason
 
 
-def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale, hook):
+def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale, hook,
+                 reserve=False):
     count, m, n = q.shape
     low, high, share = limits  # high, share: (N, n)
     box_high = np.tile(high, (1, m))
@@ -396,14 +402,17 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
         sc = scale[ok][:, None, :]
         al, be = sc * alpha[ok], sc * beta[ok]
         pair = None if hook is None else hook[1][ok]
+        lift = 0.0 if hook is None else sc * hook[0][ok]  # reserve: s_i x the hook errors' rise
 
         def worst(t):
             values = al + t[:, None, None] * be
+            if reserve:
+                return (values + lift).max(axis=(1, 2))
             if pair is None:
                 return np.ptp(values, axis=2).max(axis=1)
             return _worst_pairs(values, pair)
 
-        lipschitz = np.ptp(be, axis=2).max(axis=1)
+        lipschitz = np.abs(be).max(axis=(1, 2)) if reserve else np.ptp(be, axis=2).max(axis=1)
         bound[ok] = _golden(worst, lo[ok], hi[ok], lipschitz)
     return bound, reason
 
