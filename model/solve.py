@@ -373,7 +373,7 @@ def solve_elastic(scene, method="auto"):
     start = time.perf_counter()
     if method != "energy":
         x, tensions, stretch, residual, minors = model.elastic_solver(p)
-        verdict = _verdict(scene, x, residual, minors)
+        verdict = elastic_verdict(scene, x, residual, minors)
     if method == "energy" or not verdict.ok:
         if method == "newton":
             raise EquilibriumNotFound(
@@ -393,7 +393,7 @@ def solve_elastic(scene, method="auto"):
     return _equilibrium(scene, "elastic", x, tensions, residual, used, seconds, slack=slack)
 
 
-def _verdict(scene, x, residual, minors):
+def elastic_verdict(scene, x, residual, minors):
     """The one acceptance (:mod:`liftplan.model.acceptance`) of a candidate elastic state."""
     return judge(_worst(scene, residual) / scene.body.weight, x[1], x[2], minors=minors)
 
@@ -411,7 +411,7 @@ def _energy_solve(scene, model, p):
     result = solver(x0=model.elastic_start(p_dm), p=p_dm)
     x_min = np.asarray(result["x"]).ravel()
     x, tensions, stretch, residual, minors = model.elastic_polish(x_min, p)
-    verdict = _verdict(scene, x, residual, minors)
+    verdict = elastic_verdict(scene, x, residual, minors)
     if not verdict.ok:
         status = solver.stats()["return_status"]
         floor = _rounding_floor(scene)

@@ -58,6 +58,11 @@ class Layout:
     def size(self):
         return 6 * self.n + 6
 
+    @property
+    def boom(self):
+        """Where the boom-tip heights H sit in the vector (a slice)."""
+        return slice(3 * self.n + 5, 4 * self.n + 5)
+
     def split(self, p):
         n = self.n
         k = 0

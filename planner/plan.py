@@ -22,8 +22,8 @@ from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.planner.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
-from liftplan.planner.search.branch import DENSE, Interrupted, SearchStats, SetResult, robust, search
-from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.branch import Interrupted, SearchStats, SetResult, robust, search
+from liftplan.planner.search.scenarios import LugSet, Scenario
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
 GUIDANCE_STEP = 5.0
@@ -325,6 +325,12 @@ class Plan:
         the worst combination (the hooks' errors all 1 cm, signs the worst)  [t/cm]."""
         return float(np.abs(self.hook_sensitivity).sum(axis=1).max())
 
+    @cached_property
+    def _dense_held(self):
+        """Tensions and dT/dH with the preload held on the search's dense grid of the box for
+        every CG vertex (the design loads' grid): (m, n) [t], (m, n, n) [t/m]."""
+        return self.lugset.tensions_and_gain(self.chosen.preload, self._design_builder.dense)
+
     def crew_margin(self, factors=(1.0, 2.0, 5.0)):
         """The plan as it stands (lugs, boom heights, preload) with the hook tolerance
         multiplied by each factor: what a crew worse than assumed would see.
@@ -333,20 +339,12 @@ class Plan:
         -------
         list of CrewMargin
         """
-        import copy
-
-        problem = self.problem
-        grid = box_attitudes(problem, DENSE, DENSE)
-        scenarios = [Scenario(float(h), float(t), tuple(map(float, o)))
-                     for o in problem.cog_envelope.offsets() for h, t in grid]
-        tensions, gain = self.lugset.tensions_and_gain(self.chosen.preload, scenarios)
-        base = self.lugset.hook_tolerance
+        tensions, gain = self._dense_held
         out = []
         for factor in factors:
-            scaled = copy.copy(self.lugset)
-            scaled.hook_tolerance = base * factor
-            _, low, high, spread, _ = robust(tensions, gain, scaled)
-            out.append(CrewMargin(factor=float(factor), tolerance=scaled.hook_tolerance,
+            delta = self.lugset.hook_tolerance * factor
+            _, low, high, spread, _ = robust(tensions, gain, self.lugset, delta)
+            out.append(CrewMargin(factor=float(factor), tolerance=delta,
                                   worst_spread=float(spread.max()), rope_max=high.max(axis=0),
                                   lowest=float(low.min()), limit=self.lugset.limit,
                                   swl=self.lugset.swl))
@@ -358,10 +356,7 @@ class Plan:
         rope within its limits and above zero, its preload held  [m]; inf when no hook
         error can break it (to 10 m)."""
         problem = self.problem
-        grid = box_attitudes(problem, DENSE, DENSE)
-        scenarios = [Scenario(float(h), float(t), tuple(map(float, o)))
-                     for o in problem.cog_envelope.offsets() for h, t in grid]
-        tensions, gain = self.lugset.tensions_and_gain(self.chosen.preload, scenarios)
+        tensions, gain = self._dense_held
         reach = np.abs(gain).sum(axis=2)  # per 1 m of error on every hook, the worst signs
         limit = self.lugset.limit
         low = problem.min_tension

@@ -15,10 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from liftplan.model.acceptance import judge
 from liftplan.model.errors import InvalidScene
-from liftplan.model.solve import pack_params
-from liftplan.model.statics import rope_model
+from liftplan.model.solve import elastic_verdict, pack_params
+from liftplan.model.statics import Layout, rope_model
 
 DISTRIBUTIONS = ("uniform", "normal")
 
@@ -147,12 +146,10 @@ def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform",
     else:
         errors = rng.normal(0.0, 1.0, (draws, n)) * scale
     scene = plan.scene
-    # the plan's scene lists its cranes in label order; its parameter vector holds the boom
-    # heights at [1 + 3 n + 3 + 1, + n) (the casadi model's Layout)
+    # the plan's scene lists its cranes in label order, as the errors are drawn
     p0 = pack_params(scene, "elastic")
-    boom = slice(3 * n + 5, 4 * n + 5)
+    boom = Layout(n).boom
     solver = rope_model(n).elastic_solver
-    weight, diameter = scene.body.weight, scene.plan_diameter
     tensions = np.full((draws, n), np.nan)
     heel = np.full(draws, np.nan)
     trim = np.full(draws, np.nan)
@@ -160,10 +157,7 @@ def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform",
     for k in range(draws):
         p[boom] = p0[boom] + errors[k]
         x, t, _, residual, minors = solver(p)
-        r = np.abs(np.ravel(residual))  # force; moments over the plan diameter, as solve does
-        worst = max(r[0], r[1] / diameter, r[2] / diameter) / weight
-        verdict = judge(worst, x[1], x[2], minors=minors)
-        if verdict.ok:
+        if elastic_verdict(scene, x, residual, minors).ok:  # the acceptance solve applies
             tensions[k] = np.ravel(t)
             heel[k], trim[k] = np.degrees(x[1]), np.degrees(x[2])
     return HookMonteCarlo(

@@ -236,7 +236,7 @@ class DenseSearch:
     utilisation_spread: float
 
 
-def robust(tensions, gain, lugset):
+def robust(tensions, gain, lugset, delta=None):
     """Each scenario's worst over the hook-height errors within their tolerance (exact:
     at a given attitude the tensions are affine in the errors while every rope is taut).
 
@@ -244,7 +244,8 @@ def robust(tensions, gain, lugset):
     ----------
     tensions : (m, n)  [t]
     gain : (m, n, n)  [t/m]   dT/dH at each scenario
-    lugset : LugSet   (its ``scale`` and ``hook_tolerance``)
+    lugset : LugSet   (its ``scale``, ``swl`` and ``hook_tolerance``)
+    delta : (n,)  [m], optional   hook tolerances other than the lugset's
 
     Returns
     -------
@@ -255,7 +256,7 @@ def robust(tensions, gain, lugset):
     utilisation : (m,)  [-]   the worst max - min of T_i / SWL_i
     """
     m, n = tensions.shape
-    delta = lugset.hook_tolerance
+    delta = lugset.hook_tolerance if delta is None else np.asarray(delta, dtype=float)
     margin = np.abs(gain) @ delta
     first, second = np.nonzero(~np.eye(n, dtype=bool))
 
