@@ -572,10 +572,10 @@ def plan(problem, top=None):
         No lug set can hold the body within the tolerances and limits; the message names
         the causes and how many sets each ruled out.
     """
-    if problem.cranes == 2:  # two cranes on slings: the determinate sling-lift planner
-        from liftplan.planner.slings import plan_two_slings
+    from liftplan.planner import slings
 
-        return plan_two_slings(problem, top)
+    if slings.uses_slings(problem):  # cranes on sling sets: the sling-lift planner
+        return slings.plan_slings(problem, top)
     try:
         ranking, stats = search(problem, top)
     except Interrupted as stop:

@@ -144,6 +144,16 @@ def _leg_split(apex, a, b, load):
     return np.linalg.solve(gram, np.einsum("...ki,...k->...i", mat, rhs)[..., None])[..., 0]
 
 
+def uses_slings(problem):
+    """Whether ``problem`` is planned by the sling-lift planner (two cranes)."""
+    return problem.cranes == 2
+
+
+def plan_slings(problem, top=None):
+    """Plan a lift whose cranes carry sling sets (see :func:`plan_two_slings`)."""
+    return plan_two_slings(problem, top)
+
+
 def plan_two_slings(problem, top=None):
     """Choose each crane's lug pair for a two-crane lift on 2-leg slings.
 
