@@ -216,6 +216,55 @@ class Strength:
         return np.interp(x, xs, values)
 
 
+#: How ``solve`` treats a hull with a stiffness (``[analysis] hull``).
+HULL_MODELS = ("auto", "rigid", "flexible")
+
+
+@dataclass(frozen=True)
+class GirderStiffness:
+    """Stiffness of the hull girder (``[hull] EI``, ``GJ``): the hull as an elastic beam along
+    its x (:mod:`liftplan.model.strength.flexible`). Linear between points, the end values held
+    beyond the first and last; every point must lie on the body (the weight curve's span).
+
+    Parameters
+    ----------
+    EI : tuple of (float, float)  [m, t m2]
+        Vertical bending stiffness (Young's modulus x the midship section's moment of inertia).
+    GJ : tuple of (float, float) or None  [m, t m2]
+        Torsional stiffness about the body's x; None: the hull is rigid in torsion.
+    """
+
+    EI: tuple[tuple[float, float], ...]
+    GJ: tuple[tuple[float, float], ...] | None = None
+
+    def __post_init__(self):
+        _set(self, "EI", polyline("hull.EI", self.EI, "t m2", lowest="> 0"))
+        if self.GJ is not None:
+            _set(self, "GJ", polyline("hull.GJ", self.GJ, "t m2", lowest="> 0"))
+
+
+def _check_girder(scene):
+    """A hull stiffness needs the weight curve, and its points and the lugs on the body."""
+    if scene.body.weight_curve is None:
+        raise InvalidScene("hull.EI: given but no body.weight_curve; expected a weight curve (the "
+                           "flexible hull is loaded by its weight along x)")
+    x, _ = scene.body.weight_curve_arrays
+    lo, hi = float(x[0]), float(x[-1])
+    slack = 1e-9 * (hi - lo)
+    for name in ("EI", "GJ"):
+        for k, (xk, value) in enumerate(getattr(scene.girder, name) or ()):
+            if not lo - slack <= xk <= hi + slack:
+                raise InvalidScene(
+                    f"hull.{name}[{k}] = [{xk:g}, {value:g}]: x {xk:g} m lies outside the body "
+                    f"(body.weight_curve from {lo:g} to {hi:g} m); expected stations on the body")
+    for lug in scene.lugs:
+        if not lo - slack <= lug.at[0] <= hi + slack:
+            raise InvalidScene(
+                f"lugs[{lug.name}].at: x {lug.at[0]:g} m lies outside the hull girder "
+                f"(body.weight_curve from {lo:g} to {hi:g} m); expected lugs on the body when "
+                "hull.EI is given")
+
+
 @dataclass(frozen=True)
 class Lug:
     """A lifting point on the body.
@@ -377,16 +426,23 @@ class Analysis:
         least model the scene supports (see :func:`liftplan.model.solve.pick_model`).
     redundant : tuple of Redundant
         n - 3 tensions held by the operators, for ``rigid``.
+    hull : {"auto", "rigid", "flexible"}
+        With a hull stiffness (``Scene.girder``): ``auto`` solves the hull both rigid and
+        flexible and keeps the rigid answer when no tension differs by more than 1 %;
+        ``rigid`` and ``flexible`` force one (:func:`liftplan.model.solve.solve`).
     """
 
     model: str | None = None
     redundant: tuple[Redundant, ...] = ()
+    hull: str = "auto"
 
     def __post_init__(self):
         if self.model is not None and self.model not in MODELS:
             raise InvalidScene(
                 f"analysis.model = {self.model!r}: expected one of {', '.join(MODELS)}"
             )
+        if self.hull not in HULL_MODELS:
+            raise InvalidScene(f"analysis.hull = {self.hull!r}: expected one of {', '.join(HULL_MODELS)}")
         _set(self, "redundant", tuple(self.redundant))
 
 
@@ -461,6 +517,9 @@ class Scene:
     strength : Strength or None
         Allowable bending moment and shear force of the hull girder (needs
         ``body.weight_curve``).
+    girder : GirderStiffness or None
+        Bending (and torsional) stiffness of the hull girder: the hull is an elastic beam
+        (needs ``body.weight_curve``; every lug on its span).
     """
 
     body: Body
@@ -475,6 +534,7 @@ class Scene:
     rigging: RiggingLimits = field(default_factory=RiggingLimits)
     frame: str = "z-up"
     strength: Strength | None = None
+    girder: GirderStiffness | None = None
 
     def __post_init__(self):
         if self.frame not in FRAMES:
@@ -553,6 +613,13 @@ class Scene:
             held.add(red.lug)
         if self.hull is None:
             _check_support(self)
+        if self.girder is not None:
+            if not isinstance(self.girder, GirderStiffness):
+                raise InvalidScene(f"girder = {self.girder!r}: expected a GirderStiffness")
+            _check_girder(self)
+        elif self.analysis.hull == "flexible":
+            raise InvalidScene('analysis.hull = "flexible": no hull.EI given; expected [hull] EI = '
+                               "[[x m, EI t m2], ...] for a flexible hull")
 
     # -- look-ups ---------------------------------------------------------------
     @cached_property

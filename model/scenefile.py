@@ -24,7 +24,21 @@ from .errors import InvalidScene
 from .frames import choi_to_zup
 from .hull import Compartment, Hull
 from .rigging_gear import Leg, RiggingLimits, Sling, Spreader
-from .scene import MODELS, Analysis, Attitude, Body, Crane, Ground, Lug, Redundant, Scene, Strength, Water
+from .scene import (
+    HULL_MODELS,
+    MODELS,
+    Analysis,
+    Attitude,
+    Body,
+    Crane,
+    GirderStiffness,
+    Ground,
+    Lug,
+    Redundant,
+    Scene,
+    Strength,
+    Water,
+)
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -109,6 +123,7 @@ class _Redundant(Table):
 class _Analysis(Table):
     model: Literal[MODELS] | None = None
     redundant: _Redundant | list[_Redundant] | None = None
+    hull: Literal[HULL_MODELS] = "auto"
 
 
 class _Water(Table):
@@ -134,6 +149,8 @@ class _Hull(Table):
     steel_density: Num | None = None
     weight_in_water: Num | None = None
     compartments: list[_Compartment] = []
+    EI: list[Pair] | None = None       # [x m, t m2]: the hull girder's bending stiffness
+    GJ: list[Pair] | None = None       # [x m, t m2]: its torsional stiffness
 
 
 class _Ground(Table):
@@ -275,6 +292,8 @@ def loads_scene(text, base=None):
 
 def _to_hull(data, to_zup, base):
     spec = data.hull
+    if spec.box is None and spec.mesh is None and spec.EI is not None and data.water is None:
+        return None  # a hull girder's stiffness alone, for a body in air
     if (spec.box is None) == (spec.mesh is None):
         raise InvalidScene("hull: expected exactly one of box = {min, max} or mesh = \"file.stl\"")
     options = dict(flooding=spec.flooding, steel_density=spec.steel_density,
@@ -318,6 +337,7 @@ def _to_scene(data, base):
         analysis=Analysis(
             model=data.analysis.model,
             redundant=tuple(Redundant(lug=r.lug, tension=r.tension) for r in red),
+            hull=data.analysis.hull,
         ),
         water=Water(**data.water.model_dump()) if data.water is not None else None,
         hull=_to_hull(data, to_zup, base) if data.hull is not None else None,
@@ -326,7 +346,18 @@ def _to_scene(data, base):
         rigging=RiggingLimits(min_sling_angle=data.rigging.min_sling_angle),
         frame=data.frame,
         strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
+        girder=_to_girder(data.hull),
     )
+
+
+def _to_girder(spec):
+    """``[hull] EI`` and ``GJ`` (None without EI; GJ alone is refused)."""
+    if spec is None or (spec.EI is None and spec.GJ is None):
+        return None
+    if spec.EI is None:
+        raise InvalidScene("hull.GJ: given without hull.EI; expected EI = [[x m, t m2], ...] too "
+                           "(the flexible hull bends and twists)")
+    return GirderStiffness(EI=spec.EI, GJ=spec.GJ)
 
 
 def _to_crane(c, data, to_zup):
