@@ -132,8 +132,9 @@ def test_short_slings_cannot_reach_any_pair():
 
 
 def test_bad_sling_input():
-    with pytest.raises(InvalidScene, match="cranes.sling.legs = 4: expected 2"):
-        SlingSpec(length=9.0, legs=4, EA=1.0)
+    for legs in (1, 5, 2.0, True):
+        with pytest.raises(InvalidScene, match=r"cranes.sling.legs = .*: expected 2, 3 or 4 legs"):
+            SlingSpec(length=9.0, legs=legs, EA=1.0)
     with pytest.raises(InvalidScene, match="exactly one of EA"):
         SlingSpec(length=9.0)
     with pytest.raises(InvalidScene, match="two cranes"):

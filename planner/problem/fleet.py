@@ -26,34 +26,71 @@ def _set(obj, name, value):
 
 
 @dataclass(frozen=True)
-class SlingSpec:
-    """A crane's sling set in a planning file: equal legs from its hook to the lugs the
-    planner picks for it (README "Two-crane sling lifts").
+class SpreaderSpec:
+    """A spreader bar under a crane's hook in a planning file (README "Sling lifts").
+
+    Two top legs run from the hook to the bar's end pins, and the sling's two legs (the
+    bottom legs) from the ends down to the two lugs the planner picks.
 
     Parameters
     ----------
-    legs : int
-        Number of legs (2: the planner takes a pair of candidates for the crane).
+    length : float  [m]
+        Distance between the bar's end pins.
+    top_length : float  [m]
+        Each top leg's length, hook to bar end (same wire as the sling's legs).
+    weight : float  [t]
+        The bar with its shackles: part of the hook load and of the rigging weight.
+    """
+
+    length: float
+    top_length: float
+    weight: float = 0.0
+
+    def __post_init__(self):
+        _set(self, "length", positive("cranes.sling.spreader.length", self.length))
+        _set(self, "top_length", positive("cranes.sling.spreader.top_length", self.top_length))
+        weight = finite("cranes.sling.spreader.weight", self.weight)
+        if weight < 0.0:
+            raise InvalidScene(f"cranes.sling.spreader.weight = {self.weight!r}: expected >= 0 t")
+        _set(self, "weight", weight)
+        if self.top_length <= 0.5 * self.length:
+            raise InvalidScene(
+                f"cranes.sling.spreader.top_length = {self.top_length:g} m: expected more than half "
+                f"the bar length {self.length:g} m (the top legs must meet above the bar)")
+
+
+@dataclass(frozen=True)
+class SlingSpec:
+    """A crane's sling set in a planning file: equal legs from its hook (or its spreader bar's
+    ends) to the lugs the planner picks for it (README "Sling lifts").
+
+    Parameters
+    ----------
     length : float  [m]
         Each leg's length, pin to pin.
+    legs : int
+        Number of legs, 2 to 4: the planner takes that many candidates for the crane. A 2-leg
+        sling hinges about its pair (two cranes only); 3 and 4 legs fix the hook to the body.
     EA : float or None  [t]
         Each leg's axial stiffness; or give ``diameter``.
     diameter : float or None  [mm]
         Wire-rope diameter: EA = 80 000 N/mm2 x 0.785 d^2 (Noble Denton 0027/ND 5.6.13).
+    spreader : SpreaderSpec or None
+        A spreader bar between the hook and the legs (2 legs, one from each bar end).
     """
 
     length: float
     legs: int = 2
     EA: float | None = None
     diameter: float | None = None
+    spreader: SpreaderSpec | None = None
 
     def __post_init__(self):
         from liftplan.model.rigging_gear import sling_ea
 
         _set(self, "length", positive("cranes.sling.length", self.length))
-        if self.legs != 2:
-            raise InvalidScene(f"cranes.sling.legs = {self.legs!r}: expected 2 (the planner takes a "
-                               "pair of lugs per sling; 3- and 4-leg slings are solved, not planned)")
+        if isinstance(self.legs, bool) or not isinstance(self.legs, int) or not 2 <= self.legs <= 4:
+            raise InvalidScene(f"cranes.sling.legs = {self.legs!r}: expected 2, 3 or 4 legs")
         if (self.EA is None) == (self.diameter is None):
             raise InvalidScene("cranes.sling: expected exactly one of EA (t) or diameter (mm)")
         if self.diameter is not None:
@@ -61,6 +98,18 @@ class SlingSpec:
             _set(self, "EA", sling_ea(self.diameter))
         else:
             _set(self, "EA", positive("cranes.sling.EA", self.EA))
+        if self.spreader is not None:
+            if not isinstance(self.spreader, SpreaderSpec):
+                raise InvalidScene(f"cranes.sling.spreader = {self.spreader!r}: expected "
+                                   "{ length, top_length, weight }")
+            if self.legs != 2:
+                raise InvalidScene(f"cranes.sling.legs = {self.legs}: with a spreader bar expected 2 "
+                                   "(one leg from each bar end down to a lug)")
+
+    @property
+    def body_fixed(self):
+        """True when the hook is a body-fixed point (3 or 4 legs, no spreader)."""
+        return self.legs >= 3 and self.spreader is None
 
 
 @dataclass(frozen=True)
