@@ -207,7 +207,12 @@ def _plan(args):
         return INTERRUPTED
     unwritten = None
     if report is not None:
-        from liftplan.planner.output.report import write_report  # matplotlib only when a report is asked for
+        from liftplan.planner.slings import is_sling_plan
+
+        if is_sling_plan(result):  # slings on any number of cranes: their own report
+            from liftplan.planner.output.sling_report import write_report
+        else:  # matplotlib only when a report is asked for
+            from liftplan.planner.output.report import write_report
 
         try:
             files = write_report(result, report)
@@ -230,7 +235,12 @@ def _unwritten(message):
 
 
 def _print_plan(result, args, interrupted=False):
-    from liftplan.planner.output.console import plan_table
+    from liftplan.planner.slings import is_sling_plan
+
+    if is_sling_plan(result):  # slings on any number of cranes: their own table
+        from liftplan.planner.output.sling_console import sling_table as plan_table
+    else:
+        from liftplan.planner.output.console import plan_table
 
     if args.json:
         out = {**result.to_json(), "checks": [c.to_json() for c in result.checks]}

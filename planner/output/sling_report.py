@@ -208,3 +208,41 @@ def scene_toml(plan):
     lines += ["", "[attitude]", f"lift_height = {att.lift_height!r}", f"yaw = {att.yaw!r}",
               "", "[rigging]", f"min_sling_angle = {problem.min_sling_angle!r}", ""]
     return "\n".join(lines)
+
+
+def write_report(plan, directory):
+    """Write a sling plan's report into ``directory`` (created if needed): report.html, the
+    rigging scene plan_scene.toml (``liftplan solve`` reads it), plan.json and, with the
+    ``[pdf]`` extra, report.pdf.
+
+    Parameters
+    ----------
+    plan : SlingPlan or ApexSlingPlan
+    directory : str or os.PathLike
+
+    Returns
+    -------
+    ReportFiles
+    """
+    from pathlib import Path
+
+    from liftplan.planner.output.report import ReportFiles
+
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    page = render_html(plan)
+    html_path = out / "report.html"
+    html_path.write_text(page, encoding="utf-8")
+    scene_path = out / "plan_scene.toml"
+    scene_path.write_text(scene_toml(plan), encoding="utf-8")
+    json_path = out / "plan.json"
+    json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
+    pdf_path = None
+    try:
+        import weasyprint  # optional: pip install "liftplan[pdf]"
+    except (ImportError, OSError):  # OSError: installed, but the system's Pango is missing
+        pass
+    else:
+        pdf_path = out / "report.pdf"
+        weasyprint.HTML(string=page).write_pdf(pdf_path)
+    return ReportFiles(html=html_path, pdf=pdf_path, scene=scene_path, json=json_path)

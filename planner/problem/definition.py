@@ -299,10 +299,19 @@ class PlanProblem:
         if self.cranes == 2 and not all(slings):
             raise InvalidScene("plan.cranes = 2: expected a sling on both cranes (two cranes on "
                                "single ropes cannot hold a body level; give each [[cranes]] a "
-                               "sling = { legs = 2, length, diameter or EA }) or 3 cranes or more")
-        if any(slings) and self.cranes != 2:
-            raise InvalidScene(f"cranes.sling: planned for two cranes only (here {self.cranes}); "
-                               "expected two [[cranes]] with slings, or single ropes")
+                               "sling = { legs, length, diameter or EA }) or 3 cranes or more")
+        if any(slings) and not all(slings):
+            bare = next(c.name for c in fleet if c.sling is None)
+            raise InvalidScene(f"cranes[{bare}].sling: missing; expected a sling on every crane or "
+                               "on none (the planner places any crane on any lift point)")
+        if any(slings) and self.cranes >= 3:
+            for crane in fleet:
+                if crane.sling.legs == 2 or crane.sling.spreader is not None:
+                    raise InvalidScene(
+                        f"cranes[{crane.name}].sling: a 2-leg sling or spreader bar with "
+                        f"{self.cranes} cranes; expected 3 or 4 legs (a pair's sling hinges about "
+                        "its lugs, so its hook is not a body-fixed lift point the held search "
+                        "plans) or two cranes")
         value = finite("rigging.min_sling_angle", self.min_sling_angle)
         if not 0.0 < value <= 90.0:
             raise InvalidScene(f"rigging.min_sling_angle = {value!r}: expected 0 to 90 deg "

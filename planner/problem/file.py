@@ -18,7 +18,7 @@ from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene import Body
 from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
-from liftplan.planner.problem.fleet import FleetCrane, SlingSpec
+from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
 from liftplan.planner.problem.report_info import ReportInfo
 
 Count = Annotated[int, Strict(), Field(ge=1)]
@@ -67,11 +67,18 @@ class _Crane(Table):
     boom_height: _Range | None = None
 
 
+class _Spreader(Table):
+    length: Num
+    top_length: Num
+    weight: Num = 0.0
+
+
 class _Sling(Table):
     legs: Count = 2
     length: Num
     EA: Num | None = None
     diameter: Num | None = None
+    spreader: _Spreader | None = None
 
 
 class _Rigging(Table):
@@ -226,7 +233,10 @@ def _fleet(data, to_zup):
             hook_tolerance=entry.hook_tolerance,
             sling=None if entry.sling is None else SlingSpec(
                 length=entry.sling.length, legs=entry.sling.legs, EA=entry.sling.EA,
-                diameter=entry.sling.diameter),
+                diameter=entry.sling.diameter,
+                spreader=None if entry.sling.spreader is None else SpreaderSpec(
+                    length=entry.sling.spreader.length, top_length=entry.sling.spreader.top_length,
+                    weight=entry.sling.spreader.weight)),
         ))
     return tuple(fleet)
 
