@@ -39,7 +39,7 @@ def plan_view(plan):
     hooks and cranes, drawn at the report's print width."""
     from liftplan.planner.output.figures import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 
-    problem, chosen = plan.problem, plan.chosen
+    problem = plan.problem
     choi = problem.frame == "choi"
 
     def xy(points):
@@ -55,21 +55,23 @@ def plan_view(plan):
     fig = plan_figure(low, high)
     ax = fig.subplots()
     ax.scatter(pts[:, 0], pts[:, 1], s=10, color="0.6", label="candidates")
-    colors = ("tab:orange", "tab:green")
-    for c, (crane, pair) in enumerate(zip(problem.fleet, chosen.pairs)):
-        lugs = xy(problem.points[list(pair)])
-        hook = xy(chosen.apex[c])[0]
+    colors = ("tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
+              "tab:cyan", "tab:blue")
+    for c, (crane, group) in enumerate(zip(problem.fleet, plan.groups)):
+        lugs = xy(problem.points[list(group)])
+        hook = xy(plan.hooks[c])[0]
+        colors_c = colors[c % len(colors)]
         for lug in lugs:
-            ax.plot([hook[0], lug[0]], [hook[1], lug[1]], color=colors[c], lw=1.3)
-        ax.scatter(lugs[:, 0], lugs[:, 1], s=40, color=colors[c], zorder=3)
-        ax.scatter([hook[0]], [hook[1]], marker="^", s=55, color=colors[c], zorder=3,
-                   label=f"{crane.name}: hook {chosen.hook_nominal[c]:.1f} t, "
-                         f"SWL {chosen.swl[c]:.0f} t at {chosen.radius[c]:.1f} m")
+            ax.plot([hook[0], lug[0]], [hook[1], lug[1]], color=colors_c, lw=1.3)
+        ax.scatter(lugs[:, 0], lugs[:, 1], s=40, color=colors_c, zorder=3)
+        ax.scatter([hook[0]], [hook[1]], marker="^", s=55, color=colors_c, zorder=3,
+                   label=f"{crane.name}: hook {plan.hook_nominal[c]:.1f} t, "
+                         f"SWL {plan.hook_swl[c]:.0f} t at {plan.hook_radius[c]:.1f} m")
         if crane.position is not None:
             centre = xy(np.array([[*crane.position, 0.0]]))[0]
-            ax.scatter([centre[0]], [centre[1]], marker="s", s=40, color=colors[c])
-            ax.plot([centre[0], hook[0]], [centre[1], hook[1]], color=colors[c], ls=":", lw=1)
-            ax.annotate(crane.name, centre, fontsize=_SMALL, color=colors[c], xytext=(0, 6),
+            ax.scatter([centre[0]], [centre[1]], marker="s", s=40, color=colors_c)
+            ax.plot([centre[0], hook[0]], [centre[1], hook[1]], color=colors_c, ls=":", lw=1)
+            ax.annotate(crane.name, centre, fontsize=_SMALL, color=colors_c, xytext=(0, 6),
                         textcoords="offset points", ha="center")
     for label, name in plan.lugs.items():
         x, y = xy(problem.points[problem.names.index(name)])[0]
@@ -97,32 +99,56 @@ def render_html(plan, today=None):
 
     Parameters
     ----------
-    plan : SlingPlan
+    plan : SlingPlan or ApexSlingPlan
     today : datetime.date, optional
         The date printed when ``[report] date`` is not given (default: today).
     """
-    problem, chosen = plan.problem, plan.chosen
-    names = [c.name for c in problem.fleet]
+    from liftplan.planner.output.sling_console import _ranking
+
+    problem = plan.problem
+    names = plan.crane_names
     name = problem.name or "Lift plan"
+    design = plan.design_hook_loads
+    chain = None if isinstance(plan.design, str) else plan.design
+    legs_of = {n: ", ".join(label for label in plan.labels if plan.cranes[label] == n) for n in names}
     cranes = _table(
         ["crane", "lugs", "hook position x, y, z [m]", "radius [m]", "chart SWL [t]",
-         "boom height H [m]", "hook load, level [t]", "hook load, worst [t]", "worst / SWL [%]"],
-        [(crane, " + ".join(problem.names[i] for i in chosen.pairs[c]),
-          _xyz(problem, chosen.apex[c]), f"{chosen.radius[c]:.1f}", f"{chosen.swl[c]:.1f}",
-          f"{plan.crane_boom_heights[c]:.3f}", f"{chosen.hook_nominal[c]:.2f}",
-          f"{chosen.hook_worst[c]:.2f}", f"{100 * chosen.hook_worst[c] / chosen.swl[c]:.1f}")
+         "boom height H [m]", "hook load, level [t]", "hook load, worst [t]", "design hook load [t]",
+         "design / SWL [%]"],
+        [(crane, legs_of[crane], _xyz(problem, plan.hooks[c]), f"{plan.hook_radius[c]:.1f}",
+          f"{plan.hook_swl[c]:.1f}", f"{plan.crane_boom_heights[c]:.3f}",
+          f"{plan.hook_nominal[c]:.2f}", f"{plan.hook_worst[c]:.2f}", f"{design[c]:.2f}",
+          f"{100 * design[c] / plan.hook_swl[c]:.1f}")
          for c, crane in enumerate(names)],
-        "Recommended lug pairs, cranes and boom heights", text_columns=(1,),
+        "Recommended slings, cranes and boom heights", text_columns=(1,),
     )
+    lug_design = {} if chain is None else {lug.lug: lug for r in chain.results for lug in r.lugs}
+    angles, level, worst = (np.concatenate([np.ravel(a) for a in v])
+                            for v in (plan.leg_angles, plan.legs_nominal, plan.legs_worst))
     legs = _table(
         ["lug", "candidate", "position x, y, z [m]", "crane", "sling angle [deg]",
-         "leg tension, level [t]", "leg tension, worst [t]"],
+         "leg tension, level [t]", "leg tension, worst [t]", "lug design load [t]"],
         [(label, plan.lugs[label], _xyz(problem, problem.points[problem.names.index(plan.lugs[label])]),
-          plan.cranes[label], f"{a:.1f}", f"{t0:.2f}", f"{tw:.2f}")
-         for label, a, t0, tw in zip(plan.labels, np.ravel(chosen.sling_angles),
-                                     np.ravel(chosen.legs_nominal), np.ravel(chosen.legs_worst))],
-        "Sling legs", text_columns=(1, 3),
+          plan.cranes[label], f"{a:.1f}", f"{t0:.2f}", f"{tw:.2f}",
+          f"{lug_design[plan.lugs[label]].design_load:.2f}" if plan.lugs[label] in lug_design else "-")
+         for label, a, t0, tw in zip(plan.labels, angles, level, worst)],
+        "Sling legs (lug design load: the rules' chain with the sling angle, docs/design-loads.md)",
+        text_columns=(1, 3),
     )
+    bars = [(names[c], f"{plan.bar_weights[c]:.2f}",
+             ", ".join(f"{t:.2f}" for t in top), ", ".join(f"{a:.1f}" for a in plan.top_angles[c]))
+            for c, top in enumerate(plan.top_legs) if top is not None]
+    spreaders = _table(["crane", "bar weight on the hook [t]", "top legs, level [t]",
+                        "top-leg angles [deg]"], bars, "Spreader bars", text_columns=(0,)) if bars else ""
+    factors = ""
+    if chain is not None:
+        factors = _table(
+            ["crane", *[f.name for f in chain.results[0].factors], "rigging [t]", "static hook [t]",
+             "design hook [t]"],
+            [(r.crane, *[f"{f.value:.3f}" for f in r.factors], f"{r.rigging_weight:.2f}",
+              f"{r.static_hook_load:.2f}", f"{r.design_hook_load:.2f}") for r in chain.results],
+            "The rules' design-load chain per crane (factors with their clauses: "
+            "docs/design-loads.md)", text_columns=(0,))
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
         [(c.name, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL",
@@ -130,47 +156,65 @@ def render_html(plan, today=None):
          for c in plan.checks],
         "Every check of the plan", text_columns=(0, 1, 6),
     )
-    dx, dy, dz = _in_file(problem, chosen.worst_cog_offset)
-    inputs = _table(
-        ["quantity", "value", "unit"],
-        [("weight W", f"{problem.body.weight:.2f}", "t"),
-         ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
-         ("CG envelope half-widths (x, y, z)",
-          ", ".join(f"{abs(v):.2f}" for v in _in_file(problem, problem.cog_envelope.half_widths)), "m"),
-         ("tilt tolerance along the hook line", f"+-{plan.tolerances[0]:g}", "deg"),
-         ("roll allowed about the hook line", f"{plan.tolerances[1]:g}", "deg"),
-         ("lowest sling angle allowed", f"{problem.min_sling_angle:g}", "deg")],
-        "Inputs", full=False, text_columns=(0,),
-    )
-    result = _table(
-        ["quantity", "value", "unit"],
-        [("roll about the hook line (CG under it)", f"{chosen.roll:.2f}", "deg"),
-         ("worst case: tilt along the hook line", f"{chosen.worst_tilt:+.2f}", "deg"),
-         ("worst case: CG offset (x, y, z)", f"{dx:+.2f}, {dy:+.2f}, {dz:+.2f}", "m")],
-        "Where the hook loads are worst", full=False, text_columns=(0,),
-    )
-    search = _table(
-        ["quantity", "value", "unit"],
-        [("pairs of lug pairs considered", plan.options, "-")]
-        + [(f"ruled out: {text}", n, "options") for text, n in plan.ruled_out.items()],
-        "Search (every pair of lug pairs and both crane assignments)", full=False,
-        text_columns=(0,),
-    )
+    rows = [("weight W", f"{problem.body.weight:.2f}", "t"),
+            ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
+            ("CG envelope half-widths (x, y, z)",
+             ", ".join(f"{abs(v):.2f}" for v in _in_file(problem, problem.cog_envelope.half_widths)), "m"),
+            ("lowest sling angle allowed", f"{problem.min_sling_angle:g}", "deg")]
+    if hasattr(plan, "tolerances"):
+        rows[3:3] = [("tilt tolerance along the hook line", f"+-{plan.tolerances[0]:g}", "deg"),
+                     ("roll allowed about the hook line", f"{plan.tolerances[1]:g}", "deg")]
+    else:
+        rows[3:3] = [("tolerance box heel, trim", f"+-{problem.heel_tolerance:g}, "
+                      f"+-{problem.trim_tolerance:g}", "deg")]
+    inputs = _table(["quantity", "value", "unit"], rows, "Inputs", full=False, text_columns=(0,))
+    result = ""
+    if hasattr(plan, "chosen"):
+        chosen = plan.chosen
+        dx, dy, dz = _in_file(problem, chosen.worst_cog_offset)
+        result = _table(
+            ["quantity", "value", "unit"],
+            [("roll about the hook line (CG under it)", f"{chosen.roll:.2f}", "deg"),
+             ("worst case: tilt along the hook line", f"{chosen.worst_tilt:+.2f}", "deg"),
+             ("worst case: CG offset (x, y, z)", f"{dx:+.2f}, {dy:+.2f}, {dz:+.2f}", "m")],
+            "Where the hook loads are worst", full=False, text_columns=(0,))
+        search_rows = [("pairs of rigs considered", plan.options, "-")]
+        how = ("Hook loads by the lever rule along the hook line (each hook where its rig puts it), "
+               "checked on the rigging model with free hooks and elastic legs.")
+        title = "Lift plan: two cranes on slings, lugs chosen by liftplan"
+    else:
+        stats = plan.stats
+        search_rows = [("sling apexes (body-fixed lift points)", len(plan.rigs), "-"),
+                       ("(set, crane assignment) rows", stats.rows, "-"),
+                       ("evaluated", stats.evaluated, "-"),
+                       ("search stopped", stats.stopped, "-"),
+                       ("certified lower bound", f"{stats.lower_bound:.4g}", "objective")]
+        how = ("Each 3/4-leg sling fixes its hook to the body (an apex); the hooks hold the level "
+               "preload over the tolerance box (the held-preload search on the apexes), and the "
+               "legs share each hook load by the apex's statics; checked on the rigging model with "
+               "free hooks and elastic legs.")
+        title = f"Lift plan: {problem.cranes} cranes on slings, lugs chosen by liftplan"
+    search = _table(["quantity", "value", "unit"],
+                    search_rows + [(f"ruled out: {text}", n, "options")
+                                   for text, n in plan.ruled_out.items()],
+                    "Search", full=False, text_columns=(0,))
+    unit, scale = ("t", 1.0) if plan.objective == "spread" else ("%", 100.0)
+    ranking = _table(["rank", f"worst [{unit}]", "slings (crane)"],
+                     [(k, f"{scale * v:.2f}", "; ".join(texts)) for k, texts, v in _ranking(plan)],
+                     "Alternatives, best first", text_columns=(2,))
     info = problem.report
     body = "\n".join([
-        report_page.title_block(info, name, "Lift plan: two cranes on 2-leg slings, lug pairs "
-                                "chosen by liftplan", today),
+        report_page.title_block(info, name, title, today),
         f"<p>All coordinates are in the planning file's frame: {html.escape(FRAMES[problem.frame])}. "
-        "Hook loads by the lever rule along the hook line (the hooks above the pairs' midpoints), "
-        "checked on the rigging model with free hooks and elastic legs. Forces in t "
-        "(tonne-force), lengths in m.</p>",
+        f"{how} Forces in t (tonne-force), lengths in m.</p>",
         report_page.status(plan.checks),
-        "<h2>1 Recommendation</h2>", cranes, legs, result,
-        "<h2>2 Basis of the plan</h2>", inputs,
+        "<h2>1 Recommendation</h2>", cranes, legs, spreaders, result,
+        "<h2>2 Basis of the plan</h2>", inputs, factors,
         "<h2>3 Checks to hand over</h2>", checks,
         "<h2>4 Figures</h2>",
         _png(plan_view(plan), "plan view",
-             "Plan view, seen from above: each crane's lug pair, its hook and the CG."),
+             "Plan view, seen from above: each crane's lugs, its hook and the CG."),
+        "<h2>5 Alternatives</h2>", ranking,
         '<h2 class="appendix">Engineering appendix</h2>', search,
     ])
     return report_page.document(name, body, report_page.running_header(info, name),
@@ -197,13 +241,21 @@ def scene_toml(plan):
         lines += ["", "[[lugs]]", f"name = {json.dumps(lug.name)}",
                   f"at = {vec(_in_file(problem, lug.at))}"]
     for crane in scene.cranes:
-        legs = ", ".join(f"{{ lug = {json.dumps(leg.lug)}, length = {leg.length!r}, EA = {leg.EA!r} }}"
+        legs = ", ".join(f"{{ lug = {json.dumps(leg.lug)}, length = {leg.length!r}, EA = {leg.EA!r}"
+                         + (f", end = {leg.end}" if leg.end is not None else "") + " }"
                          for leg in crane.sling.legs)
+        bar = crane.sling.spreader
+        if bar is not None:
+            top = ", ".join(f"{{ length = {leg.length!r}, EA = {leg.EA!r} }}" for leg in bar.top)
+            legs += (f" ], spreader = {{ length = {bar.length!r}, weight = {bar.weight!r}, "
+                     f"EA = {bar.EA!r}, top = [ {top} ] }}")
+        else:
+            legs += " ]"
         lines += ["", "[[cranes]]", f"name = {json.dumps(crane.name)}",
                   f"boom_height = {crane.boom_height!r}", f"rope_length = {crane.rope_length!r}",
                   f"EA = {crane.EA!r}", f"swl = {crane.swl!r}",
                   f"tip = {vec(_in_file(problem, crane.tip))}",
-                  f"sling = {{ legs = [ {legs} ] }}"]
+                  f"sling = {{ legs = [ {legs} }}"]
     att = scene.attitude
     lines += ["", "[attitude]", f"lift_height = {att.lift_height!r}", f"yaw = {att.yaw!r}",
               "", "[rigging]", f"min_sling_angle = {problem.min_sling_angle!r}", ""]
