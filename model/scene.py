@@ -466,6 +466,96 @@ class Water:
         _set(self, "level", finite("water.level", self.level))
 
 
+#: Time ratios pull_time / embedded_time over which Liu (1969, NCEL R-635) fitted the
+#: breakout-time correlation; outside it the soil model is refused, not extrapolated.
+LIU_RANGE = (1e-3, 10.0)
+
+
+@dataclass(frozen=True)
+class Breakout:
+    """How hard the seabed holds a bedded hull (``[ground] breakout``); the force itself is
+    :func:`liftplan.model.water.breakout.breakout_force`.
+
+    One of two models:
+
+    * ``factor``: the breakout force is this factor x the submerged weight at rest;
+    * the soil model (``shear_strength`` and the two times): the static soil resistance
+      ``bearing_factor`` x undrained shear strength x contact area, times Liu's (1969)
+      1.5 (pull_time / embedded_time)^-0.07.
+
+    Parameters
+    ----------
+    factor : float or None  [-]
+        >= 0.
+    shear_strength : float or None  [kPa]
+        Undrained shear strength of the seabed soil, >= 0.
+    area : float or None  [m2]
+        Contact area; default the plan area of the hull's underside at rest.
+    bearing_factor : float  [-]
+        N_c of the reverse bearing capacity, > 0 (5.14: Prandtl, a long footing; about 6.2
+        for a square or circle, Skempton).
+    pull_time : float or None  [h]
+        Time allowed for the breakout pull, > 0.
+    embedded_time : float or None  [h]
+        Time the hull has lain bedded, > 0.
+    clear : float  [m]
+        The soil holds on with the full breakout force until the contact has risen this
+        far above its bed, >= 0.
+    """
+
+    factor: float | None = None
+    shear_strength: float | None = None
+    area: float | None = None
+    bearing_factor: float = 5.14
+    pull_time: float | None = None
+    embedded_time: float | None = None
+    clear: float = 0.1
+
+    def __post_init__(self):
+        key = "ground.breakout"
+        soil = {"shear_strength": self.shear_strength, "area": self.area, "pull_time": self.pull_time,
+                "embedded_time": self.embedded_time}
+        given = [name for name, value in soil.items() if value is not None]
+        if self.factor is not None:
+            if given:
+                raise InvalidScene(
+                    f"{key}: factor and the soil model's {', '.join(given)} both given; expected "
+                    "either factor (x the submerged weight) or the soil model, not both"
+                )
+            factor = finite(f"{key}.factor", self.factor)
+            if factor < 0.0:
+                raise InvalidScene(f"{key}.factor = {self.factor!r}: expected a number >= 0")
+            _set(self, "factor", factor)
+        elif self.shear_strength is None:
+            raise InvalidScene(
+                f"{key}: expected factor = ... (x the submerged weight) or shear_strength = ... kPa "
+                "with pull_time and embedded_time (the soil model)"
+            )
+        else:
+            strength = finite(f"{key}.shear_strength", self.shear_strength)
+            if strength < 0.0:
+                raise InvalidScene(f"{key}.shear_strength = {self.shear_strength!r}: expected kPa >= 0")
+            _set(self, "shear_strength", strength)
+            for name in ("pull_time", "embedded_time"):
+                if getattr(self, name) is None:
+                    raise InvalidScene(f"{key}.{name}: missing, expected hours > 0 for the soil model")
+                _set(self, name, positive(f"{key}.{name}", getattr(self, name)))
+            if self.area is not None:
+                _set(self, "area", positive(f"{key}.area", self.area))
+            ratio = self.pull_time / self.embedded_time
+            low, high = LIU_RANGE
+            if not low <= ratio <= high:
+                raise InvalidScene(
+                    f"{key}: pull_time / embedded_time = {ratio:.3g}: outside {low:g} to {high:g}, the range "
+                    "Liu's (1969) time correlation was fitted to; expected times within it, or factor"
+                )
+        _set(self, "bearing_factor", positive(f"{key}.bearing_factor", self.bearing_factor))
+        clear = finite(f"{key}.clear", self.clear)
+        if clear < 0.0:
+            raise InvalidScene(f"{key}.clear = {self.clear!r}: expected m >= 0")
+        _set(self, "clear", clear)
+
+
 @dataclass(frozen=True)
 class Ground:
     """A point of the body resting on the ground; the body pivots about it.
@@ -481,6 +571,7 @@ class Ground:
 
     contact: tuple[float, float, float]
     friction: float | None = None
+    breakout: Breakout | None = None
 
     def __post_init__(self):
         _set(self, "contact", point("ground.contact", self.contact))
@@ -489,6 +580,50 @@ class Ground:
             if mu < 0.0:
                 raise InvalidScene(f"ground.friction = {self.friction!r}: expected a number >= 0")
             _set(self, "friction", mu)
+        if self.breakout is not None and not isinstance(self.breakout, Breakout):
+            raise InvalidScene(f"ground.breakout = {self.breakout!r}: expected a Breakout")
+
+
+#: Discharge coefficient of a sharp-edged orifice (the vena contracta), the textbook 0.61.
+DISCHARGE = 0.61
+
+
+@dataclass(frozen=True)
+class Opening:
+    """An opening of a compartment that holds water (``[[hull.compartments]] openings``).
+
+    Parameters
+    ----------
+    compartment : str
+        The compartment's name.
+    area : float  [m2]
+        >= 0; 0 never drains, ``inf`` drains at once (the inside level follows the
+        outside one, or the opening's sill).
+    at : tuple of 3 float  [m]
+        Body-frame point, on or in the compartment's box.
+    discharge : float  [-]
+        Discharge coefficient C_d in (0, 1]: flow = C_d x area x sqrt(2 g head).
+    """
+
+    compartment: str
+    area: float
+    at: tuple[float, float, float]
+    discharge: float = DISCHARGE
+
+    def __post_init__(self):
+        key = f"hull.compartments[{self.compartment}].openings"
+        try:
+            area = float(self.area)
+        except (TypeError, ValueError):
+            raise InvalidScene(f"{key}.area = {self.area!r}: expected m2 >= 0 (inf: drains at once)") from None
+        if math.isnan(area) or area < 0.0:
+            raise InvalidScene(f"{key}.area = {self.area!r}: expected m2 >= 0 (inf: drains at once)")
+        _set(self, "area", area)
+        _set(self, "at", point(f"{key}.at", self.at))
+        cd = finite(f"{key}.discharge", self.discharge)
+        if not 0.0 < cd <= 1.0:
+            raise InvalidScene(f"{key}.discharge = {self.discharge!r}: expected a coefficient in (0, 1]")
+        _set(self, "discharge", cd)
 
 
 @dataclass(frozen=True)
@@ -535,6 +670,7 @@ class Scene:
     frame: str = "z-up"
     strength: Strength | None = None
     girder: GirderStiffness | None = None
+    openings: tuple[Opening, ...] = ()
 
     def __post_init__(self):
         if self.frame not in FRAMES:
@@ -552,6 +688,9 @@ class Scene:
             )
         if self.ground is not None and self.hull is None:
             raise InvalidScene("ground: a ground contact needs [hull] and [water]; expected them too")
+        _set(self, "openings", tuple(self.openings))
+        if self.openings:
+            _check_openings(self)
         if not lugs and self.hull is not None:
             _set(self, "lugs", ())
             _set(self, "cranes", ())
@@ -702,6 +841,33 @@ class Scene:
     def with_analysis(self, **changes):
         """A copy with the analysis changed, e.g. ``scene.with_analysis(model="rigid")``."""
         return dataclasses.replace(self, analysis=dataclasses.replace(self.analysis, **changes))
+
+
+def _check_openings(scene):
+    """Each opening on a water compartment of the hull, on or inside its box."""
+    tanks = {c.name: c for c in (scene.hull.compartments if scene.hull is not None else ())}
+    for opening in scene.openings:
+        key = f"hull.compartments[{opening.compartment}].openings"
+        tank = tanks.get(opening.compartment)
+        if tank is None:
+            raise InvalidScene(f"{key}: no compartment {opening.compartment!r}; expected one of "
+                               f"{name_list(tanks) or 'none (no compartments)'}")
+        if tank.contents != "water":
+            raise InvalidScene(
+                f"{key}: the compartment holds {tank.contents!r}; expected contents = \"water\" (openings "
+                "drain trapped water; an air compartment with an opening would flood)"
+            )
+        lower, upper = (np.asarray(v, dtype=float) for v in (tank.box["min"], tank.box["max"]))
+        slack = 1e-9 * max(1.0, float(np.max(np.abs(np.concatenate([lower, upper])))))
+        at = np.asarray(opening.at)
+        if np.any(at < lower - slack) or np.any(at > upper + slack):
+            # in the file's frame: choi (x, y, z) is z-up (x, -z, y)
+            shown = (lambda v: [v[0], v[2], -v[1]]) if scene.frame == "choi" else list
+            corners = sorted([shown(lower.tolist()), shown(upper.tolist())])
+            raise InvalidScene(
+                f"{key}.at = {shown(list(opening.at))}: outside the compartment's box with corners "
+                f"{corners[0]} and {corners[1]} (body frame); expected a point on or in it"
+            )
 
 
 def _convex_hull(points):

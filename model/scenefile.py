@@ -25,15 +25,18 @@ from .frames import choi_to_zup
 from .hull import Compartment, Hull
 from .rigging_gear import Leg, RiggingLimits, Sling, Spreader
 from .scene import (
+    DISCHARGE,
     HULL_MODELS,
     MODELS,
     Analysis,
     Attitude,
     Body,
+    Breakout,
     Crane,
     GirderStiffness,
     Ground,
     Lug,
+    Opening,
     Redundant,
     Scene,
     Strength,
@@ -136,10 +139,17 @@ class _Box(Table):
     max: Point
 
 
+class _Opening(Table):
+    area: Num                      # m2; inf drains at once
+    at: Point                      # body, file frame
+    discharge: Num = DISCHARGE
+
+
 class _Compartment(Table):
     name: Text
     box: _Box
     contents: Literal["air", "water"] = "air"
+    openings: list[_Opening] = []
 
 
 class _Hull(Table):
@@ -153,9 +163,20 @@ class _Hull(Table):
     GJ: list[Pair] | None = None       # [x m, t m2]: its torsional stiffness
 
 
+class _Breakout(Table):
+    factor: Num | None = None
+    shear_strength: Num | None = None    # kPa
+    area: Num | None = None              # m2
+    bearing_factor: Num = Breakout.bearing_factor
+    pull_time: Num | None = None         # h
+    embedded_time: Num | None = None     # h
+    clear: Num = Breakout.clear          # m
+
+
 class _Ground(Table):
     contact: Point
     friction: Num | None = None
+    breakout: _Breakout | None = None
 
 
 class _Rigging(Table):
@@ -341,11 +362,13 @@ def _to_scene(data, base):
         ),
         water=Water(**data.water.model_dump()) if data.water is not None else None,
         hull=_to_hull(data, to_zup, base) if data.hull is not None else None,
-        ground=(Ground(contact=to_zup(data.ground.contact), friction=data.ground.friction)
-                if data.ground is not None else None),
+        ground=_to_ground(data.ground, to_zup) if data.ground is not None else None,
         rigging=RiggingLimits(min_sling_angle=data.rigging.min_sling_angle),
         frame=data.frame,
         strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
+        openings=tuple(
+            Opening(compartment=c.name, area=o.area, at=to_zup(o.at), discharge=o.discharge)
+            for c in (data.hull.compartments if data.hull is not None else ()) for o in c.openings),
         girder=_to_girder(data.hull),
     )
 
@@ -358,6 +381,11 @@ def _to_girder(spec):
         raise InvalidScene("hull.GJ: given without hull.EI; expected EI = [[x m, t m2], ...] too "
                            "(the flexible hull bends and twists)")
     return GirderStiffness(EI=spec.EI, GJ=spec.GJ)
+
+
+def _to_ground(spec, to_zup):
+    breakout = Breakout(**spec.breakout.model_dump()) if spec.breakout is not None else None
+    return Ground(contact=to_zup(spec.contact), friction=spec.friction, breakout=breakout)
 
 
 def _to_crane(c, data, to_zup):
