@@ -612,12 +612,13 @@ class Opening:
 
     def __post_init__(self):
         key = f"hull.compartments[{self.compartment}].openings"
+        bad = InvalidScene(f"{key}.area = {self.area!r}: expected m2 >= 0 (inf: drains at once)")
         try:
             area = float(self.area)
         except (TypeError, ValueError):
-            raise InvalidScene(f"{key}.area = {self.area!r}: expected m2 >= 0 (inf: drains at once)") from None
+            raise bad from None
         if math.isnan(area) or area < 0.0:
-            raise InvalidScene(f"{key}.area = {self.area!r}: expected m2 >= 0 (inf: drains at once)")
+            raise bad
         _set(self, "area", area)
         _set(self, "at", point(f"{key}.at", self.at))
         cd = finite(f"{key}.discharge", self.discharge)
