@@ -422,3 +422,53 @@ def test_chain_bad_input():
         DesignLoadChain((good,), 200.0, Rules(rigging_weight={"Z": 3.0}))
     with pytest.raises(InvalidScene, match="no such crane"):
         DesignLoadChain((good,), 200.0, Rules()).result("Q")
+
+
+# -- the rules' tilt per direction -----------------------------------------------------------------
+
+def test_tilt_per_direction_closed_forms():
+    """Four hooks on a 40 m x 12 m rectangle: a 1.0 m elevation difference tilts the body by
+    asin(1/12) about the long axis (heel) and asin(1/40) < 3 deg about the short one, so 3 deg
+    governs there; the least-spacing rule takes asin(1/12) about every axis."""
+    import math
+
+    from liftplan.model.rules import TiltGeometry
+
+    points = {"A": (0.0, 0.0, 0.0), "B": (40.0, 0.0, 0.0), "C": (40.0, 12.0, 0.0), "D": (0.0, 12.0, 0.0)}
+    geometry = TiltGeometry(points, (20.0, 6.0, -2.0), 400.0, preload=dict.fromkeys(points, 100.0))
+    assert geometry.spacing_along(0.0) == pytest.approx(12.0, abs=1e-12)
+    assert geometry.spacing_along(90.0) == pytest.approx(40.0, abs=1e-12)
+    # a diagonal tilt: the rectangle's extent along (-sin, cos) of 45 deg
+    assert geometry.spacing_along(45.0) == pytest.approx((40.0 + 12.0) / math.sqrt(2.0), abs=1e-12)
+    assert geometry.tilt_along(0.0, 3.0, 1.0) == pytest.approx(math.degrees(math.asin(1 / 12)), abs=1e-12)
+    assert geometry.tilt_along(90.0, 3.0, 1.0) == 3.0
+    per = geometry.worst_per_direction(3.0, 1.0)
+    least = geometry.worst(math.degrees(math.asin(1 / 12)))
+    for name in points:
+        assert per[name].load <= least[name].load + 1e-9
+        assert per[name].tilt == pytest.approx(geometry.tilt_along(per[name].direction, 3.0, 1.0))
+    # every direction's load at its own tilt is at most the reported worst (the sweep's samples)
+    for d in np.linspace(0.0, 360.0, 73):
+        loads = geometry.loads(geometry.tilt_along(d, 3.0, 1.0), d)
+        assert all(loads[n] <= per[n].load + 1e-9 for n in points)
+
+
+def test_tilt_per_direction_two_hooks_is_the_two_crane_rule():
+    import math
+
+    from liftplan.model.rules import TiltGeometry
+
+    geometry = TiltGeometry({"P": (0.0, 0.0, 5.0), "Q": (10.0, 0.0, 5.0)}, (4.0, 0.0, 1.0), 100.0)
+    per = geometry.worst_per_direction(3.0, 1.0)
+    old = geometry.worst(math.degrees(math.asin(0.1)))
+    for name in ("P", "Q"):
+        assert per[name].load == pytest.approx(old[name].load, abs=1e-12)
+
+
+def test_tilt_per_direction_refuses_an_elevation_beyond_the_spacing():
+    from liftplan.model.rules import TiltGeometry
+
+    geometry = TiltGeometry({"A": (0.0, 0.0, 0.0), "B": (20.0, 0.0, 0.0), "C": (40.0, 0.5, 0.0)},
+                            (20.0, 0.2, -1.0), 100.0)
+    with pytest.raises(InvalidScene, match="hook_elevation = 1.0: expected less than the hook spacing"):
+        geometry.tilt_along(0.0, 3.0, 1.0)

@@ -115,6 +115,29 @@ class TiltGeometry:
         gaps = [np.hypot(*(plan[i] - plan[j])) for i in range(self.n) for j in range(i)]
         return float(min(gaps))
 
+    def spacing_along(self, direction):
+        """Extent of the lift points along the direction the body tilts about the axis at
+        ``direction`` deg from +x (square to it, in plan)  [m]: the largest plan distance
+        between two hooks measured along the tilt, over which a hook elevation difference
+        turns into a tilt."""
+        psi = math.radians(direction)
+        along = self._body[:, :2] @ np.array([-math.sin(psi), math.cos(psi)])
+        return float(np.ptp(along))
+
+    def tilt_along(self, direction, tilt, hook_elevation):
+        """The rules' tilt about the axis at ``direction``  [deg]: the worse of ``tilt`` and the
+        hook elevation difference over the hooks' spacing along the tilt,
+        max(tilt, asin(e / s(direction))) (0027/ND Rev 11 5.4, Appendix B.1.2 per direction).
+
+        Raises
+        ------
+        InvalidScene
+            The elevation difference is not less than the spacing along that direction.
+        """
+        from .factors import governing_tilt
+
+        return governing_tilt(tilt, hook_elevation, self.spacing_along(direction))
+
     def loads(self, tilt=0.0, direction=0.0, cog_offset=(0.0, 0.0, 0.0)):
         """Each hook's load with the body tilted  [t].
 
@@ -199,12 +222,51 @@ class TiltGeometry:
                     out[name] = TiltLoad(name, load, float(tilt), direction, tuple(map(float, offset)))
         return out
 
+    def worst_per_direction(self, tilt, hook_elevation, cog_offsets=((0.0, 0.0, 0.0),)):
+        """Each hook's largest load with the rules' tilt taken per direction  [t].
+
+        About each horizontal axis the body tilts by :meth:`tilt_along`: the worse of ``tilt``
+        and the hook elevation difference over the hooks' spacing along that tilt, rather than
+        over the least hook spacing about every axis (which :meth:`worst` with
+        :func:`~liftplan.model.rules.factors.governing_tilt` does). Two hooks: the same as
+        :meth:`worst` (their spacing is along their line).
+
+        Parameters
+        ----------
+        tilt : float  [deg]
+            The rules' tilt (3 deg one vessel, 5 deg separate vessels).
+        hook_elevation : float  [m]
+            The rules' hook elevation difference (1.0 m).
+        cog_offsets : sequence of 3-tuples  [m]
+
+        Returns
+        -------
+        dict of str -> TiltLoad   (``tilt`` of each: the tilt about its worst direction)
+        """
+        out = {}
+        from .factors import governing_tilt
+
+        if self.n > 2:
+            def along(direction):
+                return self.tilt_along(direction, tilt, hook_elevation)
+        else:
+            along = governing_tilt(tilt, hook_elevation, self.least_spacing())
+        for offset in cog_offsets:
+            for name, (load, direction) in self._worst_at(along, offset).items():
+                angle = along(direction) if callable(along) else along
+                if name not in out or load > out[name].load:
+                    out[name] = TiltLoad(name, load, float(angle), direction, tuple(map(float, offset)))
+        return out
+
     def _worst_at(self, tilt, offset):
+        """Worst load of each hook over tilt directions; ``tilt`` a number or a function of the
+        direction [deg -> deg]."""
         if self.n == 2:
             up, down = self.loads(tilt, 0.0, offset), self.loads(-tilt, 0.0, offset)
             return {k: (up[k], 0.0) if up[k] >= down[k] else (down[k], 180.0) for k in self.names}
+        angle = tilt if callable(tilt) else (lambda _d, t=tilt: t)
         step = 360.0 / _DIRECTIONS
-        sweep = [self.loads(tilt, j * step, offset) for j in range(_DIRECTIONS)]
+        sweep = [self.loads(angle(j * step), j * step, offset) for j in range(_DIRECTIONS)]
         out = {}
         for name in self.names:
             best = max(range(_DIRECTIONS), key=lambda j, name=name: sweep[j][name])
@@ -212,12 +274,14 @@ class TiltGeometry:
             ratio = (math.sqrt(5.0) - 1.0) / 2.0
             for _ in range(_GOLDEN_STEPS):
                 a, b = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
-                if self.loads(tilt, a, offset)[name] >= self.loads(tilt, b, offset)[name]:
+                if self.loads(angle(a), a, offset)[name] >= self.loads(angle(b), b, offset)[name]:
                     hi = b
                 else:
                     lo = a
             direction = 0.5 * (lo + hi)
-            load = max(self.loads(tilt, direction, offset)[name], sweep[best][name])
+            load = self.loads(angle(direction), direction, offset)[name]
+            if sweep[best][name] > load:
+                load, direction = sweep[best][name], best * step
             out[name] = (load, direction % 360.0)
         return out
 
