@@ -231,6 +231,9 @@ class Equilibrium:
         its lug).
     frame : str
         The scene file's frame; :meth:`to_json` writes world coordinates in it.
+    flexible_hull : FlexibleHull or RigidHullNote or None
+        With a hull stiffness (``[hull] EI``): which hull the tensions are of, the change
+        flexibility makes and the deflection (:mod:`liftplan.model.strength.flexible`).
     """
 
     model: str
@@ -246,6 +249,7 @@ class Equilibrium:
     position: tuple[float, float, float] | None = None
     rigging: RiggingState | None = None
     frame: str = "z-up"
+    flexible_hull: object | None = None
 
     def file_point(self, point):
         """A world point (``z-up``) in the scene file's frame, as a list  [m]."""
@@ -314,4 +318,6 @@ class Equilibrium:
             })
         if self.afloat is not None:
             out.update(self.afloat.to_json(self.frame))
+        if self.flexible_hull is not None:
+            out["flexible_hull"] = self.flexible_hull.to_json()
         return out

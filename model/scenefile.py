@@ -313,7 +313,7 @@ def loads_scene(text, base=None):
 
 def _to_hull(data, to_zup, base):
     spec = data.hull
-    if spec.box is None and spec.mesh is None and spec.EI is not None and data.water is None:
+    if spec.box is None and spec.mesh is None and (spec.EI, spec.GJ) != (None, None) and data.water is None:
         return None  # a hull girder's stiffness alone, for a body in air
     if (spec.box is None) == (spec.mesh is None):
         raise InvalidScene("hull: expected exactly one of box = {min, max} or mesh = \"file.stl\"")

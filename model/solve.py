@@ -105,6 +105,8 @@ def solve(scene, model=None, method="newton"):
             f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
             "'inclined' (or no model: it is picked when a tip is given)"
         )
+    if scene.girder is not None and model != "elastic":
+        return _rigid_hull(scene, model, method)
     if model == "hydrostatic":
         # the water solvers build their results themselves: give them the file's frame here
         return dataclasses.replace(solve_hydrostatic(scene, method=method), frame=scene.frame)
@@ -119,8 +121,76 @@ def solve(scene, model=None, method="newton"):
     if model == "paper-elastic":
         return solve_paper_elastic(scene)
     if model == "elastic":
-        return solve_elastic(scene)
+        return solve_elastic(scene) if scene.girder is None else solve_hull_on_ropes(scene)
     raise InvalidScene(f"model = {model!r}: expected one of {', '.join(MODELS)}")
+
+
+# -- flexible hull ---------------------------------------------------------------------------
+def _rigid_hull(scene, model, method):
+    """A scene with a hull stiffness on a model that holds the hull rigid: solved, and said so."""
+    from .strength.flexible import RigidHullNote
+
+    if scene.analysis.hull == "flexible":
+        raise InvalidScene(
+            f'analysis.hull = "flexible": the {model} model holds the hull rigid; expected model '
+            "'elastic' (vertical ropes in air) for a flexible hull")
+    eq = solve(dataclasses.replace(scene, girder=None), model=model, method=method)
+    note = RigidHullNote(f"the {model} model holds the hull rigid; hull.EI is used by the elastic "
+                         "model only")
+    return dataclasses.replace(eq, flexible_hull=note)
+
+
+def solve_hull_on_ropes(scene, hull=None):
+    """The ``elastic`` model of a scene with a hull stiffness: the least hull it needs.
+
+    The hull is solved rigid (:func:`solve_elastic`) and flexible (the same Newton system
+    with the beam's deflections as unknowns, started from the rigid pose:
+    :func:`liftplan.model.strength.flexible.flexible_state`); the flexible answer is kept when
+    it changes a tension by more than :data:`~liftplan.model.strength.flexible.TENSION_CHANGE`
+    of the rigid one, or when ``hull`` (default ``scene.analysis.hull``) is ``"flexible"``.
+    ``"rigid"`` skips the flexible solve.
+
+    Returns
+    -------
+    Equilibrium
+        With ``flexible_hull``: which hull, the measured change, the deflection curve.
+
+    Raises
+    ------
+    EquilibriumNotFound
+        Either solve was not accepted (residual, stability, upright), with the reason.
+    """
+    from .acceptance import Verdict
+    from .strength.flexible import TENSION_CHANGE, RigidHullNote, flexible_state, hull_report, tension_change
+
+    hull = hull or scene.analysis.hull
+    rigid_scene = dataclasses.replace(scene, girder=None,
+                                      analysis=dataclasses.replace(scene.analysis, hull="auto"))
+    rigid = solve_elastic(rigid_scene)
+    if hull == "rigid":
+        return dataclasses.replace(rigid, flexible_hull=RigidHullNote('analysis.hull = "rigid"'))
+    start = time.perf_counter()
+    x_rigid = np.array([rigid.pose.lift_height, math.radians(rigid.pose.heel), math.radians(rigid.pose.trim)])
+    state = flexible_state(scene, pack_params(scene, "elastic"), x_rigid)
+    seconds = time.perf_counter() - start
+    verdict = Verdict(max(_worst(scene, state.statics) / scene.body.weight, state.beam_residual),
+                      state.stable, math.degrees(state.x[1]), math.degrees(state.x[2]))
+    if not verdict.ok:
+        raise EquilibriumNotFound(f"elastic, flexible hull: no accepted equilibrium ({verdict.reason()})")
+    rigid_t = np.array([rigid.tensions[name] for name in scene.lug_names])
+    change = tension_change(rigid_t, state.tensions, scene.body.weight)
+    used = "flexible" if hull == "flexible" or np.max(change) > TENSION_CHANGE else "rigid"
+    report = hull_report(scene, state.mesh, state, rigid_t, used, forced=hull == "flexible")
+    if used == "rigid":
+        return dataclasses.replace(rigid, flexible_hull=report)
+    slack = tuple(name for name, s in zip(scene.lug_names, state.stretch) if s <= 0.0)
+    if scene.n - len(slack) < 3:
+        raise EquilibriumNotFound(
+            f"elastic, flexible hull: only {scene.n - len(slack)} rope(s) taut ({name_list(slack)} "
+            "slack): expected three or more to hold the body")
+    eq = _equilibrium(scene, "elastic", state.x, state.tensions, state.statics, "newton (flexible hull)",
+                      seconds, slack=slack)
+    return dataclasses.replace(eq, flexible_hull=report)
 
 
 # -- given-attitude models in water ----------------------------------------------------------

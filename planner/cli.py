@@ -160,6 +160,8 @@ def _solve(args):
         print(json.dumps(out))
     else:
         print(equilibrium_table(scene, eq, girder=girder))
+        if eq.flexible_hull is not None:  # a hull stiffness: which hull, the change, the deflection
+            print("\n".join(["", *eq.flexible_hull.lines()]))
     # CONTRACT: a converged solve exits 0; --strict turns a failed check into exit 4
     code = _verdict(checks, table=not args.json, strict=args.strict)
     return _unwritten(unwritten) or code
