@@ -22,17 +22,25 @@ The maximum crane load is reported with its plateau: the hoist ranges where the 
 rope load is within ``PLATEAU_REL`` of the peak, their ends bisected the same way. Clear
 of the water (or hanging submerged) the loads are constant, so the peak has no single
 hoist; a point of such a plateau would be an artefact of the step.
+
+With a breakout model (``[ground] breakout``, :mod:`liftplan.model.water.breakout`) two
+more events: ``breakout`` (the soil lets go: the ropes carry W + water - B + F_b, the peak)
+and ``released`` (the contact ``clear`` m off its bed: F_b gone). With a hoist ``speed``
+(m/min) the curve carries time (s, hoist / speed) and the water in compartments with
+openings drains by orifice flow (:mod:`liftplan.model.water.draining`), integrated in time
+first; each hoist of the curve is then solved with the water its compartments hold then.
+Each compartment's drain is an event ``drained``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .errors import EquilibriumNotFound, InvalidScene
 from .frames import rotation_matrix
-from .water import Start, WaterSetup, hull_heights, solve_in_water
+from .water import WaterSetup, hull_heights, settle
 
 # Bracket width [m] at which an event's bisection stops (the event is reported at the
 # bracket's middle, to +-half of it). Hooks are set to centimetres; 0.1 mm costs about a
@@ -46,8 +54,11 @@ PLATEAU_REL = 1e-3
 
 EVENTS = {
     "lift-off": "ground reaction reaches 0",
+    "breakout": "the soil lets go: the ropes carry the submerged weight + the breakout force",
+    "released": "contact risen clear of its bed: the breakout force is gone",
     "surface": "hull first touches the surface from below",
     "clear": "hull fully clear of the water",
+    "drained": "a compartment's water down to the sill of an opening above the water",
 }
 
 
@@ -58,25 +69,38 @@ class Event:
     Parameters
     ----------
     name : str
-        ``"lift-off"``, ``"surface"`` or ``"clear"`` (see :data:`EVENTS`).
+        One of :data:`EVENTS`.
     hoist : float  [m]
         Middle of the final bracket.
     tolerance : float  [m]
         Half the bracket's width: the event lies within ``hoist +- tolerance``.
-        At most ``EVENT_TOL / 2`` unless a solve inside the bracket failed.
+        At most ``EVENT_TOL / 2`` unless a solve inside the bracket failed. A ``drained``
+        event is located in time by the integrator (to its relative tolerance, reported
+        here as ``RTOL`` x the hoist).
+    time : float or None  [s]
+        hoist / speed, with a hoist speed.
+    subject : str or None
+        The compartment, for ``drained``.
     """
 
     name: str
     hoist: float
     tolerance: float
+    time: float | None = None
+    subject: str | None = None
 
     @property
     def description(self):
-        return EVENTS[self.name]
+        return EVENTS[self.name] + (f" ({self.subject})" if self.subject else "")
 
     def to_json(self):
-        return {"event": self.name, "hoist": self.hoist, "tolerance": self.tolerance,
-                "description": self.description}
+        out = {"event": self.name, "hoist": self.hoist, "tolerance": self.tolerance,
+               "description": self.description}
+        if self.time is not None:
+            out["time"] = self.time
+        if self.subject is not None:
+            out["subject"] = self.subject
+        return out
 
 
 @dataclass(frozen=True)
@@ -115,7 +139,7 @@ class MaxLoad:
 
 @dataclass(frozen=True)
 class LoadCurve:
-    """Crane loads, attitude and water forces against hoist.
+    """Crane loads, attitude and water forces against hoist (and time, with a speed).
 
     Parameters
     ----------
@@ -129,7 +153,7 @@ class LoadCurve:
         Weight of the displaced water (>= 0).
     displaced_volume : numpy.ndarray, shape (k,)  [m3]
     ground_reaction : numpy.ndarray, shape (k,)  [t]
-        0 once lifted off (and without a ground contact).
+        What the ground pushes up (>= 0); 0 once lifted off (and without a ground contact).
     bottom, top : numpy.ndarray, shape (k,)  [m]
         Lowest and highest point of the hull envelope above the water level.
     state : tuple of str
@@ -139,13 +163,27 @@ class LoadCurve:
     weight : float  [t]
         The body's weight in air.
     trapped_water : float  [t]
-        Water trapped in compartments, carried at every hoist.
+        Water in compartments at the start (all of them full).
     density : float  [t/m3]
     events : tuple of Event
         In hoist order.
     max_load : MaxLoad
     name : str
         The scene's name (the figure's title).
+    soil_force : numpy.ndarray, shape (k,) or None  [t]
+        The soil's downward pull on the hull: its suction while grounded, the breakout
+        force while breaking out (None: the same as zeros).
+    water : numpy.ndarray, shape (k,) or None  [t]
+        Water in compartments at each hoist (None: ``trapped_water`` throughout).
+    compartments : dict of str to numpy.ndarray, optional  [t]
+        Water in each compartment with openings.
+    speed : float or None  [m/min]
+    time : numpy.ndarray, shape (k,) or None  [s]
+        hoist / speed.
+    breakout : BreakoutForce or None
+    drainage : tuple of TankSummary
+    drainage_note : str
+        How the compartments with openings were taken (said on the console and in JSON).
     """
 
     lugs: tuple[str, ...]
@@ -166,14 +204,39 @@ class LoadCurve:
     events: tuple[Event, ...]
     max_load: MaxLoad
     name: str = ""
+    soil_force: np.ndarray | None = None
+    water: np.ndarray | None = None
+    compartments: dict = field(default_factory=dict)
+    speed: float | None = None
+    time: np.ndarray | None = None
+    breakout: object | None = None
+    drainage: tuple = ()
+    drainage_note: str = ""
 
     @property
     def crane_load(self):
-        """Sum of the rope tensions per step  [t] (= W + trapped water - B - F_R)."""
+        """Sum of the rope tensions per step  [t] (= W + water - B - F_R + soil)."""
         return self.tensions.sum(axis=1)
 
+    @property
+    def water_carried(self):
+        """Water in compartments per step  [t]."""
+        return self.water if self.water is not None else np.full(len(self.hoist), self.trapped_water)
+
+    @property
+    def soil(self):
+        """The soil's pull per step  [t]."""
+        return self.soil_force if self.soil_force is not None else np.zeros(len(self.hoist))
+
+    @property
+    def peak_crane_load(self):
+        """(load [t], hoist [m]) of the largest sum of rope tensions on the curve: with a
+        breakout model, the breakout peak."""
+        k = int(np.argmax(self.crane_load))
+        return float(self.crane_load[k]), float(self.hoist[k])
+
     def event(self, name):
-        """The :class:`Event` called ``name``, or None if it did not happen in the range."""
+        """The first :class:`Event` called ``name``, or None if it did not happen in the range."""
         return next((e for e in self.events if e.name == name), None)
 
     @property
@@ -188,17 +251,24 @@ class LoadCurve:
         out = []
         for k, h in enumerate(self.hoist):
             row = {"hoist": float(h)}
+            if self.time is not None:
+                row["time"] = float(self.time[k])
             row.update({f"T_{name}": float(t) for name, t in zip(self.lugs, self.tensions[k])})
             row.update(crane_load=float(self.crane_load[k]), heel=float(self.heel[k]),
                        trim=float(self.trim[k]), buoyancy=float(self.buoyancy[k]),
                        displaced_volume=float(self.displaced_volume[k]),
                        ground_reaction=float(self.ground_reaction[k]), bottom=float(self.bottom[k]),
                        top=float(self.top[k]), state=self.state[k])
+            if self.soil_force is not None:
+                row["soil_force"] = float(self.soil_force[k])
+            if self.water is not None:
+                row["water_in_compartments"] = float(self.water[k])
             out.append(row)
         return out
 
     def to_json(self):
-        return {
+        load, at = self.peak_crane_load
+        out = {
             "name": self.name,
             "lugs": list(self.lugs),
             "weight": self.weight,
@@ -210,6 +280,18 @@ class LoadCurve:
             "curve": self.rows(),
             "failed": [{"hoist": h, "reason": r} for h, r in self.failed],
         }
+        if self.breakout is not None or self.speed is not None or self.drainage:
+            out["max_crane_load"] = {"load": load, "hoist": at,
+                                     "time": self.hoist_time(at)}
+            out["breakout"] = self.breakout.to_json() if self.breakout is not None else None
+            out["speed"] = self.speed
+            out["drainage"] = {"note": self.drainage_note,
+                               "compartments": [t.to_json() for t in self.drainage]}
+        return out
+
+    def hoist_time(self, hoist):
+        """The time [s] at ``hoist`` [m] with a speed, else None."""
+        return None if self.speed is None else float(hoist) * 60.0 / self.speed
 
 
 def default_stop(scene):
@@ -221,14 +303,19 @@ def default_stop(scene):
 
 @dataclass(frozen=True)
 class _Point:
-    """One solved hoist: the equilibrium, the pose to start the next solve from, and the
-    hull's lowest and highest point above the water."""
+    """One solved hoist: the equilibrium, the pose to start the next solve from, the hull's
+    lowest and highest point above the water, what the soil did and the water held."""
 
     hoist: float
     eq: object
-    start: Start
+    start: object
     bottom: float
     top: float
+    soil: float
+    phase: str
+    reaction: float  # what the ground pushes up less the soil's pull [t] (0 off the ground)
+    water: float
+    tanks: tuple
 
     @property
     def peak(self):
@@ -238,20 +325,41 @@ class _Point:
 class _Lift:
     """Solves at any hoist from a given pose (one built model)."""
 
-    def __init__(self, scene):
+    def __init__(self, scene, speed=None):
+        from .water.draining import Drainage
+
         self.scene = scene
         self.setup = WaterSetup(scene)
+        self.drainage = Drainage(self.setup, speed) if scene.openings else None
+        self.history = None  # the timed tanks' volumes in time, once integrated
+        self.speed = speed
         self.brackets = []  # the solved ends of every final bracket, added to the curve
+
+    def timed(self, hoist):
+        if self.history is None:
+            return self.drainage.initial()
+        return self.history.timed(hoist * 60.0 / self.speed)
 
     def at(self, hoist, start=None):
         """The solved :class:`_Point` at ``hoist`` [m]; raises EquilibriumNotFound."""
-        scene = self.scene
-        eq = solve_in_water(scene, setup=self.setup, start=start, hoist=hoist)
-        pose = eq.pose
-        zo = pose.lift_height - scene.water.level
-        rot = rotation_matrix(pose.heel, pose.trim, pose.yaw)
-        bottom, top = hull_heights(scene.hull, rot, zo)
-        return _Point(float(hoist), eq, Start(zo, rot), bottom, top)
+        scene, drainage = self.scene, self.drainage
+        timed = None
+        if drainage is None:
+            state = settle(self.setup, hoist, start)
+        else:
+            timed = self.timed(hoist)
+            state = drainage.settle(hoist, timed, start)
+        eq, pose = state.eq, state.start
+        bottom, top = hull_heights(scene.hull, pose.rotation, pose.zo)
+        water = state.loads.trapped
+        reaction = 0.0
+        if eq.afloat.state == "grounded":
+            reaction = scene.body.weight + water - eq.afloat.buoyancy - sum(eq.tensions.values())
+        tanks = ()
+        if drainage is not None:
+            tanks = tuple(float(v) * drainage.density
+                          for v in drainage.volumes(pose.rotation, pose.zo, timed))
+        return _Point(float(hoist), eq, pose, bottom, top, state.soil, state.phase, reaction, water, tanks)
 
     def bisect(self, lo, hi, test):
         """Narrow [lo, hi] (``test`` false at ``lo``, true at ``hi``) to ``EVENT_TOL``.
@@ -281,10 +389,13 @@ def _adjacent(points, failed):
 
 def _events(lift, points, failed):
     tests = {
-        "lift-off": lambda p: p.eq.afloat.state != "grounded",
+        "lift-off": lambda p: not (p.eq.afloat.state == "grounded" and p.reaction > 0.0),
         "surface": lambda p: p.top >= 0.0,
         "clear": lambda p: p.bottom >= 0.0,
     }
+    if lift.setup.breakout is not None and lift.setup.breakout.force > 0.0:
+        tests["breakout"] = lambda p: p.phase != "grounded"
+        tests["released"] = lambda p: p.phase == "free"
     pairs = _adjacent(points, failed)
     out = []
     for name, test in tests.items():
@@ -299,6 +410,14 @@ def _events(lift, points, failed):
             a, b = points[first].hoist, points[first + 1].hoist
             hoist, tol = 0.5 * (a + b), 0.5 * (b - a)
         out.append(Event(name, hoist, tol))
+    if lift.history is not None:
+        from .water.draining import RTOL
+
+        for tank, t in lift.history.drain_times.items():
+            hoist = t * lift.speed / 60.0
+            out.append(Event("drained", hoist, RTOL * hoist, subject=tank))
+    if lift.speed is not None:
+        out = [replace(e, time=e.hoist * 60.0 / lift.speed) for e in out]
     return tuple(sorted(out, key=lambda e: e.hoist))
 
 
@@ -329,7 +448,7 @@ def _max_load(lift, points, failed, lugs, tensions):
     return MaxLoad(peak, lugs[i], tuple(ranges), tolerance, to_end)
 
 
-def load_curve(scene, stop=None, step=0.25):
+def load_curve(scene, stop=None, step=0.25, speed=None):
     """The load curve of a lift from the scene's pose.
 
     Parameters
@@ -340,6 +459,10 @@ def load_curve(scene, stop=None, step=0.25):
     stop : float, optional  [m]
         Last hoist; default :func:`default_stop`.
     step : float  [m]
+    speed : float, optional  [m/min]
+        Hoist speed: the curve carries time, and compartments with openings drain in it.
+        Without it they are carried full (never drain; the conservative bound), except
+        those with an opening of infinite area (drain at once).
 
     Returns
     -------
@@ -350,13 +473,36 @@ def load_curve(scene, stop=None, step=0.25):
     stop = default_stop(scene) if stop is None else float(stop)
     if not (step > 0 and np.isfinite(step)) or not stop > 0:
         raise InvalidScene(f"lift: hoist to {stop:g} m in steps of {step:g} m; expected both > 0")
+    if speed is not None and not (np.isfinite(speed) and speed > 0):
+        raise InvalidScene(f"lift: speed = {speed!r} m/min; expected a finite number > 0")
     count = int(np.floor(stop / step + 1e-9)) + 1
     if count > 100_000:
         raise InvalidScene(f"lift: {count} steps; expected at most 100000 (a larger step)")
-    lift = _Lift(scene)
-    start = None
+    lift = _Lift(scene, speed)
+    hoists = np.linspace(0.0, step * (count - 1), count)
     points, failed = [], []
-    for hoist in np.linspace(0.0, step * (count - 1), count):
+    note = ""
+    drainage = lift.drainage
+    if drainage is not None:
+        if speed is None:
+            note = ("no hoist speed: compartments with finite openings carried full (never drain, "
+                    "the conservative bound)")
+        elif drainage.timed:
+            from .water.draining import integrate
+
+            seconds = hoists[-1] * 60.0 / speed
+            lift.history = integrate(drainage, seconds, step * 60.0 / speed) if seconds > 0 else None
+            note = f"drained by orifice flow at {speed:g} m/min"
+            if lift.history is not None and lift.history.failure:
+                note += f"; {lift.history.failure}"
+        if any(t.instant for t in drainage.tanks):
+            note += ("; " if note else "") + "openings of infinite area drain at once"
+    end = lift.history.end * speed / 60.0 if lift.history is not None else np.inf
+    start = None
+    for hoist in hoists:
+        if hoist > end * (1 + 1e-12):
+            failed.append((float(hoist), f"no water state beyond hoist {end:.4g} m ({lift.history.failure})"))
+            continue
         try:
             point = lift.at(hoist, start)
         except EquilibriumNotFound as err:
@@ -375,9 +521,15 @@ def load_curve(scene, stop=None, step=0.25):
     points = [by_hoist[h] for h in sorted(by_hoist)]
     afloat = [p.eq.afloat for p in points]
     tensions = np.array([list(p.eq.tensions.values()) for p in points])
+    hoist = np.array([p.hoist for p in points])
+    breakout = lift.setup.breakout
+    summaries, compartments = (), {}
+    if drainage is not None:
+        compartments = {t.name: np.array([p.tanks[k] for p in points]) for k, t in enumerate(drainage.tanks)}
+        summaries = _summaries(lift, compartments, hoist)
     return LoadCurve(
         lugs=scene.lug_names,
-        hoist=np.array([p.hoist for p in points]),
+        hoist=hoist,
         tensions=tensions,
         heel=np.array([p.eq.pose.heel for p in points]),
         trim=np.array([p.eq.pose.trim for p in points]),
@@ -394,4 +546,27 @@ def load_curve(scene, stop=None, step=0.25):
         events=events,
         max_load=max_load,
         name=scene.name or "",
+        soil_force=np.array([p.soil for p in points]) if breakout is not None else None,
+        water=np.array([p.water for p in points]) if drainage is not None else None,
+        compartments=compartments,
+        speed=speed,
+        time=hoist * 60.0 / speed if speed is not None else None,
+        breakout=breakout,
+        drainage=summaries,
+        drainage_note=note,
     )
+
+
+def _summaries(lift, compartments, hoist):
+    from .water.draining import TankSummary
+
+    history = lift.history
+    out = []
+    for tank in lift.drainage.tanks:
+        error, drain = 0.0, None
+        if history is not None and tank.name in history.tanks:
+            error = float(history.mass_error(history.end)[history.tanks.index(tank.name)])
+            drain = history.drain_times.get(tank.name)
+        water = compartments[tank.name]
+        out.append(TankSummary(tank.name, float(water[0]), float(water[-1]), drain, error))
+    return tuple(out)

@@ -17,6 +17,14 @@ Two methods for the stranded ship:
 When the ground reaction of the grounded solution is <= 0 the hull floats free: the
 free-floating equilibrium (or hanging, with ropes) is solved instead and ``state`` says so
 (:func:`water_state`: grounded, hanging submerged, piercing the surface, clear, afloat).
+
+Breakout (``[ground] breakout``, :mod:`.breakout`): the soil holds a bedded hull down with up
+to the breakout force F_b. It acts as a downward force at the ground contact, so it adds to
+the weight at that point: grounded (moments about the contact, which it does not enter)
+the hull stays put while the ropes carry less than W + trapped water - B + F_b, i.e. while
+the soil's pull (the negative part of the ground reaction) stays within F_b; then it breaks
+out and hangs with F_b still pulling at the contact (the soil holds on while the hull rises
+``clear`` m) and is released above that (:func:`settle`).
 """
 
 from __future__ import annotations
@@ -29,11 +37,11 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from .afloat import AfloatModel, Layout, buoyancy_weights
-from .errors import EquilibriumNotFound, InvalidScene
-from .frames import attitude_angles, rotation_matrix, tilt
-from .hydrostatics import MeshHydrostatics
-from .results import Afloat, Equilibrium, Pose, SolverInfo
+from ..afloat import AfloatModel, Layout, buoyancy_weights
+from ..errors import EquilibriumNotFound, InvalidScene
+from ..frames import attitude_angles, rotation_matrix, tilt
+from ..hydrostatics import MeshHydrostatics
+from ..results import Afloat, Equilibrium, Pose, SolverInfo
 
 # Accepted when the scaled residual (force / W, moments / (W L)) is below this: 1e-9 of a
 # 20 000 t barge is 20 g; round-off of the clipped sums is ~1e-13.
@@ -61,6 +69,25 @@ class Start:
 
     zo: float
     rotation: np.ndarray
+
+
+@dataclass(frozen=True)
+class BodyLoads:
+    """What the hull carries at one instant besides its own weight (body frame).
+
+    Parameters
+    ----------
+    trapped : float  [t]
+        Water in compartments.
+    trapped_centre : tuple of 3 float or None  [m]
+        Its centre, body frame (None without water).
+    soil : float  [t]
+        The soil's downward pull at the ground contact (breakout), 0 without.
+    """
+
+    trapped: float
+    trapped_centre: tuple[float, float, float] | None
+    soil: float = 0.0
 
 
 class WaterSetup:
@@ -106,16 +133,38 @@ class WaterSetup:
             ropes = [scene.lug_points().ravel(), hook, scene.crane_values("rope_length", model),
                      scene.crane_values("EA", model)]
         self.start = Start(a.lift_height - water.level, rotation_matrix(a.heel, a.trim, a.yaw))
+        self.loads = BodyLoads(self.trapped, self.trapped_centre)
+        self.breakout = None
+        if ground is not None and ground.breakout is not None and scene.n:
+            from .breakout import breakout_force  # only for a bedded hull with ropes
+
+            self.breakout = breakout_force(scene)
         self.base = np.concatenate([
             self.start.rotation.ravel(order="F"), [gravity], cog, pivot,
             [self.ground_height, hull.size], *ropes,
         ])
 
-    def params(self, rotation, hoist=0.0):
-        """Parameter vector with start attitude ``rotation`` and every hook raised by
-        ``hoist``  [m]."""
+    def gravity_of(self, loads):
+        """Total downward force [t] and its body-frame point [m] with ``loads``
+        (:class:`BodyLoads`): weight, water in compartments and the soil's pull."""
+        body = self.scene.body
+        total = body.weight + loads.trapped + loads.soil
+        first = body.weight * np.asarray(body.cog, dtype=float)
+        if loads.trapped:
+            first = first + loads.trapped * np.asarray(loads.trapped_centre, dtype=float)
+        if loads.soil:
+            first = first + loads.soil * np.asarray(self.scene.ground.contact, dtype=float)
+        return total, first / total
+
+    def params(self, rotation, hoist=0.0, loads=None):
+        """Parameter vector with start attitude ``rotation``, every hook raised by
+        ``hoist``  [m], and the weights of ``loads`` (:class:`BodyLoads`; default the
+        scene's: compartments full, no soil)."""
         p = self.base.copy()
         p[:9] = np.asarray(rotation, dtype=float).ravel(order="F")
+        if loads is not None:
+            gravity, cog = self.gravity_of(loads)
+            p[9], p[10:13] = gravity, cog
         if self.scene.n:
             n = self.scene.n
             first = Layout.HOOKS + 3 * n
@@ -123,7 +172,8 @@ class WaterSetup:
         return p
 
 
-def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, paper_tol=None):
+def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, paper_tol=None,
+                   loads=None):
     """Equilibrium of a hull in water (stranded, afloat, or hanging from vertical ropes).
 
     Parameters
@@ -141,6 +191,10 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
     paper_tol : float, optional  [t m]
         ``paper-newton``'s stopping tolerance on the pivot moments; default the same
         acceptance as Newton's (``RESIDUAL_TOL`` W L). The paper used 1 t m.
+    loads : BodyLoads, optional
+        Water in compartments and the soil's pull at this instant (default the scene's:
+        compartments full, no soil). Grounded, the answer stands while the ground
+        reaction with the soil's pull as a weight at the contact is > 0.
 
     Returns
     -------
@@ -161,7 +215,11 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
             "(a [ground] contact and no ropes); expected method 'newton' for this scene"
         )
     start = start or setup.start
-    p = setup.params(start.rotation, hoist)
+    if loads is not None and method == "paper-newton":
+        raise InvalidScene("method = 'paper-newton': expected the scene's own loads "
+                           "(no breakout, no draining)")
+    gravity = setup.gravity if loads is None else setup.gravity_of(loads)[0]
+    p = setup.params(start.rotation, hoist, loads)
     zo_start = start.zo
     if scene.ground is not None:
         begin = time.perf_counter()
@@ -179,11 +237,12 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
         if _converged(residual, rot, tol):
             _check_turn(rot, start.rotation, "grounded")
             _check_stable(setup.model.grounded_stiffness(tilts, p), rot, scene.hull.size, "grounded")
-            reaction = -float(force[0]) * setup.gravity
+            reaction = -float(force[0]) * gravity
             if reaction > 0.0:
                 info = SolverInfo(method, True, iterations, seconds)
-                return _result(setup, float(zo[0]), rot, hoist, info, grounded=True)
-            start, p, zo_start = Start(float(zo[0]), rot), setup.params(rot, hoist), float(zo[0])
+                return _result(setup, float(zo[0]), rot, hoist, info, grounded=True, loads=loads)
+            start, zo_start = Start(float(zo[0]), rot), float(zo[0])
+            p = setup.params(rot, hoist, loads)
         elif method == "paper-newton":
             raise EquilibriumNotFound(
                 f"paper-newton: no grounded equilibrium after {iterations} iterations "
@@ -213,7 +272,81 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
             )
     info = SolverInfo("newton" if method == "newton" else "newton (afloat after paper-newton)",
                       True, iterations, seconds)
-    return _result(setup, float(x[0]), rot, hoist, info, grounded=False)
+    return _result(setup, float(x[0]), rot, hoist, info, grounded=False, loads=loads)
+
+
+@dataclass(frozen=True)
+class Settled:
+    """An equilibrium in water with what the soil did (:func:`settle`).
+
+    Parameters
+    ----------
+    eq : Equilibrium
+    start : Start
+        Its pose (to start the next solve from).
+    soil : float  [t]
+        The soil's downward pull on the hull: its suction while grounded (the negative part
+        of the ground reaction), the breakout force while breaking out, else 0.
+    phase : str
+        ``"grounded"``, ``"breaking out"`` (risen off the bed, the soil still holding) or
+        ``"free"``.
+    loads : BodyLoads
+        Water in compartments (and the soil's pull, if breaking out) it was solved with.
+    """
+
+    eq: Equilibrium
+    start: Start
+    soil: float
+    phase: str
+    loads: BodyLoads
+
+
+def _pose(eq, level):
+    pose = eq.pose
+    return Start(pose.lift_height - level, rotation_matrix(pose.heel, pose.trim, pose.yaw))
+
+
+def settle(setup, hoist=0.0, start=None, loads=None):
+    """The equilibrium at ``hoist`` with the scene's breakout model, if it has one.
+
+    Without a breakout model this is :func:`solve_in_water`. With one (a ground contact
+    and ropes), the breakout force F_b acts as a weight at the contact: the hull stays
+    grounded while the ropes carry less than W + water - B + F_b; past that it breaks out
+    and hangs with F_b still at the contact while the contact is less than ``clear`` m
+    above its bed, and is free above that.
+
+    Parameters
+    ----------
+    setup : WaterSetup
+    hoist : float  [m]
+    start : Start, optional
+    loads : BodyLoads, optional
+        Water in compartments at this instant (default: full); its ``soil`` is ignored.
+
+    Returns
+    -------
+    Settled
+    """
+    scene = setup.scene
+    loads = loads or setup.loads
+    level = scene.water.level
+    held = setup.breakout.force if setup.breakout is not None else 0.0
+    if held > 0.0:
+        bedded = dataclasses.replace(loads, soil=held)
+        eq = solve_in_water(scene, setup=setup, start=start, hoist=hoist, loads=bedded)
+        pose = _pose(eq, level)
+        if eq.afloat.state == "grounded":
+            reaction = scene.body.weight + loads.trapped - eq.afloat.buoyancy - sum(eq.tensions.values())
+            return Settled(eq, pose, max(0.0, -reaction), "grounded", dataclasses.replace(loads, soil=0.0))
+        rise = float((pose.rotation @ scene.ground.contact)[2]) + pose.zo - setup.ground_height
+        if rise < setup.breakout.clear:
+            return Settled(eq, pose, held, "breaking out", bedded)
+        start = pose  # released: the hull springs up from here
+    loads = dataclasses.replace(loads, soil=0.0)
+    eq = solve_in_water(scene, setup=setup, start=start, hoist=hoist,
+                        loads=None if loads == setup.loads else loads)
+    phase = "grounded" if eq.afloat.state == "grounded" else "free"
+    return Settled(eq, _pose(eq, level), 0.0, phase, loads)
 
 
 def _check_turn(rot, start, what):
@@ -403,11 +536,18 @@ def water_state(grounded, bottom, top, crane_load, weight):
     return "hanging submerged" if top < 0.0 else "piercing the surface"
 
 
-def _result(setup, zo, rot, hoist, solver, grounded):
-    """Assemble the Equilibrium (world frame) of a converged pose (zo [m], attitude)."""
+def _result(setup, zo, rot, hoist, solver, grounded, loads=None):
+    """Assemble the Equilibrium (world frame) of a converged pose (zo [m], attitude).
+
+    With ``loads``, the soil's pull is a weight at the contact: the ground reaction
+    reported is what the ground pushes up, W + water - B - sum T - soil, at least 0 (the
+    soil's pull is :attr:`Settled.soil`)."""
     scene = setup.scene
     rot = unyaw(rot, scene.attitude.yaw)
-    p = setup.params(rot, hoist)
+    p = setup.params(rot, hoist, loads)
+    trapped = setup.trapped if loads is None else loads.trapped
+    trapped_at = setup.trapped_centre if loads is None else loads.trapped_centre
+    total_weight = setup.gravity if loads is None else setup.gravity_of(loads)[0]
     out = setup.model.free.call({"x": ca.DM([zo, 0.0, 0.0]), "p": ca.DM(p)})
     residual = np.asarray(out["r"]).ravel()
     tensions = np.asarray(out["tension"]).ravel()
@@ -427,18 +567,19 @@ def _result(setup, zo, rot, hoist, solver, grounded):
     buoyancy = max(0.0, float(np.asarray(out["buoyancy"]).ravel()[0]))
     moment = np.asarray(out["moment"]).ravel()
     density = scene.water.density
-    reaction = scene.body.weight + setup.trapped - buoyancy - float(tensions.sum()) if grounded else 0.0
+    reaction = scene.body.weight + trapped - buoyancy - float(tensions.sum()) if grounded else 0.0
+    if loads is not None and loads.soil:
+        reaction = max(0.0, reaction)
     friction = scene.ground.friction if scene.ground is not None else None
     lift = np.array([0.0, 0.0, zo])
     gravity = rot @ np.asarray(scene.body.cog) + lift
     bottom, top = hull_heights(scene.hull, rot, zo)
-    trapped_at = setup.trapped_centre
     afloat = Afloat(
-        state=water_state(grounded, bottom, top, float(tensions.sum()), setup.gravity),
+        state=water_state(grounded, bottom, top, float(tensions.sum()), total_weight),
         buoyancy=buoyancy,
         displaced_volume=buoyancy / density,
         immersed_volume=hs.volume,
-        trapped_water=setup.trapped,
+        trapped_water=trapped,
         density=density,
         ground_reaction=reaction if scene.ground is not None else None,
         freeing_force=friction * reaction if friction is not None else None,
@@ -448,7 +589,7 @@ def _result(setup, zo, rot, hoist, solver, grounded):
         centre_of_trapped_water=world(rot @ np.asarray(trapped_at) + lift) if trapped_at else None,
     )
     # force (closed by the ground reaction when grounded), and moments over L
-    worst = float(np.max(np.abs(residual[1:] if grounded else residual))) * setup.gravity
+    worst = float(np.max(np.abs(residual[1:] if grounded else residual))) * total_weight
     names = scene.lug_names
     return Equilibrium(
         model="hydrostatic",
@@ -501,7 +642,7 @@ def solve_hydrostatic(scene, method="newton"):
     Equilibrium
         ``model`` is ``"submerged"`` or ``"hydrostatic"``.
     """
-    from .solve import solve_elastic  # solve imports this module
+    from ..solve import solve_elastic  # solve imports this module
 
     setup = WaterSetup(scene)
     start = None
@@ -526,4 +667,6 @@ def solve_hydrostatic(scene, method="newton"):
                     if result.residual <= 1e-7 * setup.gravity:
                         return dataclasses.replace(result, model="submerged")
                 start = Start(zo, rot)
+    if method == "newton" and setup.breakout is not None:
+        return settle(setup, start=start).eq
     return solve_in_water(scene, method=method, setup=setup, start=start)
