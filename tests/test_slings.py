@@ -159,7 +159,7 @@ def test_sling_report_and_scene_file(tmp_path):
 
     result = plan(load_problem(BLOCK))
     page = render_html(result)
-    for text in ("Recommended lug pairs", "Sling legs", "Checks", "data:image/png;base64,"):
+    for text in ("Recommended slings", "Sling legs", "Checks", "design-load chain", "data:image/png;base64,"):
         assert text in page
     path = tmp_path / "plan_scene.toml"
     path.write_text(scene_toml(result), encoding="utf-8")
