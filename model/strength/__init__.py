@@ -19,12 +19,20 @@ Modules, top-down:
 * :mod:`.piecewise` — piecewise polynomials: exact running integrals with jumps, exact
   extrema (roots of the derivative) and worst ratio to an envelope.
 * :mod:`.checks` — the ``bending_moment`` and ``shear_force`` checks.
+* :mod:`.beam` — the flexible hull's finite elements (``[hull] EI``, ``GJ``): Hermite bending
+  and linear torsion elements, consistent weight loads, the gauge.
+* :mod:`.flexible` — the flexible hull on the elastic ropes: solved in the elastic model's
+  Newton system (:class:`liftplan.model.statics.FlexibleRopeModel`), the 1 % rule that
+  decides whether ``solve`` keeps the rigid hull, and the result (:class:`FlexibleHull`).
 
-Nothing here is imported by the solvers: the command line calls it after a solve.
+The solvers import :mod:`.flexible` only (lazily, for a scene with ``hull.EI``); the command
+line calls the rest after a solve.
 """
 
 from .checks import strength_checks
+from .flexible import TENSION_CHANGE, FlexibleHull
 from .girder import GRID, GirderForces, PointLoad, hull_girder
 from .piecewise import Extreme, Piecewise
 
-__all__ = ["GRID", "Extreme", "GirderForces", "Piecewise", "PointLoad", "hull_girder", "strength_checks"]
+__all__ = ["GRID", "TENSION_CHANGE", "Extreme", "FlexibleHull", "GirderForces", "Piecewise", "PointLoad",
+           "hull_girder", "strength_checks"]
