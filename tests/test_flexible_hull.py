@@ -419,3 +419,13 @@ def test_cli_console_says_which_hull(capsys):
     assert code == 0
     assert "hull: rigid (flexibility changes no tension by more than 1 %" in out
     assert "hull deflection from the chord through its ends" in out
+
+
+def test_a_deflection_beyond_small_deflection_theory_is_said():
+    """A hull 1000x too soft deflects metres: still solved (linear beam theory), and the
+    result says it is outside that theory's range."""
+    eq = solve(tanker_six_lugs(1e4))
+    flex = eq.flexible_hull
+    assert flex.max_deflection.value > 0.01 * 82.05 and not flex.small_deflection
+    assert "beyond small-deflection beam theory" in flex.reason
+    assert solve(tanker_six_lugs(5.3e7)).flexible_hull.small_deflection

@@ -19,6 +19,11 @@ from ..statics import flexible_model
 from .beam import ELEMENTS, girder_mesh
 from .piecewise import Extreme
 
+#: Deflections beyond this fraction of the hull's length leave small-deflection beam theory
+#: (equilibrium on the undeformed geometry, plane sections): said in the result's reason.
+#: A hull girder's service deflection is ~1/1000 of its length.
+SMALL_DEFLECTION = 0.01
+
 #: ``solve`` keeps the rigid hull when flexibility changes no tension by more than this
 #: fraction of the rigid tension (the issue's 1 %).
 TENSION_CHANGE = 0.01
@@ -45,6 +50,9 @@ class FlexibleHull:
         Largest |T_flexible - T_rigid| / T_rigid over the ropes.
     max_change_rope : str
     max_deflection : Extreme  [m]
+    small_deflection : bool
+        The largest deflection is within :data:`SMALL_DEFLECTION` of the length (the beam
+        theory's range).
     """
 
     used: str
@@ -57,6 +65,7 @@ class FlexibleHull:
     max_change: float
     max_change_rope: str
     max_deflection: Extreme
+    small_deflection: bool = True
 
     def to_json(self):
         """The ``"flexible_hull"`` block of ``solve --json`` (m, deg, t)."""
@@ -71,6 +80,7 @@ class FlexibleHull:
             "deflection": {"x": self.x.tolist(), "w": self.deflection.tolist()},
             "twist": None if self.twist is None else {"x": self.x.tolist(), "deg": self.twist.tolist()},
             "max_deflection": self.max_deflection.to_json(),
+            "small_deflection": self.small_deflection,
         }
 
     def lines(self):
@@ -200,6 +210,8 @@ def hull_report(scene, mesh, state, rigid, used, forced):
     k = int(np.argmax(change))
     w, _, twist = mesh.full(state.beam)
     peak = int(np.argmax(np.abs(w)))
+    span = float(mesh.x[-1] - mesh.x[0])
+    small = bool(abs(w[peak]) <= SMALL_DEFLECTION * span)
     if forced:
         reason = f'analysis.hull = "{used}"; flexibility changes {names[k]} by {_percent(change[k])}'
     elif used == "flexible":
@@ -208,8 +220,11 @@ def hull_report(scene, mesh, state, rigid, used, forced):
     else:
         reason = (f"flexibility changes no tension by more than {_percent(TENSION_CHANGE)} (at most "
                   f"{_percent(change[k])}, {names[k]}): the rigid hull is used")
+    if not small:
+        reason += (f"; the deflection {abs(w[peak]):.3g} m exceeds {SMALL_DEFLECTION:g} x the length: "
+                   "beyond small-deflection beam theory, check the stiffness")
     return FlexibleHull(
-        used=used, reason=reason, x=mesh.x.copy(), deflection=w,
+        used=used, reason=reason, small_deflection=small, x=mesh.x.copy(), deflection=w,
         twist=np.degrees(twist) if mesh.torsion is not None else None,
         rigid_tensions=dict(zip(names, map(float, rigid))),
         flexible_tensions=dict(zip(names, map(float, state.tensions))),
