@@ -21,6 +21,7 @@ _EXPORTS = {
     **dict.fromkeys(("choi_to_zup", "rotation_matrix", "zup_to_choi"), "frames"),
     **dict.fromkeys(("Compartment", "Hull"), "hull"),
     **dict.fromkeys(("LoadCurve", "load_curve"), "lift"),
+    **dict.fromkeys(("BreakoutLoad", "breakout_load"), "water.breakout"),
     **dict.fromkeys(("Equilibrium", "Pose", "SolverInfo"), "results"),
     **dict.fromkeys(("Analysis", "Attitude", "Body", "Crane", "Ground", "Lug", "Redundant", "Scene",
                      "Water"), "scene"),

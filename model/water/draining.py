@@ -194,13 +194,15 @@ class Drainage:
         return np.array([self.tanks[k].full for k in self.timed])
 
     def volumes(self, rot, zo, timed):
-        """Every tank's water [m3] at a pose, with the timed tanks' volumes ``timed``."""
+        """Every tank's water [m3] at a pose, with the timed tanks' volumes ``timed``
+        (an integrator's step may overshoot an empty or full tank by its tolerance: the
+        water carried is held within [0, full])."""
         out = np.array([t.full for t in self.tanks])
         for k, tank in enumerate(self.tanks):
             if tank.instant:
                 out[k] = tank.instant_volume(rot, zo)
         out[self.timed] = timed
-        return out
+        return np.clip(out, 0.0, [t.full for t in self.tanks])
 
     def loads(self, rot, zo, timed):
         """:class:`BodyLoads` at a pose with the timed tanks' volumes ``timed`` [m3]."""
@@ -298,15 +300,16 @@ def integrate(drainage, duration, max_step):
     speed = drainage.speed / 60.0  # m/s
     tanks = [drainage.tanks[k] for k in drainage.timed]
     count = len(tanks)
-    start = [None]
+    poses = {}  # time [s] -> a solved pose: each solve starts from the nearest in time
     cache = {}
 
     def state(t, y):
         key = (float(t), tuple(np.asarray(y, dtype=float)))
         if key not in cache:
-            settled = drainage.settle(speed * t, np.asarray(y[:count]), start[0])
-            start[0] = settled.start
-            cache.clear()  # only the latest few matter; the integrator moves on
+            near = min(poses, key=lambda s: abs(s - t)) if poses else None
+            settled = drainage.settle(speed * t, np.asarray(y[:count]), poses.get(near))
+            poses[float(t)] = settled.start
+            cache.clear()  # only the latest matters; the integrator moves on
             cache[key] = settled
         return cache[key]
 
@@ -344,6 +347,6 @@ def integrate(drainage, duration, max_step):
             z = (np.asarray(pose.rotation) @ tank.points.T)[2] + pose.zo
             # the openings still flowing: above the outside water, at the lowest sill
             coefficient = float(np.sum(tank.coefficient[(z >= 0.0) & (z <= z[z >= 0.0].min() + SILL_HEAD)]))
-            drain_times[tank.name] = t + area / coefficient * np.sqrt(2.0 * SILL_HEAD / G)
+            drain_times[tank.name] = float(t + area / coefficient * np.sqrt(2.0 * SILL_HEAD / G))
     return DrainHistory(sol.sol, tuple(t.name for t in tanks), float(sol.t[-1]), failure,
                         drain_times, y0[:count])

@@ -173,7 +173,7 @@ class WaterSetup:
 
 
 def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, paper_tol=None,
-                   loads=None):
+                   loads=None, grounded=True):
     """Equilibrium of a hull in water (stranded, afloat, or hanging from vertical ropes).
 
     Parameters
@@ -195,6 +195,8 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
         Water in compartments and the soil's pull at this instant (default the scene's:
         compartments full, no soil). Grounded, the answer stands while the ground
         reaction with the soil's pull as a weight at the contact is > 0.
+    grounded : bool
+        False skips the grounded solve (the caller knows the hull is off the ground).
 
     Returns
     -------
@@ -221,7 +223,7 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
     gravity = setup.gravity if loads is None else setup.gravity_of(loads)[0]
     p = setup.params(start.rotation, hoist, loads)
     zo_start = start.zo
-    if scene.ground is not None:
+    if scene.ground is not None and grounded:
         begin = time.perf_counter()
         if method == "paper-newton":
             tol = paper_tol if paper_tol is not None else RESIDUAL_TOL * setup.gravity * scene.hull.size
@@ -341,10 +343,11 @@ def settle(setup, hoist=0.0, start=None, loads=None):
         rise = float((pose.rotation @ scene.ground.contact)[2]) + pose.zo - setup.ground_height
         if rise < setup.breakout.clear:
             return Settled(eq, pose, held, "breaking out", bedded)
-        start = pose  # released: the hull springs up from here
+        start = pose  # released: the hull springs up from here (off the ground: the ropes
+        # carry more than W + water - B + F_b)
     loads = dataclasses.replace(loads, soil=0.0)
     eq = solve_in_water(scene, setup=setup, start=start, hoist=hoist,
-                        loads=None if loads == setup.loads else loads)
+                        loads=None if loads == setup.loads else loads, grounded=not held)
     phase = "grounded" if eq.afloat.state == "grounded" else "free"
     return Settled(eq, _pose(eq, level), 0.0, phase, loads)
 
