@@ -71,6 +71,9 @@ def _parser():
     lift_cmd.add_argument("--to", type=float, metavar="M",
                           help="last hoist in m (default: the hull 1 m clear of the water)")
     lift_cmd.add_argument("--step", type=float, default=0.25, metavar="M", help="hoist step in m (0.25)")
+    lift_cmd.add_argument("--speed", type=float, metavar="M/MIN",
+                          help="hoist speed in m/min: the curve gets a time axis and compartments "
+                               "with openings drain in time (without it they are carried full)")
     lift_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
     lift_cmd.add_argument("--figure", metavar="FILE",
                           help="where to save the figure, .png, .pdf or .svg (default: "
@@ -260,20 +263,21 @@ def _lift(args):
 
     from liftplan.planner.output.paths import FIGURE_TYPES, make_parent, output_file
 
-    for option, value in (("--to", args.to), ("--step", args.step)):
+    for option, value in (("--to", args.to), ("--step", args.step), ("--speed", args.speed)):
         if value is not None and not (math.isfinite(value) and value > 0):
-            raise InvalidScene(f"{option} {value:g}: expected a finite number of m > 0")
+            unit = "m/min" if option == "--speed" else "m"
+            raise InvalidScene(f"{option} {value:g}: expected a finite number of {unit} > 0")
     scene_path = Path(args.scene)
     figure = output_file(args.figure or f"{scene_path.stem}_load_curve.png", "--figure", FIGURE_TYPES)
     from liftplan.model.lift import load_curve
     from liftplan.model.plausibility import scene_warnings
     from liftplan.model.scenefile import load_scene
-    from liftplan.planner.output.console import load_curve_table
-    from liftplan.planner.output.figures import load_curve as draw
+    from liftplan.planner.output.lift_console import lift_table
+    from liftplan.planner.output.lift_figure import lift_figure as draw
 
     scene = load_scene(scene_path)
     _warn(scene_warnings(scene))
-    curve = load_curve(scene, stop=args.to, step=args.step)
+    curve = load_curve(scene, stop=args.to, step=args.step, speed=args.speed)
     swl = min((c.swl for c in scene.cranes if c.swl), default=None)
     unwritten = None
     try:
@@ -286,7 +290,7 @@ def _lift(args):
     if args.json:
         print(json.dumps(curve.to_json()))
     else:
-        print(load_curve_table(scene, curve))
+        print(lift_table(scene, curve))
     return _unwritten(unwritten)
 
 

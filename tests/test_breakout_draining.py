@@ -144,8 +144,10 @@ def test_breakout_peak_equals_the_soil_closed_form():
     assert curve.breakout.time_factor == pytest.approx(1.5 * 0.01 ** -0.07, rel=1e-12)
 
 
-@pytest.mark.parametrize("zero", ["breakout = { factor = 0.0 }",
-                                  "breakout = { shear_strength = 0.0, pull_time = 1.0, embedded_time = 10.0 }"])
+ZERO_SOIL = "breakout = { shear_strength = 0.0, pull_time = 1.0, embedded_time = 10.0 }"
+
+
+@pytest.mark.parametrize("zero", ["breakout = { factor = 0.0 }", ZERO_SOIL])
 def test_zero_breakout_is_todays_curve_exactly(zero):
     today = load_curve(box_scene(tank=False), stop=1.0, step=0.1)
     curve = load_curve(box_scene(breakout=zero, tank=False), stop=1.0, step=0.1)
@@ -254,14 +256,16 @@ def test_time_axis_and_json_keys():
     ("breakout = { factor = -0.5 }", None, "ground.breakout.factor = -0.5: expected a number >= 0"),
     ("breakout = { factor = 1.0, shear_strength = 3.0 }", None, "not both"),
     ("breakout = { shear_strength = 3.0, pull_time = 1.0 }", None, "embedded_time: missing"),
-    ("breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1e6 }", None, "outside 0.001 to 10"),
+    ("breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1e6 }", None,
+     "outside 0.001 to 10"),
     ("breakout = { shear_strength = -1.0, pull_time = 1.0, embedded_time = 1.0 }", None, "kPa >= 0"),
     ("breakout = { factor = 1.0, clear = -0.1 }", None, "clear = -0.1: expected m >= 0"),
     ("breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1.0, bearing_factor = 0.0 }",
      None, "bearing_factor = 0.0: expected a number > 0"),
     ("", "{ area = -0.1, at = [0.0, 0.0, 0.0] }", "openings.area = -0.1: expected m2 >= 0"),
     ("", "{ area = nan, at = [0.0, 0.0, 0.0] }", "openings.area = nan"),
-    ("", "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 0.0 }", "discharge = 0.0: expected a coefficient in (0, 1]"),
+    ("", "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 0.0 }",
+     "discharge = 0.0: expected a coefficient in (0, 1]"),
     ("", "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 1.2 }", "in (0, 1]"),
     ("", "{ area = 0.1, at = [5.0, 0.0, 0.0] }", "outside the compartment's box"),
     ("", "{ area = 0.1 }", "openings[0].at: missing"),

@@ -1,0 +1,55 @@
+"""The load-curve figure with what issue 15 added: the breakout, the soil's pull, the water
+draining from compartments, and a time axis when the lift has a hoist speed.
+
+It draws on :func:`liftplan.planner.output.figures.load_curve` (crane loads, water and
+ground forces, attitude, events and phases against hoist) and adds to it.
+"""
+
+from __future__ import annotations
+
+from .figures import load_curve as base_figure
+
+
+def lift_figure(curve, swl=None):
+    """The load curve's figure (matplotlib Figure).
+
+    Parameters
+    ----------
+    curve : liftplan.model.lift.LoadCurve
+    swl : float, optional  [t]
+
+    Notes
+    -----
+    Every event (lift-off, breakout, released, surface, clear, drained) is a line on every
+    panel, named with its hoist (and its time, with a speed); the top axis reads time
+    [s] = hoist / speed.
+    """
+    from matplotlib.transforms import blended_transform_factory
+
+    fig = base_figure(curve, swl=swl)
+    strip, loads, water, pose = fig.axes[:4]
+    if curve.soil_force is not None and curve.soil_force.any():
+        water.plot(curve.hoist, curve.soil_force, color="tab:brown",
+                   label="soil's pull on the hull\n(suction; breakout force)")
+        peak, at = curve.peak_crane_load
+        water.annotate(f"breakout peak {peak:.1f} t\n(W + water - B + F_b)", (at, peak),
+                       xytext=(12, -6), textcoords="offset points", fontsize=8, va="top",
+                       arrowprops={"arrowstyle": "-", "lw": 0.6})
+    if curve.water is not None:
+        water.plot(curve.hoist, curve.water, color="tab:purple", ls="-.",
+                   label=f"water in compartments\n({curve.drainage_note})" if curve.drainage_note
+                   else "water in compartments")
+    if curve.time is not None:
+        speed = curve.speed
+        top = strip.secondary_xaxis("top", functions=(lambda h: h * 60.0 / speed,
+                                                      lambda t: t * speed / 60.0))
+        top.set_xlabel(f"time [s] at a hoist speed of {speed:g} m/min", fontsize=9)
+        top.tick_params(labelsize=8)
+        for event in curve.events:
+            if event.time is not None:
+                pose.annotate(f"{event.time:.0f} s", (event.hoist, 0.0),
+                              xycoords=blended_transform_factory(pose.transData, pose.transAxes),
+                              xytext=(3, 3), textcoords="offset points", rotation=90, fontsize=7,
+                              color="tab:green")
+    water.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
