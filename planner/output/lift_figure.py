@@ -31,10 +31,9 @@ def lift_figure(curve, swl=None):
     if curve.soil_force is not None and curve.soil_force.any():
         water.plot(curve.hoist, curve.soil_force, color="tab:brown",
                    label="soil's pull on the hull\n(suction; breakout force)")
-        peak, at = curve.peak_crane_load
-        water.annotate(f"breakout peak {peak:.1f} t\n(W + water - B + F_b)", (at, peak),
-                       xytext=(12, -6), textcoords="offset points", fontsize=8, va="top",
-                       arrowprops={"arrowstyle": "-", "lw": 0.6})
+    breakout, released = curve.event("breakout"), curve.event("released")
+    if breakout is not None:
+        _breakout_inset(water, curve, breakout, released)
     if curve.water is not None:
         water.plot(curve.hoist, curve.water, color="tab:purple", ls="-.",
                    label=f"water in compartments\n({curve.drainage_note})" if curve.drainage_note
@@ -53,3 +52,30 @@ def lift_figure(curve, swl=None):
                               color="tab:green")
     water.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
+
+
+def _breakout_inset(ax, curve, breakout, released):
+    """A zoom on the first hoists, where lift-off, breakout and release crowd together."""
+    first = min(e.hoist for e in curve.events)
+    last = (released or breakout).hoist
+    pad = max(0.5 * (last - first), 0.02)
+    lo, hi = max(curve.hoist[0], first - pad), last + pad
+    inset = ax.inset_axes([0.3, 0.4, 0.36, 0.48])
+    keep = (curve.hoist >= lo) & (curve.hoist <= hi)
+    inset.plot(curve.hoist[keep], curve.crane_load[keep], color="k", lw=1.2)
+    inset.plot(curve.hoist[keep], curve.soil[keep], color="tab:brown", lw=1.0)
+    inset.plot(curve.hoist[keep], curve.ground_reaction[keep], color="tab:orange", lw=1.0)
+    for event in curve.events:
+        if lo <= event.hoist <= hi:
+            inset.axvline(event.hoist, color="tab:green", lw=0.8, ls="-.")
+            when = f", {event.time:.1f} s" if event.time is not None else ""
+            inset.annotate(f"{event.name} {event.hoist:.3f} m{when}", (event.hoist, 0.5),
+                           xycoords=("data", "axes fraction"), rotation=90, va="center", ha="right",
+                           fontsize=7, color="tab:green", bbox={"fc": "w", "ec": "none", "pad": 0.5})
+    inset.set_xlim(lo, hi)
+    peak = curve.peak_crane_load[0]
+    inset.set_title(f"breakout, zoomed: peak {peak:.1f} t = W + water - B + F_b (black: sum of rope "
+                    "tensions,\nbrown: soil's pull, orange: ground reaction) [t] against hoist [m]",
+                    fontsize=7)
+    inset.tick_params(labelsize=7)
+    inset.grid(True, lw=0.3)
