@@ -95,8 +95,14 @@ class Tank:
             return low
         if volume >= self.full:
             return high
-        return brentq(lambda h: self._below(rot, zo, h)[0] - volume, low, high,
-                      xtol=1e-13 * max(1.0, high - low), rtol=4 * np.finfo(float).eps)
+        def excess(h):
+            return self._below(rot, zo, h)[0] - volume
+
+        if excess(high) <= 0.0:  # within round-off of full
+            return high
+        if excess(low) >= 0.0:
+            return low
+        return brentq(excess, low, high, xtol=1e-13 * max(1.0, high - low), rtol=4 * np.finfo(float).eps)
 
     def water(self, rot, zo, volume):
         """Body-frame centre [m] of ``volume`` [m3] of water in the tank at a pose."""
