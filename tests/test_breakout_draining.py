@@ -285,3 +285,22 @@ def test_an_air_compartment_with_an_opening_is_refused():
 def test_speed_must_be_positive(speed):
     with pytest.raises(InvalidScene, match="speed"):
         load_curve(box_scene(tank=False), stop=1.0, step=0.5, speed=speed)
+
+
+def test_lift_command_speed_json_and_bad_speed(tmp_path, capsys):
+    from liftplan.planner.cli import main
+
+    path = tmp_path / "box.toml"
+    text = BOX.format(compartments=TANK.format(openings="openings = [{ area = 0.05, at = [0.0, 0.0, 0.0] }]"),
+                      ground="[ground]\ncontact = [0.0, 0.0, 0.0]\nbreakout = { factor = 1.0 }",
+                      lift_height=-12.0, rope=30.0 + 12.0 - 4.0 - 0.02)
+    path.write_text(text)
+    figure = tmp_path / "curve.png"
+    assert main(["lift", str(path), "--to", "1", "--step", "0.5", "--speed", "2", "--json",
+                 "--figure", str(figure)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "time" in out["curve"][0] and out["speed"] == 2.0 and figure.stat().st_size > 0
+    assert any(e["event"] == "breakout" and "time" in e for e in out["events"])
+    assert main(["lift", str(path), "--speed", "0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--speed 0: expected a finite number of m/min > 0" in err[0]
