@@ -506,8 +506,10 @@ def search(problem, top=None, progress=None):
     evaluator = SetEvaluator(problem)
     reasons = Counter(int(r) for r in screening.reason[screening.reason != FEASIBLE])
     bound = screening.bound.copy()
-    refined = np.zeros(len(bound), dtype=bool) if _coarse(screening, problem) else \
-        np.ones(len(bound), dtype=bool)
+    # rows whose bound is refined before they are evaluated: from the coarse screening, or
+    # (n >= 5) from the preload-free pair bound to the LP's dual bound
+    lazy = _coarse(screening, problem) or problem.cranes >= 5
+    refined = np.full(len(bound), not lazy)
     heap = [(float(bound[k]), bool(not refined[k]), int(k)) for k in np.flatnonzero(np.isfinite(bound))]
     heapq.heapify(heap)
     feasible_rows = len(heap)
@@ -536,6 +538,22 @@ def search(problem, top=None, progress=None):
             stopped=stopped,
         )
 
+    done = np.zeros(len(bound), dtype=bool)  # evaluated out of turn
+
+    def evaluate(k, value):
+        nonlocal evaluated, evaluated_bound
+        evaluated += 1
+        _tick(bar, ranking, lower_bound)
+        try:
+            result = evaluator.evaluate(sets[k], cranes[k], value)
+        except SetInfeasible as err:
+            reasons[err.code] += 1
+            return
+        evaluated_bound = min(evaluated_bound, result.bound)
+        ranking.append(result)
+        ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
+        del ranking[top:]
+
     try:
         while heap:
             if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
@@ -550,29 +568,32 @@ def search(problem, top=None, progress=None):
                     stopped = "time_limit"
                     break
             value, coarse, k = heapq.heappop(heap)
+            if done[k]:
+                continue
             if coarse:
                 batch = [k] + [heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap)))
                                if heap and heap[0][1]]
-                full = screen(problem, sets[batch], cranes[batch], coarse=False)
+                # a bound past the k-th best found need not be tightened further
+                target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
+                full = screen(problem, sets[batch], cranes[batch], coarse=False,
+                              dual=problem.cranes >= 5, target=target)
                 refine_count += len(batch)
+                dive = None
                 for j, new_bound, reason in zip(batch, full.bound, full.reason):
                     refined[j] = True
                     if reason != FEASIBLE:
                         reasons[int(reason)] += 1
                         continue
-                    heapq.heappush(heap, (max(float(new_bound), float(bound[j])), False, int(j)))
+                    entry = (max(float(new_bound), float(bound[j])), False, int(j))
+                    heapq.heappush(heap, entry)
+                    dive = entry if dive is None or entry < dive else dive
+                if dive is not None and len(ranking) < top:
+                    # no k-th best yet: evaluate the batch's best now, so that its value
+                    # lets the next batches' bounds stop early (the row is not evaluated twice)
+                    done[dive[2]] = True
+                    evaluate(dive[2], dive[0])
                 continue
-            evaluated += 1
-            _tick(bar, ranking, lower_bound)
-            try:
-                result = evaluator.evaluate(sets[k], cranes[k], value)
-            except SetInfeasible as err:
-                reasons[err.code] += 1
-                continue
-            evaluated_bound = min(evaluated_bound, result.bound)
-            ranking.append(result)
-            ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
-            del ranking[top:]
+            evaluate(k, value)
     except KeyboardInterrupt:
         stopped = "interrupted"
         raise Interrupted(ranking, stats_now()) from None

@@ -30,6 +30,7 @@ import numpy as np
 
 from liftplan.model.statics import rope_model
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.dual import preload_lp_bound
 from liftplan.planner.search.scenarios import box_attitudes, pack, run_block
 
 # Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
@@ -137,7 +138,7 @@ def set_rows(problem, sets=None):
 FULL_COLUMNS = 400_000
 
 
-def screen(problem, sets=None, cranes=None, coarse=None):
+def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.inf):
     """Screen lug sets with their crane assignments (every feasible row by default).
 
     Parameters
@@ -149,6 +150,12 @@ def screen(problem, sets=None, cranes=None, coarse=None):
     coarse : bool, optional
         Screen on the tolerance box's corners and level (nominal CG) only: a weaker, cheaper
         bound. Default: when the full screening would exceed :data:`FULL_COLUMNS`.
+    dual : bool
+        n >= 5: also bound each set's preload LP over the screening scenarios through its
+        dual (:mod:`~liftplan.planner.search.dual`; ~2 ms a set, nearly the LP's value);
+        otherwise the preload-free pair bound only.
+    target : float
+        With ``dual``: a bound that reaches this need not be made tighter.
 
     Returns
     -------
@@ -160,7 +167,7 @@ def screen(problem, sets=None, cranes=None, coarse=None):
     if cranes is None:
         cranes = np.broadcast_to(np.arange(sets.shape[1]), sets.shape)
     cranes = np.asarray(cranes, dtype=np.int64)
-    scenarios = screening_scenarios(problem, coarse=False)
+    scenarios = screening_scenarios(problem, coarse=False, corners=dual and DUAL_CORNERS)
     if coarse is None:
         coarse = len(sets) * len(scenarios[0]) > FULL_COLUMNS
     if coarse:
@@ -171,18 +178,28 @@ def screen(problem, sets=None, cranes=None, coarse=None):
         part = slice(start, start + CHUNK)
         # collinear sets give singular statics (inf, nan): they are marked, not used
         with np.errstate(divide="ignore", invalid="ignore"):
-            bound[part], reason[part] = _screen_chunk(problem, sets[part], cranes[part], scenarios)
+            bound[part], reason[part] = _screen_chunk(problem, sets[part], cranes[part], scenarios,
+                                                      dual, target)
     return Screening(sets=sets, cranes=cranes, bound=bound, reason=reason,
                      exact=problem.cranes <= 4 and not coarse)
 
 
-def screening_scenarios(problem, coarse=False):
+#: The dual bound's scenarios: the box corners and level (True) or the whole 3 x 3 grid,
+#: each for every CG vertex.
+DUAL_CORNERS = True
+
+
+def screening_scenarios(problem, coarse=False, corners=False):
     """Screening scenarios: (x columns (m, 3) [m, rad, rad], CG offsets (m, 3) [m]).
 
-    Full: the 3 x 3 box grid for every CG vertex. Coarse: the 4 corners and level, nominal CG.
+    Full: the 3 x 3 box grid for every CG vertex (``corners``: its corners and level only).
+    Coarse: the 4 corners and level, nominal CG.
     """
     grid = box_attitudes(problem, 3, 3)
     offsets = problem.cog_envelope.offsets()
+    if corners:
+        keep = np.all(np.abs(grid) == [problem.heel_tolerance, problem.trim_tolerance], axis=1)
+        grid = grid[keep | np.all(grid == 0.0, axis=1)]
     if coarse:
         corners = (np.abs(grid[:, 0]) == problem.heel_tolerance) & \
             (np.abs(grid[:, 1]) == problem.trim_tolerance)
@@ -194,7 +211,7 @@ def screening_scenarios(problem, coarse=False):
     return x, np.repeat(offsets, len(grid), axis=0)
 
 
-def _screen_chunk(problem, sets, cranes, scenarios):
+def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
     count, n = sets.shape
     weight = problem.body.weight
     fleet = problem.fleet
@@ -249,9 +266,10 @@ def _screen_chunk(problem, sets, cranes, scenarios):
                                      (preload_low, preload_high), scale, hook, reserve)
     else:
         bound, reason = _screen_pairs(particular, a_level, points[..., 2], q, gain, inside,
-                                      limits, weight, scale, hook)
+                                      limits, weight, scale, hook,
+                                      (preload_low, preload_high), reserve, dual, target)
         if reserve:  # every scenario carries W on the ropes: max T_i / SWL_i >= W / sum SWL_i
-            bound = np.where(np.isfinite(bound), weight / swl.sum(axis=1), bound)
+            bound = np.where(np.isfinite(bound), np.maximum(bound, weight / swl.sum(axis=1)), bound)
     bound[collinear] = np.inf
     reason[collinear] = COLLINEAR
     return bound, reason
@@ -275,7 +293,51 @@ def _hook_margins(problem, cranes, gain, scale):
     margin = np.einsum("kmij,kj->kmi", np.abs(gain), delta)
     scaled = gain * scale[:, None, :, None]
     pair = np.einsum("kmabj,kj->kmab", np.abs(scaled[:, :, :, None] - scaled[:, :, None, :]), delta)
-    return margin, pair
+    return margin, pair, _twist_shift(scaled, pair, delta)
+
+
+#: Hook-error vectors per scenario for the dual bound: those of its most sensitive pairs.
+TWIST_PATTERNS = 4
+
+
+def _twist_shift(scaled, pair, delta):
+    """Hook-error vectors that widen each scenario's most sensitive pairs the most, as shifts u
+    of the scaled values s_i T_i, shape (N, m, TWIST_PATTERNS, n).
+
+    For any hook errors e within the box the spread is at least that of s T + u(e) and of
+    s T - u(e), so the pair terms sum_m |s_a G_am - s_b G_bm| delta_m (not separable by rope)
+    are bounded below by shifted copies of the scenario; for the pairs (a, b) chosen here
+    (the largest terms) the bound is exact."""
+    count, m, n = pair.shape[:3]
+    patterns = min(TWIST_PATTERNS, n * (n - 1) // 2)
+    upper = pair * np.triu(np.ones((n, n)), 1)  # each unordered pair once
+    top = np.argsort(upper.reshape(count, m, n * n), axis=2)[..., ::-1][..., :patterns]
+    a, b = np.divmod(top, n)  # (N, m, P)
+    k, s = np.arange(count)[:, None, None], np.arange(m)[None, :, None]
+    sign = np.sign(scaled[k, s, a] - scaled[k, s, b])  # (N, m, P, n)
+    return np.einsum("kmij,kmpj->kmpi", scaled, sign * delta[:, None, None, :])
+
+
+def _take(value, index):
+    if isinstance(value, tuple):
+        return tuple(_take(v, index) for v in value)
+    value = np.asarray(value)
+    return value[index] if value.ndim else value
+
+
+def _dual_bound(rows, reserve, shift, target):
+    """:func:`~liftplan.planner.search.dual.preload_lp_bound` on the screening scenarios, each
+    copied once per hook-error pattern and sign when ``shift`` (N, m, P, n) is given."""
+    part, null, alpha, beta, low, high, limits = rows
+    if shift is not None:
+        count, m, patterns, n = shift.shape
+        shift = np.concatenate([shift, -shift], axis=2).reshape(count, -1, n)
+        copies = 2 * patterns
+        alpha = np.repeat(alpha, copies, axis=1) + shift
+        beta = np.repeat(beta, copies, axis=1)
+        limits = tuple(np.repeat(np.broadcast_to(v, alpha.shape[:1] + (m, n)), copies, axis=1)
+                       + shift for v in limits)
+    return preload_lp_bound(part, null, alpha, beta, low, high, limits, reserve, target)
 
 
 def _worst_pairs(values, pair):
@@ -417,7 +479,8 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
     return bound, reason
 
 
-def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight, scale, hook):
+def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight, scale, hook,
+                  preload_range, reserve=False, dual=False, target=np.inf):
     count, m, n = q.shape
     reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
     reason = np.where(inside & (weight > limits[1].sum(axis=1)), LEVEL_SWL, reason)
@@ -458,6 +521,30 @@ def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight,
         values = g + u[:, None, None] * h
         return 0.5 * ((values + up).max(axis=1) + (down - values).max(axis=1)).max(axis=1)
 
-    lipschitz = 0.5 * np.ptp(h, axis=1).max(axis=1)
-    bound[ok] = np.maximum(_golden(half_range, lo, hi, lipschitz), 0.0)
+    if not dual:
+        lipschitz = 0.5 * np.ptp(h, axis=1).max(axis=1)
+        bound[ok] = np.maximum(_golden(half_range, lo, hi, lipschitz), 0.0)
+        return bound, reason
+    # the LP over the screening scenarios, bounded through its dual (planner/search/dual.py)
+    big = 100.0 * weight  # as the LP clips "no limit"
+    low = np.clip(np.maximum(preload_range[0][ok], limits[0]), -big, big)
+    high = np.clip(np.minimum(np.minimum(preload_range[1][ok], limits[1][ok]), weight), -big, big)
+    beta = np.einsum("kmij,kjd->kmid", P, null) * sc[..., None]
+    tension_limits = (sc * limits[0], sc * limits[1][ok][:, None, :])
+    shift = None
+    if hook is not None:  # the hook errors: exact on the limits, shifted copies for pairs
+        margin = sc * hook[0][ok]
+        tension_limits = (tension_limits[0] + margin, tension_limits[1] - margin)
+        if reserve:
+            alpha = alpha + margin
+        else:
+            shift = hook[2][ok]
+    rows = (part, null, alpha, beta, low, high, tension_limits)
+    dual = _dual_bound(rows, reserve, None if shift is None else shift[:, :, :1], target)
+    if shift is not None and shift.shape[2] > 1:  # the sets still short of target: all patterns
+        again = np.flatnonzero(dual < target)
+        if again.size:
+            chosen = tuple(_take(v, again) for v in rows)
+            dual[again] = np.maximum(dual[again], _dual_bound(chosen, reserve, shift[again], target))
+    bound[ok] = dual  # the caller keeps the larger of this and the pair bound
     return bound, reason

@@ -1,0 +1,227 @@
+"""A certified lower bound on each lug set's preload LP, for many sets at once (numpy).
+
+For a set of n >= 5 ropes the preload LP (:class:`~liftplan.planner.search.bounds.PreloadMinimax`)
+restricted to the screening scenarios Theta0 is
+
+    v = min over T*  of  max over k in Theta0, rope pair (i, j) of  s_i T_k,i - s_j T_k,j
+        subject to A0 T* = b0,  lo <= T* <= hi,  (tension limits at each scenario),
+
+with T_k = P_k T* + q_k (``objective = "reserve"``: of s_i T_k,i). Solving one LP per set
+costs milliseconds; screening needs thousands of sets in a second. Weak duality gives a bound
+from *any* weights lambda >= 0 summing to 1 over the rows f_r(T*) = c_r . T* + d_r:
+
+    v >= sum_r lambda_r d_r + min over {lo <= T* <= hi, A0 T* = b0} (sum_r lambda_r c_r) . T*
+      >= sum_r lambda_r d_r + c . T_p + sum_i min(r_i (lo_i - T_p,i), r_i (hi_i - T_p,i))
+
+with c = sum_r lambda_r c_r, r = N N^T c its part in the null space of A0 (N orthonormal)
+and T_p the least-norm level solution (the equality constraint dualised with its least-
+squares multiplier). The tension limits L <= s_i T_k,i <= H enter the same way with
+multipliers nu >= 0: they add nu+ (s T - H) + nu- (L - s T), still affine in T*. Every step
+is a valid bound, whatever the weights: no step of the optimiser below needs to be trusted.
+
+Good weights come from the smoothed problem min_y tau log sum_r exp(f_r(T_p + N y) / tau)
+(a soft maximum; its minimiser's softmax weights nearly satisfy N^T c = 0 and lose at most
+tau log(rows) to the maximum), solved by damped Newton in the n - 3 null-space coordinates
+for all sets together while tau shrinks. For the spread the rows are pairs, and the soft
+maximum of V_i - V_j over pairs factors into a soft maximum of V times a soft maximum of
+-V per scenario: the cost is O(scenarios x n), not O(scenarios x n^2). The limits enter the
+smoothed problem as a soft exact penalty PENALTY x tau log(1 + exp(violation / tau)), whose
+derivative gives their multipliers.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Continuation: tau from TAU_START x the initial worst value, halved STAGES times.
+TAU_START, TAU_FACTOR, STAGES, STEPS = 0.05, 0.3, 6, 5
+#: Newton steps at the first tau, and halvings of a step before it is given up.
+FIRST_STEPS, BACKTRACK = 12, 30
+#: Weight of the tension limits' penalty (their multipliers stay below it).
+PENALTY = 10.0
+
+
+def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=False,
+                     target=np.inf):
+    """Lower bounds on the preload LP of many sets (module docstring).
+
+    Parameters
+    ----------
+    particular : numpy.ndarray, shape (N, n)  [t]
+        Least-norm solution of each set's level statics A0 T* = b0.
+    null : numpy.ndarray, shape (N, n, d)
+        Orthonormal basis of the null space of A0 (d = n - 3).
+    alpha : numpy.ndarray, shape (N, m, n)  [t or -]
+        Each scenario's scaled values s_i T_k,i at T* = T_p.
+    beta : numpy.ndarray, shape (N, m, n, d)
+        Their change per unit of the null-space coordinates y (T* = T_p + N y).
+    low, high : numpy.ndarray, shape (N, n)  [t]
+        Finite bounds on T* that every admissible preload meets.
+    limits : (numpy.ndarray, numpy.ndarray), each broadcastable to (N, m, n)  [t or -]
+        L and H with L <= s_i T_k,i <= H at every scenario (finite, or +-inf for none).
+    reserve : bool
+        The rows are s_i T_k,i (the largest utilisation) instead of the pairs' spread.
+    target : float
+        A set whose bound reaches this is left there (the search needs no better).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N,)
+        A valid lower bound on each set's LP value over these scenarios.
+    """
+    count, m, n = alpha.shape
+    d = null.shape[2]
+    limit_low, limit_high = (np.broadcast_to(v, alpha.shape) for v in limits)
+    y = np.zeros((count, d))
+    tau = TAU_START * np.maximum(_worst(alpha, reserve), 1e-9 * np.abs(alpha).max(axis=(1, 2)))
+    ridge = 1e-12 * np.maximum(np.abs(beta).max(axis=(1, 2, 3)), 1e-300) ** 2
+    bound = np.full(count, -np.inf)
+    open_ = np.arange(count)
+    for stage in range(STAGES + 1):
+        k = open_
+        parts = (alpha[k], beta[k], limit_low[k], limit_high[k])
+        y[k] = _newton(y[k], tau[k], ridge[k], parts, reserve,
+                       STEPS if stage else FIRST_STEPS)
+        values = parts[0] + np.einsum("kmid,kd->kmi", parts[1], y[k])
+        weights = _Weights(values, tau[k], reserve, parts[2], parts[3])
+        # every stage's certificate is valid: keep the best, drop sets already past target
+        bound[k] = np.maximum(bound[k], weights.certificate(
+            particular[k], null[k], parts[0], parts[1], low[k], high[k]))
+        open_ = k[bound[k] < target]
+        if open_.size == 0:
+            break
+        tau = TAU_FACTOR * tau
+    return bound
+
+
+def _newton(y, tau, ridge, parts, reserve, steps):
+    """Damped Newton steps on the smoothed objective at fixed tau, for many sets."""
+    alpha, beta, limit_low, limit_high = parts
+    count, m, n, d = beta.shape
+    flat = beta.reshape(count, m * n, d)
+    for _ in range(steps):
+        values = alpha + np.einsum("kmid,kd->kmi", beta, y)
+        weights = _Weights(values, tau, reserve, limit_low, limit_high)
+        grad, hess = weights.derivatives(beta, flat)
+        hess += (ridge / tau)[:, None, None] * np.eye(d)
+        step = -np.linalg.solve(hess, grad[..., None])[..., 0]
+        # backtracking (Armijo) on each set's smoothed objective, the sets still short of a
+        # decrease only
+        now = weights.objective
+        slope = np.einsum("kd,kd->k", grad, step)
+        size = np.ones(count)
+        active = np.arange(count)
+        for _ in range(BACKTRACK):
+            trial = y[active] + size[active, None] * step[active]
+            values = alpha[active] + np.einsum("kmid,kd->kmi", beta[active], trial)
+            value = _objective(values, tau[active], reserve, limit_low[active],
+                               limit_high[active])
+            # (a rounding-level rise is no rise: near the minimum both sides agree)
+            worse = value > now[active] + 1e-4 * size[active] * slope[active] + \
+                1e-12 * np.abs(now[active])
+            size[active[worse]] *= 0.5
+            active = active[worse]
+            if active.size == 0:
+                break
+        size[active] = 0.0  # no decrease found: stay
+        y = y + size[:, None] * step
+    return y
+
+
+def _worst(values, reserve):
+    if reserve:
+        return values.max(axis=(1, 2))
+    return np.ptp(values, axis=2).max(axis=1)
+
+
+def _log_sum_exp(x, axis):
+    top = x.max(axis=axis, keepdims=True)
+    return np.log(np.exp(x - top).sum(axis=axis)) + np.squeeze(top, axis=axis)
+
+
+def _objective(values, tau, reserve, limit_low, limit_high):
+    """tau log sum_r exp(f_r / tau) plus the limits' soft penalty, per set."""
+    t = tau[:, None, None]
+    log_k = _log_sum_exp(values / t, 2)
+    if not reserve:
+        log_k = log_k + _log_sum_exp(-values / t, 2)
+    with np.errstate(invalid="ignore"):
+        soft = np.logaddexp(0.0, (values - limit_high) / t) + \
+            np.logaddexp(0.0, (limit_low - values) / t)
+    return tau * _log_sum_exp(log_k, 1) + PENALTY * tau * np.nansum(soft, axis=(1, 2))
+
+
+def _sigmoid(x):
+    return 0.5 * (1.0 + np.tanh(0.5 * x))
+
+
+class _Weights:
+    """Softmax weights of the rows and the limits' multipliers at one point."""
+
+    def __init__(self, values, tau, reserve, limit_low, limit_high):
+        t = tau[:, None, None]
+        self.tau, self.reserve = tau, reserve
+        self.limit_low, self.limit_high = limit_low, limit_high
+        up = values / t
+        top = up.max(axis=2, keepdims=True)
+        e_up = np.exp(up - top)
+        s_up = e_up.sum(axis=2)
+        self.p = e_up / s_up[..., None]
+        log_k = np.log(s_up) + top[..., 0]  # log sum_i exp(V_k,i / tau)
+        self.q = np.zeros_like(values)
+        if not reserve:  # times sum_j exp(-V_k,j / tau): the pairs' soft maximum factors
+            down = -values / t
+            bottom = down.max(axis=2, keepdims=True)
+            e_down = np.exp(down - bottom)
+            s_down = e_down.sum(axis=2)
+            self.q = e_down / s_down[..., None]
+            log_k = log_k + np.log(s_down) + bottom[..., 0]
+        shift = log_k.max(axis=1, keepdims=True)
+        pi = np.exp(log_k - shift)
+        total = pi.sum(axis=1, keepdims=True)
+        self.pi = pi / total
+        #: the smoothed objective: tau log sum_r exp(f_r / tau) + the limits' soft penalty
+        self.objective = tau * (shift[:, 0] + np.log(total[:, 0]))
+        with np.errstate(invalid="ignore"):  # inf - inf never occurs: values are finite
+            over = _sigmoid((values - limit_high) / t)
+            under = _sigmoid((limit_low - values) / t)
+        self.over, self.under = PENALTY * over, PENALTY * under
+        with np.errstate(invalid="ignore"):
+            soft = np.logaddexp(0.0, (values - limit_high) / t) + \
+                np.logaddexp(0.0, (limit_low - values) / t)
+        self.objective = self.objective + PENALTY * tau * np.nansum(soft, axis=(1, 2))
+        self.curvature = PENALTY * (over * (1.0 - over) + under * (1.0 - under)) / t
+
+    def derivatives(self, beta, flat):
+        """Gradient (N, d) and Hessian (N, d, d) of the smoothed objective in y."""
+        count, m, n, d = beta.shape
+        pi = self.pi[..., None]
+        b_up = (self.p[:, :, None, :] @ beta)[:, :, 0, :]  # (N, m, d)
+        b_down = (self.q[:, :, None, :] @ beta)[:, :, 0, :]
+        rope = (pi * (self.p + self.q)).reshape(count, m * n)
+        if self.reserve:
+            rope = (pi * self.p).reshape(count, m * n)
+        grad = np.einsum("km,kmd->kd", self.pi, b_up - b_down)
+        second = (flat * rope[..., None]).transpose(0, 2, 1) @ flat
+        cross = (b_up * pi).transpose(0, 2, 1) @ b_down
+        second -= cross + cross.transpose(0, 2, 1)
+        hess = (second - grad[:, :, None] * grad[:, None, :]) / self.tau[:, None, None]
+        penalty = (self.over - self.under).reshape(count, m * n)
+        grad = grad + np.einsum("kr,krd->kd", penalty, flat)
+        hess += (flat * self.curvature.reshape(count, m * n)[..., None]).transpose(0, 2, 1) @ flat
+        return grad, hess
+
+    def certificate(self, particular, null, alpha, beta, low, high):
+        """Weak-duality bound from these weights (valid for any weights)."""
+        # the rows' weights on each value, and the limits' multipliers (finite limits only)
+        w = self.pi[..., None] * (self.p - self.q)
+        over = np.where(np.isfinite(self.limit_high), self.over, 0.0)
+        under = np.where(np.isfinite(self.limit_low), self.under, 0.0)
+        w = w + over - under
+        constant = (np.einsum("kmi,kmi->k", w, alpha)
+                    - np.einsum("kmi,kmi->k", over, np.where(over > 0, self.limit_high, 0.0))
+                    + np.einsum("kmi,kmi->k", under, np.where(under > 0, self.limit_low, 0.0)))
+        slope = np.einsum("kmi,kmid->kd", w, beta)  # N^T c
+        residual = np.einsum("kid,kd->ki", null, slope)  # r = N N^T c, the part T* can move
+        span_low, span_high = low - particular, high - particular
+        return constant + np.minimum(residual * span_low, residual * span_high).sum(axis=1)
