@@ -9,7 +9,8 @@ planner found for the lug set:
   hook-height tolerance, on the search's dense grid (the same grid and values as the search's
   ``rope_max``: T + sum_j |dT/dH_j| delta_j at each attitude), with the scenario where it occurs;
 * ``tilt``: the hook's largest load at the rules' tilt (0027/ND 5.4: the worse of the tilt
-  and the hook elevation difference over the least hook spacing), the hoists holding T*,
+  and the hook elevation difference over the hooks' spacing along each tilt direction), the
+  hoists holding T*,
   over every tilt axis and the CG envelope's vertices;
 * ``skew``: 1, because the searched worst already holds every hook error within the
   tolerance (the skew the rules' 1.25 stands for; the plan's skew table shows the computed
@@ -238,16 +239,24 @@ class DesignBuilder:
             preload=dict(zip(names, preload.tolist())),
             stiffness=dict(zip(names, lugset.stiffness.tolist())))
         design_tilt, elevation = problem.rules.design_tilt()
-        spacing = geometry.least_spacing()
         try:
-            tilt = governing_tilt(design_tilt, elevation, spacing)
+            if lugset.n > 2:  # per direction: the elevation difference over the spacing along it
+                tilts = [geometry.tilt_along(d, design_tilt, elevation) for d in range(0, 180, 5)]
+                tilt = max(tilts)
+                note = (f"{min(tilts):.2f} to {tilt:.2f} deg by direction: the worse of "
+                        f"{design_tilt:g} deg and a {elevation:g} m hook elevation difference over "
+                        "the hooks' spacing along each tilt")
+            else:
+                spacing = geometry.least_spacing()
+                tilt = governing_tilt(design_tilt, elevation, spacing)
+                from_elevation = float(np.degrees(np.arcsin(elevation / spacing)))
+                note = (f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m "
+                        f"hook elevation difference over the hook spacing {spacing:.2f} m "
+                        f"({from_elevation:.2f} deg)")
         except InvalidScene as err:
             return float("nan"), "", {}, str(err)
-        from_elevation = float(np.degrees(np.arcsin(elevation / spacing)))
-        note = (f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m hook elevation "
-                f"difference over the least hook spacing {spacing:.2f} m ({from_elevation:.2f} deg)")
         try:
-            worst = geometry.worst(tilt, self.vertices)
+            worst = geometry.worst_per_direction(design_tilt, elevation, self.vertices)
         except EquilibriumNotFound as err:
             return tilt, note, {}, f"at the rules' tilt {tilt:.2f} deg: {err}"
         cases = {}

@@ -86,6 +86,37 @@ def test_fleet_radii_and_chart_swl_by_hand(fleet_plan):
     assert_allclose(fleet_plan.design_loads.tilt, TILT, **EXACT)
 
 
+def _three_hook_tilt_share(weight, lugs, cog, tilt, elevation):
+    """The third hook's largest load over every tilt axis (per-direction rule), by Rodrigues'
+    rotation and the lever rule about the turned line of the first two hooks: independent of
+    TiltGeometry (a scan over psi refined by a bounded scalar search)."""
+    from scipy.optimize import minimize_scalar
+
+    lugs, cog = np.array(lugs), np.array(cog)
+
+    def share(psi, sign):
+        u = np.array([math.cos(psi), math.sin(psi), 0.0])
+        along = lugs[:, :2] @ np.array([-math.sin(psi), math.cos(psi)])
+        a = sign * max(math.radians(tilt), math.asin(elevation / np.ptp(along)))
+        k = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+        rot = np.eye(3) + math.sin(a) * k + (1 - math.cos(a)) * k @ k
+        p, g = lugs @ rot.T, rot @ cog
+        line = p[1, :2] - p[0, :2]
+        normal = np.array([-line[1], line[0]]) / np.hypot(*line)
+        return weight * ((g[:2] - p[0, :2]) @ normal) / ((p[2, :2] - p[0, :2]) @ normal)
+
+    best = 0.0
+    for sign in (-1.0, 1.0):
+        grid = np.linspace(0.0, math.pi, 3601)
+        values = [share(psi, sign) for psi in grid]
+        k = int(np.argmax(values))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+        found = minimize_scalar(lambda psi: -share(psi, sign), bounds=(lo, hi), method="bounded",
+                                options={"xatol": 1e-12})
+        best = max(best, values[k], -found.fun)
+    return best
+
+
 def test_three_cranes_entirely_by_hand():
     """Three equal cranes on a triangle of lugs: statically determinate, every number of the
     chain by hand (offshore defaults, no rigging, CG envelope +-0.5 m along x)."""
@@ -116,12 +147,12 @@ swl = 700.0
     p3 = {c.lug: c for c in result.capacity}["P3"]
     # level, nominal CG: moments about the P1-P2 line, T3 = W (35.86 - 16.2) / (65.6 - 16.2)
     assert_allclose(p3.nominal, W * 19.66 / 49.4, **EXACT)
-    # the rules' tilt: one vessel, 3 deg, or 1 m over the least hook spacing (P1-P2, 12 m):
-    # asin(1/12) = 4.78 deg governs; T3 is largest turning about y with the CG 0.5 m forward:
-    # its lever grows by its depth below the lugs (3.5 m) x tan a
-    alpha = math.asin(1.0 / 12.0)
-    tilt_share = W * (19.66 + 0.5 + 3.5 * math.tan(alpha)) / 49.4
-    assert_allclose(p3.tilt.load, tilt_share, rtol=1e-9)  # golden-section to ~1e-9 deg
+    # the rules' tilt per direction: about the horizontal axis at psi the body tilts by the
+    # worse of 3 deg (one vessel) and asin(1 m / s(psi)), s the hooks' extent along the tilt;
+    # T3 is W x (the CG's plan distance from the turned P1-P2 line) / (P3's), CG 0.5 m forward.
+    tilt_share = _three_hook_tilt_share(W, [(16.2, 0.0, 6.0), (16.2, -12.0, 6.0), (65.6, -6.0, 6.0)],
+                                        (35.86 + 0.5, -6.0, 2.5), 3.0, 1.0)
+    assert_allclose(p3.tilt.load, tilt_share, rtol=1e-8)  # both maximise over psi to ~1e-9 deg
     assert_allclose(p3.skew, 1.0, rtol=0, atol=1e-9)  # three ropes: determinate, no skew
     daf = 1.20  # Table 5-1 offshore (the default), 949.2 t design weight
     static = tilt_share * 1.05

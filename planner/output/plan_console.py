@@ -24,7 +24,9 @@ def plan_table(plan):
     -------
     str
     """
-    if plan.problem.cranes == 2:  # a two-crane sling lift
+    from liftplan.planner.slings import is_sling_plan
+
+    if is_sling_plan(plan):  # a sling lift
         from liftplan.planner.output.sling_console import sling_table
 
         return sling_table(plan)

@@ -78,7 +78,9 @@ def write_report(plan, directory):
     """
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
-    if plan.problem.cranes == 2:  # a two-crane sling lift: its own tables and scene file
+    from liftplan.planner.slings import is_sling_plan
+
+    if is_sling_plan(plan):  # a sling lift: its own tables and scene file
         from liftplan.planner.output import sling_report
 
         page, scene_text = sling_report.render_html(plan), sling_report.scene_toml(plan)
