@@ -25,10 +25,12 @@ from liftplan.planner.problem.report_info import ReportInfo
 __all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate", "CogEnvelope",
            "CraneSpec", "PlanProblem", "code_margin"]
 
-MAX_CRANES = 8
+MAX_CRANES = 64
 OBJECTIVES = ("spread", "utilisation", "reserve")
-#: Lug sets the planner will enumerate; beyond this the search would take hours.
+#: Lug sets the exact search will enumerate; beyond this ``search = "auto"`` takes the local
+#: search (planner/search/local.py) and ``"exact"`` is refused.
 MAX_SETS = 5_000_000
+SEARCHES = ("auto", "exact", "local")
 
 
 def _set(obj, name, value):
@@ -156,7 +158,7 @@ class PlanProblem:
     body : Body
     candidates : tuple of Candidate
     cranes : int
-        How many cranes (lugs) to use, 3 to 8.
+        How many cranes (lugs) to use, 3 to 64 (2 with slings).
     crane : CraneSpec or None
         The ``[crane]`` defaults: a fleet of ``cranes`` equal cranes when ``fleet`` is empty.
     heel_tolerance, trim_tolerance : float  [deg]
@@ -190,6 +192,10 @@ class PlanProblem:
         Relative optimality gap at which the search may stop (0: prove the optimum).
     time_limit : float or None  [s]
         Stop the search after this long with the best plan and its honest gap.
+    search : {"auto", "exact", "local"}
+        ``exact``: every lug set, bounded and pruned (proves the optimum or states the gap);
+        ``local``: swaps from an even spread (a local optimum, no gap proved); ``auto``: exact
+        up to :data:`MAX_SETS` sets, local beyond.
     rules : Rules
         The lifting rules' settings for the design-load chain (``[rules]``; default: the
         rules' defaults, see ``docs/design-loads.md``).
@@ -219,6 +225,7 @@ class PlanProblem:
     objective: str | None = None
     gap: float = 0.0
     time_limit: float | None = None
+    search: str = "auto"
     rules: Rules = field(default_factory=Rules)
     min_sling_angle: float = 60.0
     report: ReportInfo = field(default_factory=ReportInfo)
@@ -240,11 +247,14 @@ class PlanProblem:
                 f"candidates: {len(candidates)} given for plan.cranes = {self.cranes}: "
                 "expected at least as many candidates as cranes"
             )
+        if self.search not in SEARCHES:
+            raise InvalidScene(f"plan.search = {self.search!r}: expected one of {', '.join(SEARCHES)}")
         sets = math.comb(len(candidates), self.cranes)
-        if sets > MAX_SETS:
+        if sets > MAX_SETS and self.search == "exact":
             raise InvalidScene(
                 f"candidates: {len(candidates)} choose {self.cranes} = {sets} lug sets, more than "
-                f"{MAX_SETS}; expected fewer candidates (group them by bulkhead) or cranes"
+                f"{MAX_SETS} for search = \"exact\"; expected fewer candidates (group them by "
+                "bulkhead) or cranes, or search = \"local\""
             )
         for name in ("heel_tolerance", "trim_tolerance"):
             value = finite(f"plan.tolerance.{name[:4]}", getattr(self, name))

@@ -46,6 +46,7 @@ class _Plan(Table):
     objective: Literal["spread", "utilisation", "reserve"] | None = None
     gap: Num = 0.0
     time_limit: Num | None = None
+    search: Literal["auto", "exact", "local"] = "auto"
     tolerance: _Tolerance = _Tolerance()
     min_tension: Num = 0.0
     hook_tolerance: Num = 0.0
@@ -251,7 +252,7 @@ def _to_problem(data):
     cranes = data.plan.cranes
     if cranes is None:
         if not fleet:
-            raise InvalidScene("plan.cranes: missing, expected how many cranes (3 to 8) or one "
+            raise InvalidScene("plan.cranes: missing, expected how many cranes (3 to 64) or one "
                                "[[cranes]] table per crane")
         cranes = len(fleet)
     return PlanProblem(
@@ -266,6 +267,7 @@ def _to_problem(data):
         objective=data.plan.objective,
         gap=data.plan.gap,
         time_limit=data.plan.time_limit,
+        search=data.plan.search,
         heel_tolerance=data.plan.tolerance.heel,
         trim_tolerance=data.plan.tolerance.trim,
         min_tension=data.plan.min_tension,
