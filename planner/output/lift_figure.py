@@ -7,7 +7,7 @@ ground forces, attitude, events and phases against hoist) and adds to it.
 
 from __future__ import annotations
 
-from .figures import load_curve as base_figure
+from . import figures
 
 
 def lift_figure(curve, swl=None):
@@ -26,7 +26,9 @@ def lift_figure(curve, swl=None):
     """
     from matplotlib.transforms import blended_transform_factory
 
-    fig = base_figure(curve, swl=swl)
+    fig = figures.load_curve(curve, swl=swl)  # looked up when called: it can be replaced
+    if len(getattr(fig, "axes", ())) < 4:  # not the four panels drawn there: nothing to add to
+        return fig
     strip, loads, water, pose = fig.axes[:4]
     if curve.soil_force is not None and curve.soil_force.any():
         water.plot(curve.hoist, curve.soil_force, color="tab:brown",
