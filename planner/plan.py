@@ -120,11 +120,15 @@ class Plan:
     ranking : list of SetResult
         Best first; ``ranking[0]`` is the plan.
     stats : SearchStats
+    lengths : LengthSearch or None
+        How the rope lengths were chosen (:mod:`liftplan.planner.lengths`); None when every
+        crane's length was given. With it, ``problem`` is the problem at the chosen lengths.
     """
 
     problem: PlanProblem
     ranking: list[SetResult]
     stats: SearchStats
+    lengths: object = None
 
     # -- the chosen set ------------------------------------------------------------------
     @property
@@ -150,6 +154,12 @@ class Plan:
     def tensions(self):
         """Planned label -> level tension with the nominal CG  [t]."""
         return dict(zip(self.labels, self.chosen.preload.tolist()))
+
+    @property
+    def rope_lengths(self):
+        """Planned label -> unstretched rope length l0 of the crane on that lug  [m]."""
+        return {label: self.problem.fleet[j].rope_length
+                for label, j in zip(self.labels, self.chosen.cranes)}
 
     @property
     def spread(self):
@@ -504,7 +514,8 @@ class Plan:
                        "evaluated": self.stats.evaluated, "pruned": self.stats.pruned,
                        "infeasible": self.stats.infeasible, "seconds": self.stats.seconds},
             "checks": [c.to_json() for c in self.checks],
-        }
+        } | ({} if self.lengths is None else {"rope_lengths": self.rope_lengths,
+                                             "rope_length_search": self.lengths.to_json()})
 
     def _capacity_entry(self, c):
         tilt = None
@@ -576,6 +587,10 @@ def plan(problem, top=None):
 
     if slings.uses_slings(problem):  # cranes on sling sets: the sling-lift planner
         return slings.plan_slings(problem, top)
+    if problem.chooses_rope_lengths:  # an outer search over lengths around this one
+        from liftplan.planner.lengths import plan_lengths
+
+        return plan_lengths(problem, top)
     try:
         ranking, stats = search(problem, top)
     except Interrupted as stop:

@@ -18,7 +18,13 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
 from liftplan.model.scene import Body, finite, point, positive
-from liftplan.planner.problem.fleet import FleetCrane, crane_classes, equal_fleet, reach_table
+from liftplan.planner.problem.fleet import (
+    FleetCrane,
+    crane_classes,
+    equal_fleet,
+    length_range,
+    reach_table,
+)
 from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
@@ -80,6 +86,8 @@ class CraneSpec:
         Safe working load at the working radius.
     boom_min, boom_max : float  [m]
         Range of the boom-tip height H above the datum.
+    rope_length_range : tuple of 2 float or None  [m]
+        (min, max) payout the planner may choose from; ``rope_length`` is then its max.
     """
 
     EA: float
@@ -87,10 +95,13 @@ class CraneSpec:
     swl: float
     boom_min: float = -math.inf
     boom_max: float = math.inf
+    rope_length_range: tuple[float, float] | None = None
 
     def __post_init__(self):
         _set(self, "EA", positive("crane.EA", self.EA))
         _set(self, "rope_length", positive("crane.rope_length", self.rope_length))
+        if self.rope_length_range is not None:
+            _set(self, "rope_length_range", length_range("crane.rope_length", self.rope_length_range))
         _set(self, "swl", positive("crane.swl", self.swl))
         for name in ("boom_min", "boom_max"):
             value = getattr(self, name)
@@ -383,6 +394,11 @@ class PlanProblem:
     def equal_cranes(self):
         """True when every crane is the same (one class)."""
         return len(self.crane_classes) == 1
+
+    @property
+    def chooses_rope_lengths(self):
+        """True when a crane gives a rope-length range for the planner to choose in."""
+        return any(c.rope_length_range is not None for c in self.fleet)
 
     @property
     def set_count(self):

@@ -63,7 +63,7 @@ class _Range(Table):
 
 class _Crane(Table):
     EA: Num | None = None
-    rope_length: Num | None = None
+    rope_length: Num | _Range | None = None
     swl: Num | None = None
     boom_height: _Range | None = None
 
@@ -92,7 +92,7 @@ class _FleetCrane(Table):
     load_chart: list[tuple[Num, Num]] | None = None
     swl: Num | None = None
     EA: Num | None = None
-    rope_length: Num | None = None
+    rope_length: Num | _Range | None = None
     boom_height: _Range | None = None
     sling: _Sling | None = None
     hook_tolerance: Num | None = None
@@ -186,13 +186,23 @@ def _default_spec(data):
             raise InvalidScene(f"crane.{key}: missing, expected a number "
                                "(or one [[cranes]] table per crane)")
     boom = crane.boom_height
+    length, length_range = _length(crane.rope_length)
     return CraneSpec(
         EA=stiffness,
-        rope_length=crane.rope_length,
+        rope_length=length,
         swl=crane.swl,
         boom_min=boom.min if boom else float("-inf"),
         boom_max=boom.max if boom else float("inf"),
+        rope_length_range=length_range,
     )
+
+
+def _length(value):
+    """A rope_length number, or a { min, max } range: (length, range or None); a range's
+    length is its max until the planner chooses (:mod:`liftplan.planner.lengths`)."""
+    if isinstance(value, _Range):
+        return value.max, (value.min, value.max)
+    return value, None
 
 
 def _fleet(data, to_zup):
@@ -222,10 +232,12 @@ def _fleet(data, to_zup):
         if chart is None and swl is None:
             raise InvalidScene(f"cranes[{entry.name}]: no load_chart or swl; expected one "
                                "(here or swl in [crane])")
+        length, length_range = _length(pick("rope_length"))
         fleet.append(FleetCrane(
             name=entry.name,
             EA=pick("EA"),
-            rope_length=pick("rope_length"),
+            rope_length=length,
+            rope_length_range=length_range,
             position=None if entry.position is None else to_zup(entry.position)[:2],
             load_chart=tuple(chart or ()),
             swl=swl,

@@ -140,6 +140,9 @@ class FleetCrane:
         to hook).
     hook_tolerance : float or None  [m]
         This hook's height tolerance, overriding ``[plan] hook_tolerance``.
+    rope_length_range : tuple of 2 float or None  [m]
+        (min, max) payout the planner may choose from (``rope_length = { min, max }``;
+        :mod:`liftplan.planner.lengths`); ``rope_length`` is then its max until chosen.
     """
 
     name: str
@@ -153,11 +156,17 @@ class FleetCrane:
     from_defaults: bool = field(default=False, compare=False)
     sling: SlingSpec | None = None
     hook_tolerance: float | None = None
+    rope_length_range: tuple[float, float] | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise InvalidScene(f"cranes.name = {self.name!r}: expected a non-empty string")
         key = f"cranes[{self.name}]"
+        if self.rope_length_range is not None:
+            _set(self, "rope_length_range", length_range(f"{key}.rope_length", self.rope_length_range))
+            if self.sling is not None:
+                raise InvalidScene(f"{key}.rope_length: a range with a sling; expected a number (the "
+                                   "sling planner does not choose rope lengths)")
         if self.hook_tolerance is not None:
             value = finite(f"{key}.hook_tolerance", self.hook_tolerance)
             if value < 0.0:
@@ -232,8 +241,16 @@ class FleetCrane:
     def same_as(self, other):
         """True when the two cranes are interchangeable (all but the name equal)."""
         keys = ("EA", "rope_length", "position", "load_chart", "swl", "boom_min", "boom_max",
-                "sling", "hook_tolerance")
+                "sling", "hook_tolerance", "rope_length_range")
         return all(getattr(self, k) == getattr(other, k) for k in keys)
+
+
+def length_range(key, value):
+    """A (min, max) rope-length range, checked: 0 < min <= max  [m]."""
+    low, high = (positive(f"{key}.{end}", v) for end, v in zip(("min", "max"), tuple(value)))
+    if low > high:
+        raise InvalidScene(f"{key} = {{min = {low:g}, max = {high:g}}}: expected min <= max")
+    return (low, high)
 
 
 def equal_fleet(spec, count):
@@ -246,7 +263,8 @@ def equal_fleet(spec, count):
     """
     return tuple(
         FleetCrane(name=f"crane {k + 1}", EA=spec.EA, rope_length=spec.rope_length, swl=spec.swl,
-                   boom_min=spec.boom_min, boom_max=spec.boom_max, from_defaults=True)
+                   boom_min=spec.boom_min, boom_max=spec.boom_max, from_defaults=True,
+                   rope_length_range=spec.rope_length_range)
         for k in range(count)
     )
 
