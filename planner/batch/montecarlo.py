@@ -2,22 +2,25 @@
 
 Each draw moves every hook off its planned height by an independent error (uniform within
 the tolerance, or normal with the tolerance as its standard deviation) and solves the full
-elastic model (the body finds its own pose; slack ropes carry nothing), accepted by the same
-test as every elastic answer (:mod:`liftplan.model.acceptance`). The planner's worst case
-holds every error within the tolerance box exactly, so no uniform draw may exceed the plan's
-worst spread or any rope's largest load (``tests/test_montecarlo.py``); the draws show how
-likely the crew is to see what, and what happens when they are worse than assumed.
+elastic model (the body finds its own pose; slack ropes carry nothing): Newton mapped over
+blocks of 4096 draws in one casadi call, each answer accepted by the same test as every
+elastic answer (:mod:`liftplan.model.acceptance`). The planner's worst case holds every
+error within the tolerance box exactly, so no uniform draw may exceed the plan's worst
+spread or any rope's largest load (``tests/test_montecarlo.py``); the draws show how likely
+the crew is to see what, and what happens when they are worse than assumed. The same
+draws run as a ``batch`` study (``kind = "montecarlo"``, one CSV row per draw).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.solve import elastic_verdict, pack_params
-from liftplan.model.statics import Layout, rope_model
+from liftplan.model.statics import BLOCK, FastCall, Layout, rope_model
 
 DISTRIBUTIONS = ("uniform", "normal")
 
@@ -113,6 +116,66 @@ class HookMonteCarlo:
         }
 
 
+def draw_units(draws, n, distribution="uniform", seed=0):
+    """Standard hook-error draws: uniform on [-1, 1] or standard normal, shape (draws, n).
+
+    Multiplied by each hook's tolerance they are the errors [m]; drawn from ``seed`` alone
+    (one generator, row by row), so a study chunked for Dask draws the same numbers.
+    """
+    if not isinstance(draws, int) or isinstance(draws, bool) or draws < 1:
+        raise InvalidScene(f"draws = {draws!r}: expected an integer >= 1")
+    if distribution not in DISTRIBUTIONS:
+        raise InvalidScene(f"distribution = {distribution!r}: expected uniform or normal")
+    rng = np.random.default_rng(seed)
+    if distribution == "uniform":
+        return rng.uniform(-1.0, 1.0, (draws, n))
+    return rng.normal(0.0, 1.0, (draws, n))
+
+
+@cache
+def block_solver(n):
+    """The elastic Newton solve mapped over :data:`BLOCK` parameter columns (one call)."""
+    return FastCall(rope_model(n).elastic_solver.function.map(
+        f"elastic_solve_{n}_block", "serial", BLOCK, [], []))
+
+
+def solve_draws(scene, errors):
+    """Solve a scene's elastic model with its boom heights moved by each row of ``errors``.
+
+    Parameters
+    ----------
+    scene : Scene
+        Vertical ropes (the plan's scene), cranes in lug order.
+    errors : numpy.ndarray, shape (draws, n)  [m]
+
+    Returns
+    -------
+    tensions : numpy.ndarray, shape (draws, n)  [t]
+        NaN where the draw has no accepted equilibrium (solve's own acceptance,
+        :func:`~liftplan.model.solve.elastic_verdict`: residual, stability, upright).
+    heel, trim : numpy.ndarray, shape (draws,)  [deg]
+    """
+    errors = np.atleast_2d(np.asarray(errors, dtype=float))
+    draws, n = errors.shape
+    p0 = pack_params(scene, "elastic")
+    boom = Layout(n).boom
+    solver = block_solver(n)
+    tensions = np.full((draws, n), np.nan)
+    heel = np.full(draws, np.nan)
+    trim = np.full(draws, np.nan)
+    params = np.tile(p0, (BLOCK, 1))
+    for start in range(0, draws, BLOCK):
+        size = min(BLOCK, draws - start)
+        params[:, boom] = p0[boom]  # padding columns: the plan itself
+        params[:size, boom] += errors[start:start + size]
+        x, t, _, residual, minors = (a.reshape(BLOCK, -1) for a in solver(params.ravel()))
+        for k in range(size):
+            if elastic_verdict(scene, x[k], residual[k], minors[k]).ok:
+                tensions[start + k] = t[k]
+                heel[start + k], trim[start + k] = np.degrees(x[k, 1]), np.degrees(x[k, 2])
+    return tensions, heel, trim
+
+
 def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform", seed=0):
     """Solve the plan's elastic model under random hook-height errors.
 
@@ -131,35 +194,14 @@ def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform",
     -------
     HookMonteCarlo
     """
-    if not isinstance(draws, int) or isinstance(draws, bool) or draws < 1:
-        raise InvalidScene(f"draws = {draws!r}: expected an integer >= 1")
-    if distribution not in DISTRIBUTIONS:
-        raise InvalidScene(f"distribution = {distribution!r}: expected uniform or normal")
     n = len(plan.labels)
     scale = plan.lugset.hook_tolerance if tolerance is None else \
         np.broadcast_to(np.asarray(tolerance, dtype=float), (n,))
     if not np.all(np.isfinite(scale)) or np.any(scale < 0):
         raise InvalidScene(f"tolerance = {tolerance!r}: expected finite hook tolerances >= 0 m")
-    rng = np.random.default_rng(seed)
-    if distribution == "uniform":
-        errors = rng.uniform(-1.0, 1.0, (draws, n)) * scale
-    else:
-        errors = rng.normal(0.0, 1.0, (draws, n)) * scale
-    scene = plan.scene
+    errors = draw_units(draws, n, distribution, seed) * scale
     # the plan's scene lists its cranes in label order, as the errors are drawn
-    p0 = pack_params(scene, "elastic")
-    boom = Layout(n).boom
-    solver = rope_model(n).elastic_solver
-    tensions = np.full((draws, n), np.nan)
-    heel = np.full(draws, np.nan)
-    trim = np.full(draws, np.nan)
-    p = p0.copy()
-    for k in range(draws):
-        p[boom] = p0[boom] + errors[k]
-        x, t, _, residual, minors = solver(p)
-        if elastic_verdict(scene, x, residual, minors).ok:  # the acceptance solve applies
-            tensions[k] = np.ravel(t)
-            heel[k], trim[k] = np.degrees(x[1]), np.degrees(x[2])
+    tensions, heel, trim = solve_draws(plan.scene, errors)
     return HookMonteCarlo(
         labels=plan.labels, tolerance=np.asarray(scale, dtype=float), distribution=distribution,
         seed=seed, errors=errors, tensions=tensions, heel=heel, trim=trim,

@@ -28,6 +28,7 @@ import numpy as np
 from liftplan.model.errors import InvalidScene, LiftPlanError, PlanInfeasible
 from liftplan.model.frames import choi_to_zup
 from liftplan.planner.batch.check import CheckCases, check_plan
+from liftplan.planner.batch.montecarlo import block_solver, draw_units, solve_draws
 from liftplan.planner.plan import plan
 
 #: Result columns of each kind of study (after ``case``, the parameters, status, reason).
@@ -36,6 +37,9 @@ RESULTS = {
              "min_tension", "max_tension", "utilisation", "bound", "evaluated", "seconds"],
     "check": ["worst_spread", "worst_heel", "worst_trim", "min_tension", "max_tension",
               "utilisation"],
+    # a Monte-Carlo draw: tension.L1..Ln first (see results_columns), then these
+    "montecarlo": ["heel", "trim", "spread", "max_tension", "above_plan_worst",
+                   "above_design_load", "above_swl", "slack"],
 }
 JOURNAL_MARK = "# liftplan batch"
 
@@ -73,8 +77,15 @@ class BatchSummary:
         return self.ran / self.seconds / self.cores if self.ran and self.seconds > 0 else 0.0
 
 
+def results_columns(study):
+    """The result columns of a study's table."""
+    if study.kind == "montecarlo":
+        return [f"tension.{label}" for label in study.labels] + RESULTS["montecarlo"]
+    return RESULTS[study.kind]
+
+
 def header(study):
-    return ["case", *study.columns(), "status", "reason", *RESULTS[study.kind]]
+    return ["case", *study.columns(), "status", "reason", *results_columns(study)]
 
 
 def run_study(study, client=None, scheduler=None, workers=None, restart=False, progress=True,
@@ -113,7 +124,8 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
     output = Path(output or study.output)
     if client is None and scheduler:
         probe_scheduler(scheduler)  # before any work: a wrong address costs seconds, not a plan
-    base = plan(study.problem({})) if study.kind == "check" else None  # the plan every case checks
+    # the plan every case checks (or draws hook errors on)
+    base = plan(study.problem({})) if study.kind in ("check", "montecarlo") else None
     journal = Journal(output.with_name(output.name + ".partial"), study, restart)
     pending = [(i, case) for i, case in study.cases() if i not in journal.done]
     runnable = pending
@@ -132,14 +144,15 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
 
             cores = sum(dask_client.nthreads().values())
             # imports and casadi JIT compiles on every worker before the clock starts
-            dask_client.run(warm_up, len(base.chosen.indices) if base is not None else None)
+            dask_client.run(warm_up, len(base.chosen.indices) if base is not None else None,
+                            study.kind == "montecarlo")
             start = time.perf_counter()
             futures = {dask_client.submit(fn, *args, pure=False): chunk for fn, args, chunk in tasks}
             with tqdm(total=study.size, initial=study.size - len(runnable), unit="case",
                       disable=not progress, file=sys.stderr, dynamic_ncols=True) as bar:
                 for future in as_completed(futures):
                     try:
-                        rows = _rows(study, futures[future], future.result())
+                        rows = _rows(study, futures[future], future.result(), base)
                     except Exception as err:  # noqa: BLE001 - a lost worker fails its cases only
                         rows = _failed_rows(study, futures[future], "error", _one_line(err))
                     journal.write(rows)
@@ -257,6 +270,8 @@ def _tasks(study, pending, base):
     chunks = [pending[k:k + study.chunk] for k in range(0, len(pending), study.chunk)]
     if study.kind == "plan":
         return [(plan_rows, (study, chunk), chunk) for chunk in chunks]
+    if study.kind == "montecarlo":
+        return montecarlo_tasks(study, base, pending)
     # numbers, not Python objects, cross to the workers and back: Dask moves arrays fast
     # and lists of dicts slowly (measured 2 s of 4 for 60 000 cases)
     return [(check_chunk, (CheckTask(base.problem, base.chosen.indices, base.chosen.preload,
@@ -273,6 +288,55 @@ class CheckTask:
     preload: np.ndarray
     cases: CheckCases
     grid: int
+
+
+def montecarlo_tasks(study, base, pending):
+    """(function, arguments, cases) per Dask task of a ``montecarlo`` study.
+
+    Every draw is made here from the seed (the same numbers however the run is chunked or
+    resumed); a task takes the plan's scene and its chunk of errors as one array.
+    """
+    spec = study.montecarlo
+    scale = spec.scale(base)
+    errors = draw_units(spec.draws, len(base.labels), spec.distribution, spec.seed) * scale
+    chunks = [pending[k:k + study.chunk] for k in range(0, len(pending), study.chunk)]
+    return [(montecarlo_chunk, (base.scene, errors[[i for i, _ in chunk]]), chunk)
+            for chunk in chunks]
+
+
+def montecarlo_chunk(scene, errors):
+    """Solve one chunk of draws (runs on a worker): (errors, tensions, heel, trim) arrays."""
+    tensions, heel, trim = solve_draws(scene, errors)
+    return errors, tensions, heel, trim
+
+
+def montecarlo_rows(study, base, cases, result):
+    """Table rows of a chunk of Monte-Carlo draws, judged against the plan."""
+    errors, tensions, heel, trim = result
+    design = np.array([c.design_hook_load for c in base.capacity])
+    swl = np.asarray(base.chosen.swl, dtype=float)
+    labels = base.labels
+    rows = []
+    for (index, _), e, t, h, r in zip(cases, errors, tensions, heel, trim):
+        numbers = [float(v) for v in e]
+        if not np.all(np.isfinite(t)):
+            rows.append([index, *numbers, "failed", "no stable upright elastic equilibrium for "
+                         "these hook errors", *([""] * len(results_columns(study)))])
+            continue
+        spread = float(np.ptp(t))
+        slack = int(np.sum(t <= 0.0))
+        over = np.flatnonzero(t > swl)
+        status, reason = "ok", ""
+        if over.size:
+            i = int(over[np.argmax(t[over] - swl[over])])
+            status, reason = "unsafe", f"rope {labels[i]} {t[i]:.1f} t over the SWL {swl[i]:g} t"
+        elif slack:
+            i = int(np.argmin(t))
+            status, reason = "unsafe", f"rope {labels[i]} slack"
+        rows.append([index, *numbers, status, reason, *t.tolist(), float(h), float(r), spread,
+                     float(t.max()), int(spread > base.worst_spread + 1e-6),
+                     int(np.any(t > design)), int(over.size > 0), slack])
+    return rows
 
 
 def check_chunk(task):
@@ -298,10 +362,13 @@ def check_cases(study, problem, cases):
     )
 
 
-def _rows(study, cases, result):
-    """Table rows of a finished task (``plan``: rows already; ``check``: from the arrays)."""
+def _rows(study, cases, result, base=None):
+    """Table rows of a finished task (``plan``: rows already; ``check``, ``montecarlo``:
+    from the arrays)."""
     if study.kind == "plan":
         return result
+    if study.kind == "montecarlo":
+        return montecarlo_rows(study, base, cases, result)
     numbers = np.column_stack([result.worst_spread, result.worst_heel, result.worst_trim,
                                result.min_tension, result.max_tension, result.utilisation])
     return [_row(study, index, case, status, reason, row.tolist())
@@ -309,12 +376,15 @@ def _rows(study, cases, result):
             in zip(cases, result.status, result.reason, numbers)]
 
 
-def warm_up(cranes=None):
-    """Import the planner on a worker, and compile the batched model of ``cranes`` ropes."""
+def warm_up(cranes=None, elastic=False):
+    """Import the planner on a worker, and compile the batched model of ``cranes`` ropes
+    (``elastic``: the mapped elastic solve of a Monte-Carlo study instead)."""
     import liftplan.planner.plan  # noqa: F401
     from liftplan.model.statics import rope_model
 
-    if cranes is not None:
+    if cranes is not None and elastic:
+        block_solver(cranes)
+    elif cranes is not None:
         rope_model(cranes).held_columns  # noqa: B018 - compiled on first use
 
 
@@ -345,7 +415,7 @@ def plan_rows(study, cases):
 
 
 def _row(study, index, case, status, reason, results=None):
-    results = results if results is not None else [""] * len(RESULTS[study.kind])
+    results = results if results is not None else [""] * len(results_columns(study))
     results = ["" if isinstance(v, float) and np.isnan(v) else v for v in results]
     return [index, *study.row_values(case), status, reason, *results]
 

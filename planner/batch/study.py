@@ -9,6 +9,12 @@ A study names a planning scene file and the parameters to vary. Two kinds:
 ``check``
     the scene is planned once; every case checks that plan (boom heights fixed) against
     a real weight, CG and tolerance box: how robust is the chosen plan.
+``montecarlo``
+    the scene is planned once; every case is one draw of independent hook-height errors
+    (``[montecarlo]``: draws, uniform or normal, per-crane tolerances, seed) on that plan,
+    solved on the full elastic model (:mod:`~liftplan.planner.batch.montecarlo`). One row
+    per draw: the errors, the tensions, the pose and what they exceed; no ``[sweep]`` or
+    ``[sample]``.
 
 Cases are the grid of ``[sweep]`` values (every combination), times ``[sample]`` random
 draws of the weight and CG (seeded; the same draws at every grid point). Keys are the
@@ -61,7 +67,7 @@ MAX_CASES = 10_000_000
 
 class _Study(Table):
     problem: Text
-    kind: Literal["plan", "check"] = "plan"
+    kind: Literal["plan", "check", "montecarlo"] = "plan"
     name: Text = ""
     output: Text = ""
     grid: Annotated[int, Strict(), Field(ge=1, le=41)] = 3
@@ -75,11 +81,51 @@ class _Sample(Table):
     cog: Point | None = None
 
 
+class _MonteCarlo(Table):
+    draws: Count = 10_000
+    distribution: Literal["uniform", "normal"] = "uniform"
+    seed: Annotated[int, Strict(), Field(ge=0)] = 0
+    tolerance: Num | None = None
+    tolerances: dict[str, Num] = {}
+
+
 class _StudyFile(Table):
     study: _Study
     sweep: dict[str, Annotated[list[Value], Field(min_length=1)]] = {}
     candidate_sets: dict[str, Annotated[list[Text], Field(min_length=1)]] = {}
     sample: _Sample | None = None
+    montecarlo: _MonteCarlo | None = None
+
+
+@dataclass(frozen=True)
+class MonteCarloSpec:
+    """The draws of a ``montecarlo`` study.
+
+    Parameters
+    ----------
+    draws : int
+    distribution : {"uniform", "normal"}
+        ``uniform``: each error within +-tolerance; ``normal``: standard deviation = tolerance.
+    seed : int
+    tolerance : float or None  [m]
+        Every hook's error scale; None: the plan's own hook tolerances.
+    tolerances : tuple of (str, float)  [m]
+        Per crane (by crane name), overriding ``tolerance``.
+    """
+
+    draws: int = 10_000
+    distribution: str = "uniform"
+    seed: int = 0
+    tolerance: float | None = None
+    tolerances: tuple = ()
+
+    def scale(self, plan):
+        """Each planned hook's error scale (label order)  [m]."""
+        own = dict(self.tolerances)
+        base = (plan.lugset.hook_tolerance if self.tolerance is None
+                else np.full(len(plan.labels), self.tolerance))
+        return np.array([own.get(name, value) for name, value in
+                         zip(plan.chosen.crane_names, base)], dtype=float)
 
 
 @dataclass(frozen=True)
@@ -110,6 +156,10 @@ class Study:
         ``check``: attitudes per axis of the tolerance box.
     chunk : int
         Cases per Dask task.
+    montecarlo : MonteCarloSpec or None
+        The draws of a ``montecarlo`` study.
+    cranes : int
+        Planned cranes (lugs) of the base scene.
     """
 
     name: str
@@ -124,6 +174,8 @@ class Study:
     cog_widths: tuple | None = None
     grid: int = 3
     chunk: int = 1
+    montecarlo: MonteCarloSpec | None = None
+    cranes: int = 4
 
     @property
     def fingerprint(self):
@@ -131,12 +183,14 @@ class Study:
         spec = {"kind": self.kind, "base": self.base, "sweep": self.sweep,
                 "sets": self.candidate_sets, "sample": [self.sample_count, self.seed,
                                                         self.weight_range, self.cog_widths],
-                "grid": self.grid}
+                "grid": self.grid, "montecarlo": self.montecarlo}
         return hashlib.sha256(json.dumps(spec, sort_keys=True, default=str).encode()).hexdigest()[:16]
 
     @property
     def size(self):
         """Number of cases."""
+        if self.montecarlo is not None:
+            return self.montecarlo.draws
         grid = int(np.prod([len(values) for _, values in self.sweep], dtype=np.int64))
         return grid * max(self.sample_count, 1)
 
@@ -154,13 +208,24 @@ class Study:
         return {key for key in self._keys if key == "body.cog" or any(
             isinstance(v, list) for k, vs in self.sweep if k == key for v in vs)}
 
+    @property
+    def labels(self):
+        """The planned lug labels L1..Ln."""
+        return tuple(f"L{i + 1}" for i in range(self.cranes))
+
     def columns(self):
-        """Parameter columns of the output table (vectors split into .x .y .z)."""
+        """Parameter columns of the output table (vectors split into .x .y .z; a Monte-Carlo
+        draw's hook errors, one per planned lug)."""
+        if self.montecarlo is not None:
+            return [f"error.{label}" for label in self.labels]
         return [f"{key}.{axis}" if key in self._vectors else key
                 for key in self._keys for axis in ("xyz" if key in self._vectors else "-")]
 
     def cases(self):
         """Every case, as (index, {dotted key: value}) in a fixed order."""
+        if self.montecarlo is not None:  # the draws need the plan: see run.py
+            yield from ((i, {}) for i in range(self.montecarlo.draws))
+            return
         keys = [key for key, _ in self.sweep]
         draws = self._draws()
         index = 0
@@ -206,7 +271,10 @@ class Study:
         return list(zip(factors, offsets))
 
     def row_values(self, case):
-        """A case's parameter values in :meth:`columns` order."""
+        """A case's parameter values in :meth:`columns` order (a Monte-Carlo draw's errors
+        come with its result; blank here)."""
+        if self.montecarlo is not None:
+            return [""] * self.cranes
         out = []
         for key in self._keys:
             value = case.get(key)
@@ -293,6 +361,7 @@ def loads_study(text, base=Path("."), stem="study"):
         raise InvalidScene(f"sample.weight = {sample.weight}: expected finite factors 0 < low <= high")
     if sample is not None and sample.cog is not None and not all(0 <= w < math.inf for w in sample.cog):
         raise InvalidScene(f"sample.cog = {list(sample.cog)}: expected finite half-widths >= 0 m")
+    montecarlo = _montecarlo_spec(data, raw)
     if spec.kind == "check":
         for key in data.sweep:
             if key not in CHECK_KEYS:
@@ -310,12 +379,49 @@ def loads_study(text, base=Path("."), stem="study"):
         weight_range=tuple(sample.weight) if sample and sample.weight else None,
         cog_widths=tuple(sample.cog) if sample and sample.cog else None,
         grid=spec.grid,
-        chunk=spec.chunk or (5000 if spec.kind == "check" else 1),
+        chunk=spec.chunk or (5000 if spec.kind in ("check", "montecarlo") else 1),
+        montecarlo=montecarlo,
+        cranes=problem_from_dict(raw).cranes,
     )
     if study.size > MAX_CASES:
         raise InvalidScene(f"study: {study.size} cases, expected at most {MAX_CASES}")
     _check_sweep(study)
     return study
+
+
+def _montecarlo_spec(data, raw):
+    """The ``[montecarlo]`` table of a ``montecarlo`` study (refused with any other kind)."""
+    table = data.montecarlo
+    if data.study.kind != "montecarlo":
+        if table is not None:
+            raise InvalidScene(f"montecarlo: given with study.kind = {data.study.kind!r}; expected "
+                               "kind = \"montecarlo\" (or no [montecarlo] table)")
+        return None
+    for key in ("sweep", "sample", "candidate_sets"):
+        if getattr(data, key):
+            raise InvalidScene(f"{key}: given with study.kind = 'montecarlo'; expected none (the "
+                               "cases are the [montecarlo] draws on the one plan)")
+    table = table or _MonteCarlo()
+    values = [("montecarlo.tolerance", table.tolerance)] + [
+        (f"montecarlo.tolerances.{name}", v) for name, v in table.tolerances.items()]
+    for key, value in values:
+        if value is not None and not 0.0 <= value < math.inf:
+            raise InvalidScene(f"{key} = {value!r}: expected a finite hook tolerance >= 0 m")
+    problem = problem_from_dict(raw)
+    names = [c.name for c in problem.fleet]
+    for name in table.tolerances:
+        if name not in names:
+            raise InvalidScene(f"montecarlo.tolerances.{name}: no such crane; expected one of "
+                               f"{', '.join(names)}")
+    own = [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
+           for c in problem.fleet]
+    scales = [table.tolerances.get(c.name, v if table.tolerance is None else table.tolerance)
+              for c, v in zip(problem.fleet, own)]
+    if not any(v > 0.0 for v in scales):
+        raise InvalidScene("montecarlo.tolerance: every hook's tolerance is 0 (the plan assumes no "
+                           "hook error and none is given here); expected tolerance > 0 m")
+    return MonteCarloSpec(draws=table.draws, distribution=table.distribution, seed=table.seed,
+                          tolerance=table.tolerance, tolerances=tuple(table.tolerances.items()))
 
 
 def _read_problem(base, name):
