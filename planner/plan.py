@@ -583,10 +583,12 @@ def plan(problem, top=None):
         No lug set can hold the body within the tolerances and limits; the message names
         the causes and how many sets each ruled out.
     """
-    from liftplan.planner import slings
+    from liftplan.planner import slings, strength_plan
 
     if slings.uses_slings(problem):  # cranes on sling sets: the sling-lift planner
         return slings.plan_slings(problem, top)
+    if strength_plan.uses_strength(problem):  # the hull girder's objectives: their own search
+        return strength_plan.plan_strength(problem, top)
     if problem.chooses_rope_lengths:  # an outer search over lengths around this one
         from liftplan.planner.lengths import plan_lengths
 

@@ -17,7 +17,7 @@ import numpy as np
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
-from liftplan.model.scene import Body, finite, point, positive
+from liftplan.model.scene import Body, Strength, finite, point, positive
 from liftplan.planner.problem.fleet import (
     FleetCrane,
     crane_classes,
@@ -32,7 +32,13 @@ __all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate"
            "CraneSpec", "PlanProblem", "code_margin"]
 
 MAX_CRANES = 64
-OBJECTIVES = ("spread", "utilisation", "reserve")
+#: The hull girder's objectives (planner/strength_plan.py): worst |M| / allowable, |Q| /
+#: allowable, or strength_weights x both.
+STRENGTH_OBJECTIVES = ("bending", "shear", "strength")
+OBJECTIVES = ("spread", "utilisation", "reserve", *STRENGTH_OBJECTIVES)
+#: How a lifting point is controlled: by its hoist (boom height, rope length) or by its force
+#: (a strand jack holds its force whatever the attitude).
+CONTROLS = ("hoist", "force")
 #: Lug sets the exact search will enumerate; beyond this ``search = "auto"`` takes the local
 #: search (planner/search/local.py) and ``"exact"`` is refused.
 MAX_SETS = 5_000_000
@@ -215,6 +221,13 @@ class PlanProblem:
     report : ReportInfo
         The report's title block (``[report]``: project, client, revision, signatures);
         default all empty.
+    strength : Strength or None
+        Allowable |M| and |Q| envelopes (``[strength]``) for the strength objectives.
+    strength_weights : tuple of (float, float) or None
+        (bending, shear) weights of ``objective = "strength"`` (default (1, 1)); only with it.
+    controls : tuple of str
+        ``"hoist"`` or ``"force"`` per crane in fleet order (empty: all ``"hoist"``); one
+        control for every crane.
     """
 
     body: Body
@@ -240,6 +253,9 @@ class PlanProblem:
     rules: Rules = field(default_factory=Rules)
     min_sling_angle: float = 60.0
     report: ReportInfo = field(default_factory=ReportInfo)
+    strength: Strength | None = None
+    strength_weights: tuple[float, float] | None = None
+    controls: tuple[str, ...] = ()
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -346,8 +362,9 @@ class PlanProblem:
             equal = len(crane_classes(fleet)) == 1
             _set(self, "objective", "spread" if equal else "utilisation")
         if self.objective not in OBJECTIVES:
-            raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread, utilisation "
-                               "or reserve")
+            raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread, utilisation, "
+                               "reserve, bending, shear or strength")
+        self._check_strength(fleet)
         if not isinstance(self.rules, Rules):
             raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
         if isinstance(self.rules.rigging_weight, dict):
@@ -365,6 +382,58 @@ class PlanProblem:
             reachable = int(np.sum(~np.isnan(swl[:, j])))
             if reachable < 1:
                 raise InvalidScene(f"cranes[{crane.name}]: reaches no candidate")
+
+    def _check_strength(self, fleet):
+        controls = tuple(self.controls) or ("hoist",) * len(fleet)
+        for name, value in zip([c.name for c in fleet], controls):
+            if value not in CONTROLS:
+                raise InvalidScene(f"cranes[{name}].control = {value!r}: expected hoist or force")
+        if len(set(controls)) > 1:
+            raise InvalidScene("cranes.control: hoist and force mixed; expected the same control on "
+                               "every crane (a mixed lift is not planned)")
+        if len(controls) != len(fleet):
+            raise InvalidScene(f"controls: {len(controls)} given for {len(fleet)} cranes; expected one each")
+        _set(self, "controls", controls)
+        if self.strength is not None and not isinstance(self.strength, Strength):
+            raise InvalidScene(f"strength = {self.strength!r}: expected a Strength ([strength])")
+        weights = self.strength_weights
+        if weights is not None and self.objective != "strength":
+            raise InvalidScene(f"plan.strength_weights: given with plan.objective = {self.objective!r}; "
+                               "expected objective = \"strength\"")
+        if self.objective not in STRENGTH_OBJECTIVES:
+            if controls[0] == "force":
+                raise InvalidScene(f"cranes.control = \"force\" with plan.objective = {self.objective!r}; "
+                                   "expected bending, shear or strength (force control is planned for "
+                                   "the hull girder)")
+            return
+        if self.objective == "strength":
+            weights = (1.0, 1.0) if weights is None else tuple(weights)
+            if len(weights) != 2:
+                raise InvalidScene(f"plan.strength_weights = {weights!r}: expected {{ bending, shear }}")
+            weights = tuple(finite(f"plan.strength_weights.{k}", w)
+                            for k, w in zip(("bending", "shear"), weights))
+            if min(weights) < 0.0 or max(weights) <= 0.0:
+                raise InvalidScene(f"plan.strength_weights = {{ bending = {weights[0]:g}, shear = "
+                                   f"{weights[1]:g} }}: expected weights >= 0, not both 0")
+            _set(self, "strength_weights", weights)
+        need = {"bending": ("bending_moment",), "shear": ("shear_force",)}.get(self.objective)
+        if need is None:
+            need = tuple(k for k, w in zip(("bending_moment", "shear_force"), self.strength_weights) if w > 0)
+        if self.body.weight_curve is None:
+            raise InvalidScene(f"body.weight_curve: missing for plan.objective = {self.objective!r}; "
+                               "expected [[x m, t/m], ...]")
+        for key in need:
+            if self.strength is None or getattr(self.strength, key) is None:
+                raise InvalidScene(f"strength.{key}: missing for plan.objective = {self.objective!r}; "
+                                   "expected the allowable envelope [[x m, value], ...]")
+        if len(crane_classes(fleet)) > 1 or any(c.sling is not None for c in fleet):
+            raise InvalidScene(f"plan.objective = {self.objective!r}: planned for equal cranes on single "
+                               "ropes (one [crane] class, no slings); expected [crane] with plan.cranes")
+
+    @property
+    def control(self):
+        """``"hoist"`` or ``"force"``: how every lifting point is controlled."""
+        return self.controls[0] if self.controls else "hoist"
 
     @cached_property
     def points(self):

@@ -15,8 +15,8 @@ from pydantic import Field, Strict, ValidationError
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import RulesTable, rules_from_table
-from liftplan.model.scene import Body
-from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
+from liftplan.model.scene import Body, Strength
+from liftplan.model.scenefile import Num, Pair, Point, Table, Text, load_with, one_line, parse_toml
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
 from liftplan.planner.problem.report_info import ReportInfo
@@ -27,6 +27,17 @@ Count = Annotated[int, Strict(), Field(ge=1)]
 class _Body(Table):
     weight: Num
     cog: Point
+    weight_curve: list[Pair] | None = None  # [x m, t/m]; x is the same axis in both frames
+
+
+class _Strength(Table):
+    bending_moment: list[Pair] | None = None  # [x m, t m]
+    shear_force: list[Pair] | None = None     # [x m, t]
+
+
+class _StrengthWeights(Table):
+    bending: Num = 1.0
+    shear: Num = 1.0
 
 
 class _Candidate(Table):
@@ -43,7 +54,8 @@ class _Tolerance(Table):
 
 class _Plan(Table):
     cranes: Count | None = None
-    objective: Literal["spread", "utilisation", "reserve"] | None = None
+    objective: Literal["spread", "utilisation", "reserve", "bending", "shear", "strength"] | None = None
+    strength_weights: _StrengthWeights | None = None
     gap: Num = 0.0
     time_limit: Num | None = None
     search: Literal["auto", "exact", "local"] = "auto"
@@ -66,6 +78,7 @@ class _Crane(Table):
     rope_length: Num | _Range | None = None
     swl: Num | None = None
     boom_height: _Range | None = None
+    control: Literal["hoist", "force"] | None = None
 
 
 class _Spreader(Table):
@@ -96,6 +109,7 @@ class _FleetCrane(Table):
     boom_height: _Range | None = None
     sling: _Sling | None = None
     hook_tolerance: Num | None = None
+    control: Literal["hoist", "force"] | None = None
 
 
 class _Ropes(Table):
@@ -131,6 +145,7 @@ class _PlanFile(Table):
     rules: RulesTable | None = None
     rigging: _Rigging = _Rigging()
     report: _Report = _Report()
+    strength: _Strength | None = None
 
 
 def load_problem(path):
@@ -268,7 +283,8 @@ def _to_problem(data):
                                "[[cranes]] table per crane")
         cranes = len(fleet)
     return PlanProblem(
-        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog)),
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog),
+                  weight_curve=data.body.weight_curve),
         candidates=tuple(
             Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead, capacity=c.capacity)
             for c in data.candidates
@@ -294,4 +310,16 @@ def _to_problem(data):
         rules=rules_from_table(data.rules),
         min_sling_angle=data.rigging.min_sling_angle,
         report=ReportInfo(**data.report.model_dump()),
+        strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
+        strength_weights=(None if data.plan.strength_weights is None
+                          else (data.plan.strength_weights.bending, data.plan.strength_weights.shear)),
+        controls=_controls(data, cranes),
     )
+
+
+def _controls(data, count):
+    """Each crane's control (``[[cranes]] control``, else ``[crane] control``, else hoist)."""
+    default = data.crane.control or "hoist"
+    if data.cranes:
+        return tuple(c.control or default for c in data.cranes)
+    return (default,) * count
