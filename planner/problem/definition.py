@@ -391,6 +391,8 @@ class PlanProblem:
         if len(set(controls)) > 1:
             raise InvalidScene("cranes.control: hoist and force mixed; expected the same control on "
                                "every crane (a mixed lift is not planned)")
+        if len(controls) != len(fleet) and len(set(controls)) == 1:
+            controls = controls[:1] * len(fleet)  # one control for all: a re-made fleet keeps it
         if len(controls) != len(fleet):
             raise InvalidScene(f"controls: {len(controls)} given for {len(fleet)} cranes; expected one each")
         _set(self, "controls", controls)
