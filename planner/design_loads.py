@@ -15,7 +15,10 @@ planner found for the lug set:
 * ``skew``: 1, because the searched worst already holds every hook error within the
   tolerance (the skew the rules' 1.25 stands for; the plan's skew table shows the computed
   factors beside it);
-* ``swl`` and ``radius``: the crane's chart SWL at its radius to the lug.
+* ``swl`` and ``radius``: the crane's chart SWL at its radius to the lug;
+* ``breakout`` (with ``[plan] breakout_scene``): the crane's held tension when the bedded hull
+  breaks out of the seabed (:mod:`liftplan.planner.breakout`); the chain's static input is
+  then the larger of it and the worst in the box, and the plan says which governs.
 
 Then the chain's factors (weight contingency, DAF, rigging weight; yaw only with slings) turn
 it into the design hook load, checked against the chart SWL, with the crane-code margin and,
@@ -32,6 +35,7 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads, TiltGeometry, governing_tilt
+from liftplan.planner.breakout import BreakoutCase, breakout_case
 from liftplan.planner.search.branch import DENSE
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
@@ -101,6 +105,9 @@ class CraneDesign:
     design : CraneDesignLoad or None
         The chain's result; None when the chain could not be built (see
         :attr:`DesignLoads.missing`).
+    breakout : float or None  [t]
+        Held tension when the hull breaks out of the seabed (``[plan] breakout_scene``);
+        None without a breakout case.
     """
 
     label: str
@@ -114,6 +121,30 @@ class CraneDesign:
     tilt: TiltCase
     skewed: float
     design: object = None
+    breakout: float | None = None
+
+    @property
+    def static_input(self):
+        """The chain's static input  [t]: the worst in the box (at least the level tension),
+        or the breakout tension where that is larger."""
+        box = max(self.worst, self.nominal)
+        return box if self.breakout is None else max(box, self.breakout)
+
+    @property
+    def governs(self):
+        """``"breakout"`` when the breakout tension is the static input, else ``"box"``."""
+        return "breakout" if self.breakout is not None and self.breakout > max(self.worst, self.nominal) \
+            else "box"
+
+    @property
+    def static_note(self):
+        """Which load is the chain's static input, in words."""
+        box = max(self.worst, self.nominal)
+        if self.breakout is None:
+            return f"worst in the box {box:.4g} t (no breakout case)"
+        if self.governs == "breakout":
+            return f"breakout {self.breakout:.4g} t governs over the worst in the box {box:.4g} t"
+        return f"worst in the box {box:.4g} t governs over breakout {self.breakout:.4g} t"
 
     @property
     def skew(self):
@@ -145,6 +176,8 @@ class DesignLoads:
     chain : DesignLoadChain or None
     missing : str or None
         Why no design load could be computed (a one-line reason), else None.
+    breakout : BreakoutCase or None
+        Each crane's load at breakout (``[plan] breakout_scene``), else None.
     """
 
     cranes: tuple
@@ -152,6 +185,7 @@ class DesignLoads:
     tilt_note: str
     chain: DesignLoadChain | None
     missing: str | None = None
+    breakout: BreakoutCase | None = None
 
     @property
     def ok(self):
@@ -165,11 +199,14 @@ class DesignLoads:
 
     @property
     def checks(self):
-        """Design hook load per crane, code margin per crane, lug design loads (with a capacity)."""
+        """Design hook load per crane, code margin per crane, lug design loads (with a capacity),
+        and with a breakout case its hook load per crane and lowest tension."""
         if self.chain is None:
-            return [Check("design_loads", "all cranes", float("nan"), float("nan"), "-", False,
-                          note=f"not computed: {self.missing}")]
-        return self.chain.checks
+            out = [Check("design_loads", "all cranes", float("nan"), float("nan"), "-", False,
+                         note=f"not computed: {self.missing}")]
+        else:
+            out = list(self.chain.checks)
+        return out + ([] if self.breakout is None else self.breakout.checks)
 
     def crane(self, label):
         """The :class:`CraneDesign` of a planned lug label."""
@@ -207,6 +244,7 @@ class DesignBuilder:
         names = lugset.crane_names
         tilt, tilt_note, at_tilt, missing = self._tilt(lugset, preload)
         fleet = [problem.fleet[j] for j in lugset.cranes]
+        breakout = None if problem.breakout is None else breakout_case(problem, lugset, preload)
         cranes = []
         for k, label in enumerate(labels):
             case = at_tilt.get(names[k])
@@ -215,7 +253,8 @@ class DesignBuilder:
                 radius=None if fleet[k].position is None else float(lugset.radius[k]),
                 swl=float(lugset.swl[k]), nominal=float(preload[k]),
                 worst=float(tensions[where[k], k]), worst_at=self.dense[where[k]],
-                tilt=case, skewed=float(skewed[k])))
+                tilt=case, skewed=float(skewed[k]),
+                breakout=None if breakout is None else float(breakout.tensions[k])))
         chain = None
         if missing is None:
             try:
@@ -228,7 +267,7 @@ class DesignBuilder:
             else:
                 cranes = [replace(c, design=r) for c, r in zip(cranes, results)]
         return DesignLoads(cranes=tuple(cranes), tilt=tilt, tilt_note=tilt_note, chain=chain,
-                           missing=missing)
+                           missing=missing, breakout=breakout)
 
     def _tilt(self, lugset, preload):
         """(tilt [deg], note, {crane: TiltCase}, missing reason or None)."""
@@ -269,11 +308,11 @@ class DesignBuilder:
 
     def _loads(self, crane):
         candidate = self.problem.candidates[self.problem.names.index(crane.lug)]
+        static = crane.static_input  # the box worst, or the breakout tension where larger
         return CraneLoads(
-            name=crane.crane, nominal=crane.nominal, worst=max(crane.worst, crane.nominal),
+            name=crane.crane, nominal=crane.nominal, worst=static,
             tilt=crane.tilt.load, swl=crane.swl, radius=crane.radius, skew=crane.skew,
-            lugs=(LugLoads(name=crane.lug, share=max(crane.worst, crane.nominal),
-                           capacity=candidate.capacity),))
+            lugs=(LugLoads(name=crane.lug, share=static, capacity=candidate.capacity),))
 
 
 def design_loads(problem, results, labels):

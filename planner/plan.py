@@ -19,6 +19,7 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.frames import zup_to_choi
 from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Scene
+from liftplan.planner.breakout import breakout_json
 from liftplan.planner.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
@@ -300,7 +301,8 @@ class Plan:
 
         The rules' chain: per crane the design hook load against the chart SWL at its radius
         and the crane code's margin over the calculated share, per lug with a ``capacity`` its
-        design load; per plan: the lowest tension in the box against min_tension.
+        design load, with a breakout case each crane's breakout hook load; per plan: the lowest
+        tension in the box against min_tension.
         """
         out = list(self.design_loads.checks)
         out.append(Check.lower("min_tension", "all ropes", self.chosen.tension_range[0],
@@ -515,7 +517,8 @@ class Plan:
                        "infeasible": self.stats.infeasible, "seconds": self.stats.seconds},
             "checks": [c.to_json() for c in self.checks],
         } | ({} if self.lengths is None else {"rope_lengths": self.rope_lengths,
-                                             "rope_length_search": self.lengths.to_json()})
+                                             "rope_length_search": self.lengths.to_json()}) \
+          | breakout_json(self)
 
     def _capacity_entry(self, c):
         tilt = None

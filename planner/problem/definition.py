@@ -14,10 +14,10 @@ from functools import cached_property
 
 import numpy as np
 
-from liftplan.model.errors import InvalidScene
-from liftplan.model.frames import rotation_matrix
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.frames import rotation_matrix, zup_to_choi
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
-from liftplan.model.scene import Body, Strength, finite, point, positive
+from liftplan.model.scene import Body, Scene, Strength, finite, point, positive
 from liftplan.planner.problem.fleet import (
     FleetCrane,
     crane_classes,
@@ -228,6 +228,10 @@ class PlanProblem:
     controls : tuple of str
         ``"hoist"`` or ``"force"`` per crane in fleet order (empty: all ``"hoist"``); one
         control for every crane.
+    breakout_scene : Scene or None
+        The hull resting on the seabed (``[plan] breakout_scene``: ``[hull]``, ``[water]``,
+        ``[ground]``, the same body as ``body``): its breakout case (:attr:`breakout`) is
+        carried into each crane's capacity check. None: no breakout case.
     """
 
     body: Body
@@ -256,6 +260,7 @@ class PlanProblem:
     strength: Strength | None = None
     strength_weights: tuple[float, float] | None = None
     controls: tuple[str, ...] = ()
+    breakout_scene: Scene | None = None
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -365,6 +370,7 @@ class PlanProblem:
             raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread, utilisation, "
                                "reserve, bending, shear or strength")
         self._check_strength(fleet)
+        self._check_breakout(fleet)
         if not isinstance(self.rules, Rules):
             raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
         if isinstance(self.rules.rigging_weight, dict):
@@ -431,6 +437,50 @@ class PlanProblem:
         if len(crane_classes(fleet)) > 1 or any(c.sling is not None for c in fleet):
             raise InvalidScene(f"plan.objective = {self.objective!r}: planned for equal cranes on single "
                                "ropes (one [crane] class, no slings); expected [crane] with plan.cranes")
+
+    def _check_breakout(self, fleet):
+        """The breakout scene: a seabed scene of this body, for a held plan of single ropes."""
+        scene, key = self.breakout_scene, "plan.breakout_scene"
+        if scene is None:
+            return
+        if not isinstance(scene, Scene):
+            raise InvalidScene(f"{key} = {scene!r}: expected a Scene (a scene file with [hull], "
+                               "[water] and [ground])")
+        missing = [t for t in ("hull", "water", "ground") if getattr(scene, t) is None]
+        if missing:
+            raise InvalidScene(f"{key}: the scene {scene.name!r} has no [{'], ['.join(missing)}]; "
+                               "expected the hull resting on the seabed with [hull], [water] and "
+                               "[ground]")
+        if any(c.sling is not None for c in fleet) or self.objective in STRENGTH_OBJECTIVES:
+            raise InvalidScene(f"{key}: given for a plan with slings or a strength objective; "
+                               "expected cranes on single ropes and objective spread, utilisation "
+                               "or reserve (the breakout case is carried into those plans only)")
+        body, mine = scene.body, self.body
+        if (not math.isclose(body.weight, mine.weight, rel_tol=1e-9)
+                or not np.allclose(body.cog, mine.cog, rtol=0.0, atol=1e-9)):
+            shown = zup_to_choi if self.frame == "choi" else tuple
+
+            def xyz(cog):
+                return "(" + ", ".join(f"{v:g}" for v in shown(tuple(cog))) + ")"
+
+            raise InvalidScene(
+                f"{key}: the scene's body (weight {body.weight:g} t, cog {xyz(body.cog)} m) is not "
+                f"the plan's (weight {mine.weight:g} t, cog {xyz(mine.cog)} m); expected the same "
+                "body in the same body frame (the breakout point is applied to the candidates)")
+        try:
+            _ = self.breakout  # computed now: a scene with nothing to break out is bad input
+        except EquilibriumNotFound as err:
+            raise InvalidScene(f"{key}: {err}") from None
+
+    @cached_property
+    def breakout(self):
+        """The breakout case of ``breakout_scene`` (:class:`~liftplan.model.water.breakout.
+        BreakoutLoad`: peak total hook load [t] and a z-up body point on its line), or None."""
+        if self.breakout_scene is None:
+            return None
+        from liftplan.model.water.breakout import breakout_load
+
+        return breakout_load(self.breakout_scene)
 
     @property
     def control(self):

@@ -8,6 +8,7 @@ the file's frame and converted to ``z-up``.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Annotated, Literal
 
 from pydantic import Field, Strict, ValidationError
@@ -16,7 +17,17 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene import Body, Strength
-from liftplan.model.scenefile import Num, Pair, Point, Table, Text, load_with, one_line, parse_toml
+from liftplan.model.scenefile import (
+    Num,
+    Pair,
+    Point,
+    Table,
+    Text,
+    load_scene,
+    load_with,
+    one_line,
+    parse_toml,
+)
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
 from liftplan.planner.problem.report_info import ReportInfo
@@ -66,6 +77,7 @@ class _Plan(Table):
     cog_envelope: Literal["box", "cross"] = "box"
     top: Count = 5
     outline: list[Point] = []
+    breakout_scene: Text | None = None   # scene file of the hull on the seabed, relative path
 
 
 class _Range(Table):
@@ -165,16 +177,21 @@ def load_problem(path):
     InvalidScene
         One line naming the file, the key, the value and what is expected.
     """
-    return load_with(path, loads_problem)
+    return load_with(path, lambda text: loads_problem(text, base=Path(path).parent))
 
 
-def loads_problem(text):
-    """Validate a planning scene given as TOML text; see :func:`load_problem`."""
-    return problem_from_dict(parse_toml(text))
+def loads_problem(text, base=None):
+    """Validate a planning scene given as TOML text; see :func:`load_problem`.
+
+    ``base`` is the folder a relative ``plan.breakout_scene`` is read from (default: the
+    working directory).
+    """
+    return problem_from_dict(parse_toml(text), base=base)
 
 
-def problem_from_dict(raw):
-    """Validate a planning scene given as the dict its TOML file parses to."""
+def problem_from_dict(raw, base=None):
+    """Validate a planning scene given as the dict its TOML file parses to (``base``: see
+    :func:`loads_problem`)."""
     if "candidates" not in raw and "lugs" in raw:
         raise InvalidScene(
             "[[lugs]]: a scene with fixed lugs; expected [[candidates]] and [plan] for "
@@ -184,7 +201,17 @@ def problem_from_dict(raw):
         data = _PlanFile.model_validate(raw)
     except ValidationError as err:
         raise InvalidScene(one_line(err, _PlanFile)) from None
-    return _to_problem(data)
+    return _to_problem(data, Path(base) if base is not None else Path.cwd())
+
+
+def _breakout_scene(path, base):
+    """The scene file ``plan.breakout_scene`` names (read by the scene reader), or None."""
+    if path is None:
+        return None
+    try:
+        return load_scene(base / path)
+    except InvalidScene as err:
+        raise InvalidScene(f"plan.breakout_scene = {path!r}: {err}") from None
 
 
 def _default_spec(data):
@@ -269,7 +296,7 @@ def _fleet(data, to_zup):
     return tuple(fleet)
 
 
-def _to_problem(data):
+def _to_problem(data, base):
     choi = data.frame == "choi"
     to_zup = choi_to_zup if choi else tuple
     widths = data.plan.cog_tolerance
@@ -314,6 +341,7 @@ def _to_problem(data):
         strength_weights=(None if data.plan.strength_weights is None
                           else (data.plan.strength_weights.bending, data.plan.strength_weights.shear)),
         controls=_controls(data, cranes),
+        breakout_scene=_breakout_scene(data.plan.breakout_scene, base),
     )
 
 
