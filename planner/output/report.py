@@ -308,6 +308,7 @@ def render_html(plan, today=None):
          "<h2>1 Recommendation</h2>", lugs, summary,
          "<h2>2 Basis of the plan</h2>", inputs, fleet,
          "<h2>3 Checks to hand over</h2>", checks, _design_table(plan), *_design_details(plan),
+         *_breakout_section(plan),
          hooks, sensitivity, skew, guidance,
          "<h2>4 Figures</h2>", *figs,
          "<h2>5 Alternatives</h2>", ranking,
@@ -417,14 +418,17 @@ def _design_table(plan):
         margin = "-" if r.code_margin is None else (
             f"{r.code_margin.value:.1f} {'<=' if r.code_margin.ok else '>'} {r.code_margin.limit:.1f}")
         ok = r.check.ok and (r.code_margin is None or r.code_margin.ok)
+        breakout = [] if design.breakout is None else [f"{c.breakout:.2f}", c.governs]
         columns.append([c.crane, "-" if c.radius is None else f"{c.radius:.1f}", f"{c.swl:.1f}",
-                        f"{c.nominal:.2f}", f"{c.worst:.2f}", f"{c.tilt.load:.2f}",
+                        f"{c.nominal:.2f}", f"{c.worst:.2f}", *breakout, f"{c.tilt.load:.2f}",
                         f"{factor['weight_contingency'].value:.3f}", f"{skew:.4f}",
                         f"{r.rigging_weight:.2f}", f"{r.static_hook_load:.2f}",
                         f"{factor['daf'].value:.3f}", f"{r.design_hook_load:.2f}",
                         f"{100 * r.utilisation:.1f}", margin, "ok" if ok else "FAIL"])
+    breakout = [] if design.breakout is None else [
+        "at breakout, held level [t]", "static input: box worst or breakout"]
     quantities = ["crane", "radius [m]", "chart SWL [t]", "level tension [t]",
-                  "worst in the box [t]", "at the rules' tilt [t]", "x weight contingency [-]",
+                  "worst in the box [t]", *breakout, "at the rules' tilt [t]", "x weight contingency [-]",
                   "x skew on the hook [-]", "+ rigging [t]", "= static hook load [t]",
                   "x DAF [-]", "= design hook load [t]", "utilisation: design / chart SWL [%]",
                   "code margin: share x (1 + margin) vs SWL [t]", "check"]
@@ -435,6 +439,45 @@ def _design_table(plan):
         "Design loads per crane (0027/ND chain; utilisation = design hook load / chart SWL; "
         f"tilt {design.tilt_note})", text_columns=(0,),
     )
+
+
+def _breakout_section(plan):
+    """The breakout case: the peak load from the seabed scene and each crane's held share."""
+    design = plan.design_loads
+    case = design.breakout
+    if case is None:
+        return []
+    load, force = case.load, case.load.breakout
+    problem = plan.problem
+    model = {"soil": (f"soil model: 1.5 (T/T_e)^-0.07 = {force.time_factor:.3f} x N_c s_u A = "
+                      f"{force.static_resistance:.2f} t over {force.area:.1f} m2"
+                      if force.model == "soil" else ""),
+             "factor": f"a factor {force.force / force.submerged_weight:.3g} on the submerged weight"
+             if force.submerged_weight > 0 else "a factor on the submerged weight",
+             "none": "no breakout model in the scene"}[force.model]
+    text = (f"<p>The hull rests on the seabed as in the scene &ldquo;"
+            f"{html.escape(problem.breakout_scene.name)}&rdquo;. Breaking it out takes a peak total "
+            f"hook load of <b>{load.total:.2f} t</b> ({load.weight_factor:.3f} x W): the submerged "
+            f"weight {force.submerged_weight:.2f} t (weight, trapped water, less buoyancy) and the "
+            f"breakout force {force.force:.2f} t ({html.escape(model)}), held until the hull is "
+            f"{force.clear:g} m clear of its bed, on a line through ({_xyz(problem, load.point)}) m. "
+            "Each crane's share is its tension with the plan's preload held and the body level, "
+            "the hooks moved together as a rigid pattern by the hook shift below; the larger of it "
+            "and the worst in the box is the crane's static input to the design-load chain above. "
+            "The breakout hook load (tension + rigging, no dynamic factor) is checked against the "
+            "chart SWL.</p>")
+    rows = [(c.label, c.crane, f"{c.breakout:.2f}", f"{r:.2f}", f"{h:.2f}", f"{c.swl:.1f}",
+             f"{100 * h / c.swl:.1f}", f"{d:+.3f}", f"{max(c.worst, c.nominal):.2f}", c.governs,
+             "ok" if check.ok else "FAIL")
+            for c, r, h, d, check in zip(design.cranes, case.rigging, case.hook_loads,
+                                         case.hook_shift, case.checks)]
+    table = _table(
+        ["lug", "crane", "tension at breakout [t]", "rigging [t]", "breakout hook load [t]",
+         "chart SWL [t]", "hook load / SWL [%]", "hook shift [m]", "worst in the box [t]",
+         "static input", "check"],
+        rows, "Breakout from the seabed: each crane's held share of the peak load",
+        text_columns=(1, 9, 10))
+    return ["<h3>Breakout from the seabed</h3>", text, table]
 
 
 def _design_details(plan):
