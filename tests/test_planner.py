@@ -99,7 +99,7 @@ def linprog_minimax(lugset, scenarios):
     return result.fun if result.status == 0 else None
 
 
-@pytest.mark.parametrize("cranes", [3, 4, 5])
+@pytest.mark.parametrize("cranes", [3, 4, 5, 6])
 def test_search_finds_the_brute_force_optimum(cranes):
     problem = small_problem(cranes)
     brute = brute_force(problem)
@@ -117,10 +117,10 @@ def test_search_finds_the_brute_force_optimum(cranes):
     assert stats.evaluated + stats.pruned + stats.screened_out == stats.sets
 
 
-@pytest.mark.parametrize("cranes", [3, 4, 5])
-def test_screening_bound_never_exceeds_the_evaluated_worst(cranes):
+@pytest.mark.parametrize("cranes, dual", [(3, False), (4, False), (5, False), (5, True), (6, True)])
+def test_screening_bound_never_exceeds_the_evaluated_worst(cranes, dual):
     problem = small_problem(cranes)
-    screening = screen(problem)
+    screening = screen(problem, dual=dual)
     evaluator = SetEvaluator(problem)
     for indices, bound in zip(screening.sets, screening.bound):
         if not math.isfinite(bound):

@@ -43,7 +43,8 @@ def plan_table(plan):
         "trim > 0 bow down",
         f"{stats.sets} lug sets of {problem.cranes} among {len(problem.candidates)} candidates"
         f"{fleet}: {stats.screened_out} ruled out by screening, {stats.evaluated} evaluated, "
-        f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)",
+        f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)" if stats.summary is None else
+        stats.summary,
         f"tolerance box: heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g}"
         f" deg; tensions {problem.min_tension:g} t to {swl_text}",
         "objective: " + OBJECTIVE_TEXT[plan.objective],
@@ -63,6 +64,7 @@ def plan_table(plan):
     lines.append("(level T: nominal CG, level; worst: largest in the box over the CG envelope; tilt: at "
                  "the rules' tilt; design: the rules' design hook load; util. = design / chart SWL)")
     lines += _chain_lines(plan, design)
+    lines += _breakout_lines(plan, design)
     if not chosen.converged:
         lines.append(f"WARNING: the worst-case search still exceeded the LP bound by "
                      f"{chosen.worst_value - chosen.bound:.4g} after {chosen.rounds} rounds; "
@@ -145,8 +147,9 @@ def _chain_lines(plan, design):
                      f"{factor['tilt'].value:>8.4f}{skew:>8.4f}{factor['daf'].value:>7.3f}"
                      f"{r.rigging_weight:>13.2f}{r.static_hook_load:>17.2f}{margin:>17}  "
                      f"{'ok' if margin_ok else 'FAIL'}")
-    lines.append("(static hook = max(worst, tilt) x contingency x skew + rigging; design = static hook x "
-                 "DAF; code margin: (level T x contingency + rigging) x (1 + margin) <= SWL)")
+    static = "worst" if design.breakout is None else "max(worst, breakout)"
+    lines.append(f"(static hook = max({static}, tilt) x contingency x skew + rigging; design = static hook "
+                 "x DAF; code margin: (level T x contingency + rigging) x (1 + margin) <= SWL)")
     lines.append("worst cases (CG position in the file's frame):")
     for c in plan.capacity:
         text = f"  {c.label} {c.crane}: worst {c.worst:.2f} t at {_where(plan, c.worst_at)}"
@@ -156,6 +159,28 @@ def _chain_lines(plan, design):
             text += (f"; tilt {c.tilt.load:.2f} t at {c.tilt.tilt:.2f} deg about axis "
                      f"({axis[0]:+.3f}, {axis[1]:+.3f}, {axis[2]:+.3f}), CG {_xyz(cog)} m")
         lines.append(text)
+    return lines
+
+
+def _breakout_lines(plan, design):
+    """The breakout case: the peak load, each crane's held share, what governs the chain."""
+    case = design.breakout
+    if case is None:
+        return []
+    load, force = case.load, case.load.breakout
+    model = {"soil": "soil model", "factor": "factor on the submerged weight",
+             "none": "no breakout model"}[force.model]
+    lines = ["", f"breakout from the seabed ({plan.problem.breakout_scene.name or 'breakout scene'}): "
+                 f"peak total hook load {load.total:.2f} t = submerged weight "
+                 f"{force.submerged_weight:.2f} t + breakout force {force.force:.2f} t ({model}), "
+                 f"{load.weight_factor:.3f} x W, through {_xyz(plan.in_file_frame(load.point))} m",
+             "held by each crane at the level attitude, the plan's preload held (the hooks moved "
+             "rigidly to hold it level):",
+             f"{'lug':<4}{'crane':<12}{'T breakout [t]':>15}{'+ rigging [t]':>14}{'SWL [t]':>9}"
+             f"{'hook shift [m]':>15}  chain's static input"]
+    for c, rigging, shift, check in zip(design.cranes, case.rigging, case.hook_shift, case.checks):
+        lines.append(f"{c.label:<4}{c.crane[:11]:<12}{c.breakout:>15.2f}{rigging:>14.2f}{c.swl:>9.1f}"
+                     f"{shift:>15.3f}  {c.static_note}{'' if check.ok else '  FAIL'}")
     return lines
 
 

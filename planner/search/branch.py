@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.problem.definition import MAX_SETS
 from liftplan.planner.search.bounds import PreloadMinimax
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.screen import (
@@ -177,9 +178,9 @@ class SearchStats:
         of the LP bounds of the rows evaluated and the screening bounds of the rows not).
     best : float  [t or -]
         The plan's worst value of the objective.
-    stopped : {"proved", "gap", "time_limit", "interrupted"}
+    stopped : {"proved", "gap", "time_limit", "interrupted", "local"}
         Why the search ended: the top plans proved, the gap target reached, the time limit,
-        or Ctrl-C.
+        Ctrl-C, or a local optimum of the local search (no gap proved).
     """
 
     sets: int
@@ -194,6 +195,14 @@ class SearchStats:
     lower_bound: float = 0.0
     best: float = math.inf
     stopped: str = "proved"
+
+    @property
+    def summary(self):
+        """What the search did, in one line."""
+        if self.stopped == "local":
+            return (f"{self.sets} lug sets: local search, {self.refined} swaps from an even spread "
+                    f"of the candidates to a local optimum (no gap proved) ({self.seconds:.2f} s)")
+        return None
 
     @property
     def gap(self):
@@ -456,6 +465,9 @@ class SetEvaluator:
 
 #: Rows whose coarse screening bound is replaced by the full one at a time.
 REFINE = 64
+#: n >= 5: refine the preload-free pair bound to the LP's dual bound before a row is
+#: evaluated (False: the pair bound alone, as before; studies/planner_scale.py compares).
+DUAL_BOUND = True
 
 
 class Interrupted(KeyboardInterrupt):
@@ -499,6 +511,8 @@ def search(problem, top=None, progress=None):
     """
     started = time.perf_counter()
     top = top or problem.top
+    if problem.search == "local" or (problem.search == "auto" and problem.set_count > MAX_SETS):
+        return _local(problem, started)
     sets, cranes, out_of_reach = set_rows(problem)
     if len(sets) == 0:
         raise PlanInfeasible(_unreachable(problem))
@@ -508,7 +522,8 @@ def search(problem, top=None, progress=None):
     bound = screening.bound.copy()
     # rows whose bound is refined before they are evaluated: from the coarse screening, or
     # (n >= 5) from the preload-free pair bound to the LP's dual bound
-    lazy = _coarse(screening, problem) or problem.cranes >= 5
+    dual = problem.cranes >= 5 and DUAL_BOUND
+    lazy = _coarse(screening, problem) or dual
     refined = np.full(len(bound), not lazy)
     heap = [(float(bound[k]), bool(not refined[k]), int(k)) for k in np.flatnonzero(np.isfinite(bound))]
     heapq.heapify(heap)
@@ -575,8 +590,8 @@ def search(problem, top=None, progress=None):
                                if heap and heap[0][1]]
                 # a bound past the k-th best found need not be tightened further
                 target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
-                full = screen(problem, sets[batch], cranes[batch], coarse=False,
-                              dual=problem.cranes >= 5, target=target)
+                full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual,
+                              target=target)
                 refine_count += len(batch)
                 dive = None
                 for j, new_bound, reason in zip(batch, full.bound, full.reason):
@@ -614,6 +629,28 @@ def search(problem, top=None, progress=None):
             f"each crane's SWL ({causes})"
         )
     return ranking, stats
+
+
+def _local(problem, started):
+    """:func:`~liftplan.planner.search.local.local_search`, its set evaluated exactly."""
+    from liftplan.planner.search.local import local_search
+
+    indices, moves, _ = local_search(problem, time_limit=problem.time_limit)
+    try:
+        result = SetEvaluator(problem).evaluate(indices)
+    except SetInfeasible as err:
+        raise PlanInfeasible(f"the local search ended on {', '.join(problem.names[i] for i in indices)}"
+                             f" after {moves} swaps, which is infeasible over the box: "
+                             f"{REASONS[err.code]}") from None
+    if problem.objective == "reserve":  # every rope shares W: max T_i / SWL_i >= W / sum SWL
+        bound = problem.body.weight / float(np.sum(result.swl))
+    else:
+        bound = 0.0
+    stats = SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
+                        seconds=time.perf_counter() - started, rows=problem.set_count,
+                        refined=moves, lower_bound=min(bound, result.worst_value),
+                        best=result.worst_value, stopped="local")
+    return [result], stats
 
 
 def _progress_bar(total, progress):

@@ -80,13 +80,15 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
     for stage in range(STAGES + 1):
         k = open_
         parts = (alpha[k], beta[k], limit_low[k], limit_high[k])
-        y[k] = _newton(y[k], tau[k], ridge[k], parts, reserve,
+        box = (particular[k], null[k], low[k], high[k])
+        y[k] = _newton(y[k], tau[k], ridge[k], parts, box, reserve,
                        STEPS if stage else FIRST_STEPS)
         values = parts[0] + np.einsum("kmid,kd->kmi", parts[1], y[k])
         weights = _Weights(values, tau[k], reserve, parts[2], parts[3])
         # every stage's certificate is valid: keep the best, drop sets already past target
+        box_weights = _box_multipliers(y[k], box, tau[k])
         bound[k] = np.maximum(bound[k], weights.certificate(
-            particular[k], null[k], parts[0], parts[1], low[k], high[k]))
+            particular[k], null[k], parts[0], parts[1], low[k], high[k], box_weights))
         open_ = k[bound[k] < target]
         if open_.size == 0:
             break
@@ -94,20 +96,31 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
     return bound
 
 
-def _newton(y, tau, ridge, parts, reserve, steps):
-    """Damped Newton steps on the smoothed objective at fixed tau, for many sets."""
+def _newton(y, tau, ridge, parts, box, reserve, steps):
+    """Damped Newton steps on the smoothed objective at fixed tau, for many sets.
+
+    The preload's box (lo <= T_p + N y <= hi) enters the smoothing as a soft penalty too, so
+    that the weights found are those of the box-constrained LP (the certificate itself keeps
+    the box exactly)."""
     alpha, beta, limit_low, limit_high = parts
     count, m, n, d = beta.shape
     flat = beta.reshape(count, m * n, d)
+    _, null, _, _ = box
     for _ in range(steps):
         values = alpha + np.einsum("kmid,kd->kmi", beta, y)
         weights = _Weights(values, tau, reserve, limit_low, limit_high)
         grad, hess = weights.derivatives(beta, flat)
-        hess += (ridge / tau)[:, None, None] * np.eye(d)
-        step = -np.linalg.solve(hess, grad[..., None])[..., 0]
+        penalty, grad_box, hess_box = _box_penalty(y, box, tau)
+        grad, hess = grad + grad_box, hess + hess_box
+        hess += (ridge / tau + 1e-10 * np.abs(hess).max(axis=(1, 2)) + 1e-300)[:, None, None] * \
+            np.eye(d)
+        try:
+            step = -np.linalg.solve(hess, grad[..., None])[..., 0]
+        except np.linalg.LinAlgError:  # a flat direction (weights on one rope): least squares
+            step = -(np.linalg.pinv(hess) @ grad[..., None])[..., 0]
         # backtracking (Armijo) on each set's smoothed objective, the sets still short of a
         # decrease only
-        now = weights.objective
+        now = weights.objective + penalty
         slope = np.einsum("kd,kd->k", grad, step)
         size = np.ones(count)
         active = np.arange(count)
@@ -115,7 +128,8 @@ def _newton(y, tau, ridge, parts, reserve, steps):
             trial = y[active] + size[active, None] * step[active]
             values = alpha[active] + np.einsum("kmid,kd->kmi", beta[active], trial)
             value = _objective(values, tau[active], reserve, limit_low[active],
-                               limit_high[active])
+                               limit_high[active]) + \
+                _box_penalty(trial, tuple(v[active] for v in box), tau[active])[0]
             # (a rounding-level rise is no rise: near the minimum both sides agree)
             worse = value > now[active] + 1e-4 * size[active] * slope[active] + \
                 1e-12 * np.abs(now[active])
@@ -137,6 +151,28 @@ def _worst(values, reserve):
 def _log_sum_exp(x, axis):
     top = x.max(axis=axis, keepdims=True)
     return np.log(np.exp(x - top).sum(axis=axis)) + np.squeeze(top, axis=axis)
+
+
+def _box_multipliers(y, box, tau):
+    """The box penalty's multipliers at y: PENALTY (sigma(over) - sigma(under)), (N, n)."""
+    particular, null, low, high = box
+    t = tau[:, None]
+    preload = particular + np.einsum("kid,kd->ki", null, y)
+    return PENALTY * (_sigmoid((preload - high) / t) - _sigmoid((low - preload) / t))
+
+
+def _box_penalty(y, box, tau):
+    """Soft penalty of the preload's box at T* = T_p + N y: (value, gradient, Hessian)."""
+    particular, null, low, high = box
+    t = tau[:, None]
+    preload = particular + np.einsum("kid,kd->ki", null, y)
+    over, under = (preload - high) / t, (low - preload) / t
+    value = PENALTY * tau * (np.logaddexp(0.0, over) + np.logaddexp(0.0, under)).sum(axis=1)
+    s_over, s_under = _sigmoid(over), _sigmoid(under)
+    grad = PENALTY * np.einsum("ki,kid->kd", s_over - s_under, null)
+    curve = PENALTY * (s_over * (1 - s_over) + s_under * (1 - s_under)) / t
+    hess = (null * curve[..., None]).transpose(0, 2, 1) @ null
+    return value, grad, hess
 
 
 def _objective(values, tau, reserve, limit_low, limit_high):
@@ -195,24 +231,29 @@ class _Weights:
     def derivatives(self, beta, flat):
         """Gradient (N, d) and Hessian (N, d, d) of the smoothed objective in y."""
         count, m, n, d = beta.shape
-        pi = self.pi[..., None]
-        b_up = (self.p[:, :, None, :] @ beta)[:, :, 0, :]  # (N, m, d)
-        b_down = (self.q[:, :, None, :] @ beta)[:, :, 0, :]
-        rope = (pi * (self.p + self.q)).reshape(count, m * n)
-        if self.reserve:
-            rope = (pi * self.p).reshape(count, m * n)
+        tau = self.tau[:, None]
+        b_up = np.einsum("kmi,kmid->kmd", self.p, beta)  # (N, m, d)
+        b_down = np.einsum("kmi,kmid->kmd", self.q, beta)
         grad = np.einsum("km,kmd->kd", self.pi, b_up - b_down)
-        second = (flat * rope[..., None]).transpose(0, 2, 1) @ flat
-        cross = (b_up * pi).transpose(0, 2, 1) @ b_down
-        second -= cross + cross.transpose(0, 2, 1)
-        hess = (second - grad[:, :, None] * grad[:, None, :]) / self.tau[:, None, None]
+        # second moments of the rows' slopes under the weights, and the limits' curvature,
+        # in one product: flat^T diag(w) flat
+        share = self.p if self.reserve else self.p + self.q
+        weight = (self.pi[..., None] * share).reshape(count, m * n) / tau + \
+            self.curvature.reshape(count, m * n)
+        hess = (flat * weight[..., None]).transpose(0, 2, 1) @ flat
+        cross = (b_up * self.pi[..., None]).transpose(0, 2, 1) @ b_down
+        hess -= (cross + cross.transpose(0, 2, 1) + grad[:, :, None] * grad[:, None, :]) / \
+            tau[..., None]
         penalty = (self.over - self.under).reshape(count, m * n)
         grad = grad + np.einsum("kr,krd->kd", penalty, flat)
-        hess += (flat * self.curvature.reshape(count, m * n)[..., None]).transpose(0, 2, 1) @ flat
         return grad, hess
 
-    def certificate(self, particular, null, alpha, beta, low, high):
-        """Weak-duality bound from these weights (valid for any weights)."""
+    def certificate(self, particular, null, alpha, beta, low, high, box_weights=None):
+        """Weak-duality bound from these weights (valid for any weights).
+
+        ``box_weights`` v (N, n): the box's multipliers the smoothing found; the equality's
+        multiplier is then chosen so that the reduced cost is -v where it can be,
+        r = -v + N N^T (c + v), which keeps N^T r = N^T c (any such r is valid)."""
         # the rows' weights on each value, and the limits' multipliers (finite limits only)
         w = self.pi[..., None] * (self.p - self.q)
         over = np.where(np.isfinite(self.limit_high), self.over, 0.0)
@@ -222,6 +263,10 @@ class _Weights:
                     - np.einsum("kmi,kmi->k", over, np.where(over > 0, self.limit_high, 0.0))
                     + np.einsum("kmi,kmi->k", under, np.where(under > 0, self.limit_low, 0.0)))
         slope = np.einsum("kmi,kmid->kd", w, beta)  # N^T c
-        residual = np.einsum("kid,kd->ki", null, slope)  # r = N N^T c, the part T* can move
+        if box_weights is None:
+            residual = np.einsum("kid,kd->ki", null, slope)  # r = N N^T c
+        else:
+            shift = slope + np.einsum("kid,ki->kd", null, box_weights)
+            residual = -box_weights + np.einsum("kid,kd->ki", null, shift)
         span_low, span_high = low - particular, high - particular
         return constant + np.minimum(residual * span_low, residual * span_high).sum(axis=1)

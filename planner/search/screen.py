@@ -58,6 +58,8 @@ REASONS = {
 }
 
 CHUNK = 8192
+#: Largest array a screening chunk holds (floats; 8 bytes each).
+FLOATS = 16_000_000
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 _ITERATIONS = 80
 
@@ -174,8 +176,11 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
         scenarios = screening_scenarios(problem, coarse=True)
     bound = np.empty(len(sets))
     reason = np.empty(len(sets), dtype=np.int64)
-    for start in range(0, len(sets), CHUNK):
-        part = slice(start, start + CHUNK)
+    n = sets.shape[1]
+    # sets per chunk: the gains (and the dual's null-space slopes) stay within FLOATS each
+    chunk = max(1, min(CHUNK, FLOATS // (len(scenarios[0]) * n * (2 * n if dual else n))))
+    for start in range(0, len(sets), chunk):
+        part = slice(start, start + chunk)
         # collinear sets give singular statics (inf, nan): they are marked, not used
         with np.errstate(divide="ignore", invalid="ignore"):
             bound[part], reason[part] = _screen_chunk(problem, sets[part], cranes[part], scenarios,

@@ -1,0 +1,113 @@
+"""Local search over lug sets: many lifting points, where no enumeration can run.
+
+26 lifting points among 80 candidates is C(80, 26) ~ 1e20 sets. The local search starts from
+an even spread of the candidates round the CG (farthest-point order, so the lugs' polygon is
+as wide as the candidates allow) and moves to the best set one swap away (one chosen
+candidate for one unchosen) while that lowers the preload LP over the box corners and the CG
+vertices, bounded through its dual for all the swaps at once
+(:func:`~liftplan.planner.search.screen.screen` with ``dual=True``; a swap whose bound cannot
+beat the current set stops early). The set it ends on is then evaluated exactly
+(:class:`~liftplan.planner.search.branch.SetEvaluator`: the LP on a growing scenario list and
+the dense check of the whole box).
+
+The result is a local optimum: good, not proved best. Its lower bound is only what holds for
+every set (for ``reserve``, W / the sum of the cranes' SWL; otherwise 0), and the plan says so
+(``search.stopped = "local"``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
+
+#: Improvement below which a swap is not taken (relative to the current value).
+IMPROVEMENT = 1e-6
+
+
+def spread_start(problem, count=None):
+    """An even spread of ``count`` candidates round the CG, candidate indices ascending.
+
+    Farthest-point order from the candidate farthest from the CG in plan: each next candidate
+    is the one farthest from those already taken, so the set spans the candidates' footprint.
+    """
+    count = problem.cranes if count is None else count
+    plan = problem.plan_points
+    cog = np.asarray(problem.body.cog[:2], dtype=float)
+    taken = [int(np.argmax(np.linalg.norm(plan - cog, axis=1)))]
+    distance = np.linalg.norm(plan - plan[taken[0]], axis=1)
+    while len(taken) < count:
+        k = int(np.argmax(distance))
+        taken.append(k)
+        distance = np.minimum(distance, np.linalg.norm(plan - plan[k], axis=1))
+    return tuple(sorted(taken))
+
+
+def swaps(current, count):
+    """Every set one swap away from ``current`` (ascending indices), shape (n (C - n), n)."""
+    chosen = np.array(current)
+    free = np.setdiff1d(np.arange(count), chosen)
+    out = np.repeat(chosen[None, :], len(chosen) * len(free), axis=0)
+    rows = np.arange(len(out))
+    out[rows, np.repeat(np.arange(len(chosen)), len(free))] = np.tile(free, len(chosen))
+    return np.sort(out, axis=1)
+
+
+def local_search(problem, start=None, time_limit=None, max_moves=200):
+    """The best set one swap at a time (module docstring); equal cranes only.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    start : sequence of int, optional
+        Candidate indices to start from (default :func:`spread_start`).
+    time_limit : float, optional  [s]
+        Stop moving after this long (the set reached is still evaluated exactly).
+    max_moves : int
+
+    Returns
+    -------
+    indices : tuple of int
+        The set reached.
+    moves : int
+        Swaps taken.
+    bound : float
+        Its LP bound over the screening scenarios (the value the moves lowered).
+
+    Raises
+    ------
+    PlanInfeasible
+        The start and every swap from it are infeasible.
+    """
+    if not problem.equal_cranes:
+        raise PlanInfeasible("the local search plans a fleet of equal cranes only; give the "
+                             "cranes one [crane] table, or fewer candidates for the exact search")
+    started = time.perf_counter()
+    count = len(problem.candidates)
+    current = tuple(sorted(start)) if start is not None else spread_start(problem)
+    first = screen(problem, np.array([current]), dual=True)
+    value = float(first.bound[0]) if first.reason[0] == FEASIBLE else math.inf
+    moves = 0
+    while moves < max_moves:
+        if time_limit is not None and time.perf_counter() - started > time_limit:
+            break
+        near = swaps(current, count)
+        target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
+        found = screen(problem, near, dual=True, target=target)
+        ok = found.reason == FEASIBLE
+        if not np.any(ok):
+            break
+        k = int(np.flatnonzero(ok)[np.argmin(found.bound[ok])])
+        if not found.bound[k] < target:
+            break
+        current, value = tuple(int(i) for i in near[k]), float(found.bound[k])
+        moves += 1
+    if not math.isfinite(value):
+        reason = REASONS.get(int(first.reason[0]), "no feasible set near it")
+        raise PlanInfeasible(f"the local search found no feasible set one swap from its start "
+                             f"({reason}); expected more candidates round the CG or fewer cranes")
+    return current, moves, value

@@ -1,0 +1,143 @@
+"""The planner's speed against its accuracy, on a seeded set of planning problems.
+
+Problems: the 1500 GT tanker's hull with C candidates (C / 2 frame stations between the aft
+peak and the collision bulkhead, a port and a starboard candidate on each; the papers' deck
+height; the example's CG box, weight, cranes and tolerances; no hook error), n cranes; and the
+154 m hull's 26 of 80 (examples/hull154_plan.toml). Methods, each on every problem it can run:
+
+* ``exact``: every lug set, bounded and pruned (n >= 5: the pair bound refined to the LP's
+  dual bound); proves the optimum;
+* ``exact, pair bound``: the same without the dual bound (today's method before it);
+* ``exact, gap 10 %`` and ``gap 1 %``: stops once the best plan is proved within the gap;
+* ``local``: swaps from an even spread (planner/search/local.py), no gap proved.
+
+Each point: wall time [s] against the excess of the plan's worst spread over the proved
+optimum [%] (the exact search's). The Pareto front is drawn. A method that would exceed
+LIMIT seconds is stopped there and its best plan and honest gap recorded.
+
+Run:  python studies/planner_scale.py     (writes studies/out/planner_scale.json and .png)
+      python studies/planner_scale.py --quick   (the 16-candidate problems only)
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).parent
+OUT = HERE / "out"
+ROOT = HERE.parent
+LIMIT = 300.0
+
+
+def tanker_with(candidates, cranes):
+    from liftplan.model.frames import choi_to_zup
+    from liftplan.planner import load_problem
+    from liftplan.planner.problem.definition import Candidate
+
+    base = load_problem(ROOT / "examples" / "tanker_plan.toml")
+    if candidates == 16:
+        points = base.candidates
+    else:
+        stations = np.linspace(4.2, 73.6, candidates // 2)
+        points = tuple(Candidate(f"F{k + 1:02d}-{side}", choi_to_zup((float(x), 6.0, z)))
+                       for k, x in enumerate(stations) for side, z in (("P", 0.0), ("S", 12.0)))
+    return dataclasses.replace(base, candidates=points, cranes=cranes, hook_tolerance=0.0,
+                               fleet=(), top=1, time_limit=LIMIT)
+
+
+def problems(quick):
+    cases = [(16, 4), (16, 5), (16, 6)] + ([] if quick else [(16, 8), (24, 5), (40, 4), (40, 5)])
+    for candidates, cranes in cases:
+        yield f"tanker {cranes} of {candidates}", tanker_with(candidates, cranes)
+    if not quick:
+        from liftplan.planner import load_problem
+
+        yield "154 m hull 26 of 80", load_problem(ROOT / "examples" / "hull154_plan.toml")
+
+
+METHODS = {
+    "exact": dict(search="exact"),
+    "exact, pair bound": dict(search="exact"),
+    "exact, gap 10 %": dict(search="exact", gap=0.10),
+    "exact, gap 1 %": dict(search="exact", gap=0.01),
+    "local": dict(search="local"),
+}
+
+
+def run(problem, method):
+    import liftplan.planner.search.branch as branch
+
+    branch.DUAL_BOUND = method != "exact, pair bound"
+    started = time.perf_counter()
+    ranking, stats = branch.search(dataclasses.replace(problem, **METHODS[method]), 1)
+    return dict(method=method, seconds=time.perf_counter() - started,
+                worst=ranking[0].worst_value, lower_bound=stats.lower_bound, stopped=stats.stopped,
+                lugs=list(ranking[0].lugs), evaluated=stats.evaluated)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    OUT.mkdir(exist_ok=True)
+    rows = []
+    for name, problem in problems(args.quick):
+        methods = ["local"] if problem.set_count > 5_000_000 else list(METHODS)
+        if problem.cranes >= 8 or len(problem.candidates) >= 40:
+            methods = [m for m in methods if m != "exact, pair bound"]  # hours: not run
+        results = [run(problem, m) for m in methods]
+        proved = [r for r in results if r["method"] == "exact" and r["stopped"] == "proved"]
+        optimum = proved[0]["worst"] if proved else None
+        for r in results:
+            r["excess"] = None if optimum is None else 100.0 * (r["worst"] - optimum) / optimum
+            r["problem"] = name
+            print(f"{name:22s} {r['method']:18s} {r['seconds']:8.2f} s  worst {r['worst']:8.3f}"
+                  f"  bound {r['lower_bound']:8.3f}  {r['stopped']}"
+                  + ("" if r["excess"] is None else f"  +{r['excess']:.3f} %"), flush=True)
+        rows += results
+    (OUT / "planner_scale.json").write_text(json.dumps(rows, indent=1))
+    figure(rows)
+
+
+def figure(rows):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 5.2))
+    markers = dict(zip(METHODS, "osD^v"))
+    for method in METHODS:
+        pts = [(r["seconds"], r["excess"]) for r in rows if r["method"] == method and r["excess"] is not None]
+        if pts:
+            x, y = zip(*pts)
+            ax.scatter(x, np.maximum(y, 1e-3), marker=markers[method], label=method, s=36)
+    pts = sorted((r["seconds"], max(r["excess"], 1e-3)) for r in rows if r["excess"] is not None)
+    front, best = [], math.inf
+    for x, y in pts:
+        if y < best:
+            front.append((x, y))
+            best = y
+    if front:
+        ax.step(*zip(*front), where="post", color="0.5", lw=1, label="Pareto front (all problems)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time [s] (2 cores, shared)")
+    ax.set_ylabel("worst spread above the proved optimum [%] (1e-3: optimal)")
+    ax.set_title("Planner speed against accuracy: tanker problems, 4 to 8 of 16 to 40 candidates")
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(OUT / "planner_scale.png", dpi=130)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
