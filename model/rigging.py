@@ -24,6 +24,16 @@ with each hook where its legs just reach their lugs, the whole lift raised or lo
 the hoist ropes carry the weight, then runs Newton, and IPOPT on the energy if Newton's
 answer is not a stable upright equilibrium (:mod:`liftplan.model.acceptance`).
 
+An **equalised** 2-leg sling (``equalised = true``: one rope over a sheave at the hook, or an
+equaliser) is one continuous rope: both legs carry the same tension and their unstretched
+lengths add up to the rope's. The casadi network carries each leg as its own line, whose
+unstretched length is a parameter; the split of the rope between the legs is the one more
+unknown per sheave, found by Newton on the tension difference around the network solve
+(secant slope, each step a full network solve from the last state) until the legs' tensions
+agree to :data:`~liftplan.model.acceptance.RESIDUAL_TOL` W. Equal tension means equal strain
+T / EA on both sides, so the two legs then are exactly one rope of the total length. It
+removes the hook's share of the twist: the pair can no longer load one lug against the other.
+
 Results: ``tensions`` are the cranes' hook loads (hoist-rope tensions), keyed by crane name
 (a one-rope crane by its lug); ``rigging`` holds leg tensions (``"CRANE/LUG"``,
 ``"CRANE/top1"``, ``"CRANE/top2"``), sling angles from the horizontal, hook positions and
@@ -69,6 +79,7 @@ class _Builder:
         self.hooks = {}    # crane label -> free index
         self.bars = {}     # crane label -> (free index of end 1, end 2)
         self.hoists = []   # (tip index, upper end of the hoist rope, l0, EA)
+        self.sheaves = []  # (member index of leg 1, of leg 2, the rope's unstretched length)
 
     def add_free(self, position, weight=0.0):
         self.free.append(np.asarray(position, dtype=float))
@@ -112,9 +123,12 @@ class _Builder:
         if sling.spreader is None:
             height = _hang_height([(leg, lugs[k], centre) for k, leg in enumerate(sling.legs)])
             hook = self.add_free((centre[0], centre[1], height))
+            first = len(self.members)
             for leg in sling.legs:
                 self.add("line", self.lug(leg.lug), hook, leg.length, leg.stiffness,
                          _Part(f"{label}/{leg.lug}", "leg", label, leg.lug))
+            if sling.equalised:
+                self.sheaves.append((first, first + 1, sling.rope_length))
         else:
             bar = sling.spreader
             ends_plan = [lugs[[leg.end == e for leg in sling.legs]].mean(axis=0)[:2] for e in (1, 2)]
@@ -241,8 +255,70 @@ def solve_rigging(scene):
                       build.weights, body.weight, body.cog, max(scene.plan_diameter, 1.0))
     model = network_model(topology)
     x, info = model.solve(x0, p, "rigging")
+    if build.sheaves:
+        x, p, info = _equalise(scene, build, topology, model, x, p, info)
     residual, tensions, pulls, spans = (np.asarray(v) for v in model.evaluate(x, p))
     return _result(scene, build, x, residual.ravel(), tensions.ravel(), pulls, spans.ravel(), info)
+
+
+#: Newton steps on the sheaves' rope splits before the solve gives up.
+SHEAVE_STEPS = 30
+
+
+def _equalise(scene, build, topology, model, x, p, info):
+    """Split each sheave's rope between its two legs so that both carry one tension.
+
+    Unknowns: s_k, leg 1's unstretched share of sheave k's rope (leg 2 has L_k - s_k).
+    Residual: T_1k - T_2k. Newton with a finite-difference Jacobian (one network solve per
+    sheave and step, each from the last accepted state), the step kept inside (0, L_k).
+
+    Returns
+    -------
+    x, p, info : the equalised state, its parameters, the last solve's SolverInfo
+    """
+    import time
+
+    from .acceptance import RESIDUAL_TOL
+    from .errors import EquilibriumNotFound
+    from .results import SolverInfo
+
+    begin = time.perf_counter()
+    offset = 3 * topology.lugs + 3 * topology.tips  # the unstretched lengths in p
+    legs = np.array([[a, b] for a, b, _ in build.sheaves])
+    totals = np.array([total for _, _, total in build.sheaves])
+    weight = scene.body.weight
+    iterations = info.iterations
+
+    def state(split, start):
+        q = p.copy()
+        q[offset + legs[:, 0]] = split
+        q[offset + legs[:, 1]] = totals - split
+        y, inner = model.solve(start, q, "rigging")
+        tension = np.asarray(model.evaluate(y, q)[1]).ravel()
+        return y, q, tension[legs[:, 0]] - tension[legs[:, 1]], inner
+
+    split = p[offset + legs[:, 0]].copy()
+    x, p, gap, inner = state(split, x)
+    for _ in range(SHEAVE_STEPS):
+        iterations += inner.iterations
+        if np.max(np.abs(gap)) <= RESIDUAL_TOL * weight:
+            return x, p, SolverInfo(info.method, True, iterations,
+                                    info.seconds + time.perf_counter() - begin)
+        step = 1e-6 * totals
+        jacobian = np.empty((len(totals), len(totals)))
+        for k in range(len(totals)):
+            trial = split.copy()
+            trial[k] += step[k]
+            jacobian[:, k] = (state(trial, x)[2] - gap) / step[k]
+        move = np.linalg.solve(jacobian, -gap)
+        # stay strictly inside the rope: a leg of zero length has no direction
+        limit = np.where(move > 0, (totals - split) * 0.9, split * 0.9)
+        move = np.sign(move) * np.minimum(np.abs(move), limit)
+        split = split + move
+        x, p, gap, inner = state(split, x)
+    raise EquilibriumNotFound(
+        f"rigging: the equalised slings' legs did not reach one tension within {SHEAVE_STEPS} steps "
+        f"(difference {np.max(np.abs(gap)):.3g} t); check the legs can reach their lugs")
 
 
 def _result(scene, build, x, residual, tensions, pulls, spans, info):

@@ -157,10 +157,16 @@ class Sling:
     legs : tuple of Leg
         Hook (or bar end) to lug; each lug once.
     spreader : Spreader or None
+    equalised : bool
+        The two legs are one continuous rope over a sheave at the hook (or an equaliser):
+        both carry the same tension whatever the hook height, and their unstretched lengths
+        add up to the legs' total, the split following the equilibrium. Two legs of one
+        EA, no spreader.
     """
 
     legs: tuple[Leg, ...]
     spreader: Spreader | None = None
+    equalised: bool = False
 
     def __post_init__(self):
         legs = tuple(self.legs)
@@ -196,6 +202,23 @@ class Sling:
                         "leg on each end"
                     )
         _set(self, "legs", legs)
+        if not isinstance(self.equalised, bool):
+            raise InvalidScene(f"sling.equalised = {self.equalised!r}: expected true or false")
+        if self.equalised:
+            if len(legs) != 2 or self.spreader is not None:
+                raise InvalidScene(
+                    f"sling.equalised = true with {len(legs)} legs"
+                    f"{' and a spreader bar' if self.spreader is not None else ''}; expected two "
+                    "legs and no spreader (one rope over a sheave at the hook)")
+            if legs[0].stiffness != legs[1].stiffness:
+                raise InvalidScene(
+                    f"sling.equalised = true with legs of EA {legs[0].stiffness:g} t and "
+                    f"{legs[1].stiffness:g} t; expected one rope: the same EA (or diameter) on both")
+
+    @property
+    def rope_length(self):
+        """An equalised sling's whole rope, lug over the sheave to lug (unstretched)  [m]."""
+        return sum(leg.length for leg in self.legs)
 
     @property
     def lugs(self):

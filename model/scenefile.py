@@ -98,6 +98,7 @@ class _Spreader(Table):
 class _Sling(Table):
     legs: list[_Leg]
     spreader: _Spreader | None = None
+    equalised: Annotated[bool, Strict()] = False
 
 
 class _Crane(Table):
@@ -415,7 +416,7 @@ def _to_sling(spec):
         top = tuple(Leg(lug=None, length=g.length, EA=g.EA, diameter=g.diameter) for g in bar.top)
         options = {"EA": bar.EA} if bar.EA is not None else {}
         spreader = Spreader(length=bar.length, top=top, weight=bar.weight, **options)
-    return Sling(legs=legs, spreader=spreader)
+    return Sling(legs=legs, spreader=spreader, equalised=spec.equalised)
 
 
 def one_line(err, root):
