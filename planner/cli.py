@@ -190,10 +190,14 @@ def _plan(args):
     if args.top is not None and args.top < 1:
         raise InvalidScene(f"--top {args.top}: expected an integer >= 1")
     report = output_folder(args.report, "--report") if args.report else None
+    from liftplan.planner.problem.definition import STRENGTH_OBJECTIVES
     from liftplan.planner.problem.file import load_problem
     from liftplan.planner.problem.plausibility import problem_warnings
 
     problem = load_problem(args.scene)
+    if report is not None and problem.objective in STRENGTH_OBJECTIVES:
+        raise InvalidScene(f"--report {args.report}: not written for plan.objective = "
+                           f"{problem.objective!r} yet; expected --json or the console table")
     if abs(problem.yaw) > MAX_YAW:
         raise InvalidScene(f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
                            f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg")
@@ -244,6 +248,8 @@ def _print_plan(result, args, interrupted=False):
 
     if is_sling_plan(result):  # slings on any number of cranes: their own table
         from liftplan.planner.output.sling_console import sling_table as plan_table
+    elif type(result).__name__ == "StrengthPlan":  # the hull girder's objectives
+        from liftplan.planner.output.strength_console import strength_table as plan_table
     else:
         from liftplan.planner.output.console import plan_table
 

@@ -64,6 +64,9 @@ DENSE = 21
 CONVERGED = 1e-6
 #: Cutting-plane rounds per set before the search says it did not converge.
 ROUNDS = 40
+#: Time for the spread-optimal plan beside a strength plan  [s]: it is the comparison, not the
+#: plan, and its MIP (min - max over the chosen points) is weak; its gap is stated.
+PARTNER_TIME = 30.0
 
 
 def uses_strength(problem):
@@ -480,13 +483,13 @@ def _search_force(ctx, evaluator, weights, started, limit):
             best = current
         tensions = result.forces
         done = best.value <= bound * (1 + CONVERGED) + 1e-9
-        timed_out = limit is not None and time.perf_counter() - started > limit
+        timed_out = (limit is not None and time.perf_counter() - started > limit) or not result.complete
         if done or timed_out or rounds >= ROUNDS:
             break
         peaks = (current.bending.x, current.shear.x)
         sections = sections.add(np.repeat(peaks, 2), np.tile([False, True], 2))
     stopped = "proved" if best.value <= bound * (1 + CONVERGED) + 1e-9 else (
-        "time_limit" if limit is not None and time.perf_counter() - started > limit else "rounds")
+        "time_limit" if timed_out else "rounds")
     return best, StrengthStats(method="MIP (HiGHS) over every candidate", lower_bound=min(bound, best.value),
                                seconds=time.perf_counter() - started, rounds=rounds,
                                evaluated=evaluator.count, stopped=stopped, certified=equal_height,
@@ -521,6 +524,8 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
             break
         rounds += 1
         bound = result.value
+        if not result.complete:
+            stopped = "time_limit"
         if best is not None and bound >= best.value * (1 - p.gap) - 1e-9:
             stopped = "proved" if bound >= best.value - 1e-9 else "gap"
             break
@@ -531,6 +536,8 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
         if current is not None and (best is None or current.value < best.value):
             best = current
         cuts.append(result.chosen)
+        if not result.complete:
+            break
     if best is None:
         raise PlanInfeasible("no lug set holds the body within the limits over the box")
     return best, StrengthStats(method="MIP relaxation (HiGHS) + exact set LP, no-good cuts",
@@ -664,7 +671,8 @@ def plan_strength(problem, top=None):
     del top
     context = StrengthContext(problem)
     chosen, stats = search_strength(problem, objective_weights(problem), context)
-    partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context)
+    limit = PARTNER_TIME if problem.time_limit is None else min(PARTNER_TIME, problem.time_limit)
+    partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
     # the spread plan's own peaks are reported in the same terms: evaluate it on the
     # strength weights with its tensions as found (its value under the strength objective)
     return StrengthPlan(problem=problem, chosen=chosen, stats=stats, spread_plan=partner,

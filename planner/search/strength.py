@@ -32,6 +32,7 @@ solution are found with :mod:`liftplan.model.strength.piecewise` and added as cu
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import cvxpy as cp
@@ -406,13 +407,17 @@ class MIPResult:
     ----------
     chosen : tuple of int   candidate indices
     forces : (C,)  [t]   the level tensions on every candidate (0 where not chosen)
-    value : float   the objective less HiGHS's relative gap: a lower bound on every set not
-        cut off
+    value : float   HiGHS's dual bound (at most the optimum less its relative gap): a lower
+        bound on every set not cut off
+    incumbent : float   the objective of the set returned
+    complete : bool   False when HiGHS stopped at its time limit (the set is its best found)
     """
 
     chosen: tuple[int, ...]
     forces: np.ndarray
     value: float
+    incumbent: float = math.nan
+    complete: bool = True
 
 
 class CandidateMIP:
@@ -510,15 +515,26 @@ class CandidateMIP:
         if time_limit is not None:
             options["time_limit"] = float(max(time_limit, 1.0))
         try:
-            with _stdout_silenced():
+            with _stdout_silenced(), warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)  # a time limit: handled below
                 problem.solve(solver=cp.HIGHS, **options)
         except cp.error.SolverError as err:
             raise SolverFailed(f"lug choice (MIP): HiGHS failed ({err})") from None
         if problem.status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE):
             raise PlanInfeasible("lug choice (MIP): no lug set and tensions satisfy the limits")
-        if problem.status != cp.OPTIMAL or self.z.value is None:
-            raise SolverFailed(f"lug choice (MIP): HiGHS ended with status {problem.status!r}")
+        complete = problem.status == cp.OPTIMAL
+        if self.z.value is None or problem.value is None or not (
+                complete or problem.status in (cp.OPTIMAL_INACCURATE, cp.USER_LIMIT)):
+            raise SolverFailed(f"lug choice (MIP): HiGHS ended with status {problem.status!r} and "
+                               "no lug set")
         chosen = tuple(int(i) for i in np.nonzero(np.asarray(self.z.value) > 0.5)[0])
         value = float(problem.value)
-        return MIPResult(chosen=chosen, forces=np.array(self.tensions[0].value),
-                         value=value - MIP_GAP * abs(value))
+        info = problem.solver_stats.extra_stats
+        dual = getattr(info, "mip_dual_bound", None)
+        bound = value - MIP_GAP * abs(value)
+        if dual is not None and np.isfinite(dual):
+            bound = min(bound, float(dual))
+        elif not complete:
+            bound = -math.inf  # stopped with no bound known: no gap is claimed
+        return MIPResult(chosen=chosen, forces=np.array(self.tensions[0].value), value=bound,
+                         incumbent=value, complete=complete)
