@@ -26,6 +26,8 @@ import pytest
 from helpers import EXAMPLES
 from numpy.testing import assert_allclose
 from test_cli import run
+from test_report_pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm, render
+from test_report_pdf import _missing as _pdf_missing
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
@@ -33,6 +35,7 @@ from liftplan.model.frames import zup_to_choi
 from liftplan.model.scene import Analysis, Attitude, Body, Crane, Lug, Scene
 from liftplan.planner.output.plan_console import plan_table
 from liftplan.planner.output.report import render_html
+from liftplan.planner.output.report_page import MARGINS_MM
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.file import load_problem, loads_problem
 from liftplan.planner.search.scenarios import LugSet
@@ -248,3 +251,16 @@ def test_slings_refuse_a_breakout_scene(tmp_path):
     (tmp_path / "seabed.toml").write_text(SCENE.read_text())
     with pytest.raises(InvalidScene, match=r"plan.breakout_scene: given for a plan with slings"):
         loads_problem(text, base=tmp_path)
+
+
+@pytest.mark.skipif(_pdf_missing() is not None, reason=_pdf_missing() or "")
+def test_the_report_prints_the_breakout_within_the_text_width(block, tmp_path):
+    from liftplan.planner.output.report import write_report
+
+    files = write_report(block, tmp_path)
+    images, texts = render(files.pdf, tmp_path)
+    page = next(k for k, text in enumerate(texts) if "Breakout from the seabed" in text)
+    first, last = ink_extent_mm(images[page])
+    _, right, _, left = MARGINS_MM
+    assert last <= A4_WIDTH_MM - right + EDGE_MM and first >= left - EDGE_MM
+    assert "856.81" in " ".join(texts[page].split())

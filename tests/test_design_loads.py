@@ -111,7 +111,7 @@ def _three_hook_tilt_share(weight, lugs, cog, tilt, elevation):
         values = [share(psi, sign) for psi in grid]
         k = int(np.argmax(values))
         lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-        found = minimize_scalar(lambda psi: -share(psi, sign), bounds=(lo, hi), method="bounded",
+        found = minimize_scalar(lambda psi, sign=sign: -share(psi, sign), bounds=(lo, hi), method="bounded",
                                 options={"xatol": 1e-12})
         best = max(best, values[k], -found.fun)
     return best
@@ -307,3 +307,15 @@ def test_no_cog_envelope_needs_a_cog_factor(fleet_plan):
                                                                          fleet_plan.labels)
     factor = {f.name: f.value for f in design.crane("L1").design.factors}
     assert factor["cog"] == 1.03
+
+
+def test_without_a_breakout_case_the_chain_input_is_the_box_worst(fleet_plan):
+    """No ``breakout_scene``: no breakout checks or JSON key; the static input is the box worst."""
+    design = fleet_plan.design_loads
+    assert design.breakout is None and fleet_plan.problem.breakout is None
+    for c in design.cranes:
+        assert c.breakout is None and c.governs == "box"
+        assert c.static_input == max(c.worst, c.nominal) == c.design.worst
+        assert c.static_note.endswith("(no breakout case)")
+    assert not any(c.name.startswith("breakout") for c in fleet_plan.checks)
+    assert "breakout" not in fleet_plan.to_json()
