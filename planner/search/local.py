@@ -10,7 +10,9 @@ beat the current set stops early). The set it ends on is then evaluated exactly
 (:class:`~liftplan.planner.search.branch.SetEvaluator`: the LP on a growing scenario list and
 the dense check of the whole box).
 
-The result is a local optimum: good, not proved best. Its lower bound is only what holds for
+It does so from the even spread and from RESTARTS perturbations of it (a third of the
+candidates swapped at random, seeded) and keeps the best. The result is a local optimum:
+good, not proved best. Its lower bound is only what holds for
 every set (for ``reserve``, W / the sum of the cranes' SWL; otherwise 0), and the plan says so
 (``search.stopped = "local"``).
 """
@@ -27,6 +29,8 @@ from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
 #: Improvement below which a swap is not taken (relative to the current value).
 IMPROVEMENT = 1e-6
+#: Starts besides the even spread: each a perturbation of it (seeded).
+RESTARTS = 3
 
 
 def spread_start(problem, count=None):
@@ -57,8 +61,8 @@ def swaps(current, count):
     return np.sort(out, axis=1)
 
 
-def local_search(problem, start=None, time_limit=None, max_moves=200):
-    """The best set one swap at a time (module docstring); equal cranes only.
+def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=None, seed=0):
+    """The best set one swap at a time (module docstring), from several starts; equal cranes.
 
     Parameters
     ----------
@@ -66,34 +70,66 @@ def local_search(problem, start=None, time_limit=None, max_moves=200):
     start : sequence of int, optional
         Candidate indices to start from (default :func:`spread_start`).
     time_limit : float, optional  [s]
-        Stop moving after this long (the set reached is still evaluated exactly).
+        Stop moving after this long (the best set reached is still evaluated exactly).
     max_moves : int
+        Swaps per start at most.
+    restarts : int, optional
+        Further starts, each the first start with a third of its candidates swapped for
+        others at random (seeded), default :data:`RESTARTS`.
+    seed : int
 
     Returns
     -------
     indices : tuple of int
-        The set reached.
+        The best set reached.
     moves : int
-        Swaps taken.
+        Swaps taken over all starts.
     bound : float
         Its LP bound over the screening scenarios (the value the moves lowered).
 
     Raises
     ------
     PlanInfeasible
-        The start and every swap from it are infeasible.
+        Every start and every swap from them are infeasible.
     """
     if not problem.equal_cranes:
         raise PlanInfeasible("the local search plans a fleet of equal cranes only; give the "
                              "cranes one [crane] table, or fewer candidates for the exact search")
     started = time.perf_counter()
+    deadline = None if time_limit is None else started + time_limit
+    count, n = len(problem.candidates), problem.cranes
+    first = tuple(sorted(start)) if start is not None else spread_start(problem)
+    rng = np.random.default_rng(seed)
+    starts = [first]
+    for _ in range(RESTARTS if restarts is None else restarts):
+        kept = rng.choice(first, n - max(1, n // 3), replace=False)
+        others = np.setdiff1d(np.arange(count), kept)
+        starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)]
+                                   .tolist())))
+    best, moves, reason = (None, math.inf), 0, None
+    for begin in dict.fromkeys(starts):  # a repeated start is run once
+        if deadline is not None and time.perf_counter() > deadline and best[0] is not None:
+            break
+        current, value, taken, why = _descend(problem, begin, deadline, max_moves)
+        moves += taken
+        reason = reason or why
+        if value < best[1]:
+            best = (current, value)
+    if best[0] is None:
+        raise PlanInfeasible(f"the local search found no feasible set one swap from its starts "
+                             f"({reason}); expected more candidates round the CG or fewer cranes")
+    return best[0], moves, best[1]
+
+
+def _descend(problem, current, deadline, max_moves):
+    """Swaps from one start while they lower the bound: (set, value, swaps, why not)."""
     count = len(problem.candidates)
-    current = tuple(sorted(start)) if start is not None else spread_start(problem)
     first = screen(problem, np.array([current]), dual=True)
     value = float(first.bound[0]) if first.reason[0] == FEASIBLE else math.inf
+    why = None if first.reason[0] == FEASIBLE else REASONS.get(int(first.reason[0]))
     moves = 0
     while moves < max_moves:
-        if time_limit is not None and time.perf_counter() - started > time_limit:
+        if deadline is not None and time.perf_counter() > deadline:
             break
         near = swaps(current, count)
         target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
@@ -106,8 +142,4 @@ def local_search(problem, start=None, time_limit=None, max_moves=200):
             break
         current, value = tuple(int(i) for i in near[k]), float(found.bound[k])
         moves += 1
-    if not math.isfinite(value):
-        reason = REASONS.get(int(first.reason[0]), "no feasible set near it")
-        raise PlanInfeasible(f"the local search found no feasible set one swap from its start "
-                             f"({reason}); expected more candidates round the CG or fewer cranes")
-    return current, moves, value
+    return current, value, moves, why
