@@ -247,6 +247,11 @@ class SetEvaluator:
         """
         self.count += 1
         indices = tuple(sorted(int(i) for i in indices))
+        plan = self.context.points[list(indices), :2]
+        if np.linalg.matrix_rank(np.column_stack([np.ones(len(plan)), plan - plan.mean(axis=0)]),
+                                 tol=1e-9 * max(np.ptp(plan), 1.0)) < 3:
+            names = ", ".join(self.context.problem.names[i] for i in indices)
+            raise PlanInfeasible(f"lugs {names}: on one line in plan; they cannot hold the body")
         if self.context.control == "force":
             return self._force(indices, weights)
         return self._hoist(indices, weights)

@@ -290,6 +290,7 @@ def test_shear_needs_its_envelope():
 
 
 # -- the ferry ---------------------------------------------------------------------------------------
+@pytest.mark.slow  # ~35 s: the spread-optimal comparison runs to its 30 s limit
 def test_ferry_plan_json_beside_the_spread_plan():
     """`liftplan plan` on the ferry: the strength plan and the spread-optimal plan, each with its
     peak |M|, |Q| and spread; the strength plan's peak |M| / allowable is the lower, the spread
