@@ -63,6 +63,11 @@ def plan_table(plan):
         )
     lines.append("(level T: nominal CG, level; worst: largest in the box over the CG envelope; tilt: at "
                  "the rules' tilt; design: the rules' design hook load; util. = design / chart SWL)")
+    if plan.lengths is not None:  # the planner chose the rope lengths
+        for names, (lo, hi), length in zip(plan.lengths.classes, plan.lengths.ranges,
+                                           plan.lengths.chosen):
+            lines.append(f"rope length {length:.3f} m chosen within {lo:g} to {hi:g} m for "
+                         f"{', '.join(names)} ({len(plan.lengths.trials)} lengths tried)")
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
     if not chosen.converged:
