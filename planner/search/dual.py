@@ -14,8 +14,8 @@ from *any* weights lambda >= 0 summing to 1 over the rows f_r(T*) = c_r . T* + d
       >= sum_r lambda_r d_r + c . T_p + sum_i min(r_i (lo_i - T_p,i), r_i (hi_i - T_p,i))
 
 with c = sum_r lambda_r c_r, r = N N^T c its part in the null space of A0 (N orthonormal)
-and T_p the least-norm level solution (the equality constraint dualised with its least-
-squares multiplier). The tension limits L <= s_i T_k,i <= H enter the same way with
+and T_p the least-norm level solution (the equality constraint dualised; any multiplier is
+valid, and the one taken makes r match the box's multipliers where it can). The tension limits L <= s_i T_k,i <= H enter the same way with
 multipliers nu >= 0: they add nu+ (s T - H) + nu- (L - s T), still affine in T*. Every step
 is a valid bound, whatever the weights: no step of the optimiser below needs to be trusted.
 
@@ -26,14 +26,15 @@ for all sets together while tau shrinks. For the spread the rows are pairs, and 
 maximum of V_i - V_j over pairs factors into a soft maximum of V times a soft maximum of
 -V per scenario: the cost is O(scenarios x n), not O(scenarios x n^2). The limits enter the
 smoothed problem as a soft exact penalty PENALTY x tau log(1 + exp(violation / tau)), whose
-derivative gives their multipliers.
+derivative gives their multipliers; so does the preload's box (kept exactly in the bound).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-#: Continuation: tau from TAU_START x the initial worst value, halved STAGES times.
+#: Continuation: tau from TAU_START x the initial worst value, times TAU_FACTOR per stage
+#: (STAGES stages, STEPS Newton steps each).
 TAU_START, TAU_FACTOR, STAGES, STEPS = 0.05, 0.3, 6, 5
 #: Newton steps at the first tau, and halvings of a step before it is given up.
 FIRST_STEPS, BACKTRACK = 12, 30
