@@ -15,9 +15,10 @@ from *any* weights lambda >= 0 summing to 1 over the rows f_r(T*) = c_r . T* + d
 
 with c = sum_r lambda_r c_r, r = N N^T c its part in the null space of A0 (N orthonormal)
 and T_p the least-norm level solution (the equality constraint dualised; any multiplier is
-valid, and the one taken makes r match the box's multipliers where it can). The tension limits L <= s_i T_k,i <= H enter the same way with
-multipliers nu >= 0: they add nu+ (s T - H) + nu- (L - s T), still affine in T*. Every step
-is a valid bound, whatever the weights: no step of the optimiser below needs to be trusted.
+valid, and the one taken makes r match the box's multipliers where it can). The tension
+limits L <= s_i T_k,i <= H enter the same way with multipliers nu >= 0: they add
+nu+ (s T - H) + nu- (L - s T), still affine in T*. Every step is a valid bound, whatever the
+weights: no step of the optimiser below needs to be trusted.
 
 Good weights come from the smoothed problem min_y tau log sum_r exp(f_r(T_p + N y) / tau)
 (a soft maximum; its minimiser's softmax weights nearly satisfy N^T c = 0 and lose at most
@@ -38,6 +39,8 @@ import numpy as np
 TAU_START, TAU_FACTOR, STAGES, STEPS = 0.05, 0.3, 6, 5
 #: Newton steps at the first tau, and halvings of a step before it is given up.
 FIRST_STEPS, BACKTRACK = 12, 30
+#: Newton steps per tau at most, and the decrement (x tau) below which a set has converged.
+MAX_STEPS, DECREMENT = 40, 1e-6
 #: Weight of the tension limits' penalty (their multipliers stay below it).
 PENALTY = 10.0
 
@@ -100,47 +103,62 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
 def _newton(y, tau, ridge, parts, box, reserve, steps):
     """Damped Newton steps on the smoothed objective at fixed tau, for many sets.
 
-    The preload's box (lo <= T_p + N y <= hi) enters the smoothing as a soft penalty too, so
-    that the weights found are those of the box-constrained LP (the certificate itself keeps
-    the box exactly)."""
+    At least ``steps`` steps for every set, and up to MAX_STEPS for a set whose Newton
+    decrement is still above DECREMENT x tau (the sets that converge drop out). The preload's
+    box (lo <= T_p + N y <= hi) enters the smoothing as a soft penalty too, so that the weights
+    found are those of the box-constrained LP (the certificate itself keeps the box exactly)."""
+    y = y.copy()
+    live = np.arange(len(y))
+    for step_count in range(MAX_STEPS):
+        if live.size == 0:
+            break
+        part = tuple(v[live] for v in parts)
+        box_part = tuple(v[live] for v in box)
+        decrement = _newton_step(y, live, tau[live], ridge[live], part, box_part, reserve)
+        if step_count + 1 >= steps:
+            live = live[decrement > DECREMENT * tau[live]]
+    return y
+
+
+def _newton_step(y, live, tau, ridge, parts, box, reserve):
+    """One damped Newton step on the sets ``live`` (y changed in place); their decrements."""
     alpha, beta, limit_low, limit_high = parts
     count, m, n, d = beta.shape
     flat = beta.reshape(count, m * n, d)
-    _, null, _, _ = box
-    for _ in range(steps):
-        values = alpha + np.einsum("kmid,kd->kmi", beta, y)
-        weights = _Weights(values, tau, reserve, limit_low, limit_high)
-        grad, hess = weights.derivatives(beta, flat)
-        penalty, grad_box, hess_box = _box_penalty(y, box, tau)
-        grad, hess = grad + grad_box, hess + hess_box
-        hess += (ridge / tau + 1e-10 * np.abs(hess).max(axis=(1, 2)) + 1e-300)[:, None, None] * \
-            np.eye(d)
-        try:
-            step = -np.linalg.solve(hess, grad[..., None])[..., 0]
-        except np.linalg.LinAlgError:  # a flat direction (weights on one rope): least squares
-            step = -(np.linalg.pinv(hess) @ grad[..., None])[..., 0]
-        # backtracking (Armijo) on each set's smoothed objective, the sets still short of a
-        # decrease only
-        now = weights.objective + penalty
-        slope = np.einsum("kd,kd->k", grad, step)
-        size = np.ones(count)
-        active = np.arange(count)
-        for _ in range(BACKTRACK):
-            trial = y[active] + size[active, None] * step[active]
-            values = alpha[active] + np.einsum("kmid,kd->kmi", beta[active], trial)
-            value = _objective(values, tau[active], reserve, limit_low[active],
-                               limit_high[active]) + \
-                _box_penalty(trial, tuple(v[active] for v in box), tau[active])[0]
-            # (a rounding-level rise is no rise: near the minimum both sides agree)
-            worse = value > now[active] + 1e-4 * size[active] * slope[active] + \
-                1e-12 * np.abs(now[active])
-            size[active[worse]] *= 0.5
-            active = active[worse]
-            if active.size == 0:
-                break
-        size[active] = 0.0  # no decrease found: stay
-        y = y + size[:, None] * step
-    return y
+    x = y[live]
+    values = alpha + np.einsum("kmid,kd->kmi", beta, x)
+    weights = _Weights(values, tau, reserve, limit_low, limit_high)
+    grad, hess = weights.derivatives(beta, flat)
+    penalty, grad_box, hess_box = _box_penalty(x, box, tau)
+    grad, hess = grad + grad_box, hess + hess_box
+    hess += (ridge / tau + 1e-10 * np.abs(hess).max(axis=(1, 2)) + 1e-300)[:, None, None] * \
+        np.eye(d)
+    try:
+        step = -np.linalg.solve(hess, grad[..., None])[..., 0]
+    except np.linalg.LinAlgError:  # a flat direction (weights on one rope): least squares
+        step = -(np.linalg.pinv(hess) @ grad[..., None])[..., 0]
+    # backtracking (Armijo) on each set's smoothed objective, the sets still short of a
+    # decrease only
+    now = weights.objective + penalty
+    slope = np.einsum("kd,kd->k", grad, step)
+    size = np.ones(count)
+    active = np.arange(count)
+    for _ in range(BACKTRACK):
+        trial = x[active] + size[active, None] * step[active]
+        values = alpha[active] + np.einsum("kmid,kd->kmi", beta[active], trial)
+        value = _objective(values, tau[active], reserve, limit_low[active],
+                           limit_high[active]) + \
+            _box_penalty(trial, tuple(v[active] for v in box), tau[active])[0]
+        # (a rounding-level rise is no rise: near the minimum both sides agree)
+        worse = value > now[active] + 1e-4 * size[active] * slope[active] + \
+            1e-12 * np.abs(now[active])
+        size[active[worse]] *= 0.5
+        active = active[worse]
+        if active.size == 0:
+            break
+    size[active] = 0.0  # no decrease found: stay
+    y[live] = x + size[:, None] * step
+    return np.where(size > 0.0, -slope, 0.0)  # g^T H^-1 g: the Newton decrement squared
 
 
 def _worst(values, reserve):
