@@ -1,6 +1,6 @@
 """Run every study in order; each writes its data to studies/out/ first, then its summary.
 
-Run:  python studies/run_all.py            (about 10 minutes on 2 cores)
+Run:  python studies/run_all.py            (about 40 minutes on 2 cores)
       python studies/run_all.py --skip report_screenshot   (no Chromium on this machine)
 """
 
@@ -15,8 +15,9 @@ from pathlib import Path
 HERE = Path(__file__).parent
 #: In order: stranded_methods feeds speed_accuracy's hydrostatics panel.
 STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
-           "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "benchmarks",
-           "jit_cache", "report_screenshot"]
+           "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "flexible_hull",
+           "draining", "tilt_per_direction", "rope_lengths", "hook_montecarlo", "ferry_strength",
+           "planner_scale", "benchmarks", "jit_cache", "report_screenshot"]
 
 
 def main():
