@@ -190,14 +190,10 @@ def _plan(args):
     if args.top is not None and args.top < 1:
         raise InvalidScene(f"--top {args.top}: expected an integer >= 1")
     report = output_folder(args.report, "--report") if args.report else None
-    from liftplan.planner.problem.definition import STRENGTH_OBJECTIVES
     from liftplan.planner.problem.file import load_problem
     from liftplan.planner.problem.plausibility import problem_warnings
 
     problem = load_problem(args.scene)
-    if report is not None and problem.objective in STRENGTH_OBJECTIVES:
-        raise InvalidScene(f"--report {args.report}: not written for plan.objective = "
-                           f"{problem.objective!r} yet; expected --json or the console table")
     if abs(problem.yaw) > MAX_YAW:
         raise InvalidScene(f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
                            f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg")
@@ -220,7 +216,7 @@ def _plan(args):
 
         if is_sling_plan(result):  # slings on any number of cranes: their own report
             from liftplan.planner.output.sling_report import write_report
-        else:  # matplotlib only when a report is asked for
+        else:  # matplotlib only when a report is asked for (strength plans dispatched there)
             from liftplan.planner.output.report import write_report
 
         try:

@@ -69,7 +69,7 @@ def write_report(plan, directory):
 
     Parameters
     ----------
-    plan : Plan or SlingPlan
+    plan : Plan, SlingPlan or StrengthPlan
     directory : str or os.PathLike
 
     Returns
@@ -79,11 +79,17 @@ def write_report(plan, directory):
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
     from liftplan.planner.slings import is_sling_plan
+    from liftplan.planner.strength_plan import is_strength_plan
 
     if is_sling_plan(plan):  # a sling lift: its own tables and scene file
         from liftplan.planner.output import sling_report
 
         page, scene_text = sling_report.render_html(plan), sling_report.scene_toml(plan)
+    elif is_strength_plan(plan):  # lift forces for the hull girder, beside the spread-optimal plan
+        from liftplan.planner.output import strength_report
+
+        scene_text = strength_report.scene_toml(plan)
+        page = strength_report.render_html(plan, solved=strength_report.solved_scene(plan, scene_text))
     else:
         page, scene_text = render_html(plan), scene_toml(plan)
     html_path = out / "report.html"
