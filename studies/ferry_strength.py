@@ -113,19 +113,29 @@ def figure(data):
     fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True,
                              gridspec_kw={"height_ratios": [1.1, 1, 1, 1.1]})
     wc = np.array(data["weight_curve"])
-    axes[0].fill_between(wc[:, 0], -wc[:, 1], color="0.8", label="weight [t/m] (down)")
     styles = {"experience": ("tab:red", "experience: 12 even stations a side, even forces"),
               "strength": ("tab:blue", "strength-optimal (bending)"),
               "spread": ("tab:green", "spread-optimal")}
-    for k, name in enumerate(("experience", "strength")):
-        d = data[name]
-        color = styles[name][0]
-        offset = 0.9 * k - 0.45
-        axes[0].bar(np.array(d["x"]) + offset * (np.array(d["y"]) > 0) - offset * (np.array(d["y"]) < 0),
-                    np.array(d["forces"]) / 5.0, width=0.9, color=color, alpha=0.8,
-                    label=f"{styles[name][1]}: force / 5 [t]")
-    axes[0].set_ylabel("t/m, t/5")
-    axes[0].legend(fontsize=7, loc="lower center")
+    # at each station six bars side by side: the three plans, each starboard (hatched) then
+    # port (solid), so no bar hides another
+    stations = np.unique(np.round(np.concatenate([data[n]["x"] for n in styles]), 6))
+    width = 0.8 * np.diff(stations).min() / 6
+    for k, name in enumerate(styles):
+        d, (color, label) = data[name], styles[name]
+        x, y, f = (np.array(d[key]) for key in ("x", "y", "forces"))
+        for j, (side, hatch) in enumerate(((y < 0, "////"), (y > 0, None))):
+            shift = (2 * k + j - 2.5) * width
+            axes[0].bar(x[side] + shift, f[side], width=width, color=color if hatch is None else "white",
+                        edgecolor=color, hatch=hatch, lw=0.6,
+                        label=f"{label}, {'starboard' if hatch else 'port'}")
+    axes[0].set_ylabel("force per point [t]")
+    axes[0].legend(fontsize=6.5, loc="upper left", ncols=3, frameon=False)
+    top = max(max(data[n]["forces"]) for n in styles)
+    axes[0].set_ylim(0, 1.45 * top)
+    weight = axes[0].twinx()
+    weight.fill_between(wc[:, 0], wc[:, 1], color="0.5", alpha=0.15, lw=0)
+    weight.set_ylim(0, 3.0 * wc[:, 1].max())
+    weight.set_ylabel("weight per length [t/m] (grey)", fontsize=8)
     for name in ("experience", "strength", "spread"):
         d, (color, label) = data[name], styles[name]
         xs = np.array(d["curves"]["x"])
@@ -142,6 +152,8 @@ def figure(data):
         ax.plot(env[:, 0], env[:, 1] / scale, "k--", lw=0.8, label="allowable")
         ax.plot(env[:, 0], -env[:, 1] / scale, "k--", lw=0.8)
         ax.axhline(0, color="0.5", lw=0.5)
+    axes[0].set_title("forces at the 16 frame stations: each plan's starboard (hatched) and port "
+                      "(solid) bars side by side; weight per length in grey", fontsize=8)
     axes[1].set_ylabel("bending moment [1000 t m]")
     axes[2].set_ylabel("shear force [t]")
     axes[3].set_ylabel("worst |M| / allowable")
