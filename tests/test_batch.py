@@ -130,7 +130,8 @@ def test_journal_of_another_study_is_refused(tmp_path):
 
 @pytest.mark.parametrize("text, match", [
     (PLAN_STUDY.replace('"plan.cranes"', '"plan.cranse"'), "cranse"),
-    (PLAN_STUDY.replace("[4, 3]", "[4, 3, 65]"), r"sweep.'plan.cranes'\[2\] = 65: no case can use it.*3 to 64"),
+    (PLAN_STUDY.replace("[4, 3]", "[4, 3, 65]"),
+     r"sweep.'plan.cranes'\[2\] = 65: no case can use it.*3 to 64"),
     (CHECK_STUDY.replace('"body.weight"', '"plan.cranes"'), "a check study keeps the plan's lugs"),
     (PLAN_STUDY.replace("tanker_plan.toml", "missing.toml"), "no such planning file"),
     (CHECK_STUDY.replace("count = 50", "count = 0"), "sample.count"),
