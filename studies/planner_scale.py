@@ -17,6 +17,7 @@ LIMIT seconds is stopped there and its best plan and honest gap recorded.
 
 Run:  python studies/planner_scale.py     (writes studies/out/planner_scale.json and .png)
       python studies/planner_scale.py --quick   (the 16-candidate problems only)
+      python studies/planner_scale.py --figure-only   (redraw from the JSON)
 """
 
 from __future__ import annotations
@@ -86,8 +87,11 @@ def run(problem, method):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--figure-only", action="store_true", help="redraw from the JSON")
     args = parser.parse_args()
     OUT.mkdir(exist_ok=True)
+    if args.figure_only:
+        return figure(json.loads((OUT / "planner_scale.json").read_text()))
     rows = []
     for name, problem in problems(args.quick):
         methods = ["local"] if problem.set_count > 5_000_000 else list(METHODS)
@@ -108,32 +112,38 @@ def main():
 
 
 def figure(rows):
+    """Time against excess, marker by method, colour by problem, each problem's Pareto front."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8, 5.2))
+    fig, ax = plt.subplots(figsize=(9, 5.6))
     markers = dict(zip(METHODS, "osD^v"))
-    for method in METHODS:
-        pts = [(r["seconds"], r["excess"]) for r in rows if r["method"] == method and r["excess"] is not None]
-        if pts:
-            x, y = zip(*pts)
-            ax.scatter(x, np.maximum(y, 1e-3), marker=markers[method], label=method, s=36)
-    pts = sorted((r["seconds"], max(r["excess"], 1e-3)) for r in rows if r["excess"] is not None)
-    front, best = [], math.inf
-    for x, y in pts:
-        if y < best:
-            front.append((x, y))
-            best = y
-    if front:
-        ax.step(*zip(*front), where="post", color="0.5", lw=1, label="Pareto front (all problems)")
+    names = list(dict.fromkeys(r["problem"] for r in rows if r["excess"] is not None))
+    colours = dict(zip(names, plt.cm.tab10.colors))
+    for r in rows:
+        if r["excess"] is None:
+            continue
+        ax.scatter(r["seconds"], max(r["excess"], 1e-3), marker=markers[r["method"]],
+                   color=colours[r["problem"]], s=40, edgecolor="k", linewidth=0.4, zorder=3)
+    for name in names:
+        pts = sorted((r["seconds"], max(r["excess"], 1e-3)) for r in rows
+                     if r["problem"] == name and r["excess"] is not None)
+        front, best = [], math.inf
+        for x, y in pts:
+            if y < best:
+                front.append((x, y))
+                best = y
+        ax.step(*zip(*front), where="post", color=colours[name], lw=1.2, label=f"{name}: Pareto front")
+    for method, marker in markers.items():
+        ax.scatter([], [], marker=marker, color="0.6", edgecolor="k", label=method)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time [s] (2 cores, shared)")
     ax.set_ylabel("worst spread above the proved optimum [%] (1e-3: optimal)")
-    ax.set_title("Planner speed against accuracy: tanker problems, 4 to 8 of 16 to 40 candidates")
-    ax.legend(fontsize=8)
+    ax.set_title("Planner speed against accuracy (problems with a proved optimum)")
+    ax.legend(fontsize=7, loc="upper right", ncol=2)
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(OUT / "planner_scale.png", dpi=130)
