@@ -96,8 +96,18 @@ def runnable():
     return out
 
 
-@pytest.mark.parametrize("line, argv", [pytest.param(*c, id=f"line{c[0]}-{'-'.join(c[1][:1])}")
-                                        for c in runnable()])
+#: Examples whose command takes more than ~20 s on 2 cores: run with ``-m slow``.
+SLOW_EXAMPLES = {"examples/hull154_plan.toml", "examples/ferry_strength_plan.toml",
+                 "examples/block_8_points_plan.toml"}
+
+
+def _param(line, argv):
+    slow = any(w in SLOW_EXAMPLES for w in argv)
+    return pytest.param(line, argv, id=f"line{line}-{'-'.join(argv[:1])}",
+                        marks=[pytest.mark.slow] if slow else [])
+
+
+@pytest.mark.parametrize("line, argv", [_param(*c) for c in runnable()])
 def test_example_command_runs(line, argv, workdir, capsys):
     code = cli.main(argv)
     err = capsys.readouterr().err

@@ -257,6 +257,7 @@ def render_html(plan, today=None):
          for c in crew],
         "Hook accuracy: the plan held, the hooks as planned and worse (limits: chart SWL / DAF, "
         "less rigging, over contingency)", text_columns=(0, 4 + len(plan.labels)),
+        ropes=(3, len(plan.labels)),
     ) if crew else "<p>No hook-height error was assumed (hook_tolerance = 0).</p>"
     needed = plan.hook_accuracy_needed
     hooks += ("<p>The crew must hold every hook within "
@@ -270,7 +271,7 @@ def render_html(plan, today=None):
         [("tension change per cm of its own hook", *(f"{v:+.2f}" for v in own))],
         f"Load-cell guidance: each rope's change per centimetre of its own hook off its height "
         f"(pose held); the worst combination of 1 cm errors moves a rope by "
-        f"{plan.twist_stiffness:.2f} t", text_columns=(0,),
+        f"{plan.twist_stiffness:.2f} t", text_columns=(0,), ropes=(1, len(plan.labels)),
     )
     guidance = _table(
         ["step", "from [deg]", "to [deg]", *(f"dT {label} [t]" for label in plan.labels),
@@ -282,7 +283,7 @@ def render_html(plan, today=None):
             for g in plan.guidance
         ],
         "Operator guidance: tension change per step of heel (trim 0) and of trim (heel 0)",
-        text_columns=(0, 3 + len(plan.labels)),
+        text_columns=(0, 3 + len(plan.labels)), ropes=(3, len(plan.labels)),
     )
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
@@ -389,6 +390,7 @@ def _appendix(plan):
         ],
         "Admissible tensions of the recommended lugs: the range of each tension over every "
         "statically admissible set within min_tension and SWL (nominal CG)",
+        ropes=(3, len(plan.labels)),
     )
     search = _table(
         ["quantity", "value", "unit"],
@@ -443,7 +445,7 @@ def _design_table(plan):
         ["quantity", *(f"{c.label} ({col[0]})" for c, col in zip(plan.capacity, columns))],
         rows,
         "Design loads per crane (0027/ND chain; utilisation = design hook load / chart SWL; "
-        f"tilt {design.tilt_note})", text_columns=(0,),
+        f"tilt {design.tilt_note})", text_columns=(0,), ropes=(1, len(columns)),
     )
 
 
@@ -509,6 +511,7 @@ def _design_details(plan):
          for k, f in enumerate(results[0].factors)],
         "Design-load factors and where they come from", text_columns=(0, len(results) + 1,
                                                                       len(results) + 2),
+        ropes=(1, len(results)),
     )
     lugs = _table(
         ["lug", "crane", "static share [t]", "vertical design [t]", "sling angle [deg]", "leg load [t]",

@@ -100,7 +100,32 @@ def document(title, body, header, footer=""):
 """
 
 
-def table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
+#: Per-rope columns a table holds before it is split into several (many lifting points).
+ROPE_COLUMNS = 8
+
+
+def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), ropes=None):
+    """An HTML table (:func:`one_table`), split into several when it has more than
+    :data:`ROPE_COLUMNS` per-rope columns: ``ropes = (start, count)`` names them, and each part
+    keeps the columns before and after them (so 26 or 64 ropes stay within the page width).
+    """
+    if ropes is None or ropes[1] <= ROPE_COLUMNS:
+        return one_table(headers, rows, caption, full=full, keep=keep, text_columns=text_columns)
+    start, count = ropes
+    stop = start + count
+    parts = []
+    for first in range(0, count, ROPE_COLUMNS):
+        last = min(first + ROPE_COLUMNS, count)
+        keep_columns = [*range(start), *range(start + first, start + last), *range(stop, len(headers))]
+        where = {old: new for new, old in enumerate(keep_columns)}
+        parts.append(one_table(
+            [headers[k] for k in keep_columns], [[row[k] for k in keep_columns] for row in rows],
+            f"{caption} ({first + 1} to {last} of {count})", full=full, keep=keep,
+            text_columns=tuple(where[k] for k in text_columns if k in where)))
+    return "".join(parts)
+
+
+def one_table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
     """An HTML table with a caption, a repeated header and unsplittable rows.
 
     Parameters
