@@ -231,6 +231,11 @@ class PreloadMinimax:
     slots : int
         Number of scenarios the problem holds. Fewer may be passed: the last is repeated,
         which changes nothing (a scenario counted twice).
+    objective : {"spread", "utilisation", "reserve"}
+    separable : bool
+        No hook errors will be passed: the spread is written with each scenario's highest and
+        lowest value (O(n) rows) instead of every ordered pair (O(n^2)); the same LP, and what
+        keeps 26 or 64 ropes small.
 
     Notes
     -----
@@ -241,12 +246,15 @@ class PreloadMinimax:
 
     TIE_BREAK = 1e-3
 
-    def __init__(self, n, slots, objective="spread"):
+    def __init__(self, n, slots, objective="spread", separable=False):
         self.n, self.slots, self.objective = n, slots, objective
         m = slots
+        # separable (no hook errors): each scenario's spread as its highest minus its lowest
+        # value, O(n) rows; the hook errors' pair terms need every ordered pair, O(n^2)
+        self.separable = separable and objective != "reserve"
         first, second = np.nonzero(~np.eye(n, dtype=bool))  # ordered pairs i != j
         # reserve: the largest s_i T_i itself, one row per rope; otherwise every ordered pair
-        pairs = n if objective == "reserve" else len(first)
+        pairs = n if objective == "reserve" or self.separable else len(first)
         self.gain = cp.Parameter((m * n, n), name="P")
         self.offset = cp.Parameter(m * n, name="q")
         # the objective's rows: s_i T_i (s = 1 for the spread, 1 / SWL_i for utilisation)
@@ -268,7 +276,7 @@ class PreloadMinimax:
         worst = cp.Variable(name="worst")
         nominal_high, nominal_low = cp.Variable(), cp.Variable()
         difference = np.zeros((pairs, n))
-        if objective == "reserve":
+        if objective == "reserve" or self.separable:
             difference[np.arange(n), np.arange(n)] = 1.0
         else:
             difference[np.arange(pairs), first] = 1.0
@@ -276,13 +284,19 @@ class PreloadMinimax:
         pair_rows = sparse.kron(sparse.eye(m), difference, format="csr")  # scenario k's pairs
         tensions = self.gain @ preload + self.offset
         scaled = self.spread_gain @ preload + self.spread_offset
+        if self.separable:
+            high, low = cp.Variable(m), cp.Variable(m)
+            each = sparse.kron(sparse.eye(m), np.ones((n, 1)), format="csr")  # scenario k's rows
+            spread_rows = [scaled <= each @ high, scaled >= each @ low, high - low <= worst]
+        else:
+            spread_rows = [pair_rows @ scaled + self.pair_margin <= worst]
         constraints = [
             self.a_level @ preload == self.b_level,
             preload >= self.preload_low,
             preload <= self.preload_high,
             tensions - self.margin >= self.tension_low,
             tensions + self.margin <= self.tension_high,
-            pair_rows @ scaled + self.pair_margin <= worst,
+            *spread_rows,
             self.level_scale @ preload <= nominal_high,
             self.level_scale @ preload >= nominal_low,
         ]
@@ -344,7 +358,11 @@ class PreloadMinimax:
         scale = np.ones(n) if scale is None else np.asarray(scale, dtype=float)
         margin, pair_margin = hook_margins(gains.shape[0], n, scale, hook, self.objective)
         self.margin.value = margin[pad].ravel()
-        self.pair_margin.value = pair_margin[pad].ravel()
+        if self.separable:
+            if hook is not None:
+                raise ValueError("a separable preload minimax takes no hook errors")
+        else:
+            self.pair_margin.value = pair_margin[pad].ravel()
         self.gain.value = gains[pad].reshape(self.slots * n, n)
         self.offset.value = np.asarray(offsets, dtype=float)[pad].ravel()
         rows = np.tile(scale, self.slots)

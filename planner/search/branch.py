@@ -296,7 +296,9 @@ class SetEvaluator:
 
     def __init__(self, problem):
         self.problem = problem
-        self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective)
+        hooks = problem.hook_tolerance > 0 or any(c.hook_tolerance for c in problem.fleet)
+        self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective,
+                                      separable=not hooks)
         self.offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
         self.start = self._scenarios(3)
         self.dense = self._scenarios(DENSE)
