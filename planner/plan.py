@@ -38,6 +38,16 @@ FRAMES = {"z-up": "z-up (x forward, y to port, z up)",
 CraneCapacity = CraneDesign
 
 
+#: The plan JSON keys CONTRACT.md fixes (every plan type writes them the same way).
+CONTRACT_KEYS = ("lugs", "boom_heights", "tensions", "spread", "worst_spread", "objective",
+                 "cranes", "radius", "swl", "utilisation", "worst_utilisation_spread")
+
+
+def contract_json(plan):
+    """The plan JSON's fixed keys (:data:`CONTRACT_KEYS`), read off the plan's attributes."""
+    return {key: getattr(plan, key) for key in CONTRACT_KEYS}
+
+
 @dataclass(frozen=True)
 class SkewLoad:
     """Skew load factor of a rope or a diagonal pair from the hook-height tolerance.
@@ -477,18 +487,7 @@ class Plan:
         ``design_loads.cranes[].utilisation``. Coordinates are in the file's ``frame``.
         """
         design = self.design_loads
-        return {
-            "lugs": self.lugs,
-            "boom_heights": self.boom_heights,
-            "tensions": self.tensions,
-            "spread": self.spread,
-            "worst_spread": self.worst_spread,
-            "objective": self.objective,
-            "cranes": self.cranes,
-            "radius": self.radius,
-            "swl": self.swl,
-            "utilisation": self.utilisation,
-            "worst_utilisation_spread": self.worst_utilisation_spread,
+        return contract_json(self) | {
             "ranking": [self._ranking_entry(r, d) for r, d in zip(self.ranking, self.ranked_design)],
             "frame": self.frame,
             "worst_attitude": self.scenario_json(self.chosen.worst),

@@ -38,6 +38,7 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.strength.girder import attitude_matrix
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.branch import GapMixin
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.strength import (
     STABLE_HEIGHT,
@@ -119,7 +120,7 @@ class StrengthSet:
 
 
 @dataclass(frozen=True)
-class StrengthStats:
+class StrengthStats(GapMixin):
     """How the search went.
 
     Parameters
@@ -142,14 +143,6 @@ class StrengthStats:
     stopped: str
     certified: bool = True
     best: float = math.nan
-
-    @property
-    def gap(self):
-        return max(self.best - self.lower_bound, 0.0)
-
-    @property
-    def relative_gap(self):
-        return self.gap / self.best if self.best > 0 else 0.0
 
 
 class StrengthContext:

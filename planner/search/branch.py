@@ -150,8 +150,22 @@ class SetResult:
         return self.nominal_spread if self.objective == "spread" else self.nominal_utilisation_spread
 
 
+class GapMixin:
+    """``gap`` and ``relative_gap`` from a dataclass's ``best`` and ``lower_bound``."""
+
+    @property
+    def gap(self):
+        """Best worst value minus the certified lower bound, in the objective's unit (>= 0)."""
+        return max(self.best - self.lower_bound, 0.0)
+
+    @property
+    def relative_gap(self):
+        """:attr:`gap` over the best worst value  [-]."""
+        return self.gap / self.best if self.best > 0 else 0.0
+
+
 @dataclass(frozen=True)
-class SearchStats:
+class SearchStats(GapMixin):
     """How the search went.
 
     Parameters
@@ -203,16 +217,6 @@ class SearchStats:
             return (f"{self.sets} lug sets: local search, {self.refined} swaps from an even spread "
                     f"of the candidates to a local optimum (no gap proved) ({self.seconds:.2f} s)")
         return None
-
-    @property
-    def gap(self):
-        """Best worst value minus the certified lower bound, in the objective's unit (>= 0)."""
-        return max(self.best - self.lower_bound, 0.0)
-
-    @property
-    def relative_gap(self):
-        """:attr:`gap` over the best worst value  [-]."""
-        return self.gap / self.best if self.best > 0 else 0.0
 
 
 @dataclass(frozen=True)

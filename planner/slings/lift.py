@@ -234,18 +234,9 @@ class SlingLift:
     def _lift_json(self):
         names = self.crane_names
         design = None if isinstance(self.design, str) else self.design.to_json()
-        return {
-            "lugs": self.lugs,
-            "boom_heights": self.boom_heights,
-            "tensions": self.tensions,
-            "spread": self.spread,
-            "worst_spread": self.worst_spread,
-            "objective": self.objective,
-            "cranes": self.cranes,
-            "radius": self.radius,
-            "swl": self.swl,
-            "utilisation": self.utilisation,
-            "worst_utilisation_spread": self.worst_utilisation_spread,
+        from liftplan.planner.plan import contract_json
+
+        return contract_json(self) | {
             "lift": self.lift_text,
             "hook_loads": dict(zip(names, np.asarray(self.hook_nominal, dtype=float).tolist())),
             "worst_hook_loads": dict(zip(names, np.asarray(self.hook_worst, dtype=float).tolist())),
