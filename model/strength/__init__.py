@@ -22,7 +22,7 @@ Modules, top-down:
 * :mod:`.beam` — the flexible hull's finite elements (``[hull] EI``, ``GJ``): Hermite bending
   and linear torsion elements, consistent weight loads, the gauge.
 * :mod:`.flexible` — the flexible hull on the elastic ropes: solved in the elastic model's
-  Newton system (:class:`liftplan.model.statics.FlexibleRopeModel`), the 1 % rule that
+  Newton system (:class:`liftplan.model.strength.flexible_model.FlexibleRopeModel`), the 1 % rule that
   decides whether ``solve`` keeps the rigid hull, and the result (:class:`FlexibleHull`).
 
 The solvers import :mod:`.flexible` only (lazily, for a scene with ``hull.EI``); the command

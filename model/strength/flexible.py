@@ -1,7 +1,7 @@
 """The flexible hull: the body as an elastic beam on the elastic ropes.
 
 With ``[hull] EI`` (and optionally ``GJ``) the ``elastic`` model's Newton system gains the
-hull girder's deflections as unknowns (:class:`liftplan.model.statics.FlexibleRopeModel`,
+hull girder's deflections as unknowns (:class:`liftplan.model.strength.flexible_model.FlexibleRopeModel`,
 elements from :mod:`.beam`): the ropes' tensions then follow the hull's compliance as well as
 their own. :func:`flexible_state` solves it from a start pose; :func:`choose_hull` is the
 least-model rule of :func:`liftplan.model.solve.solve`: the rigid hull unless flexibility
@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..acceptance import RESIDUAL_TOL, positive_definite
-from ..statics import flexible_model
 from .beam import ELEMENTS, girder_mesh
+from .flexible_model import flexible_model
 from .piecewise import Extreme
 
 #: Deflections beyond this fraction of the hull's length leave small-deflection beam theory
@@ -131,7 +131,7 @@ class FlexibleState:
 
 
 def beam_parameters(mesh, n):
-    """The flat beam parameter vector of :class:`~liftplan.model.statics.BeamLayout`."""
+    """The flat beam parameter vector of :class:`~liftplan.model.strength.flexible_model.BeamLayout`."""
     parts = [np.transpose(mesh.bending, (0, 2, 1)).ravel()]  # each 4 x 4 column-major
     if mesh.torsion is not None:
         parts.append(mesh.torsion)
