@@ -84,6 +84,87 @@ class Layout:
         return yaw, points, cog, weight, boom, length, stiffness, scale
 
 
+@dataclass(frozen=True)
+class HingedLayout(Layout):
+    """:class:`Layout` with eight more entries per rope APPENDED (so every offset of
+    :class:`Layout` holds): ``[..., L, A1 (3), B1 (3), c1, w1, A2 (3), ...]``.
+
+    Rope i's lift point hangs from the lugs A_i, B_i (body frame, m) on a sling that hinges
+    about the line A_i B_i (see :class:`HingedRopeModel`): c_i [m] is the drop of a spreader
+    bar's parallel bottom legs (0 for a 2-leg sling), w_i [t] the bar's weight (0 without
+    one). The rope's ``P`` column is its lift point (the hook) at the level pose. A body-fixed
+    point is A = P, c = w = 0 and any B != A.
+    """
+
+    @property
+    def size(self):
+        return 14 * self.n + 6
+
+    def hinges(self, p):
+        """(A (3 x n), B (3 x n), c (n), w (n)) from a parameter vector."""
+        block = ca.reshape(p[6 * self.n + 6 : 14 * self.n + 6], 8, self.n)
+        return block[0:3, :], block[3:6, :], block[6, :].T, block[7, :].T
+
+
+def fixed_hinges(points):
+    """Hinge entries (..., n, 8) that make every lift point of ``points`` (..., n, 3) body-fixed."""
+    points = np.asarray(points, dtype=float)
+    zeros = np.zeros((*points.shape[:-1], 1))
+    return np.concatenate([points, points + [1.0, 0.0, 0.0], zeros, zeros], axis=-1)
+
+
+def _unit(v):
+    return v / ca.repmat(ca.sqrt(ca.sum1(v * v)), v.shape[0], 1)
+
+
+def hinged_points(points, hinges, rot, lift):
+    """World positions of hinged lift points at a pose, and the bar weights' moment term.
+
+    A sling on lugs A, B (2 legs, or a spreader bar with parallel bottom legs of drop c) is a
+    rigid linkage free to swing about the line AB; under a vertical hoist line its hook hangs in
+    the vertical plane through AB (the hook's height is greatest there). With A', B' the posed
+    lugs, u = (B' - A') / |B' - A'| and n the unit vertical square to u (upward)::
+
+        hook = A' + c e_z + s u + h n
+
+    with (s, h) the hook's fixed place in the sling's plane, taken from the level hook P:
+    (s, h) = ((P - A - c e_z) . u0, (P - A - c e_z) . n0). A bar of weight w hangs at the
+    middle of its ends A' + c e_z, B' + c e_z, so the body's share T of a hook load T + w acts
+    at the hook plus w (hook - bar) / T in plan: the statics' moment rows lose
+    sum w (hook - bar) (plan).
+
+    Parameters
+    ----------
+    points : 3 x n   lift points at level (P), body frame  [m]
+    hinges : (A, B, c, w) of :meth:`HingedLayout.hinges`
+    rot : 3 x 3   attitude
+    lift : scalar   height of the body origin  [m]
+
+    Returns
+    -------
+    hooks : 3 x n  [m]
+    moment : 3   [0, t m, t m], to subtract from the statics' right-hand side
+    """
+    a, b, drop, bar = hinges
+    n = points.shape[1]
+    up = ca.repmat(ca.vertcat(0, 0, lift), 1, n)
+    e_z = ca.repmat(ca.DM([0.0, 0.0, 1.0]), 1, n)
+    posed_a = ca.mtimes(rot, a) + up
+    posed_b = ca.mtimes(rot, b) + up
+    u = _unit(posed_b - posed_a)
+    normal = _unit(e_z - ca.repmat(u[2, :], 3, 1) * u)
+    u0 = _unit(b - a)
+    n0 = _unit(e_z - ca.repmat(u0[2, :], 3, 1) * u0)
+    offset = points - a - e_z * ca.repmat(drop.T, 3, 1)
+    along = ca.sum1(offset * u0)
+    height = ca.sum1(offset * n0)
+    hooks = (posed_a + e_z * ca.repmat(drop.T, 3, 1) + u * ca.repmat(along, 3, 1)
+             + normal * ca.repmat(height, 3, 1))
+    centre = 0.5 * (posed_a + posed_b) + e_z * ca.repmat(drop.T, 3, 1)
+    lever = ca.mtimes(hooks[0:2, :] - centre[0:2, :], bar)
+    return hooks, ca.vertcat(0, lever)
+
+
 def pose_points(points, cog, heel, trim, yaw, lift):
     """World positions of the lugs (3 x n) and of the CG (3) at a pose."""
     rot = rotation(heel, trim, yaw)
@@ -160,19 +241,27 @@ class RopeModel:
     for an elastic or paper-elastic solve.
     """
 
+    layout_class = Layout
+
     def __init__(self, n):
         self.n = n
-        self.layout = Layout(n)
+        self.layout = self.layout_class(n)
         self.batch_backend = None  # "jit" or "casadi-vm", set when a batch map is built
         p = ca.SX.sym("p", self.layout.size)
         x = ca.SX.sym("x", 3)  # lift a [m], heel [rad], trim [rad]
         yaw, points, cog, weight, boom, length, stiffness, scale = self.layout.split(p)
         lift, heel, trim = x[0], x[1], x[2]
-        lugs, cog_w = pose_points(points, cog, heel, trim, yaw, lift)
+        lugs, cog_w, moment = self._posed(p, points, cog, heel, trim, yaw, lift)
         a_mat, b_vec = statics_system(lugs, cog_w, weight)
+        b_vec = b_vec - moment
         self._x, self._p = x, p
         self._parts = (yaw, points, cog, weight, boom, length, stiffness, scale)
         self._pose = (lugs, cog_w, a_mat, b_vec)
+
+    def _posed(self, p, points, cog, heel, trim, yaw, lift):
+        """World lift points (3 x n) and CG (3) at a pose, and a term (3) off the statics' b."""
+        lugs, cog_w = pose_points(points, cog, heel, trim, yaw, lift)
+        return lugs, cog_w, ca.DM.zeros(3)
 
     # -- given attitude: statics matrix, and the paper's elastic closure -------------------
     @cached_property
@@ -394,7 +483,37 @@ class RopeModel:
         return FastCall(compiled.function.map(f"{function.name()}_block", "serial", BLOCK, shared, []))
 
 
+class HingedRopeModel(RopeModel):
+    """:class:`RopeModel` whose lift points may hang on slings hinged about a lug pair.
+
+    The parameter vector is :class:`HingedLayout` (the plain layout with eight entries per rope
+    appended); each lift point is posed by :func:`hinged_points` instead of turning with the
+    body, and a spreader bar's weight moves the body's share off the hook in plan. Everything
+    else (statics rows from the lift points' plan positions, the rope's stretch from their
+    heights, the held preload) is :class:`RopeModel`'s, from the same expressions. Use
+    :func:`hinged_model`. Meant for the statics and the held functions (what the planner
+    calls); the forward model with free hooks and elastic legs is :mod:`liftplan.model.rigging`.
+
+    With a bar weight w_i, rope i's tension T_i here is the body's share (the hook load is
+    T_i + w_i) and H_i the boom height less the bar's own stretch w_i l0_i / EA_i.
+    """
+
+    layout_class = HingedLayout
+
+    def _posed(self, p, points, cog, heel, trim, yaw, lift):
+        rot = rotation(heel, trim, yaw)
+        hooks, moment = hinged_points(points, self.layout.hinges(p), rot, lift)
+        cog_w = ca.mtimes(rot, cog) + ca.vertcat(0, 0, lift)
+        return hooks, cog_w, moment
+
+
 @cache
 def rope_model(n):
     """The cached :class:`RopeModel` for ``n`` ropes."""
     return RopeModel(n)
+
+
+@cache
+def hinged_model(n):
+    """The cached :class:`HingedRopeModel` for ``n`` ropes."""
+    return HingedRopeModel(n)

@@ -216,8 +216,7 @@ def test_bad_multi_sling_input():
     with pytest.raises(InvalidScene, match="with a spreader bar expected 2"):
         SlingSpec(length=2.0, legs=4, EA=1.0, spreader=SpreaderSpec(length=10.0, top_length=8.0))
     pair = SlingSpec(length=8.0, legs=2, EA=20000.0)
-    with pytest.raises(InvalidScene, match=r"2-leg sling or spreader bar with 3 cranes; expected 3 or 4"):
-        _block([_crane(n, 300.0, pair) for n in "ABC"])
+    assert _block([_crane(n, 300.0, pair) for n in "ABC"]).cranes == 3  # planned: test_slings_hinged
     with pytest.raises(InvalidScene, match=r"cranes\[C\].sling: missing; expected a sling on every crane"):
         _block([_crane("A", 300.0, sling), _crane("B", 300.0, sling), _crane("C", 300.0, None)])
     other = SlingSpec(length=9.0, legs=3, EA=20000.0)

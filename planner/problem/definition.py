@@ -232,6 +232,12 @@ class PlanProblem:
         The hull resting on the seabed (``[plan] breakout_scene``: ``[hull]``, ``[water]``,
         ``[ground]``, the same body as ``body``): its breakout case (:attr:`breakout`) is
         carried into each crane's capacity check. None: no breakout case.
+    hinges : tuple of tuple of 8 float
+        Empty (every candidate a body-fixed lift point), or per candidate how its lift point
+        hangs from the body: the lugs A, B [m], drop c [m] and bar weight w [t] of
+        :class:`~liftplan.model.statics.HingedLayout` (a 2-leg sling or spreader bar hinged
+        about its pair; ``at`` is then its hook at level). Set by the sling planner on its
+        derived problem (``planner/slings/apex.py``), not read from files.
     """
 
     body: Body
@@ -261,6 +267,7 @@ class PlanProblem:
     strength_weights: tuple[float, float] | None = None
     controls: tuple[str, ...] = ()
     breakout_scene: Scene | None = None
+    hinges: tuple[tuple[float, ...], ...] = ()
 
     def __post_init__(self):
         candidates = tuple(self.candidates)
@@ -325,6 +332,12 @@ class PlanProblem:
         if not isinstance(self.report, ReportInfo):
             raise InvalidScene(f"report = {self.report!r}: expected a ReportInfo (the [report] table)")
         self._check_fleet()
+        if self.hinges:
+            rows = np.asarray(self.hinges, dtype=float)
+            if rows.shape != (len(candidates), 8) or not np.all(np.isfinite(rows)):
+                raise InvalidScene(f"hinges: shape {rows.shape}: expected one row of 8 finite values "
+                                   f"(A, B, c, w) per candidate, ({len(candidates)}, 8)")
+            _set(self, "hinges", tuple(tuple(float(v) for v in r) for r in rows))
 
     def _check_fleet(self):
         fleet = tuple(self.fleet)
@@ -346,14 +359,6 @@ class PlanProblem:
             bare = next(c.name for c in fleet if c.sling is None)
             raise InvalidScene(f"cranes[{bare}].sling: missing; expected a sling on every crane or "
                                "on none (the planner places any crane on any lift point)")
-        if any(slings) and self.cranes >= 3:
-            for crane in fleet:
-                if crane.sling.legs == 2 or crane.sling.spreader is not None:
-                    raise InvalidScene(
-                        f"cranes[{crane.name}].sling: a 2-leg sling or spreader bar with "
-                        f"{self.cranes} cranes; expected 3 or 4 legs (a pair's sling hinges about "
-                        "its lugs, so its hook is not a body-fixed lift point the held search "
-                        "plans) or two cranes")
         value = finite("rigging.min_sling_angle", self.min_sling_angle)
         if not 0.0 < value <= 90.0:
             raise InvalidScene(f"rigging.min_sling_angle = {value!r}: expected 0 to 90 deg "
@@ -495,6 +500,11 @@ class PlanProblem:
     @property
     def names(self):
         return tuple(c.name for c in self.candidates)
+
+    @cached_property
+    def hinge_rows(self):
+        """:attr:`hinges` as an array (C, 8), or None when every candidate is body-fixed."""
+        return np.array(self.hinges, dtype=float) if self.hinges else None
 
     @cached_property
     def plan_points(self):
