@@ -40,6 +40,35 @@ from liftplan.planner.search.branch import DENSE
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
 
+@dataclass(frozen=True)
+class PlanChain(DesignLoadChain):
+    """The rules' chain with the notes naming the planner's static input.
+
+    :class:`~liftplan.model.rules.DesignLoadChain` calls its ``worst`` input "the worst
+    searched". With a breakout case that input is the breakout tension where it is larger
+    (:attr:`CraneDesign.static_input`), so the tilt and CoG notes here say which load is
+    the input and what it governs over; the numbers are the chain's own.
+
+    Parameters
+    ----------
+    inputs : tuple of (str, CraneDesign)
+        Per crane name, the planner's loads of that crane (for the notes).
+    """
+
+    inputs: tuple = ()
+
+    def _crane(self, crane):
+        result = super()._crane(crane)
+        design = dict(self.inputs).get(crane.name)
+        if design is None:
+            return result
+        notes = {"tilt": design.tilt_note_for(crane.tilt, self.tilt_note),
+                 "cog": design.cog_note(self.cog_searched)}
+        factors = tuple(replace(f, note=notes[f.name]) if f.name in notes and notes[f.name] else f
+                        for f in result.factors)
+        return replace(result, factors=factors)
+
+
 def rope_skew(lugset, preload, delta):
     """Each rope's load with every hook within +-``delta`` of its planned height, pose held.
 
@@ -146,6 +175,33 @@ class CraneDesign:
             return f"breakout {self.breakout:.4g} t governs over the worst in the box {box:.4g} t"
         return f"worst in the box {box:.4g} t governs over breakout {self.breakout:.4g} t"
 
+    def tilt_note_for(self, tilt_share, how=""):
+        """The chain's tilt note: the share at the rules' tilt against the static input
+        that governs (the worst in the box, or the breakout tension), then ``how`` the tilt
+        was found."""
+        if tilt_share is None:
+            return ""
+        box = max(self.worst, self.nominal)
+        against = f"the worst in the box {box:.4g} t"  # a lower breakout: said by static_note
+        if self.governs == "breakout":
+            against = (f"the breakout tension {self.breakout:.4g} t (breakout governs over the worst "
+                       f"in the box {box:.4g} t)")
+        note = f"share at the rules' tilt {tilt_share:.4g} t against {against}"
+        if tilt_share > self.static_input:
+            note += ": the tilt governs"
+        return note + (f"; {how}" if how else "")
+
+    def cog_note(self, searched):
+        """The chain's CoG note where breakout governs (the chain's ``worst`` is then the
+        breakout tension, not a CoG extreme): the box worst over the nominal share; ""
+        elsewhere (the chain's own note)."""
+        if not searched or self.nominal <= 0.0 or self.governs != "breakout":
+            return ""
+        box = max(self.worst, self.nominal)
+        return (f"CoG envelope searched by the planner: in the worst in the box (worst / nominal = "
+                f"{box / self.nominal:.4f}); the breakout tension that governs is at the breakout "
+                "scene's load point, no CoG envelope on it")
+
     @property
     def skew(self):
         """Computed skew factor, skewed / nominal  [-] (None at a zero nominal load)."""
@@ -155,6 +211,23 @@ class CraneDesign:
     def design_hook_load(self):
         """The design hook load  [t] (NaN when not computed)."""
         return self.design.design_hook_load if self.design is not None else float("nan")
+
+    @property
+    def design_tension(self):
+        """The largest static rope tension the design hook load covers  [t] (NaN when not
+        computed).
+
+        The static hook load less the rigging weight, over the weight contingency and the CoG
+        factor: the static share the chain was built from (the larger of the static input and
+        the share at the rules' tilt) times the hook skew factor. A static tension at the
+        nominal weight and CG (a Monte-Carlo draw of hook errors) is like for like with it;
+        the design hook load adds the contingency, the DAF and the rigging on top.
+        """
+        if self.design is None:
+            return float("nan")
+        factor = {f.name: f.value for f in self.design.factors}
+        return ((self.design.static_hook_load - self.design.rigging_weight)
+                / (factor["weight_contingency"] * factor["cog"]))
 
     @property
     def utilisation(self):
@@ -258,9 +331,10 @@ class DesignBuilder:
         chain = None
         if missing is None:
             try:
-                chain = DesignLoadChain(
+                chain = PlanChain(
                     cranes=tuple(self._loads(c) for c in cranes), weight=problem.body.weight,
-                    rules=problem.rules, cog_searched=self.searched, tilt_note=tilt_note)
+                    rules=problem.rules, cog_searched=self.searched, tilt_note=tilt_note,
+                    inputs=tuple((c.crane, c) for c in cranes))
                 results = chain.results
             except InvalidScene as err:
                 chain, missing = None, str(err)

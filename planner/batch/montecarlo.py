@@ -47,6 +47,10 @@ class HookMonteCarlo:
         The plan's largest load of each rope.
     design_load, swl : numpy.ndarray, shape (n,)  [t]
         Each crane's design hook load and chart SWL.
+    design_tension : numpy.ndarray, shape (n,) or None  [t]
+        Each rope's largest static tension the design hook load covers
+        (:attr:`~liftplan.planner.design_loads.CraneDesign.design_tension`): what a drawn
+        static tension is compared with (NaN where no design load was computed).
     """
 
     labels: tuple
@@ -61,6 +65,7 @@ class HookMonteCarlo:
     plan_rope_max: np.ndarray
     design_load: np.ndarray
     swl: np.ndarray
+    design_tension: np.ndarray | None = None
 
     @property
     def draws(self):
@@ -90,9 +95,24 @@ class HookMonteCarlo:
         event = np.asarray(event)
         return float(np.mean(event)) if event.size else float("nan")
 
+    def above(self, limit):
+        """Share of solved draws with a rope above its ``limit`` (n,)  [-]; NaN when a limit
+        is not known (a design load that could not be computed is no pass)."""
+        limit = np.asarray(limit, dtype=float)
+        if limit.shape != (len(self.labels),) or not np.all(np.isfinite(limit)):
+            return float("nan")
+        return self.probability(np.any(self.tensions[self.solved] > limit, axis=1))
+
     def summary(self):
         """The figures a crew and a checker read: spread percentiles, per-rope maxima, and
-        the chance of exceeding the plan's worst spread, a design load or an SWL."""
+        the chance of exceeding the plan's worst spread, a design load or an SWL.
+
+        ``p_above_design_tension``: a drawn static tension above the static tension its
+        crane's design load covers (like for like: both static, nominal weight).
+        ``p_above_design_load``: a drawn static tension above the design hook load itself,
+        which carries the contingency, the DAF and the rigging on top (lenient; kept for
+        scripts that read it).
+        """
         solved = self.tensions[self.solved]
         spread = self.spread
         slack = np.any(solved <= 0.0, axis=1)
@@ -109,8 +129,12 @@ class HookMonteCarlo:
             "spread_max": float(spread.max()),
             "rope_max": dict(zip(self.labels, solved.max(axis=0).tolist())),
             "p_spread_above_plan_worst": self.probability(spread > self.plan_worst_spread + 1e-6),
-            "p_above_design_load": self.probability(np.any(solved > self.design_load, axis=1)),
-            "p_above_swl": self.probability(np.any(solved > self.swl, axis=1)),
+            "p_above_design_load": self.above(self.design_load),
+            "p_above_design_tension": (self.above(self.design_tension)
+                                       if self.design_tension is not None else float("nan")),
+            "design_tension": (dict(zip(self.labels, self.design_tension.tolist()))
+                               if self.design_tension is not None else None),
+            "p_above_swl": self.above(self.swl),
             "p_slack": self.probability(slack),
             "plan_worst_spread": self.plan_worst_spread,
         }
@@ -208,4 +232,5 @@ def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform",
         plan_worst_spread=plan.worst_spread, plan_rope_max=np.asarray(plan.chosen.rope_max),
         design_load=np.array([c.design_hook_load for c in plan.capacity]),
         swl=np.asarray(plan.chosen.swl, dtype=float),
+        design_tension=np.array([c.design_tension for c in plan.capacity]),
     )

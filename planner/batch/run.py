@@ -38,8 +38,9 @@ RESULTS = {
     "check": ["worst_spread", "worst_heel", "worst_trim", "min_tension", "max_tension",
               "utilisation"],
     # a Monte-Carlo draw: tension.L1..Ln first (see results_columns), then these
+    # (above_design_tension last: added after the others, so scripts reading by position hold)
     "montecarlo": ["heel", "trim", "spread", "max_tension", "above_plan_worst",
-                   "above_design_load", "above_swl", "slack"],
+                   "above_design_load", "above_swl", "slack", "above_design_tension"],
 }
 JOURNAL_MARK = "# liftplan batch"
 
@@ -314,6 +315,7 @@ def montecarlo_rows(study, base, cases, result):
     """Table rows of a chunk of Monte-Carlo draws, judged against the plan."""
     errors, tensions, heel, trim = result
     design = np.array([c.design_hook_load for c in base.capacity])
+    covered = np.array([c.design_tension for c in base.capacity])  # the same, static
     swl = np.asarray(base.chosen.swl, dtype=float)
     labels = base.labels
     rows = []
@@ -335,8 +337,16 @@ def montecarlo_rows(study, base, cases, result):
             status, reason = "unsafe", f"rope {labels[i]} slack"
         rows.append([index, *numbers, status, reason, *t.tolist(), float(h), float(r), spread,
                      float(t.max()), int(spread > base.worst_spread + 1e-6),
-                     int(np.any(t > design)), int(over.size > 0), slack])
+                     _above(t, design), int(over.size > 0), slack, _above(t, covered)])
     return rows
+
+
+def _above(tensions, limits):
+    """1 if a rope is above its limit, 0 if none is; "" when a limit is unknown (a design
+    load not computed is no pass)."""
+    if not np.all(np.isfinite(limits)):
+        return ""
+    return int(np.any(tensions > limits))
 
 
 def check_chunk(task):

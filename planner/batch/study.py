@@ -160,6 +160,9 @@ class Study:
         The draws of a ``montecarlo`` study.
     cranes : int
         Planned cranes (lugs) of the base scene.
+    folder : pathlib.Path or None
+        The planning file's folder (absolute): relative paths in it (``plan.breakout_scene``)
+        are read from there, whatever the working folder; None: the working folder.
     """
 
     name: str
@@ -176,6 +179,7 @@ class Study:
     chunk: int = 1
     montecarlo: MonteCarloSpec | None = None
     cranes: int = 4
+    folder: Path | None = None
 
     @property
     def fingerprint(self):
@@ -293,7 +297,7 @@ class Study:
 
     def problem(self, case):
         """The :class:`PlanProblem` of one case (``InvalidScene`` if its values are not)."""
-        return problem_from_dict(self.raw_problem(case))
+        return problem_from_dict(self.raw_problem(case), base=self.folder)
 
     def _subset(self, name):
         if name == "all":
@@ -352,7 +356,8 @@ def loads_study(text, base=Path("."), stem="study"):
     except ValidationError as err:
         raise InvalidScene(one_line(err, _StudyFile)) from None
     spec = data.study
-    raw = _read_problem(base, spec.problem)
+    folder = (Path(base) / spec.problem).parent.resolve()  # the planning file's own folder
+    raw = _read_problem(base, spec.problem, folder)
     sample = data.sample
     if sample is not None and sample.weight is None and sample.cog is None:
         raise InvalidScene("[sample]: expected weight = [low, high] and/or cog = [dx, dy, dz]")
@@ -361,7 +366,7 @@ def loads_study(text, base=Path("."), stem="study"):
         raise InvalidScene(f"sample.weight = {sample.weight}: expected finite factors 0 < low <= high")
     if sample is not None and sample.cog is not None and not all(0 <= w < math.inf for w in sample.cog):
         raise InvalidScene(f"sample.cog = {list(sample.cog)}: expected finite half-widths >= 0 m")
-    montecarlo = _montecarlo_spec(data, raw)
+    montecarlo = _montecarlo_spec(data, raw, folder)
     if spec.kind == "check":
         for key in data.sweep:
             if key not in CHECK_KEYS:
@@ -381,7 +386,8 @@ def loads_study(text, base=Path("."), stem="study"):
         grid=spec.grid,
         chunk=spec.chunk or (5000 if spec.kind in ("check", "montecarlo") else 1),
         montecarlo=montecarlo,
-        cranes=problem_from_dict(raw).cranes,
+        cranes=problem_from_dict(raw, base=folder).cranes,
+        folder=folder,
     )
     if study.size > MAX_CASES:
         raise InvalidScene(f"study: {study.size} cases, expected at most {MAX_CASES}")
@@ -389,7 +395,7 @@ def loads_study(text, base=Path("."), stem="study"):
     return study
 
 
-def _montecarlo_spec(data, raw):
+def _montecarlo_spec(data, raw, folder):
     """The ``[montecarlo]`` table of a ``montecarlo`` study (refused with any other kind)."""
     table = data.montecarlo
     if data.study.kind != "montecarlo":
@@ -407,7 +413,7 @@ def _montecarlo_spec(data, raw):
     for key, value in values:
         if value is not None and not 0.0 <= value < math.inf:
             raise InvalidScene(f"{key} = {value!r}: expected a finite hook tolerance >= 0 m")
-    problem = problem_from_dict(raw)
+    problem = problem_from_dict(raw, base=folder)
     names = [c.name for c in problem.fleet]
     for name in table.tolerances:
         if name not in names:
@@ -424,8 +430,9 @@ def _montecarlo_spec(data, raw):
                           tolerance=table.tolerance, tolerances=tuple(table.tolerances.items()))
 
 
-def _read_problem(base, name):
-    """The study's planning file as a dict, refused unless it is a valid planning scene."""
+def _read_problem(base, name, folder):
+    """The study's planning file as a dict, refused unless it is a valid planning scene
+    (its relative paths read from ``folder``, its own folder)."""
     if not name.strip():
         raise InvalidScene("study.problem = '': expected the planning file's path")
     path = base / name
@@ -433,7 +440,7 @@ def _read_problem(base, name):
         raise InvalidScene(f"study.problem = {name!r}: no such planning file ({path})")
     try:
         raw = load_with(path, parse_toml)
-        problem_from_dict(raw)
+        problem_from_dict(raw, base=folder)
     except InvalidScene as err:
         raise InvalidScene(f"study.problem = {name!r}: {err}") from None
     return raw

@@ -1,0 +1,206 @@
+"""The last session's "seen, not fixed" list: numbers and outputs an engineer must trust.
+
+1. A batch study reads its planning file's ``plan.breakout_scene`` from that file's folder,
+   whatever the working folder.
+2. With breakout governing, the design-load chain's tilt and CoG notes name the breakout
+   tension as the static input (not "the worst searched").
+3. The Monte-Carlo study compares a drawn static tension with the static tension the design
+   load covers (``above_design_tension``), like for like; ``above_design_load`` is kept.
+4. ``solve``'s rope and sling-leg tables fit long names; the lift console gives a reason for
+   every event kind that did not happen within the range.
+5. The strength figure's force labels do not overlap at 24 stations.
+
+Tolerances: the chain is a product of factors, so closed forms agree to round-off (1e-9
+relative); the Monte-Carlo rows and the API use the same solves (exact equality of the 0/1
+columns).
+"""
+
+from __future__ import annotations
+
+import shutil
+
+import numpy as np
+import pytest
+from helpers import EXAMPLES
+
+from liftplan.planner.problem.file import load_problem, loads_problem
+
+PLAN = EXAMPLES / "sunken_block_plan.toml"
+SEABED = EXAMPLES / "sunken_block_breakout.toml"
+
+
+# -- 1. a study's planning file's relative paths ----------------------------------------------
+STUDY = """
+[study]
+problem = "../plans/sunken_block_plan.toml"
+kind = "plan"
+
+[sweep]
+"plan.tolerance.heel" = [1.0, 2.0]
+"""
+
+
+def test_study_reads_the_breakout_scene_from_the_planning_files_folder(tmp_path, monkeypatch):
+    from liftplan.planner.batch.study import load_study
+
+    (tmp_path / "plans").mkdir()
+    (tmp_path / "studies").mkdir()
+    (tmp_path / "elsewhere").mkdir()
+    shutil.copy(PLAN, tmp_path / "plans" / PLAN.name)
+    shutil.copy(SEABED, tmp_path / "plans" / SEABED.name)
+    (tmp_path / "studies" / "breakout.toml").write_text(STUDY, encoding="utf-8")
+    monkeypatch.chdir(tmp_path / "elsewhere")  # neither the study's nor the plan's folder
+    study = load_study("../studies/breakout.toml")
+    assert study.grid_reasons == ["", ""]  # every grid point is a valid planning scene
+    problem = study.problem({"plan.tolerance.heel": 2.0})
+    assert problem.breakout is not None
+    # the same breakout load as the planning file read directly
+    direct = load_problem(tmp_path / "plans" / PLAN.name).breakout
+    assert problem.breakout.total == pytest.approx(direct.total, rel=1e-12)
+    assert study.folder == (tmp_path / "plans").resolve()
+
+
+def test_study_names_a_missing_breakout_scene_with_the_planning_files_folder(tmp_path):
+    from liftplan.model.errors import InvalidScene
+    from liftplan.planner.batch.study import load_study
+
+    (tmp_path / "plans").mkdir()
+    shutil.copy(PLAN, tmp_path / "plans" / PLAN.name)  # the seabed scene not copied
+    (tmp_path / "study.toml").write_text(STUDY.replace("../plans", "plans"), encoding="utf-8")
+    with pytest.raises(InvalidScene, match="plan.breakout_scene = 'sunken_block_breakout.toml'"):
+        load_study(tmp_path / "study.toml")
+
+
+# -- 2. the chain's notes when breakout governs -----------------------------------------------
+@pytest.fixture(scope="module")
+def block_plan():
+    from liftplan.planner.plan import plan
+
+    return plan(load_problem(PLAN))
+
+
+def _factor(crane, name):
+    return next(f for f in crane.design.factors if f.name == name)
+
+
+def test_tilt_note_names_the_breakout_where_it_governs(block_plan):
+    cranes = block_plan.capacity
+    governs = [c for c in cranes if c.governs == "breakout"]
+    box = [c for c in cranes if c.governs == "box"]
+    assert governs and box  # the example has both (see its JSON "breakout")
+    for c in cranes:
+        note = _factor(c, "tilt").note
+        assert "worst searched" not in note
+        assert f"share at the rules' tilt {c.tilt.load:.4g} t against" in note
+    for c in governs:
+        note = _factor(c, "tilt").note
+        assert f"the breakout tension {c.breakout:.4g} t (breakout governs over the worst in the box " \
+               f"{max(c.worst, c.nominal):.4g} t)" in note
+        # the CoG note's ratio is the box's, not the breakout tension's over the nominal
+        cog = _factor(c, "cog").note
+        assert f"worst / nominal = {max(c.worst, c.nominal) / c.nominal:.4f}" in cog
+        assert "no CoG envelope on it" in cog
+    for c in box:  # as without a breakout case (static_note says the breakout is lower)
+        assert f"against the worst in the box {max(c.worst, c.nominal):.4g} t;" in _factor(c, "tilt").note
+        assert "breakout" not in _factor(c, "cog").note
+    # the JSON carries the same notes
+    data = block_plan.design_loads.to_json()
+    assert [next(f["note"] for f in c["factors"] if f["name"] == "tilt") for c in data["cranes"]] == \
+        [_factor(c, "tilt").note for c in cranes]
+
+
+def test_breakout_static_input_through_the_chain_by_hand(block_plan):
+    """docs/design-loads.md "The breakout input": S = max(box worst, breakout, tilt share),
+    SHL = S x contingency x CoG x hook skew + rigging, DHL = SHL x DAF."""
+    rules = block_plan.problem.rules
+    for c in block_plan.capacity:
+        static = max(c.worst, c.nominal, c.breakout, c.tilt.load)
+        factors = {f.name: f.value for f in c.design.factors}
+        shl = static * rules.weight_contingency * factors["cog"] * factors["skew"] + c.design.rigging_weight
+        assert c.design.static_hook_load == pytest.approx(shl, rel=1e-12)
+        assert c.design_hook_load == pytest.approx(shl * factors["daf"], rel=1e-12)
+    first = block_plan.capacity[0]  # the docs' worked numbers (crane 1, breakout governs)
+    assert (round(first.breakout, 1), round(first.design.static_hook_load, 1),
+            round(first.design_hook_load, 1)) == (263.5, 276.7, 332.0)
+
+
+# -- 3. the Monte-Carlo study: like with like -------------------------------------------------
+RULES = """
+[rules]
+location = "inshore"
+rigging_weight = 20.0
+skew_factor = 1.25
+"""
+
+
+@pytest.fixture(scope="module")
+def tanker_plan():
+    from liftplan.planner.plan import plan
+
+    return plan(load_problem(EXAMPLES / "tanker_plan.toml"))  # hook_tolerance = 0.02 m
+
+
+def test_design_tension_is_the_static_load_the_design_load_is_built_from(tanker_plan):
+    """Closed form: the chain's static share times the hook skew; through the same factors
+    (contingency, CoG, rigging, DAF) it is the design hook load. With rigging and a skew
+    factor set, so no factor is 1 by accident."""
+    from liftplan.planner.plan import plan
+
+    text = (EXAMPLES / "tanker_plan.toml").read_text(encoding="utf-8")
+    rigged = plan(loads_problem(text.replace("[report]", RULES + "\n[report]", 1)))
+    for p in (tanker_plan, rigged):
+        rules = p.problem.rules
+        for c in p.capacity:
+            factors = {f.name: f.value for f in c.design.factors}
+            static = max(c.static_input, c.tilt.load)
+            assert c.design_tension == pytest.approx(static * factors["skew"], rel=1e-12)
+            redone = (c.design_tension * rules.weight_contingency * factors["cog"]
+                      + c.design.rigging_weight) * factors["daf"]
+            assert redone == pytest.approx(c.design_hook_load, rel=1e-12)
+            # it covers the plan's own worst of that rope (every hook error in the tolerance)
+            assert c.design_tension >= c.worst
+    assert {f.value for c in rigged.capacity for f in c.design.factors if f.name == "skew"} == {1.25}
+    assert all(c.design.rigging_weight == 20.0 for c in rigged.capacity)
+
+
+def test_montecarlo_above_design_tension_is_like_for_like(tanker_plan):
+    from liftplan.planner.batch.montecarlo import hook_monte_carlo
+
+    design_tension = np.array([c.design_tension for c in tanker_plan.capacity])
+    # within the planned tolerance (uniform) no draw exceeds what the design covers
+    inside = hook_monte_carlo(tanker_plan, draws=1000, seed=3).summary()
+    assert inside["p_above_design_tension"] == 0.0
+    # 2.5 x the tolerance: draws above the design's static tension, none above the factored
+    # design hook load (which carries contingency and DAF: 1.26 x here)
+    mc = hook_monte_carlo(tanker_plan, draws=2000, tolerance=0.05, seed=3)
+    s = mc.summary()
+    solved = mc.tensions[mc.solved]
+    assert s["p_above_design_tension"] == np.mean(np.any(solved > design_tension, axis=1))
+    assert s["p_above_design_tension"] > 0.05
+    assert s["p_above_design_load"] == 0.0
+    assert s["design_tension"] == dict(zip(tanker_plan.labels, design_tension.tolist()))
+
+
+def test_montecarlo_rows_carry_above_design_tension(tmp_path, tanker_plan):
+    """The batch table's rows (the code each Dask task's result goes through), not a cluster."""
+    from liftplan.planner.batch.montecarlo import hook_monte_carlo
+    from liftplan.planner.batch.run import header, montecarlo_chunk, montecarlo_rows
+    from liftplan.planner.batch.study import load_study
+
+    shutil.copy(EXAMPLES / "tanker_plan.toml", tmp_path / "tanker_plan.toml")
+    (tmp_path / "mc.toml").write_text('[study]\nproblem = "tanker_plan.toml"\nkind = "montecarlo"\n'
+                                      "[montecarlo]\ndraws = 400\nseed = 3\ntolerance = 0.05\n",
+                                      encoding="utf-8")
+    study = load_study(tmp_path / "mc.toml")
+    api = hook_monte_carlo(tanker_plan, draws=400, tolerance=0.05, seed=3)
+    cases = list(study.cases())
+    rows = [dict(zip(header(study), row)) for row in
+            montecarlo_rows(study, tanker_plan, cases, montecarlo_chunk(tanker_plan.scene, api.errors))]
+    design_tension = np.array([c.design_tension for c in tanker_plan.capacity])
+    design_load = np.array([c.design_hook_load for c in tanker_plan.capacity])
+    assert [r["above_design_tension"] for r in rows] == \
+        np.any(api.tensions > design_tension, axis=1).astype(int).tolist()
+    assert [r["above_design_load"] for r in rows] == \
+        np.any(api.tensions > design_load, axis=1).astype(int).tolist()
+    assert sum(r["above_design_tension"] for r in rows) > sum(r["above_design_load"] for r in rows)
+    assert header(study)[-1] == "above_design_tension"  # appended: the old columns keep their place
