@@ -1,8 +1,8 @@
 """Console summary of a sling lift plan (``liftplan plan`` without ``--json``).
 
-Two cranes (:class:`~liftplan.planner.slings.SlingPlan`) or three and more on body-fixed apexes
-(:class:`~liftplan.planner.slings.apex.ApexSlingPlan`): per crane its lugs, radius, chart SWL,
-hook loads and the rules' design hook load; per lug its leg's sling angle and tension, and the
+Two cranes (:class:`~liftplan.planner.slings.SlingPlan`) or three and more, on body-fixed apexes or
+hooks hinged about their pairs (:class:`~liftplan.planner.slings.apex.ApexSlingPlan`): per crane
+its lugs, radius, chart SWL, hook loads and the rules' design hook load; per lug its leg's sling angle and tension, and the
 lug's design load from the rules' chain.
 """
 
@@ -19,10 +19,11 @@ def _search_lines(plan):
     causes = ", ".join(f"{n} {text}" for text, n in plan.ruled_out.items()) or "none"
     if hasattr(plan, "inner"):  # three or more cranes: the held search on the apexes
         stats = plan.stats
-        legs = problem.fleet[0].sling.legs
+        sling = problem.fleet[0].sling
+        rig = "spreader bars" if sling.spreader is not None else f"{sling.legs}-leg slings"
         return [
-            f"{problem.cranes} cranes on {legs}-leg slings: {len(plan.rigs)} sling apexes (body-fixed "
-            f"lift points) among {len(problem.candidates)} candidates; {stats.rows} (set, crane "
+            f"{problem.cranes} cranes on {rig}: {len(plan.rigs)} {plan.lift_points_text} "
+            f"among {len(problem.candidates)} candidates; {stats.rows} (set, crane "
             f"assignment) rows, {stats.evaluated} evaluated, search {stats.stopped}, lower bound "
             f"{stats.lower_bound:.4g}; ruled out: {causes}",
             f"tolerance box heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g} "

@@ -184,15 +184,12 @@ def render_html(plan, today=None):
         title = "Lift plan: two cranes on slings, lugs chosen by liftplan"
     else:
         stats = plan.stats
-        search_rows = [("sling apexes (body-fixed lift points)", len(plan.rigs), "-"),
+        search_rows = [(plan.lift_points_text, len(plan.rigs), "-"),
                        ("(set, crane assignment) rows", stats.rows, "-"),
                        ("evaluated", stats.evaluated, "-"),
                        ("search stopped", stats.stopped, "-"),
                        ("certified lower bound", f"{stats.lower_bound:.4g}", "objective")]
-        how = ("Each 3/4-leg sling fixes its hook to the body (an apex); the hooks hold the level "
-               "preload over the tolerance box (the held-preload search on the apexes), and the "
-               "legs share each hook load by the apex's statics; checked on the rigging model with "
-               "free hooks and elastic legs.")
+        how = plan.method_text
         title = f"Lift plan: {problem.cranes} cranes on slings, lugs chosen by liftplan"
     search = _table(["quantity", "value", "unit"],
                     search_rows + [(f"ruled out: {text}", n, "options")

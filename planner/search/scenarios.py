@@ -29,7 +29,7 @@ from functools import cached_property
 import numpy as np
 
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.statics import BLOCK, rope_model
+from liftplan.model.statics import BLOCK, hinged_model, rope_model
 from liftplan.planner.problem.fleet import rule_limits
 
 
@@ -77,7 +77,36 @@ def run_block(block, n, attitudes, params):
     return tensions, shift, gain
 
 
-def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None):
+def held_model(problem, n):
+    """The rope model the problem's lift points need: :func:`~liftplan.model.statics.rope_model`
+    for body-fixed candidates, :func:`~liftplan.model.statics.hinged_model` when the problem
+    carries hinges (``PlanProblem.hinges``: slings hinged about a lug pair)."""
+    return rope_model(n) if problem.hinge_rows is None else hinged_model(n)
+
+
+def set_hinges(problem, sets):
+    """Hinge rows (..., n, 8) of the candidates in ``sets`` (..., n), or None (body-fixed)."""
+    rows = problem.hinge_rows
+    return None if rows is None else rows[np.asarray(sets, dtype=np.int64)]
+
+
+def level_bar_moment(problem, points, hinges):
+    """Level-pose bar-weight moment, world plan (..., 2) [t m]: sum_i w_i (P_i - bar_i)_plan
+    (zero without hinges or bars); see :func:`~liftplan.model.statics.hinged_points`.
+
+    points : (..., n, 3) lift points at level (the hooks) [m]; hinges : (..., n, 8) or None.
+    """
+    points = np.asarray(points, dtype=float)
+    if hinges is None:
+        return np.zeros((*points.shape[:-2], 2))
+    hinges = np.asarray(hinges, dtype=float)
+    centre = 0.5 * (hinges[..., 0:3] + hinges[..., 3:6])
+    centre[..., 2] += hinges[..., 6]
+    lever = ((points - centre) * hinges[..., 7:8]).sum(axis=-2)
+    return lever[..., :2] @ rotation_matrix(0.0, 0.0, problem.yaw)[:2, :2].T
+
+
+def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None, hinges=None):
     """Parameter vectors (:class:`~liftplan.model.statics.Layout`) of lug sets.
 
     Parameters
@@ -89,15 +118,22 @@ def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None):
     weight : (...) [t], optional   the body weight (default the problem's)
     rope_length, EA : (..., n)  [m, t], optional
         Each rope's l0 and EA (default the first n cranes of the fleet, in fleet order).
+    hinges : (..., n, 8), optional
+        Hinge rows (:class:`~liftplan.model.statics.HingedLayout`; :func:`set_hinges`),
+        appended for :func:`~liftplan.model.statics.hinged_model`.
 
     Returns
     -------
-    numpy.ndarray, shape (..., 6 n + 6)
+    numpy.ndarray, shape (..., 6 n + 6), or (..., 14 n + 6) with ``hinges``
     """
     weight = np.asarray(problem.body.weight if weight is None else weight, dtype=float)
     points, cog, boom = (np.asarray(v, dtype=float) for v in (points, cog, boom))
     n = points.shape[-2]
-    batch = np.broadcast_shapes(points.shape[:-2], cog.shape[:-1], boom.shape[:-1], weight.shape)
+    shapes = [points.shape[:-2], cog.shape[:-1], boom.shape[:-1], weight.shape]
+    if hinges is not None:
+        hinges = np.asarray(hinges, dtype=float)
+        shapes.append(hinges.shape[:-2])
+    batch = np.broadcast_shapes(*shapes)
     points = np.broadcast_to(points, (*batch, n, 3))
     if rope_length is None:
         rope_length = [c.rope_length for c in problem.fleet[:n]]
@@ -111,7 +147,7 @@ def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None):
         value = np.asarray(value, dtype=float)
         return np.broadcast_to(value[..., None] if width == 1 else value, (*batch, width))
 
-    return np.concatenate([
+    parts = [
         column(math.radians(problem.yaw), 1),
         points.reshape(*batch, 3 * n),
         column(cog, 3),
@@ -120,7 +156,10 @@ def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None):
         column(rope_length, n),
         column(EA, n),
         column(diameter, 1),
-    ], axis=-1)
+    ]
+    if hinges is not None:
+        parts.append(np.broadcast_to(hinges, (*batch, n, 8)).reshape(*batch, 8 * n))
+    return np.concatenate(parts, axis=-1)
 
 
 def box_attitudes(problem, heel_count, trim_count):
@@ -185,7 +224,9 @@ class LugSet:
         self.scale = np.ones(self.n) if problem.objective == "spread" else 1.0 / self.swl
         # boom heights with every rope just unstretched at the level pose
         self.boom_zero = problem.lift_height + self.points[:, 2] + self.rope_length
-        self._model = rope_model(self.n)
+        #: hinge rows of the lift points (None: body-fixed), see ``PlanProblem.hinges``
+        self.hinges = set_hinges(problem, self.indices)
+        self._model = held_model(problem, self.n)
 
     @cached_property
     def level_statics(self):
@@ -195,6 +236,12 @@ class LugSet:
     def statics_at(self, scenario):
         """(A, b) of the statics at a scenario's attitude and CG: A T = b  [-, m; t, t m]."""
         problem = self.problem
+        if self.hinges is not None:  # hinged lift points: posed by the model itself
+            x, _ = self._columns([scenario])
+            p = pack(problem, self.points, np.array(problem.body.cog) + scenario.cog_offset,
+                     self.boom_zero, rope_length=self.rope_length, EA=self.EA, hinges=self.hinges)
+            a_flat, b_vec, _, _ = self._model.statics_fast(x[0], p)
+            return a_flat.reshape(self.n, 3).T, b_vec
         rot = rotation_matrix(scenario.heel, scenario.trim, problem.yaw)
         plan = (self.points @ rot.T)[:, :2]
         cog = rot @ (np.array(problem.body.cog) + np.array(scenario.cog_offset))
@@ -232,7 +279,7 @@ class LugSet:
         for offset in np.unique(offsets, axis=0):
             rows = np.all(offsets == offset, axis=1)
             p = pack(self.problem, self.points, cog + offset, boom,
-                     rope_length=self.rope_length, EA=self.EA)
+                     rope_length=self.rope_length, EA=self.EA, hinges=self.hinges)
             t, d, g = run_block(self._model.held_block, self.n, x[rows], p)
             tensions[rows], shift[rows], gain[rows] = t, d, g
         return tensions, shift, gain

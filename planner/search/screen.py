@@ -28,10 +28,16 @@ from itertools import combinations, permutations
 
 import numpy as np
 
-from liftplan.model.statics import rope_model
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.dual import preload_lp_bound
-from liftplan.planner.search.scenarios import box_attitudes, pack, run_block
+from liftplan.planner.search.scenarios import (
+    box_attitudes,
+    held_model,
+    level_bar_moment,
+    pack,
+    run_block,
+    set_hinges,
+)
 
 # Why a set is infeasible (screening can show it for n <= 4; larger sets are left to the LP).
 FEASIBLE = 0
@@ -236,19 +242,24 @@ def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
     plan_y = s * points[..., 0] + c * points[..., 1]
     a_level = np.stack([np.ones((count, n)), plan_x, plan_y], axis=1)  # (N, 3, n)
     b_level = weight * np.array([1.0, c * cog[0] - s * cog[1], s * cog[0] + c * cog[1]])
+    hinges = set_hinges(problem, sets)  # slings hinged about a pair (None: body-fixed points)
+    if hinges is not None:  # a spreader bar's weight off its hook: the moment rows per set
+        b_level = b_level - np.pad(level_bar_moment(problem, points, hinges), ((0, 0), (1, 0)))
 
     # tensions at the screening scenarios with zero preload, and their gains (all at once:
     # the CG is in the parameter vector, one column per (row, scenario))
     x, offsets = scenarios
     m = len(x)
     columns_p = pack(problem, points[:, None], (cog + offsets)[None], boom_zero[:, None],
-                     rope_length=rope_length[:, None], EA=rope_ea[:, None]).reshape(-1, 6 * n + 6)
+                     rope_length=rope_length[:, None], EA=rope_ea[:, None],
+                     hinges=None if hinges is None else hinges[:, None])
+    columns_p = columns_p.reshape(count * m, -1)
     columns_x = np.tile(x, (count, 1))
-    q, _, gain = run_block(rope_model(n).held_columns, n, columns_x, columns_p)
+    q, _, gain = run_block(held_model(problem, n).held_columns, n, columns_x, columns_p)
     q = q.reshape(count, m, n)
     gain = gain.reshape(count, m, n, n) / stiffness[:, None, None, :]  # P_k
 
-    inside = _cog_inside(plan_x, plan_y, b_level[1] / weight, b_level[2] / weight)
+    inside = _cog_inside(plan_x, plan_y, b_level[..., 1:2] / weight, b_level[..., 2:3] / weight)
     boom_min = np.array([c.boom_min for c in fleet])[cranes]
     boom_max = np.array([c.boom_max for c in fleet])[cranes]
     limit, share_limit = rule_limits(problem, swl, cranes)
@@ -352,11 +363,15 @@ def _worst_pairs(values, pair):
 
 
 def _collinear(plan_x, plan_y):
-    """Sets whose lugs lie on a line in plan (relative plan area below 1e-9)."""
+    """Sets whose lugs lie on a line in plan (relative plan area below 1e-6).
+
+    The tolerance sits above the rounding of sxx syy - sxy^2 (a few eps (sxx + syy)^2): with
+    1e-18 a set with two coincident lift points (two sling rigs sharing a hook position) passed
+    as not collinear and its singular statics stopped the screening."""
     dx = plan_x - plan_x.mean(axis=1, keepdims=True)
     dy = plan_y - plan_y.mean(axis=1, keepdims=True)
     sxx, syy, sxy = (dx * dx).sum(1), (dy * dy).sum(1), (dx * dy).sum(1)
-    return sxx * syy - sxy**2 <= 1e-18 * (sxx + syy) ** 2
+    return sxx * syy - sxy**2 <= 1e-12 * (sxx + syy) ** 2
 
 
 def _cog_inside(plan_x, plan_y, cog_x, cog_y):

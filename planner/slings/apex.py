@@ -1,27 +1,40 @@
-"""Three or more cranes on 3- or 4-leg slings: each hook a body-fixed apex, planned by the search.
+"""Three or more cranes on slings: each hook a lift point of the held-preload search.
 
-A 3-leg sling of given leg lengths fixes its apex to the body (trilateration), and so does a
-4-leg sling whose legs all reach one apex as made (:mod:`.geometry`). With every leg taut the
-crane then acts at a **body-fixed point**, exactly what the held-preload search
-(:mod:`liftplan.planner.search`) plans: a vertical hoist line above each lift point. So:
+The held-preload search (:mod:`liftplan.planner.search`) plans a vertical hoist line above each
+lift point. A sling's hook is such a point:
+
+* a 3-leg sling of given leg lengths fixes its apex to the body (trilateration), and so does a
+  4-leg sling whose legs all reach one apex as made (:mod:`.geometry`): a **body-fixed** point;
+* a 2-leg sling, and a spreader bar that spans its pair (bottom legs parallel and vertical),
+  swing freely about the lug pair: under the vertical hoist line the hook hangs in the vertical
+  plane through the pair whatever the body's attitude (hook = A' + c e_z + s u + h n). That is
+  a **hinged** lift point, which the one casadi model poses exactly
+  (:class:`~liftplan.model.statics.HingedRopeModel`); the derived problem carries each rig's
+  hinge (``PlanProblem.hinges``) and the search uses the hinged model throughout.
+
+So:
 
 1. every rig the slings can take (:func:`.rigs.crane_rigs`) becomes a candidate lift point at
-   its apex (named ``LUG+LUG+LUG``);
-2. a derived :class:`PlanProblem` on those apexes, the same cranes without slings (each hoist
-   rope now ends at its apex; reach and chart SWL at the apex's radius), is searched by the
-   public :func:`~liftplan.planner.search.branch.search` (sets x crane assignments, exact,
-   certified gap);
+   its hook at level (named ``LUG+LUG+...``);
+2. a derived :class:`PlanProblem` on those hooks, the same cranes without slings (each hoist
+   rope now ends at its hook; reach and chart SWL at the hook's radius; a spreader bar's weight
+   as rigging on its hook), is searched by the public
+   :func:`~liftplan.planner.search.branch.search` (sets x crane assignments, exact, certified
+   gap);
 3. sets whose slings would **share a lug** are dropped from the ranking: the search is asked for
    a longer ranking (x 4 each round) until ``top`` sets with disjoint slings are found or the
    ranking runs out. The search's ranking is exact to its length, so the first disjoint set in
    it is the best disjoint set; its certified lower bound holds over all sets, so also over the
    disjoint ones;
-4. mapped back: which crane takes which k lugs, hook loads, each leg's tension (the apex's
-   statics under the hook load along the world vertical seen from the tilted body, over the
-   tolerance box and the CG envelope), sling angles and the rules' lug design loads.
+4. mapped back: which crane takes which lugs, hook loads (a bar's weight added), each leg's
+   tension (each sling's statics under the hook load along the world vertical, the hook where
+   the rig puts it at each attitude, over the tolerance box and the CG envelope), sling angles
+   and the rules' lug design loads.
 
-All slings must have the same leg count and length (any crane may take any apex); 2-leg slings
-and spreader bars hinge about their pair and are planned for two cranes only.
+All slings must be the same (leg count, length, spreader): any crane may take any rig. A
+spreader on three cranes or more takes only pairs it spans (lug spacing = bar length to 1 mm):
+a bar of another length is a trapezoid linkage whose sway changes with the tilt, which the held
+model does not pose; those pairs are counted as ruled out (two cranes plan any pair).
 """
 
 from __future__ import annotations
@@ -35,7 +48,7 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.model.frames import rotation_matrix
-from liftplan.planner.slings.geometry import leg_split
+from liftplan.planner.slings.geometry import hinge_rows, hinged_hooks, leg_split, parallel_spreader_legs
 from liftplan.planner.slings.lift import SlingLift
 from liftplan.planner.slings.rigs import crane_rigs
 
@@ -44,44 +57,51 @@ LEG_GRID = 9
 
 
 def apex_problem(problem):
-    """The derived problem whose candidates are the slings' apexes.
+    """The derived problem whose candidates are the slings' hooks.
 
     Returns
     -------
     derived : PlanProblem
+        With ``hinges`` when the slings hinge about their pairs (2 legs, spreader bars).
     rigs : Rigs
         Candidate j of ``derived`` is rig j (its lugs ``rigs.lugs[j]``).
     """
     from liftplan.planner.problem.definition import Candidate
+    from liftplan.planner.slings.two_crane import rules_with_bars
 
     fleet = problem.fleet
     first = fleet[0].sling
     for crane in fleet:
         sling = crane.sling
-        if sling is None or not sling.body_fixed:
-            raise InvalidScene(
-                f"cranes[{crane.name}].sling: with {len(fleet)} cranes expected a 3- or 4-leg sling "
-                "(no spreader) on every crane: a 2-leg sling or a spreader hinges about its lug pair, "
-                "so its hook is not a body-fixed point the held-preload search can plan")
-        if (sling.legs, sling.length) != (first.legs, first.length):
+        if (sling.legs, sling.length, sling.spreader) != (first.legs, first.length, first.spreader):
+            bar = "" if first.spreader is None else " and spreader"
             raise InvalidScene(
                 f"cranes[{crane.name}].sling = {{ legs = {sling.legs}, length = {sling.length:g} }}: "
-                f"expected the same legs and length on every crane ({first.legs} legs of "
-                f"{first.length:g} m on {fleet[0].name}); any crane may take any apex")
-    rigs = crane_rigs(problem, fleet[0], problem.body.weight / len(fleet))
+                f"expected the same legs{bar} and length on every crane ({first.legs} legs of "
+                f"{first.length:g} m on {fleet[0].name}); any crane may take any rig")
+    hinged = not first.body_fixed
+    rigs = crane_rigs(problem, fleet[0], problem.body.weight / len(fleet), parallel=hinged)
+    what = "spreader" if first.spreader is not None else f"{first.legs}-leg sling"
     if len(rigs) < len(fleet):
         causes = "; ".join(f"{n} {text}" for text, n in rigs.ruled_out.items())
-        raise PlanInfeasible(f"{len(rigs)} {first.legs}-leg sling rigs among {len(problem.candidates)} "
+        raise PlanInfeasible(f"{len(rigs)} {what} rigs among {len(problem.candidates)} "
                              f"candidates for {len(fleet)} cranes "
                              f"({causes or 'no tuples on adjacent groups'})")
     names = problem.names
     candidates = tuple(Candidate(name="+".join(names[i] for i in lugs), at=tuple(map(float, hook)))
                        for lugs, hook in zip(rigs.lugs, rigs.hook))
     bare = tuple(dataclasses.replace(c, sling=None) for c in fleet)
+    hinges = ()
+    if hinged:
+        bar = first.spreader
+        hinges = tuple(map(tuple, hinge_rows(
+            problem.points[rigs.lugs[:, 0]], problem.points[rigs.lugs[:, 1]],
+            0.0 if bar is None else first.length, 0.0 if bar is None else bar.weight)))
     try:
-        derived = dataclasses.replace(problem, candidates=candidates, fleet=bare)
+        derived = dataclasses.replace(problem, candidates=candidates, fleet=bare, hinges=hinges,
+                                      rules=rules_with_bars(problem))
     except InvalidScene as err:
-        raise PlanInfeasible(f"the slings' {len(rigs)} apexes as lift points: {err}") from None
+        raise PlanInfeasible(f"the slings' {len(rigs)} hooks as lift points: {err}") from None
     return derived, rigs
 
 
@@ -132,7 +152,8 @@ def _disjoint(rigs, indices):
 
 @dataclass(frozen=True)
 class ApexSlingPlan(SlingLift):
-    """Three or more cranes on 3- or 4-leg slings.
+    """Three or more cranes on slings (3/4-leg apexes, or 2-leg slings / spreaders hinged
+    about their pairs).
 
     Parameters
     ----------
@@ -150,7 +171,38 @@ class ApexSlingPlan(SlingLift):
     rigs: object
     ruled_out: dict
 
-    lift_text = "slings with body-fixed apexes"
+    @property
+    def lift_text(self):
+        return {"fixed": "slings with body-fixed apexes",
+                "pair": "2-leg slings hinged about their lug pairs",
+                "spreader": "spreader bars hinged about their lug pairs"}[self.rigs.kind]
+
+    @property
+    def lift_points_text(self):
+        """What the search's lift points are, for the console and the report."""
+        return "sling apexes (body-fixed lift points)" if not self.hinged else \
+            "sling hooks (lift points hinged about their lug pairs)"
+
+    @property
+    def method_text(self):
+        """How the plan's hook and leg loads were found, one sentence for the report."""
+        if not self.hinged:
+            return ("Each 3/4-leg sling fixes its hook to the body (an apex); the hooks hold the level "
+                    "preload over the tolerance box (the held-preload search on the apexes), and the "
+                    "legs share each hook load by the apex's statics; checked on the rigging model with "
+                    "free hooks and elastic legs.")
+        rig = "2-leg sling" if self.rigs.kind == "pair" else \
+            "spreader bar (spanning its pair, bottom legs vertical)"
+        return (f"Each {rig} swings about its lug pair, so its hook hangs in the vertical plane "
+                "through the pair at every heel and trim; the held-preload search poses the hooks so "
+                "(the hinged lift points of the one casadi model), the hooks hold the level preload "
+                "over the tolerance box, and each sling's legs carry its hook load by its statics at "
+                "each attitude; checked on the rigging model with free hooks and elastic legs.")
+
+    @property
+    def hinged(self):
+        """True when the hooks swing about their lug pairs (2-leg slings, spreader bars)."""
+        return self.rigs.kind != "fixed"
 
     @property
     def objective(self):
@@ -196,7 +248,8 @@ class ApexSlingPlan(SlingLift):
 
     @property
     def hook_nominal(self):
-        return self._per_crane(self.inner.chosen.preload)
+        """Hook load at level, nominal CG: the body's share and a spreader bar  [t]."""
+        return self._per_crane(self.inner.chosen.preload) + self.bar_weights
 
     @cached_property
     def _design(self):
@@ -205,7 +258,7 @@ class ApexSlingPlan(SlingLift):
     @property
     def hook_worst(self):
         """Largest hook load over the box, the CG envelope and the hook errors  [t]."""
-        return self._per_crane([c.worst for c in self._design.cranes])
+        return self._per_crane([c.worst for c in self._design.cranes]) + self.bar_weights
 
     @property
     def tilt_shares(self):
@@ -222,35 +275,60 @@ class ApexSlingPlan(SlingLift):
 
     @property
     def top_legs(self):
-        return (None,) * len(self.problem.fleet)
+        """A spreader's two top legs at level, per crane  [t] (None without a bar)."""
+        return self._legs[3]
 
     @property
     def top_angles(self):
-        return (None,) * len(self.problem.fleet)
+        """A spreader's two top legs' angles from the horizontal at level  [deg]."""
+        if self.rigs.top_angles is None:
+            return (None,) * len(self.problem.fleet)
+        return tuple(self.rigs.top_angles[self.inner.chosen.indices[k]] for k in self._order)
 
     @cached_property
     def _legs(self):
-        """(level legs, worst legs, least leg) per crane from the hook loads on the box grid."""
+        """(level legs, worst legs, least leg, level top legs) per crane, from the hook loads on
+        the box grid: each sling's statics under its hook load along the world vertical, the
+        hook where the rig puts it at that attitude."""
         problem = self.problem
         heel = np.linspace(-problem.heel_tolerance, problem.heel_tolerance, LEG_GRID)
         trim = np.linspace(-problem.trim_tolerance, problem.trim_tolerance, LEG_GRID)
         hh, tt = (v.ravel() for v in np.meshgrid(heel, trim, indexing="ij"))
-        ups = np.array([rotation_matrix(h, t, problem.yaw).T @ [0.0, 0.0, 1.0] for h, t in zip(hh, tt)])
-        hooks = np.vstack([self.inner.tensions_at(hh, tt, tuple(o))
-                           for o in problem.cog_envelope.offsets()])[:, self._order]
-        ups = np.tile(ups, (len(problem.cog_envelope.offsets()), 1))
-        level, worst, least = [], [], []
+        offsets = problem.cog_envelope.offsets()
+        shares = np.vstack([self.inner.tensions_at(hh, tt, tuple(o)) for o in offsets])[:, self._order]
+        rots = [rotation_matrix(h, t, problem.yaw) for h, t in zip(hh, tt)] * len(offsets)
+        level_rot = rotation_matrix(0.0, 0.0, problem.yaw)
+        level, worst, least, tops = [], [], [], []
         for c, crane in enumerate(problem.fleet):
-            apex, lugs = self.hooks[c], problem.points[list(self.groups[c])]
-            stiff = np.full(len(lugs), crane.sling.EA / crane.sling.length)
-            level.append(leg_split(apex, lugs, (0.0, 0.0, self.hook_nominal[c]), stiff))
-            grid = np.array([leg_split(apex, lugs, load * up, stiff)
-                             for load, up in zip(hooks[:, c], ups)])
+            lugs = problem.points[list(self.groups[c])]
+            hooks = shares[:, c] + self.bar_weights[c]
+
+            def split(load, rot, c=c, crane=crane, lugs=lugs):
+                return self._split(c, crane, lugs, load, rot)
+
+            nominal, top = split(self.hook_nominal[c], level_rot)
+            grid = np.array([split(load, rot)[0] for load, rot in zip(hooks, rots)])
+            level.append(nominal)
+            tops.append(top)
             # the hook errors raise the hook's worst above the grid's: the legs in proportion
-            ratio = max(1.0, self.hook_worst[c] / max(hooks[:, c].max(), 1e-12))
+            ratio = max(1.0, self.hook_worst[c] / max(hooks.max(), 1e-12))
             worst.append(grid.max(axis=0) * ratio)
             least.append(float(grid.min()))
-        return tuple(level), tuple(worst), least
+        return tuple(level), tuple(worst), least, tuple(tops)
+
+    def _split(self, c, crane, lugs, load, rot):
+        """Crane c's lug legs (and a spreader's top legs, else None) under a vertical hook load
+        ``load`` [t] with the body at attitude ``rot``  [t]."""
+        if not self.hinged:  # body-fixed apex: the load along the vertical seen from the body
+            stiff = np.full(len(lugs), crane.sling.EA / crane.sling.length)
+            return leg_split(self.hooks[c], lugs, load * (rot.T @ [0.0, 0.0, 1.0]), stiff), None
+        j = self.inner.chosen.indices[self._order[c]]
+        hook = hinged_hooks(self.inner.problem.hinge_rows[[j]], self.rigs.hook[[j]], rot)[0]
+        posed = lugs @ rot.T
+        bar = crane.sling.spreader
+        if bar is None:
+            return leg_split(hook, posed, (0.0, 0.0, load)), None
+        return parallel_spreader_legs(hook, posed, crane.sling.length, load, bar.weight)
 
     @property
     def legs_nominal(self):

@@ -195,3 +195,76 @@ def spreader_hook(a, b, bottom, bar, top, load, bar_weight, samples=181, refine=
         return out
 
     return world(hook), world(e1), world(e2)
+
+
+def hinge_rows(a, b, drop=0.0, bar_weight=0.0):
+    """Hinge rows (N, 8) of :class:`~liftplan.model.statics.HingedLayout`: lugs a, b (N, 3)
+    [m], the parallel bottom legs' drop c [m] (0: a 2-leg sling), the bar's weight w [t]."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    count = len(a)
+    return np.column_stack([a, b, np.full(count, float(drop)), np.full(count, float(bar_weight))])
+
+
+def _unit(v):
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def hinged_hooks(rows, level_hooks, rot):
+    """Hooks of slings hinged about their pairs with the body turned by ``rot``  [m].
+
+    The numpy twin of :func:`liftplan.model.statics.hinged_points` (relative to the body
+    origin's height): hook = A' + c e_z + s u + h n, with u along the turned pair, n the unit
+    vertical square to it, and (s, h) the hook's place in the sling's plane at level.
+
+    Parameters
+    ----------
+    rows : (N, 8)   hinge rows (:func:`hinge_rows`)
+    level_hooks : (N, 3)  [m]   each hook at level, body frame
+    rot : (3, 3)   the attitude (:func:`~liftplan.model.frames.rotation_matrix`)
+
+    Returns
+    -------
+    (N, 3)  [m]   world frame, the body origin at height 0
+    """
+    rows = np.asarray(rows, dtype=float)
+    a, b, drop = rows[:, 0:3], rows[:, 3:6], rows[:, 6:7]
+    e_z = np.array([0.0, 0.0, 1.0])
+    u0 = _unit(b - a)
+    n0 = _unit(e_z - u0[:, 2:3] * u0)
+    offset = np.asarray(level_hooks, dtype=float) - a - drop * e_z
+    along = (offset * u0).sum(1, keepdims=True)
+    height = (offset * n0).sum(1, keepdims=True)
+    pa, pb = a @ rot.T, b @ rot.T
+    u = _unit(pb - pa)
+    n = _unit(e_z - u[:, 2:3] * u)
+    return pa + drop * e_z + along * u + height * n
+
+
+def parallel_spreader_legs(hook, lugs, drop, load, bar_weight):
+    """Top and bottom leg tensions of a spreader whose bar spans its lugs (parallel bottom
+    legs, vertical): world frame, a vertical hook load  [t].
+
+    Each bar end E_j = lug_j + c e_z: its top leg, the bar (along the ends) and its bottom leg
+    (straight down) balance half the bar's weight.
+
+    Parameters
+    ----------
+    hook : (3,)  [m]
+    lugs : (2, 3)  [m]
+    drop : float  [m]   bottom leg length
+    load : float  [t]   hook load (the body's share and the bar)
+    bar_weight : float  [t]
+
+    Returns
+    -------
+    bottom : (2,)  [t]
+    top : (2,)  [t]
+    """
+    ends = np.asarray(lugs, dtype=float) + [0.0, 0.0, drop]
+    top = leg_split(hook, ends, (0.0, 0.0, load))
+    bottom = []
+    for j in range(2):
+        force = top[j] * _unit(hook - ends[j]) - np.array([0.0, 0.0, 0.5 * bar_weight])
+        mat = np.column_stack([_unit(ends[1 - j] - ends[j]), [0.0, 0.0, -1.0]])
+        bottom.append(np.linalg.lstsq(mat, -force, rcond=None)[0][1])
+    return np.array(bottom), top

@@ -89,7 +89,7 @@ def sling_tuples(problem, legs):
     return np.array(sorted(seen), dtype=np.int64).reshape(-1, legs)
 
 
-def crane_rigs(problem, crane, load):
+def crane_rigs(problem, crane, load, parallel=False):
     """The rigs ``crane``'s sling can take, and how many were ruled out by each cause.
 
     Parameters
@@ -97,6 +97,11 @@ def crane_rigs(problem, crane, load):
     problem : PlanProblem
     crane : FleetCrane   with a sling
     load : float  [t]   hook load a spreader rig is pulled up by (for its sway; W / n)
+    parallel : bool
+        A spreader takes only pairs it spans (lug spacing = bar length to
+        :data:`~.geometry.FIT`): its bottom legs then hang parallel and vertical, and the rig
+        swings about the pair like a 2-leg sling (what the held search plans with three cranes
+        or more). A bar of another length is a trapezoid linkage that sways with the tilt.
 
     Returns
     -------
@@ -112,12 +117,28 @@ def crane_rigs(problem, crane, load):
     if sling.legs == 2:
         pairs = np.array(list(combinations(range(len(points)), 2)), dtype=np.int64).reshape(-1, 2)
         a, b = points[pairs[:, 0]], points[pairs[:, 1]]
+        if parallel:  # the hinge needs a pair that is not plumb (its vertical plane)
+            ok = np.hypot(*(b - a)[:, :2].T) > 1e-3 * np.linalg.norm(b - a, axis=1)
+            counts["the pair's lugs lie one above the other (no hinge plane)"] = int(np.sum(~ok))
+            pairs, a, b = pairs[ok], a[ok], b[ok]
         if sling.spreader is None:
             ok = 0.5 * np.linalg.norm(b - a, axis=1) < sling.length
             counts["legs shorter than half the pair's spacing"] = int(np.sum(~ok))
             pairs, a, b = pairs[ok], a[ok], b[ok]
             hook = pair_apex(a, b, sling.length)
             rigs = Rigs("pair", pairs, hook, leg_angles(hook, points[pairs]))
+        elif parallel:
+            bar = sling.spreader
+            ok = np.abs(np.linalg.norm(b - a, axis=1) - bar.length) <= FIT
+            counts[f"the pair's spacing is not the spreader bar's length (to {1000 * FIT:g} mm): "
+                   "a trapezoid rig sways with the tilt, planned for two cranes only"] = \
+                int(np.sum(~ok))
+            pairs, a, b = pairs[ok], a[ok], b[ok]
+            e1, e2 = a + [0.0, 0.0, sling.length], b + [0.0, 0.0, sling.length]
+            hook = pair_apex(e1, e2, bar.top_length)
+            ends = np.stack([e1, e2], axis=1)
+            rigs = Rigs("spreader", pairs, hook, np.full((len(pairs), 2), 90.0),
+                        top_angles=leg_angles(hook, ends))
         else:
             bar = sling.spreader
             hook, e1, e2 = spreader_hook(a, b, sling.length, bar.length, bar.top_length, load,
