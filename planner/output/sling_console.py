@@ -1,9 +1,9 @@
 """Console summary of a sling lift plan (``liftplan plan`` without ``--json``).
 
-Two cranes (:class:`~liftplan.planner.slings.SlingPlan`) or three and more, on body-fixed apexes or
-hooks hinged about their pairs (:class:`~liftplan.planner.slings.apex.ApexSlingPlan`): per crane
-its lugs, radius, chart SWL, hook loads and the rules' design hook load; per lug its leg's sling angle and tension, and the
-lug's design load from the rules' chain.
+Two cranes (:class:`~liftplan.planner.slings.SlingPlan`) or three and more, on body-fixed apexes
+or hooks hinged about their pairs (:class:`~liftplan.planner.slings.apex.ApexSlingPlan`): per
+crane its lugs, radius, chart SWL, hook loads and the rules' design hook load; per lug its leg's
+sling angle and tension, and the lug's design load from the rules' chain.
 """
 
 from __future__ import annotations
