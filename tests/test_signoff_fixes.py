@@ -204,3 +204,79 @@ def test_montecarlo_rows_carry_above_design_tension(tmp_path, tanker_plan):
         np.any(api.tensions > design_load, axis=1).astype(int).tolist()
     assert sum(r["above_design_tension"] for r in rows) > sum(r["above_design_load"] for r in rows)
     assert header(study)[-1] == "above_design_tension"  # appended: the old columns keep their place
+
+
+# -- 4. console tables ------------------------------------------------------------------------
+LONG_NAMES = {'"F-P"': '"FRAME-12-PORT-PADEYE-A"', '"F-S"': '"FRAME-12-STBD-PADEYE-A"',
+              '"FWD"': '"FORWARD-CRAWLER-600T"'}
+
+
+def test_solve_tables_fit_long_crane_lug_and_leg_names(tmp_path):
+    from liftplan.model import load_scene, solve
+    from liftplan.planner.output.console import equilibrium_table
+
+    text = (EXAMPLES / "block_two_slings.toml").read_text(encoding="utf-8")
+    for short, long in LONG_NAMES.items():
+        text = text.replace(short, long)
+    path = tmp_path / "long_names.toml"
+    path.write_text(text, encoding="utf-8")
+    scene = load_scene(path)
+    lines = equilibrium_table(scene, solve(scene)).splitlines()
+    # the leg table: each row's lug starts where the header's "to lug" does, after a space
+    head = next(k for k, line in enumerate(lines) if line.startswith("leg "))
+    column = lines[head].index("to lug")
+    rows = lines[head + 1:head + 5]
+    for row in rows:
+        leg, lug = row.split()[:2]
+        assert row.index(lug, len(leg)) == column and row[column - 1] == " ", row
+        assert lug in leg  # the leg key is crane/lug
+        # the tension column ends where its header does
+        assert row.split()[2] == row[:lines[head].index("tension [t]") + 11].split()[-1]
+    assert {row.split()[1] for row in rows} == {"FRAME-12-PORT-PADEYE-A", "FRAME-12-STBD-PADEYE-A",
+                                                 "A-P", "A-S"}
+    # the crane table: the tension column ends under its header for every crane and the total
+    top = next(k for k, line in enumerate(lines) if line.startswith("crane "))
+    end = lines[top].index("tension [t]") + len("tension [t]")
+    for row in lines[top + 1:top + 4]:
+        name = row.split()[0]
+        assert row[:end].split()[-1] == row.split()[1] and row[end] == " ", row
+        assert name in ("FORWARD-CRAWLER-600T", "AFT", "total")
+
+
+def _lift_lines(stop, step, speed):
+    from liftplan.model.lift import load_curve
+    from liftplan.model.scenefile import load_scene
+    from liftplan.planner.output.lift_console import lift_table
+
+    scene = load_scene(SEABED)
+    curve = load_curve(scene, stop=stop, step=step, speed=speed)
+    lines = lift_table(scene, curve).splitlines()
+    start = lines.index("events (bisected between steps to 0.1 mm):")
+    events = {}
+    for line in lines[start + 1:]:
+        if not line.startswith("  ") or line.startswith("  events in time"):
+            break
+        name, rest = line.strip().split(": ", 1)
+        events[name] = rest
+    return curve, events
+
+
+def test_lift_console_gives_a_reason_for_every_event_kind():
+    """Every event the lift looks for is on the list: where it happened, or why not."""
+    kinds = {"lift-off", "surface", "clear", "breakout", "released", "drained (aft tank)"}
+    # stopped before breakout (at 0.1885 m), no speed: the tank is carried full
+    curve, events = _lift_lines(0.15, 0.05, None)
+    assert set(events) == kinds
+    assert curve.event("breakout") is None and curve.event("released") is None
+    assert events["breakout"] == "none within the range (still held by the soil at the last hoist 0.15 m)"
+    assert events["released"] == "none within the range (still held by the soil at the last hoist 0.15 m)"
+    assert events["drained (aft tank)"].startswith("none within the range (no hoist speed")
+    # past breakout, not yet 0.1 m off the bed; with a speed the tank drains too slowly
+    curve, events = _lift_lines(0.25, 0.05, 2.0)
+    assert set(events) == kinds
+    assert curve.event("breakout") is not None and events["breakout"].startswith("hoist 0.18")
+    assert events["released"] == ("none within the range (broken out, the contact not yet 0.1 m off "
+                                  "its bed at the last hoist 0.25 m)")
+    final = curve.drainage[0].final
+    assert events["drained (aft tank)"] == \
+        f"none within the range ({final:.1f} t of water still in it at the last hoist 0.25 m)"

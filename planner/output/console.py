@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from liftplan.planner.output.rope_table import GROUPED_FROM, rope_rows
 
 __all__ = ["batch_table", "equilibrium_table", "load_curve_table", "plan_table"]
@@ -71,24 +73,30 @@ def _strength_lines(scene, eq, girder):
     return lines
 
 
+def _name_width(names, least):
+    """A text column's width: the longest name + 2 spaces, at least ``least``."""
+    return max(least, max(len(str(n)) for n in names) + 2)
+
+
 def _rope_lines(eq):
     """One line per rope (or per crane with slings), the total and the spread."""
     if not eq.tensions:
         return []
     who = "crane" if eq.rigging is not None else "lug"
-    lines = [f"{who:<8}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
+    w = _name_width([who, "total", *eq.tensions], 8)
+    lines = [f"{who:<{w}}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
              f"{'utilisation [%]':>17}"]
     for name, tension in eq.tensions.items():
         swl = eq.swl[name]
         util = eq.utilisation[name]
         lines.append(
-            f"{name:<8}{tension:>13.2f}{100 * eq.share[name]:>16.2f}"
+            f"{name:<{w}}{tension:>13.2f}{100 * eq.share[name]:>16.2f}"
             f"{(f'{swl:.1f}' if swl else '-'):>10}"
             f"{(f'{100 * util:.1f}' if util is not None else '-'):>17}"
             + ("  slack" if name in eq.slack else "")
         )
     total = sum(eq.tensions.values())
-    lines.append(f"{'total':<8}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
+    lines.append(f"{'total':<{w}}{total:>13.2f}{100 * total / eq.weight:>16.2f}")
     lines.append(f"spread (max - min tension): {eq.spread:.2f} t; weight W = {eq.weight:.2f} t")
     return lines
 
@@ -97,11 +105,13 @@ def _rigging_lines(eq):
     """Hook loads are the crane rows above; here the legs, hooks and spreader bars."""
     r = eq.rigging
     lines = ["", f"hook loads above are the hoist-rope tensions; sling legs (angle from the horizontal, "
-                 f"limit {r.min_sling_angle:g} deg):",
-             f"{'leg':<16}{'to lug':<10}{'tension [t]':>13}{'angle [deg]':>13}"]
+                 f"limit {r.min_sling_angle:g} deg):"]
+    legs = _name_width(["leg", *r.legs], 16)
+    lugs = _name_width(["to lug", *(v or "(bar end)" for v in r.leg_lugs.values())], 10)
+    lines.append(f"{'leg':<{legs}}{'to lug':<{lugs}}{'tension [t]':>13}{'angle [deg]':>13}")
     for key, tension in r.legs.items():
         angle = r.sling_angles[key]
-        lines.append(f"{key:<16}{r.leg_lugs[key] or '(bar end)':<10}{tension:>13.2f}{angle:>13.2f}"
+        lines.append(f"{key:<{legs}}{r.leg_lugs[key] or '(bar end)':<{lugs}}{tension:>13.2f}{angle:>13.2f}"
                      + ("  slack" if key in eq.slack else "")
                      + ("  BELOW LIMIT" if not angle >= r.min_sling_angle else ""))
     frame = f"world, frame {eq.frame}"
@@ -193,20 +203,70 @@ def load_curve_table(scene, curve, rows=25):
     lines.append(f"events (bisected between steps to {1e3 * EVENT_TOL:g} mm):")
     for e in curve.events:
         lines.append(f"  {e.name}: hoist {e.hoist:.4f} m +- {1e3 * e.tolerance:.2f} mm ({e.description})")
-    why = {
-        "lift-off": "free of the ground from the start" if curve.state[0] != "grounded"
-        else "still on the ground at the last hoist",
-        "surface": "out of the water in part from the start" if curve.top[0] >= 0.0
-        else "the top stays under water to the last hoist",
-        "clear": "clear from the start" if curve.bottom[0] >= 0.0
-        else "not clear of the water at the last hoist",
-    }
-    for name, reason in why.items():
-        if curve.event(name) is None:
-            lines.append(f"  {name}: none within the range ({reason})")
+    for name, reason in missing_events(scene, curve):
+        lines.append(f"  {name}: none within the range ({reason})")
     for hoist, reason in curve.failed:
         lines.append(f"no equilibrium at hoist {hoist:.2f} m: {reason}")
     return "\n".join(lines)
+
+
+def _phase(curve, k):
+    """The breakout phase at curve step ``k``, as the lift's events test it: "grounded",
+    "breaking out" (off the bed, the soil's pull still on) or "free"."""
+    if curve.state[k] == "grounded":
+        return "grounded"
+    return "breaking out" if curve.soil[k] > 0.0 else "free"
+
+
+def missing_events(scene, curve):
+    """Why each event the lift looks for did not happen within the range.
+
+    Parameters
+    ----------
+    scene : Scene
+        For the compartments' openings.
+    curve : LoadCurve
+
+    Returns
+    -------
+    list of (str, str)
+        (event name, with the compartment for ``drained``; the reason), for every event
+        kind the lift tests (lift-off, surface, clear; breakout and released with a
+        breakout force; drained per compartment with openings) that is not on the curve.
+    """
+    last = f"at the last hoist {curve.hoist[-1]:.4g} m"
+    why = {
+        "lift-off": "free of the ground from the start" if curve.state[0] != "grounded"
+        else "still on the ground " + last,
+        "surface": "out of the water in part from the start" if curve.top[0] >= 0.0
+        else "the top stays under water to the last hoist",
+        "clear": "clear from the start" if curve.bottom[0] >= 0.0
+        else "not clear of the water " + last,
+    }
+    b = curve.breakout
+    if b is not None and b.force > 0.0:  # the lift looks for these only with a breakout force
+        first, end = _phase(curve, 0), _phase(curve, -1)
+        why["breakout"] = ("off its bed from the start" if first != "grounded"
+                           else "still held by the soil " + last)
+        why["released"] = (f"more than {b.clear:g} m off its bed from the start" if first == "free"
+                           else "still held by the soil " + last if end == "grounded"
+                           else f"broken out, the contact not yet {b.clear:g} m off its bed " + last)
+    out = [(name, reason) for name, reason in why.items() if curve.event(name) is None]
+    drained = {e.subject for e in curve.events if e.name == "drained"}
+    for tank in curve.drainage:
+        if tank.name in drained:
+            continue
+        openings = [o for o in scene.openings if o.compartment == tank.name]
+        if any(math.isinf(o.area) for o in openings):
+            reason = "an opening of infinite area: its water follows the pose at once, no drain time"
+        elif not any(o.area * o.discharge > 0.0 for o in openings):
+            reason = "no opening can flow (area 0)"
+        elif curve.speed is None:
+            reason = "no hoist speed (give --speed): carried full, the conservative bound"
+        else:
+            reason = f"{tank.final:.1f} t of water still in it " + last
+        out.append((f"drained ({tank.name})", reason))
+    return out
 
 
 def batch_table(study, summary):
