@@ -299,12 +299,11 @@ class ApexSlingPlan(SlingLift):
         rots = [rotation_matrix(h, t, problem.yaw) for h, t in zip(hh, tt)] * len(offsets)
         level_rot = rotation_matrix(0.0, 0.0, problem.yaw)
         level, worst, least, tops = [], [], [], []
-        for c, crane in enumerate(problem.fleet):
-            lugs = problem.points[list(self.groups[c])]
+        for c in range(len(problem.fleet)):
             hooks = shares[:, c] + self.bar_weights[c]
 
-            def split(load, rot, c=c, crane=crane, lugs=lugs):
-                return self._split(c, crane, lugs, load, rot)
+            def split(load, rot, c=c):
+                return self.sling_legs(c, load, rot)
 
             nominal, top = split(self.hook_nominal[c], level_rot)
             grid = np.array([split(load, rot)[0] for load, rot in zip(hooks, rots)])
@@ -316,9 +315,12 @@ class ApexSlingPlan(SlingLift):
             least.append(float(grid.min()))
         return tuple(level), tuple(worst), least, tuple(tops)
 
-    def _split(self, c, crane, lugs, load, rot):
+    def sling_legs(self, c, load, rot):
         """Crane c's lug legs (and a spreader's top legs, else None) under a vertical hook load
-        ``load`` [t] with the body at attitude ``rot``  [t]."""
+        ``load`` [t] (the body's share and a bar) with the body at attitude ``rot`` (3 x 3)  [t].
+        """
+        crane = self.problem.fleet[c]
+        lugs = self.problem.points[list(self.groups[c])]
         if not self.hinged:  # body-fixed apex: the load along the vertical seen from the body
             stiff = np.full(len(lugs), crane.sling.EA / crane.sling.length)
             return leg_split(self.hooks[c], lugs, load * (rot.T @ [0.0, 0.0, 1.0]), stiff), None
