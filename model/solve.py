@@ -105,6 +105,10 @@ def solve(scene, model=None, method="newton"):
             f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
             "'inclined' (or no model: it is picked when a tip is given)"
         )
+    if scene.girder is not None and model == "hydrostatic":
+        from .strength.flexible_water import solve_hull_in_water
+
+        return solve_hull_in_water(scene, method=method)
     if scene.girder is not None and model != "elastic":
         return _rigid_hull(scene, model, method)
     if model == "hydrostatic":
@@ -133,10 +137,10 @@ def _rigid_hull(scene, model, method):
     if scene.analysis.hull == "flexible":
         raise InvalidScene(
             f'analysis.hull = "flexible": the {model} model holds the hull rigid; expected model '
-            "'elastic' (vertical ropes in air) for a flexible hull")
+            "'elastic' (vertical ropes in air) or 'hydrostatic' (in water) for a flexible hull")
     eq = solve(dataclasses.replace(scene, girder=None), model=model, method=method)
     note = RigidHullNote(f"the {model} model holds the hull rigid; hull.EI is used by the elastic "
-                         "model only")
+                         "and hydrostatic models only")
     return dataclasses.replace(eq, flexible_hull=note)
 
 

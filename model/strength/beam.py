@@ -161,13 +161,25 @@ class GirderMesh:
         return np.sum(n * values, axis=-1)
 
 
+def node_of(mesh_x, x):
+    """Index of the node nearest body x  [m] (a point the mesh was built with)."""
+    return int(np.argmin(np.abs(np.asarray(mesh_x) - x)))
+
+
+def hermite_slope(t, h):
+    """First derivatives dN/du of :func:`hermite`  [1/m, -]."""
+    t = np.asarray(t, dtype=float)
+    return np.stack([(-6 * t + 6 * t**2) / h, 1 - 4 * t + 3 * t**2, (6 * t - 6 * t**2) / h,
+                     -2 * t + 3 * t**2], axis=-1)
+
+
 def free_layout(m):
     """Indices into the full bending vector (w_1, w'_1, ..., w_m, w'_m) of the free unknowns:
     every slope and the inner deflections (the gauge holds w_1 = w_m = 0)."""
     return np.delete(np.arange(2 * m), [0, 2 * m - 2])
 
 
-def girder_mesh(scene, elements=ELEMENTS):
+def girder_mesh(scene, elements=ELEMENTS, extra=()):
     """The elements of a scene's hull girder (``scene.girder`` and ``body.weight_curve``).
 
     Parameters
@@ -175,6 +187,9 @@ def girder_mesh(scene, elements=ELEMENTS):
     scene : Scene
     elements : int
         At least this many elements over the span.
+    extra : sequence of float  [m]
+        More node positions (in water: the ground contact, where the immersed section stops
+        being one quadratic, compartment ends); those off the span are dropped.
 
     Returns
     -------
@@ -189,7 +204,7 @@ def girder_mesh(scene, elements=ELEMENTS):
     lo, hi = float(x_curve[0]), float(x_curve[-1])
     length = hi - lo
     lugs_x = scene.lug_points()[:, 0]
-    points = [x_curve, lugs_x, [p[0] for p in stiffness.EI]]
+    points = [x_curve, lugs_x, [p[0] for p in stiffness.EI], np.asarray(extra, dtype=float).ravel()]
     if stiffness.GJ is not None:
         points.append([p[0] for p in stiffness.GJ])
     raw = np.sort(np.concatenate([np.asarray(p, dtype=float) for p in points]))

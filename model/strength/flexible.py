@@ -53,6 +53,12 @@ class FlexibleHull:
     small_deflection : bool
         The largest deflection is within :data:`SMALL_DEFLECTION` of the length (the beam
         theory's range).
+    rigid_ground_reaction, flexible_ground_reaction : float or None  [t]
+        Grounded in water: the ground reaction of each hull (None otherwise).
+    buoyancy : tuple of Piecewise or None
+        In water: buoyancy per length [t/m] and its first moment about body z = 0 [t m/m] of
+        the deflected hull (:func:`.girder.hull_girder` takes them when the flexible hull is
+        used).
     """
 
     used: str
@@ -66,6 +72,9 @@ class FlexibleHull:
     max_change_rope: str
     max_deflection: Extreme
     small_deflection: bool = True
+    rigid_ground_reaction: float | None = None
+    flexible_ground_reaction: float | None = None
+    buoyancy: tuple | None = None
 
     def to_json(self):
         """The ``"flexible_hull"`` block of ``solve --json`` (m, deg, t)."""
@@ -81,6 +90,8 @@ class FlexibleHull:
             "twist": None if self.twist is None else {"x": self.x.tolist(), "deg": self.twist.tolist()},
             "max_deflection": self.max_deflection.to_json(),
             "small_deflection": self.small_deflection,
+            "rigid_ground_reaction": self.rigid_ground_reaction,
+            "flexible_ground_reaction": self.flexible_ground_reaction,
         }
 
     def lines(self):
@@ -89,6 +100,9 @@ class FlexibleHull:
         out = [f"hull: {self.used} ({self.reason})",
                f"hull deflection from the chord through its ends: {1000 * peak.signed:+.1f} mm at "
                f"x = {peak.x:.1f} m ({'sagging' if peak.signed < 0 else 'hogging'})"]
+        if self.flexible_ground_reaction is not None:
+            out.append(f"ground reaction: {self.flexible_ground_reaction:.2f} t flexible, "
+                       f"{self.rigid_ground_reaction:.2f} t rigid")
         if self.twist is not None:
             k = int(np.argmax(np.abs(self.twist)))
             out.append(f"hull twist: {self.twist[k]:+.4f} deg at x = {self.x[k]:.1f} m")
@@ -191,7 +205,7 @@ def _schur_stable(hess):
     return positive_definite(pose - half.T @ half)
 
 
-def hull_report(scene, mesh, state, rigid, used, forced):
+def hull_report(scene, mesh, state, rigid, used, forced, ground=None, buoyancy=None, note=""):
     """The :class:`FlexibleHull` of a solve: the change flexibility makes, and which hull.
 
     Parameters
@@ -204,9 +218,21 @@ def hull_report(scene, mesh, state, rigid, used, forced):
     used : {"flexible", "rigid"}
     forced : bool
         ``analysis.hull`` chose it (not the 1 % rule).
+    ground : tuple of 2 float, optional  [t]
+        Grounded: the rigid and the flexible hull's ground reaction; its change counts as a
+        tension's.
+    buoyancy : tuple of Piecewise, optional
+        In water: the deflected hull's buoyancy curves (:attr:`FlexibleHull.buoyancy`).
+    note : str
+        Appended to the reason.
     """
-    names = scene.lug_names
+    names = list(scene.lug_names)
     change = tension_change(rigid, state.tensions, scene.body.weight)
+    if ground is not None:
+        names.append("the ground reaction")
+        change = np.append(change, tension_change([ground[0]], [ground[1]], scene.body.weight))
+    if not names:  # afloat without ropes: nothing the rule measures
+        names, change = ["nothing (no rope, no ground contact)"], np.zeros(1)
     k = int(np.argmax(change))
     w, _, twist = mesh.full(state.beam)
     peak = int(np.argmax(np.abs(w)))
@@ -218,18 +244,24 @@ def hull_report(scene, mesh, state, rigid, used, forced):
         reason = (f"flexibility changes {names[k]} by {_percent(change[k])}, more than "
                   f"{_percent(TENSION_CHANGE)}: the flexible hull is used")
     else:
-        reason = (f"flexibility changes no tension by more than {_percent(TENSION_CHANGE)} (at most "
+        what = "tension or ground reaction" if ground is not None else "tension"
+        reason = (f"flexibility changes no {what} by more than {_percent(TENSION_CHANGE)} (at most "
                   f"{_percent(change[k])}, {names[k]}): the rigid hull is used")
+    if note:
+        reason += f"; {note}"
     if not small:
         reason += (f"; the deflection {abs(w[peak]):.3g} m exceeds {SMALL_DEFLECTION:g} x the length: "
                    "beyond small-deflection beam theory, check the stiffness")
     return FlexibleHull(
         used=used, reason=reason, small_deflection=small, x=mesh.x.copy(), deflection=w,
         twist=np.degrees(twist) if mesh.torsion is not None else None,
-        rigid_tensions=dict(zip(names, map(float, rigid))),
-        flexible_tensions=dict(zip(names, map(float, state.tensions))),
+        rigid_tensions=dict(zip(scene.lug_names, map(float, rigid))),
+        flexible_tensions=dict(zip(scene.lug_names, map(float, state.tensions))),
         max_change=float(change[k]), max_change_rope=names[k],
         max_deflection=Extreme(float(abs(w[peak])), float(mesh.x[peak]), float(w[peak])),
+        rigid_ground_reaction=None if ground is None else float(ground[0]),
+        flexible_ground_reaction=None if ground is None else float(ground[1]),
+        buoyancy=buoyancy,
     )
 
 

@@ -168,7 +168,9 @@ def hull_girder(scene, eq, grid=GRID):
     parts = [(weight, -up[2], None)]       # (t/m piecewise, normal factor, couple density)
     buoyancy = trapped = None
     if eq.afloat is not None:
-        buoyancy, moment = _buoyancy(scene, pose, up)
+        flexible = getattr(eq.flexible_hull, "buoyancy", None)  # the deflected hull's, when used
+        use = flexible is not None and eq.flexible_hull.used == "flexible"
+        buoyancy, moment = flexible if use else _buoyancy(scene, pose, up)
         # axial part b g_x at the section's centroid: couple (z_B - z_G) b g_x per length
         couple = Piecewise(buoyancy.breaks, up[0] * (moment.coef - z_ref * buoyancy.coef))
         parts.append((buoyancy, up[2], couple))

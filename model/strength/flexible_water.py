@@ -1,0 +1,617 @@
+"""The flexible hull in water: the hull girder as an elastic beam on its ropes, the water and
+the ground contact, in one casadi Newton system.
+
+The rigid hull in water (:class:`liftplan.model.afloat.AfloatModel`) has the pose as its
+unknowns: grounded, the tilts (a, b) about the world's horizontal axes with the body origin's
+height zo following from the contact staying on the ground; hanging or afloat, zo as well.
+Here the free beam unknowns d (Hermite deflections w and slopes w', :mod:`.beam`, the gauge
+w = 0 at both ends) sit beside them, and every load reaches the beam where it acts:
+
+* the weight curve's consistent loads (at the CG's height, as in air);
+* the buoyancy per length of each deflected section: at three Gauss points per element the
+  section x = s is cut from the hull mesh (the same oriented boundary segments as
+  :mod:`.sections`) and clipped by the water plane with the section moved by the beam, a
+  body point (s, y, z) rising by up_z w(s) - up_x (z - z_G) w'(s). The section's area and
+  first moments are smooth (piecewise) functions of the pose and of w, w' there, so the
+  water's own stiffness under the bending hull (rho x waterline breadth, a Winkler
+  foundation) is in the Newton system's Jacobian exactly, not assumed;
+* water trapped in compartments, a weight per length over each compartment's length;
+* each rope's tension at its lug (its height moved by the beam, as in air), and the ground
+  reaction R at the contact, which is a node of the beam: the contact is a point (the rigid
+  grounded model's pivot), held on the ground, R whatever closes the vertical forces.
+
+Equations: the moments about the contact (grounded; R = -(net vertical force without it)),
+or the net force and moments (hanging or afloat), of the same forces on the undeformed
+geometry, and the beam's equilibrium rows. Both use one quadrature of the buoyancy, so the
+beam's loads are self-equilibrated whenever the statics hold (the gauge's dropped rows are
+checked and reported). The quadrature is exact (3-point Gauss: the section area is quadratic
+in x, the loads on the Hermite fields of degree <= 5) when the section's breaks (vertices and
+waterline crossings, :func:`.sections.section_breaks`) are beam nodes: they are placed at the
+chord's pose and the model is rebuilt until the solved pose moves none of them off a node.
+The deflected waterline's own crossings are not placed (a second-order effect of w).
+
+Torsion is not modelled in water (``hull.GJ`` is then unused, and the result says so): the
+hull bends; its heel is the pose's.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from ..afloat import buoyancy_weights
+from ..errors import EquilibriumNotFound, InvalidScene
+from ..frames import rotation_matrix, tilt
+from .beam import _GAUSS3, ELEMENTS, free_layout, girder_mesh, hermite, hermite_slope, node_of
+from .piecewise import Piecewise
+
+#: Accepted when the scaled residuals (forces / W, moments / (W L)) are below this (as the
+#: rigid water model, :data:`liftplan.model.water.equilibrium.RESIDUAL_TOL`).
+RESIDUAL_TOL = 1e-9
+#: Rebuilds of the beam mesh at the solved pose, at most (the section breaks on nodes).
+REMESH = 4
+# A section break within this fraction of the length of a node is on it: a kink in the
+# buoyancy per length delta off a node errs the quadrature by ~ (slope jump) delta^2
+_ON_NODE = 1e-6
+
+
+# -- the hull's sections (numeric, pose-free) ------------------------------------------------
+def oriented_segments(triangles, kappa, stations):
+    """The boundary segments of the sections x = s of a closed hull mesh, body frame.
+
+    Each triangle the plane x = s cuts gives one segment of the section's boundary, oriented
+    along e_x x n (n its outward normal) so that the section lies on its left (as
+    :func:`.sections._segments`); which part of it is wet depends on the pose only.
+
+    Parameters
+    ----------
+    triangles : numpy.ndarray, shape (m, 3, 3)  [m]
+    kappa : numpy.ndarray, shape (m,)  [t/m3]
+    stations : numpy.ndarray, shape (N,)  [m]
+        Section positions, none at a vertex's x.
+
+    Returns
+    -------
+    station : numpy.ndarray of int, shape (k,)
+        The station of each segment.
+    p, q : numpy.ndarray, shape (k, 2)  [m]
+        Start and end (body y, z).
+    weight : numpy.ndarray, shape (k,)  [t/m3]
+        The triangle's kappa.
+    """
+    lo, hi = triangles[:, :, 0].min(axis=1), triangles[:, :, 0].max(axis=1)
+    station, tri = np.nonzero((lo[None, :] < stations[:, None]) & (hi[None, :] > stations[:, None]))
+    tris, s = triangles[tri], stations[station]
+    d = tris[:, :, 0] - s[:, None]
+    positive = d > 0.0
+    lone = np.where(positive.sum(axis=1) == 1, np.argmax(positive, axis=1), np.argmin(positive, axis=1))
+    rows = np.arange(len(tris))
+    k0, k1, k2 = lone, (lone + 1) % 3, (lone + 2) % 3
+    v0, v1, v2 = tris[rows, k0], tris[rows, k1], tris[rows, k2]
+    d0, d1, d2 = d[rows, k0], d[rows, k1], d[rows, k2]
+    p = v0 + (d0 / (d0 - d1))[:, None] * (v1 - v0)
+    q = v0 + (d0 / (d0 - d2))[:, None] * (v2 - v0)
+    normal = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
+    along = q - p
+    flip = (-along[:, 1] * normal[:, 2] + along[:, 2] * normal[:, 1]) < 0.0
+    p, q = np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
+    return station, p[:, 1:], q[:, 1:], kappa[tri]
+
+
+def _sparse(rows, cols, values, shape):
+    """A casadi sparse matrix from triplets (duplicates summed)."""
+    dense = np.zeros(shape)
+    np.add.at(dense, (np.asarray(rows, dtype=int), np.asarray(cols, dtype=int)), values)
+    c, r = np.nonzero(dense.T)  # column-major: the order of casadi's nonzeros
+    return ca.DM(ca.Sparsity.triplet(shape[0], shape[1], r.tolist(), c.tolist()), dense[r, c])
+
+
+# -- the casadi model ------------------------------------------------------------------------
+@dataclass(frozen=True)
+class WaterBeamData:
+    """Everything numeric the model is built from (one scene, one mesh, one start pose).
+
+    Parameters
+    ----------
+    mesh : GirderMesh
+    rot0 : numpy.ndarray, shape (3, 3)
+        Start attitude; the unknown tilts act on it.
+    grounded : bool
+    contact : numpy.ndarray or None, shape (3,)  [m]
+        Body-frame contact point (grounded).
+    ground : float  [m]
+        The contact's height over the water plane (grounded).
+    stations, weights : numpy.ndarray  [m, m]
+        Gauss points along x and their quadrature weights.
+    """
+
+    mesh: object
+    rot0: np.ndarray
+    grounded: bool
+    contact: np.ndarray | None
+    ground: float
+    stations: np.ndarray
+    weights: np.ndarray
+
+
+class WaterBeamModel:
+    """The flexible hull in water as one casadi root-finding problem (module docstring).
+
+    Unknowns ``z``: grounded ``(a, b, d)``, else ``(zo, a, b, d)``. :attr:`solve` maps a start
+    ``z0`` to the root; :attr:`evaluate` gives the physical outputs at ``z``.
+    """
+
+    def __init__(self, scene, setup, data):
+        mesh, m = data.mesh, data.mesh.m
+        body, n = scene.body, scene.n
+        weight_total, z_g = float(setup.gravity), float(body.cog[2])
+        span = float(mesh.x[-1] - mesh.x[0])
+        self.npose = 2 if data.grounded else 3
+        nfree = 2 * m - 2
+        z = ca.SX.sym("z", self.npose + nfree)
+        if data.grounded:
+            tilts, free = z[0:2], z[2:]
+        else:
+            tilts, free = z[1:3], z[3:]
+        rot = ca.mtimes(tilt(tilts[0], tilts[1]), ca.DM(data.rot0))
+        up = rot[2, :].T
+        # the full bending vector (gauge w_1 = w_m = 0)
+        keep = free_layout(m)
+        bend = ca.SX.zeros(2 * m, 1)
+        for k, row in enumerate(keep):
+            bend[int(row)] = free[k]
+        w_nodes, slope_nodes = bend[0::2], bend[1::2]
+
+        def moved(node, dz):
+            """Vertical world motion of a body point at node, dz above the CG [m]."""
+            return up[2] * w_nodes[node] - up[0] * dz * slope_nodes[node]
+
+        if data.grounded:
+            c = data.contact
+            contact_node = node_of(mesh.x, c[0])
+            zo = data.ground - ca.dot(up, ca.DM(c)) - moved(contact_node, c[2] - z_g)
+        else:
+            zo = z[0]
+        # ropes: vertical, each lug's height moved by the beam
+        tension, stretch = ca.SX.zeros(n, 1), ca.SX.zeros(n, 1)
+        points = scene.lug_points()
+        if n:
+            level = scene.water.level
+            hooks = np.array(scene.crane_values("boom_height", "hydrostatic")) - level
+            lengths = np.array(scene.crane_values("rope_length", "hydrostatic"))
+            ea = np.array(scene.crane_values("EA", "hydrostatic"))
+            for i, (lug, node) in enumerate(zip(points, mesh.lug_nodes)):
+                height = ca.dot(up, ca.DM(lug)) + zo + moved(node, lug[2] - z_g)
+                stretch[i] = hooks[i] - height - lengths[i]
+                tension[i] = ea[i] / lengths[i] * ca.fmax(0, stretch[i])
+        # buoyancy per length at the Gauss stations of the deflected hull
+        st, ws = data.stations, data.weights
+        ns = len(st)
+        elem = np.clip(np.searchsorted(mesh.x, st, side="right") - 1, 0, m - 2)
+        h = mesh.x[elem + 1] - mesh.x[elem]
+        t = (st - mesh.x[elem]) / h
+        cols = 2 * elem[:, None] + np.arange(4)[None, :]
+        n_w = _sparse(np.repeat(np.arange(ns), 4), cols.ravel(), _rows(hermite, t, h), (ns, 2 * m))
+        n_s = _sparse(np.repeat(np.arange(ns), 4), cols.ravel(), _rows(hermite_slope, t, h), (ns, 2 * m))
+        w_st, s_st = ca.mtimes(n_w, bend), ca.mtimes(n_s, bend)
+        uz = up[2] - up[0] * s_st
+        c0 = up[0] * ca.DM(st) + zo + up[2] * w_st + up[0] * z_g * s_st
+        tris, kappa, trapped_list = buoyancy_weights(scene.hull, body.weight, scene.water.density)
+        seg, p, q, kap = oriented_segments(tris, kappa, st)
+        gather = _sparse(np.arange(len(seg)), seg, np.ones(len(seg)), (len(seg), ns))
+        area_k, first_y, first_z = _clipped(p, q, kap, up[1], ca.mtimes(gather, uz), ca.mtimes(gather, c0))
+        scatter = gather.T
+        b = ca.mtimes(scatter, area_k)         # t/m
+        s_y = ca.mtimes(scatter, first_y)      # t m / m, about body y = 0
+        s_z = ca.mtimes(scatter, first_z)      # t m / m, about body z = 0
+        # trapped water per length (uniform over each compartment), and its first moments
+        tw, tw_y, tw_z = _trapped_per_length(scene, st)
+        wdm = ca.DM(ws)
+        buoyancy = ca.dot(wdm, b)
+        # forces (world vertical, up) and moments about the reference point (world x, y)
+        trapped_points = [(wt, np.asarray(centre, dtype=float)) for wt, centre in trapped_list]
+        net = buoyancy + ca.sum1(tension) - weight_total
+        if data.grounded:
+            ref = ca.mtimes(rot[0:2, :], ca.DM(data.contact))
+        else:
+            ref = ca.mtimes(rot[0:2, :], ca.DM(setup.cog))
+        first_buoy = ca.vertcat(*(
+            ca.dot(wdm, rot[r, 0] * ca.DM(st) * b + rot[r, 1] * s_y + rot[r, 2] * s_z) for r in range(3)))
+        first = first_buoy[0:2] - float(body.weight) * ca.mtimes(rot[0:2, :], ca.DM(body.cog))
+        for wt, centre in trapped_points:
+            first -= wt * ca.mtimes(rot[0:2, :], ca.DM(centre))
+        if n:
+            first += ca.mtimes(ca.mtimes(rot[0:2, :], ca.DM(points.T)), tension)
+        # moment of vertical forces f at (x, y): Mx = sum f (y - y_ref), My = -sum f (x - x_ref)
+        mx = first[1] - ref[1] * net
+        my = -(first[0] - ref[0] * net)
+        reaction = -net if data.grounded else ca.SX(0)
+        # the beam's loads (body components of the world-vertical forces; virtual work)
+        force = ca.SX.zeros(2 * m, 1)
+        for i, (lug, node) in enumerate(zip(points, mesh.lug_nodes)):
+            force[2 * node] += tension[i] * up[2]
+            force[2 * node + 1] += -tension[i] * up[0] * (lug[2] - z_g)
+        if data.grounded:
+            force[2 * contact_node] += reaction * up[2]
+            force[2 * contact_node + 1] += -reaction * up[0] * (data.contact[2] - z_g)
+        normal = wdm * (b - ca.DM(tw))
+        couple = -up[0] * wdm * ((s_z - z_g * b) - ca.DM(tw_z - z_g * tw))
+        force += ca.mtimes(n_w.T, normal) * up[2] + ca.mtimes(n_s.T, couple)
+        force -= up[2] * ca.DM(mesh.weight)
+        stiffness = _sparse(*_global_stiffness(mesh), (2 * m, 2 * m))
+        rows = ca.mtimes(stiffness, bend) - force
+        moment_rows = np.array([r % 2 == 1 for r in range(2 * m)])
+        row_scale = np.where(moment_rows, weight_total * span, weight_total)
+        scaled_rows = rows / ca.DM(row_scale)
+        statics = [mx / (weight_total * span), my / (weight_total * span)]
+        generalised = [mx, my]
+        if not data.grounded:
+            statics.insert(0, net / weight_total)
+            generalised.insert(0, net)
+        residual = ca.vertcat(*statics, scaled_rows[keep.tolist()])
+        dropped = scaled_rows[[0, 2 * m - 2]]
+        # generalised forces conjugate to z (pose: force and moments; beam: loads - K d)
+        self._gen, self._z = ca.vertcat(*generalised, -rows[keep.tolist()]), z
+        self.evaluate = ca.Function(
+            "water_beam_eval", [z],
+            [tension, stretch, reaction, zo, buoyancy, first_buoy, residual, dropped, b, s_z,
+             ca.vertcat(tilts), force],
+            ["z"], ["tension", "stretch", "reaction", "zo", "buoyancy", "first_buoyancy", "residual",
+                    "dropped", "b", "s_z", "tilts", "force"])
+        self.solve = ca.rootfinder(
+            "water_beam_newton", "newton", ca.Function("water_beam_g", [z], [residual]),
+            {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
+             "show_eval_warnings": False})
+
+
+def stiffness(model, z):
+    """Tangent stiffness at z: minus the Jacobian of the generalised forces (pose: net force and
+    moments; beam: loads - K d), in t/m, t, t m/rad (built on demand: it is slow to build)."""
+    jac = ca.Function("water_beam_stiffness", [model._z], [-ca.jacobian(model._gen, model._z)])
+    return np.asarray(jac(ca.DM(z)))
+
+
+def _rows(shape, t, h):
+    """Shape-function rows (Hermite values or slopes) at local t of elements of length h."""
+    return np.stack([shape(tk, hk) for tk, hk in zip(t, h)]).ravel()
+
+
+def _global_stiffness(mesh):
+    """Triplets of the assembled bending stiffness (2 m x 2 m)."""
+    rows, cols, vals = [], [], []
+    for e, k_e in enumerate(mesh.bending):
+        index = 2 * e + np.arange(4)
+        r, c = np.meshgrid(index, index, indexing="ij")
+        rows.append(r.ravel())
+        cols.append(c.ravel())
+        vals.append(k_e.ravel())
+    return np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+
+
+def _clipped(p, q, kappa, uy, uz, c0):
+    """kappa x (area, first moment about y = 0, about z = 0) each wet segment adds to its
+    section, the reference point on the section's waterline (Green's theorem: the waterline's
+    closing segment adds nothing). Heights h = uy y + uz z + c0 (< 0: wet)."""
+    py, pz, qy, qz = (ca.DM(v) for v in (p[:, 0], p[:, 1], q[:, 0], q[:, 1]))
+    hp = uy * py + uz * pz + c0
+    hq = uy * qy + uz * qz + c0
+    wet_p, wet_q = hp < 0, hq < 0
+    crossing = ca.logic_xor(wet_p, wet_q) if hasattr(ca, "logic_xor") else (wet_p + wet_q == 1)
+    denominator = ca.if_else(crossing, hp - hq, 1)
+    t = ca.if_else(crossing, hp / denominator, 0)
+    cy, cz = py + t * (qy - py), pz + t * (qz - pz)
+    move_p = ca.logic_and(crossing, ca.logic_not(wet_p))
+    move_q = ca.logic_and(crossing, wet_p)
+    ay, az = ca.if_else(move_p, cy, py), ca.if_else(move_p, cz, pz)
+    by, bz = ca.if_else(move_q, cy, qy), ca.if_else(move_q, cz, qz)
+    wet = ca.logic_or(wet_p, wet_q)
+    across = uy**2 + uz**2
+    y0, z0 = -c0 * uy / across, -c0 * uz / across
+    area = 0.5 * ((ay - y0) * (bz - z0) - (az - z0) * (by - y0))
+    area = ca.if_else(wet, area, 0) * ca.DM(kappa)
+    return area, area * (y0 + ay + by) / 3.0, area * (z0 + az + bz) / 3.0
+
+
+def _trapped_per_length(scene, stations):
+    """Water trapped in compartments per length at stations, and its first moments about body
+    y = 0 and z = 0 (uniform over each compartment's length, at its centre)  [t/m, t m/m]."""
+    tw, tw_y, tw_z = np.zeros(len(stations)), np.zeros(len(stations)), np.zeros(len(stations))
+    for comp in scene.hull.compartments:
+        if comp.contents != "water":
+            continue
+        lo, hi = np.asarray(comp.box["min"], dtype=float), np.asarray(comp.box["max"], dtype=float)
+        inside = (stations > lo[0]) & (stations < hi[0])
+        per_length = scene.water.density * (hi[1] - lo[1]) * (hi[2] - lo[2])
+        tw[inside] += per_length
+        tw_y[inside] += per_length * 0.5 * (lo[1] + hi[1])
+        tw_z[inside] += per_length * 0.5 * (lo[2] + hi[2])
+    return tw, tw_y, tw_z
+
+
+# -- solving ---------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class WaterBeamState:
+    """A solved flexible hull in water (arrays; :func:`solve_hull_in_water` builds the result).
+
+    Parameters
+    ----------
+    rotation : numpy.ndarray, shape (3, 3)
+        The chord's attitude (through the beam's ends).
+    zo : float  [m]
+        Height of the body-frame origin over the water plane.
+    beam : numpy.ndarray  [m, rad]
+        Free beam unknowns (:meth:`.beam.GirderMesh.full`).
+    tensions, stretch : numpy.ndarray  [t, m]
+    reaction : float  [t]
+        Ground reaction at the contact (0 when not grounded).
+    buoyancy : float  [t]
+        Total buoyancy of the deflected hull.
+    first_buoyancy : numpy.ndarray, shape (3,)  [t m]
+        Its first moment about the body origin (world axes, undeformed geometry).
+    residual : float  [-]
+        Largest scaled residual (forces / W, moments / (W L)), the gauge's dropped rows included.
+    stable : bool
+    buoyancy_curve : tuple of Piecewise
+        Buoyancy per length [t/m] and its first moment about body z = 0 [t m/m] of the
+        deflected hull: on each element the quadratic through its Gauss values (its integral
+        and first moment are the quadrature the statics used, so the girder's curves close).
+    mesh : GirderMesh
+    iterations : int
+    remeshed : int
+        Mesh rebuilds to put the section breaks on nodes.
+    """
+
+    rotation: np.ndarray
+    zo: float
+    beam: np.ndarray
+    tensions: np.ndarray
+    stretch: np.ndarray
+    reaction: float
+    buoyancy: float
+    first_buoyancy: np.ndarray
+    residual: float
+    stable: bool
+    buoyancy_curve: tuple
+    mesh: object
+    iterations: int
+    remeshed: int
+
+    @property
+    def accepted(self):
+        return bool(self.residual <= RESIDUAL_TOL and self.stable)
+
+
+def gauss_stations(x):
+    """Three Gauss points per element of nodes x, and their weights  [m, m]."""
+    t, weights = _GAUSS3
+    h = np.diff(x)
+    return (x[:-1, None] + h[:, None] * t[None, :]).ravel(), (h[:, None] * weights[None, :]).ravel()
+
+
+def check_span(scene):
+    """Refuse a hull mesh reaching past the weight curve (the beam's span) in one line."""
+    x, _ = scene.body.weight_curve_arrays
+    lo, hi = float(scene.hull.vertices[:, 0].min()), float(scene.hull.vertices[:, 0].max())
+    tol = 1e-9 * (x[-1] - x[0])
+    if lo < x[0] - tol or hi > x[-1] + tol:
+        raise InvalidScene(
+            f"hull: x from {lo:g} to {hi:g} m reaches past body.weight_curve (from {x[0]:g} to "
+            f"{x[-1]:g} m); expected the weight curve to span the hull for a flexible hull in water")
+
+
+def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS):
+    """Solve the flexible hull in water from a start pose (the rigid hull's).
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``hull``, ``water``, ``girder`` and ``body.weight_curve``.
+    rotation : numpy.ndarray, shape (3, 3)
+        Start attitude.
+    zo : float  [m]
+        Start height of the body origin over the water plane.
+    grounded : bool
+        Resting on the ground contact (it must carry load), or hanging / afloat.
+    elements : int
+
+    Returns
+    -------
+    WaterBeamState
+    """
+    from ..afloat import buoyancy_weights
+    from ..water.equilibrium import WaterSetup, _rotation
+    from .sections import section_breaks
+
+    check_span(scene)
+    setup = WaterSetup(scene)
+    tris, kappa, _ = buoyancy_weights(scene.hull, scene.body.weight, scene.water.density)
+    contact = np.asarray(scene.ground.contact, dtype=float) if grounded else None
+    rotation = np.asarray(rotation, dtype=float)
+    for remeshed in range(REMESH):  # noqa: B007 (reported)
+        extra = list(section_breaks(tris, rotation[2], zo)) + ([contact[0]] if grounded else [])
+        mesh = girder_mesh(scene, elements, extra=extra)
+        stations, weights = gauss_stations(mesh.x)
+        data = WaterBeamData(mesh=mesh, rot0=rotation, grounded=grounded, contact=contact,
+                             ground=float(setup.ground_height), stations=stations, weights=weights)
+        model = WaterBeamModel(scene, setup, data)
+        z0 = np.zeros(model.npose + 2 * mesh.m - 2)
+        if not grounded:
+            z0[0] = zo
+        z = np.asarray(model.solve(ca.DM(z0))).ravel()
+        iterations = int(model.solve.stats().get("iter_count", -1))
+        out = {k: np.asarray(v) for k, v in model.evaluate(z=ca.DM(z)).items()}
+        new_rotation = _rotation(out["tilts"].ravel(), rotation)
+        new_zo = float(out["zo"].ravel()[0])
+        rotation, zo = new_rotation, new_zo
+        if not np.all(np.isfinite(z)) or _quadrature_exact(setup, tris, kappa, rotation, zo,
+                                                           stations, weights):
+            break
+    residual = float(max(np.max(np.abs(out["residual"])), np.max(np.abs(out["dropped"]))))
+    if not math.isfinite(residual):
+        residual = math.inf
+    npose = model.npose
+    free = z[npose:]
+    return WaterBeamState(
+        rotation=rotation, zo=zo, beam=free, tensions=out["tension"].ravel(),
+        stretch=out["stretch"].ravel(), reaction=float(out["reaction"].ravel()[0]),
+        buoyancy=float(out["buoyancy"].ravel()[0]), first_buoyancy=out["first_buoyancy"].ravel(),
+        residual=residual, stable=_stable(stiffness(model, z), npose),
+        buoyancy_curve=_curves(mesh.x, out["b"].ravel(), out["s_z"].ravel()), mesh=mesh,
+        iterations=iterations, remeshed=remeshed)
+
+
+def _quadrature_exact(setup, tris, kappa, rotation, zo, stations, weights):
+    """Whether the Gauss quadrature of the sections (:func:`.sections.immersed_sections`) gives
+    the clipped hull's exact buoyancy and first moments at this chord pose (to 1e-12 W, W L):
+    a kink of the buoyancy per length inside an element would not."""
+    from .sections import immersed_sections
+
+    up = rotation[2]
+    per_length, moment = immersed_sections(tris, kappa, up, zo, stations)
+    quadrature = np.array([weights @ per_length, weights @ (stations * per_length), weights @ moment])
+    p = setup.params(rotation)
+    out = setup.model.free.call({"x": ca.DM([zo, 0.0, 0.0]), "p": ca.DM(p)})
+    exact_b = float(np.asarray(out["buoyancy"]).ravel()[0])
+    world = np.asarray(out["moment"]).ravel()[:3]       # about o, world axes
+    body = rotation.T @ (world - [0.0, 0.0, zo * exact_b])   # about the body origin, body axes
+    exact = np.array([exact_b, body[0], body[2]])
+    weight, size = setup.gravity, setup.scene.hull.size
+    return bool(abs(quadrature[0] - exact[0]) <= 1e-12 * weight
+                and np.all(np.abs(quadrature[1:] - exact[1:]) <= 1e-12 * weight * size))
+
+
+def _curves(x, b, s_z):
+    """Per element, the quadratic through the three Gauss values (ascending in u = x - x_k)."""
+    t = _GAUSS3[0]
+    inverse = np.linalg.inv(t[:, None] ** np.arange(3))
+    h = np.diff(x)[:, None]
+    scale = h ** -np.arange(3)
+    return (Piecewise(x, (b.reshape(-1, 3) @ inverse.T) * scale),
+            Piecewise(x, (s_z.reshape(-1, 3) @ inverse.T) * scale))
+
+
+def _stable(stiffness, npose):
+    """Stiffness (symmetric part) positive definite: the beam block by Cholesky, then its Schur
+    complement on the pose (scaled to a unit diagonal: :func:`..acceptance.positive_definite`)."""
+    from ..acceptance import positive_definite
+
+    k = np.asarray(stiffness, dtype=float)
+    k = 0.5 * (k + k.T)
+    if not np.all(np.isfinite(k)):
+        return False
+    pose, beam, coupling = k[:npose, :npose], k[npose:, npose:], k[:npose, npose:]
+    try:
+        factor = np.linalg.cholesky(beam)
+    except np.linalg.LinAlgError:
+        return False
+    half = np.linalg.solve(factor, coupling.T)
+    return positive_definite(pose - half.T @ half)
+
+
+# -- the solve: the least hull the scene needs -----------------------------------------------
+def _held_rigid(scene, method):
+    """Why this water scene's hull is held rigid, or None when it can be flexible."""
+    if method != "newton":
+        return f"method {method!r} (the paper's iteration) holds the hull rigid"
+    if scene.ground is not None and scene.ground.breakout is not None and scene.n:
+        return "the breakout model (ground.breakout) holds the hull rigid"
+    return None
+
+
+def solve_hull_in_water(scene, method="newton", hull=None):
+    """The ``hydrostatic`` model of a scene with a hull stiffness: the least hull it needs.
+
+    The hull is solved rigid (:func:`liftplan.model.water.solve_hydrostatic`), then flexible
+    from the rigid pose, grounded if the rigid hull is (:func:`water_beam_state`). The flexible
+    answer is kept when it changes a tension or the ground reaction by more than
+    :data:`~.flexible.TENSION_CHANGE`, or when ``hull`` (default ``scene.analysis.hull``) is
+    ``"flexible"``; ``"rigid"`` skips the flexible solve.
+
+    Returns
+    -------
+    Equilibrium
+        With ``flexible_hull``.
+
+    Raises
+    ------
+    InvalidScene
+        ``analysis.hull = "flexible"`` on a combination held rigid (``paper-newton``, breakout).
+    EquilibriumNotFound
+        Either solve was not accepted, with the reason.
+    """
+    from ..results import SolverInfo
+    from ..water import solve_hydrostatic
+    from ..water.equilibrium import WaterSetup, _result, hull_heights, water_state
+    from .flexible import TENSION_CHANGE, RigidHullNote, hull_report, tension_change
+
+    hull = hull or scene.analysis.hull
+    rigid_scene = dataclasses.replace(scene, girder=None,
+                                      analysis=dataclasses.replace(scene.analysis, hull="auto"))
+    rigid = dataclasses.replace(solve_hydrostatic(rigid_scene, method=method), frame=scene.frame)
+    held = _held_rigid(scene, method)
+    if held is not None:
+        if hull == "flexible":
+            raise InvalidScene(f'analysis.hull = "flexible": {held}; expected method "newton" without '
+                               "ground.breakout for a flexible hull in water")
+        return dataclasses.replace(rigid, flexible_hull=RigidHullNote(held))
+    if hull == "rigid":
+        return dataclasses.replace(rigid, flexible_hull=RigidHullNote('analysis.hull = "rigid"'))
+    grounded = rigid.afloat.state == "grounded"
+    level = scene.water.level
+    pose = rigid.pose
+    begin = time.perf_counter()
+    state = water_beam_state(scene, rotation_matrix(pose.heel, pose.trim, pose.yaw),
+                             pose.lift_height - level, grounded)
+    seconds = time.perf_counter() - begin
+    where = "grounded" if grounded else "in water"
+    if not state.accepted:
+        why = (f"residual {state.residual:.3g}" if state.residual > RESIDUAL_TOL
+               else "unstable (the stiffness is not positive definite)")
+        raise EquilibriumNotFound(f"hydrostatic, flexible hull {where}: no accepted equilibrium ({why})")
+    if grounded and not state.reaction > 0.0:
+        raise EquilibriumNotFound(
+            f"hydrostatic, flexible hull: the bending hull lifts off its ground contact (reaction "
+            f"{state.reaction:.4g} t); expected a contact that carries load, or analysis.hull = \"rigid\"")
+    rigid_t = np.array([rigid.tensions[name] for name in scene.lug_names])
+    weight = scene.body.weight
+    change = tension_change(rigid_t, state.tensions, weight)
+    ground = None
+    if grounded:
+        ground = (float(rigid.afloat.ground_reaction), state.reaction)
+        change = np.append(change, tension_change([ground[0]], [ground[1]], weight))
+    used = "flexible" if hull == "flexible" or (change.size and np.max(change) > TENSION_CHANGE) else "rigid"
+    note = ("in water the hull bends but does not twist (hull.GJ unused)"
+            if scene.girder.GJ is not None else "")
+    report = hull_report(scene, state.mesh, state, rigid_t, used, forced=hull == "flexible",
+                         ground=ground, buoyancy=state.buoyancy_curve, note=note)
+    if used == "rigid":
+        return dataclasses.replace(rigid, flexible_hull=report)
+    setup = WaterSetup(scene)
+    info = SolverInfo("newton (flexible hull)", True, state.iterations, seconds)
+    skeleton = _result(setup, state.zo, state.rotation, 0.0, info, grounded=grounded)
+    # the skeleton is the rigid hull at the chord's pose: put in the flexible forces
+    turn = rotation_matrix(skeleton.pose.heel, skeleton.pose.trim, skeleton.pose.yaw) @ state.rotation.T
+    af = skeleton.afloat
+    centre = None
+    if state.buoyancy > 0.0:  # the skeleton's G is placed right: the buoyancy's centre from it
+        offset = state.first_buoyancy / state.buoyancy - state.rotation @ np.asarray(scene.body.cog)
+        centre = tuple(float(v) for v in np.asarray(af.centre_of_gravity) + turn @ offset)
+    bottom, top = hull_heights(scene.hull, state.rotation, state.zo)
+    reaction = state.reaction if grounded else (0.0 if scene.ground is not None else None)
+    friction = scene.ground.friction if scene.ground is not None else None
+    afloat = dataclasses.replace(
+        af, buoyancy=state.buoyancy, displaced_volume=state.buoyancy / scene.water.density,
+        ground_reaction=reaction, centre_of_buoyancy=centre,
+        freeing_force=friction * reaction if friction is not None and reaction is not None else None,
+        state=water_state(grounded, bottom, top, float(state.tensions.sum()), setup.gravity))
+    names = scene.lug_names
+    return dataclasses.replace(
+        skeleton, tensions=dict(zip(names, state.tensions.tolist())), afloat=afloat,
+        slack=tuple(name for name, s in zip(names, state.stretch) if s <= 0.0),
+        residual=state.residual * setup.gravity, flexible_hull=report, frame=scene.frame)
+
