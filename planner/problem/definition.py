@@ -332,7 +332,7 @@ class PlanProblem:
         if not isinstance(self.report, ReportInfo):
             raise InvalidScene(f"report = {self.report!r}: expected a ReportInfo (the [report] table)")
         self._check_fleet()
-        if self.hinges:
+        if len(self.hinges):
             rows = np.asarray(self.hinges, dtype=float)
             if rows.shape != (len(candidates), 8) or not np.all(np.isfinite(rows)):
                 raise InvalidScene(f"hinges: shape {rows.shape}: expected one row of 8 finite values "
