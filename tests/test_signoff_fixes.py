@@ -280,3 +280,77 @@ def test_lift_console_gives_a_reason_for_every_event_kind():
     final = curve.drainage[0].final
     assert events["drained (aft tank)"] == \
         f"none within the range ({final:.1f} t of water still in it at the last hoist 0.25 m)"
+
+
+# -- 5. the strength figure's force labels ----------------------------------------------------
+def _barge(stations, spacing=10.0):
+    """A uniform barge (20 t/m) on ``stations`` x 2 jacks, rigid, all but three forces held."""
+    length = spacing * stations
+    lugs, cranes, held = [], [], []
+    for k in range(stations):
+        for side, y in (("P", 5.0), ("S", -5.0)):
+            name = f"S{k + 1:02d}-{side}"
+            lugs.append(f'[[lugs]]\nname = "{name}"\nat = [{spacing * (k + 0.5)}, {y}, 6.0]\n')
+            cranes.append(f'[[cranes]]\nlug = "{name}"\nboom_height = 40.0\nrope_length = 20.0\n'
+                          "swl = 600.0\n")
+            held.append(f'{{ lug = "{name}", tension = {20.0 * spacing / 2:.1f} }}')
+    weight = 20.0 * length
+    return (f'name = "barge on {2 * stations} jacks"\n[body]\nweight = {weight}\n'
+            f"cog = [{length / 2}, 0.0, 3.0]\nweight_curve = [[0.0, 20.0], [{length}, 20.0]]\n"
+            + "".join(lugs) + "".join(cranes)
+            + f'[analysis]\nmodel = "rigid"\nredundant = [{", ".join(held[3:])}]\n')
+
+
+def _labels(fig):
+    """The force labels (annotations on the point-force axis) and their window boxes."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Annotation
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    forces = fig.axes[-1]  # the twin axis of the loads panel, added last
+    texts = [t for t in forces.texts if isinstance(t, Annotation)]
+    return texts, [t.get_window_extent(renderer) for t in texts]
+
+
+@pytest.mark.parametrize("stations", [12, 40])
+def test_strength_figure_labels_never_overlap(tmp_path, stations):
+    """24 jacks (12 stations: the stems numbered, a key) and 80 (40 stations: staggered
+    numbers): no two labels overlap, on the solve figure and at the report's print width,
+    and every station's names and force are in the key."""
+    from liftplan.model import load_scene, solve
+    from liftplan.model.strength import hull_girder
+    from liftplan.planner.output.strength_figure import strength_figure
+    from liftplan.planner.output.strength_report import _print_width
+
+    path = tmp_path / "barge.toml"
+    path.write_text(_barge(stations), encoding="utf-8")
+    scene = load_scene(path)
+    eq = solve(scene)
+    girder = hull_girder(scene, eq)
+    for fig in (strength_figure(scene, eq, girder), _print_width(strength_figure(scene, eq, girder))):
+        texts, boxes = _labels(fig)
+        assert len(texts) == stations
+        for a, b in zip(boxes, boxes[1:]):
+            assert not a.overlaps(b), (a, b)
+        assert [t.get_text() for t in texts] == [str(k) for k in range(1, stations + 1)]
+        key = [t.get_text() for t in fig.axes[-1].get_legend().get_texts()]
+        for k in range(stations):
+            total = eq.tensions[f"S{k + 1:02d}-P"] + eq.tensions[f"S{k + 1:02d}-S"]
+            assert f"{k + 1}: S{k + 1:02d}-P, S{k + 1:02d}-S  {total:.1f} t" in key
+
+
+def test_strength_figure_keeps_names_at_the_stems_where_they_fit(tmp_path):
+    from liftplan.model import load_scene, solve
+    from liftplan.model.strength import hull_girder
+    from liftplan.planner.output.strength_figure import strength_figure
+
+    path = tmp_path / "barge.toml"
+    path.write_text(_barge(3, spacing=30.0), encoding="utf-8")
+    scene = load_scene(path)
+    eq = solve(scene)
+    texts, boxes = _labels(strength_figure(scene, eq, hull_girder(scene, eq)))
+    assert [t.get_text().split("\n")[0] for t in texts] == ["S01-P, S01-S", "S02-P, S02-S", "S03-P, S03-S"]
+    for a, b in zip(boxes, boxes[1:]):
+        assert not a.overlaps(b)

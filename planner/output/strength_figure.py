@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 _DENSE = 1200  # points per curve on top of the breakpoints
 
@@ -65,6 +66,66 @@ def strength_figure(scene, eq, girder):
     return fig
 
 
+#: The narrowest the loads panel is drawn  [pt] (10 in wide with the legends on the right,
+#: or at the report's print width with the legends below): the labels are laid out for it.
+_PANEL_PT = 0.6 * 10.0 * 72.0
+_LABEL_PT = 7.0  # label font size
+_GAP_PT = 3.0  # least white space between two labels
+
+
+def _text_width(text, size=_LABEL_PT):
+    """Width of the widest line of ``text`` at ``size`` points  [pt]."""
+    from matplotlib.textpath import TextPath
+
+    return max(TextPath((0.0, 0.0), line or " ", size=size).get_extents().width
+               for line in text.split("\n"))
+
+
+def _station_labels(forces, points, span):
+    """Label each station's stem (ropes at one x, port and starboard, share a stem).
+
+    Names and force at the stem where the labels fit side by side on the narrowest panel
+    (:data:`_PANEL_PT`); else the station's number at its stem (in two staggered rows where
+    even the numbers would touch) and the returned key, one "k: names force" per station,
+    for the legend.
+
+    Returns
+    -------
+    key : list of str
+        Empty when the stems carry their names.
+    rows : int
+        Rows of labels (2 when staggered).
+    """
+    stations = {}
+    for p in points:
+        stations.setdefault(round(p.x, 6), []).append(p)
+    xs = sorted(stations)
+    tops = [max(p.normal for p in stations[x]) for x in xs]
+    names = [", ".join(p.name.split(" ", 1)[1] if " " in p.name else p.name for p in stations[x])
+             for x in xs]
+    totals = [sum(p.normal for p in stations[x]) for x in xs]
+    full = [f"{n}\n{t:.1f} t" for n, t in zip(names, totals)]
+    per_pt = max(span, 1e-9) / _PANEL_PT  # data x per point on the narrowest panel
+
+    def fits(texts):
+        widths = [_text_width(t) for t in texts]
+        return all((b - a) / per_pt >= 0.5 * (wa + wb) + _GAP_PT
+                   for a, b, wa, wb in zip(xs, xs[1:], widths, widths[1:]))
+
+    if fits(full):
+        for x, top, text in zip(xs, tops, full):
+            forces.annotate(text, (x, top), textcoords="offset points", xytext=(0, 4), ha="center",
+                            fontsize=_LABEL_PT)
+        return [], 1
+    numbers = [str(k) for k in range(1, len(xs) + 1)]
+    stagger = not fits(numbers)
+    for k, (x, top, number) in enumerate(zip(xs, tops, numbers)):
+        forces.annotate(number, (x, top), textcoords="offset points",
+                        xytext=(0, 4 + (_LABEL_PT + 2.0) * (k % 2 if stagger else 0)),
+                        ha="center", fontsize=_LABEL_PT, fontweight="bold")
+    return [f"{k}: {n}  {t:.1f} t" for k, n, t in zip(numbers, names, totals)], 1 + stagger
+
+
 def _load_panel(ax, girder, xx, weight):
     """Distributed loads (t/m, left axis) and point loads (t, stems on the right axis)."""
     xs = xx[::2]
@@ -92,20 +153,12 @@ def _load_panel(ax, girder, xx, weight):
         colour = "C1" if p.name.startswith(("rope", "leg")) else "C5"
         forces.plot([p.x, p.x], [0.0, p.normal], color=colour, lw=2.0)
         forces.plot([p.x], [p.normal], "^" if p.normal >= 0 else "v", color=colour, ms=6)
-    # label each station once (ropes on the same x, e.g. port and starboard, share a stem)
-    stations = {}
-    for p in points:
-        stations.setdefault(round(p.x, 6), []).append(p)
-    for x, group in stations.items():
-        total = sum(p.normal for p in group)
-        names = ", ".join(p.name.split(" ", 1)[1] if " " in p.name else p.name for p in group)
-        forces.annotate(f"{names}\n{total:.1f} t", (x, max(p.normal for p in group)),
-                        textcoords="offset points", xytext=(0, 4), ha="center", fontsize=7)
+    key, rows = _station_labels(forces, points, float(np.ptp(xs)))
     # both axes' zeros on one line: the distributed loads below, the lift forces above it
     low = -1.3 * max(float(np.max(down)), 1e-9)
     high = max(1.3 * float(np.max(up)), 0.9 * -low)
     ax.set_ylim(low, high)
-    top = 1.3 * max([p.normal for p in points] + [1e-9 * weight])
+    top = (1.3 if rows == 1 else 1.5) * max([p.normal for p in points] + [1e-9 * weight])
     bottom = min([p.normal for p in points] + [0.0])
     forces.set_ylim(min(low / high * top, 1.35 * bottom), top)
     forces.set_ylabel("point forces [t]")
@@ -115,5 +168,10 @@ def _load_panel(ax, girder, xx, weight):
         forces.plot([], [], color="C5", lw=2.0, label="ground reaction")
     handles, labels = ax.get_legend_handles_labels()
     more, more_labels = forces.get_legend_handles_labels()
+    if key:  # stations numbered at their stems: the key after the line styles
+        blank = Line2D([], [], linestyle="none")
+        more, more_labels = more + [blank] * len(key), more_labels + key
+    entries = len(labels) + len(more_labels)
     forces.legend(handles + more, labels + more_labels, loc="upper left", bbox_to_anchor=(1.13, 1.0),
-                  fontsize=8, frameon=False)
+                  fontsize=8 if not key else 7, frameon=False, ncols=1 if entries <= 18 else 2,
+                  handlelength=2.0)

@@ -236,7 +236,9 @@ def _print_width(fig):
         if legend is not None:
             handles, labels = legend.legend_handles, [t.get_text() for t in legend.get_texts()]
             legend.remove()
-            ax.legend(handles, labels, fontsize=FONT_PT - 1, loc="upper center", ncols=2,
+            # a station key (stems numbered) takes four columns
+            ax.legend(handles, labels, fontsize=FONT_PT - 1, loc="upper center",
+                      ncols=2 if len(labels) <= 6 else 4,
                       bbox_to_anchor=(0.5, -0.2 if ax is bottom else -0.06), frameon=False)
     return fig
 
