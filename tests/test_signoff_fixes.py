@@ -311,7 +311,11 @@ def _labels(fig):
     renderer = canvas.get_renderer()
     forces = fig.axes[-1]  # the twin axis of the loads panel, added last
     texts = [t for t in forces.texts if isinstance(t, Annotation)]
-    return texts, [t.get_window_extent(renderer) for t in texts]
+    boxes = [t.get_window_extent(renderer) for t in texts]
+    panel = forces.get_window_extent(renderer)
+    for box in boxes:  # within the panel: no label crosses its frame or the title
+        assert panel.y0 <= box.y0 and box.y1 <= panel.y1, (box, panel)
+    return texts, boxes
 
 
 @pytest.mark.parametrize("stations", [12, 40])
@@ -345,12 +349,50 @@ def test_strength_figure_keeps_names_at_the_stems_where_they_fit(tmp_path):
     from liftplan.model import load_scene, solve
     from liftplan.model.strength import hull_girder
     from liftplan.planner.output.strength_figure import strength_figure
+    from liftplan.planner.output.strength_report import _print_width
 
     path = tmp_path / "barge.toml"
     path.write_text(_barge(3, spacing=30.0), encoding="utf-8")
     scene = load_scene(path)
     eq = solve(scene)
-    texts, boxes = _labels(strength_figure(scene, eq, hull_girder(scene, eq)))
-    assert [t.get_text().split("\n")[0] for t in texts] == ["S01-P, S01-S", "S02-P, S02-S", "S03-P, S03-S"]
-    for a, b in zip(boxes, boxes[1:]):
-        assert not a.overlaps(b)
+    girder = hull_girder(scene, eq)
+    for fig in (strength_figure(scene, eq, girder), _print_width(strength_figure(scene, eq, girder))):
+        texts, boxes = _labels(fig)
+        assert [t.get_text().split("\n")[0] for t in texts] == ["S01-P, S01-S", "S02-P, S02-S",
+                                                                "S03-P, S03-S"]
+        for a, b in zip(boxes, boxes[1:]):
+            assert not a.overlaps(b)
+
+
+def _filled(png, top_mm, bottom_mm):
+    """How far down the text area a rendered A4 page has ink  [-] (0 top, 1 bottom)."""
+    from PIL import Image
+
+    ink = np.asarray(Image.open(png).convert("L")) < 200
+    mm = 297.0 / ink.shape[0]
+    rows = np.flatnonzero(ink.any(axis=1)) * mm
+    rows = rows[(rows > top_mm + 2.0) & (rows < 297.0 - bottom_mm - 2.0)]  # not header, footer
+    return float((rows.max() - top_mm) / (297.0 - top_mm - bottom_mm)) if rows.size else 0.0
+
+
+@pytest.mark.skipif(shutil.which("pdftoppm") is None, reason="needs poppler-utils (pdftoppm)")
+def test_strength_report_small_force_case_has_no_nearly_empty_page(tmp_path):
+    """The pontoon under force control: the solved-scene figure leaves room for the
+    assumptions on its page (at 215 mm two bullets went onto a page of their own, inked
+    12 % down); every page but the last is inked at least a third of the way down."""
+    from test_report_pdf import _missing, render
+    from test_strength_report import small_text
+
+    from liftplan.planner.output.report import write_report
+    from liftplan.planner.output.report_page import MARGINS_MM
+    from liftplan.planner.strength_plan import plan_strength
+
+    if _missing() is not None:
+        pytest.skip(_missing())
+    files = write_report(plan_strength(loads_problem(small_text())), tmp_path / "report")
+    pages, texts = render(files.pdf, tmp_path)
+    fills = [_filled(png, MARGINS_MM[0], MARGINS_MM[2]) for png in pages]
+    assert all(f >= 1.0 / 3.0 for f in fills[:-1]), fills
+    # the assumptions on one page, with the heading
+    holding = [k for k, t in enumerate(texts) if "6 Assumptions" in t]
+    assert len(holding) == 1 and "on the same states." in texts[holding[0]]

@@ -69,6 +69,8 @@ def strength_figure(scene, eq, girder):
 #: The narrowest the loads panel is drawn  [pt] (10 in wide with the legends on the right,
 #: or at the report's print width with the legends below): the labels are laid out for it.
 _PANEL_PT = 0.6 * 10.0 * 72.0
+#: The shortest the loads panel is drawn  [pt] (at the report's print size).
+_PANEL_HEIGHT_PT = 100.0
 _LABEL_PT = 7.0  # label font size
 _GAP_PT = 3.0  # least white space between two labels
 
@@ -94,7 +96,7 @@ def _station_labels(forces, points, span):
     key : list of str
         Empty when the stems carry their names.
     rows : int
-        Rows of labels (2 when staggered).
+        Lines of text above the highest stem (names and force: 2; numbers: 1, staggered 2).
     """
     stations = {}
     for p in points:
@@ -116,7 +118,7 @@ def _station_labels(forces, points, span):
         for x, top, text in zip(xs, tops, full):
             forces.annotate(text, (x, top), textcoords="offset points", xytext=(0, 4), ha="center",
                             fontsize=_LABEL_PT)
-        return [], 1
+        return [], 2
     numbers = [str(k) for k in range(1, len(xs) + 1)]
     stagger = not fits(numbers)
     for k, (x, top, number) in enumerate(zip(xs, tops, numbers)):
@@ -156,10 +158,15 @@ def _load_panel(ax, girder, xx, weight):
     key, rows = _station_labels(forces, points, float(np.ptp(xs)))
     # both axes' zeros on one line: the distributed loads below, the lift forces above it
     low = -1.3 * max(float(np.max(down)), 1e-9)
-    high = max(1.3 * float(np.max(up)), 0.9 * -low)
+    high = max(1.3 * float(np.max(up)), 1.2 * -low)
     ax.set_ylim(low, high)
-    top = (1.3 if rows == 1 else 1.5) * max([p.normal for p in points] + [1e-9 * weight])
+    peak = max([p.normal for p in points] + [1e-9 * weight])
     bottom = min([p.normal for p in points] + [0.0])
+    # above the highest stem, room for its label on the shortest panel drawn: the labels'
+    # share of the panel's height is (top - peak) / (top - lowest), lowest = -ratio x top
+    ratio = max(-low / high, -1.35 * bottom / peak)
+    share = (rows * 1.2 * _LABEL_PT + 6.0) / _PANEL_HEIGHT_PT
+    top = peak / max(1.0 - (1.0 + ratio) * share, 1.0 / 3.0)
     forces.set_ylim(min(low / high * top, 1.35 * bottom), top)
     forces.set_ylabel("point forces [t]")
     if any(p.name != "ground" for p in points):

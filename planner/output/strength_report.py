@@ -11,6 +11,7 @@ from __future__ import annotations
 import html
 import itertools
 import json
+import math
 
 import numpy as np
 
@@ -220,11 +221,23 @@ def forces_figure(plan):
     return fig
 
 
+def _columns(entries):
+    """Legend columns under a panel at the print width: 2, or 4 for a station key."""
+    return 2 if entries <= 6 else 4
+
+
 def _print_width(fig):
-    """The solve's girder figure redrawn at the print width: legends under their panels."""
+    """The solve's girder figure redrawn at the print width: legends under their panels.
+
+    160 mm tall, and 3.2 mm more per legend row (a station key): with its caption it leaves
+    room on its page for the assumptions that follow it (at 215 mm two of them went onto a
+    page of their own).
+    """
     from liftplan.planner.output.report_page import FONT_PT, figure_size
 
-    fig.set_size_inches(*figure_size(215.0))
+    rows = sum(math.ceil(len(legend.get_texts()) / _columns(len(legend.get_texts())))
+               for legend in (ax.get_legend() for ax in fig.axes) if legend is not None)
+    fig.set_size_inches(*figure_size(160.0 + 3.2 * rows))
     if fig._suptitle is not None:
         fig._suptitle.set_fontsize(FONT_PT + 1)
     bottom = fig.axes[len(fig.axes) - 2] if len(fig.axes) > 3 else fig.axes[-1]  # the twin axis last
@@ -237,8 +250,7 @@ def _print_width(fig):
             handles, labels = legend.legend_handles, [t.get_text() for t in legend.get_texts()]
             legend.remove()
             # a station key (stems numbered) takes four columns
-            ax.legend(handles, labels, fontsize=FONT_PT - 1, loc="upper center",
-                      ncols=2 if len(labels) <= 6 else 4,
+            ax.legend(handles, labels, fontsize=FONT_PT - 1, loc="upper center", ncols=_columns(len(labels)),
                       bbox_to_anchor=(0.5, -0.2 if ax is bottom else -0.06), frameon=False)
     return fig
 
@@ -511,7 +523,9 @@ def render_html(plan, today=None, solved=None):
         "nominal CG (the plan's peaks are the worst over every state).</p>",
         "<h2>5 Figures</h2>", *figs,
         "<h2>6 Assumptions</h2>",
-        "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in assumptions) + "</ul>",
+        # one block: never a bullet or two alone on a page
+        '<ul style="break-inside: avoid">' + "".join(f"<li>{html.escape(a)}</li>" for a in assumptions)
+        + "</ul>",
         *_appendix(plan),
     ])
     return report_page.document(name, body, report_page.running_header(info, name),
