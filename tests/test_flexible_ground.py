@@ -338,3 +338,27 @@ def test_cli_json_and_console_say_which_hull_and_the_ground_reaction(capsys, tmp
     assert main(["solve", str(path)]) == 0
     console = capsys.readouterr().out
     assert "hull: flexible" in console and "ground reaction:" in console
+
+
+def test_hanging_in_water_with_trapped_water_closes_and_tends_to_rigid():
+    """Not grounded: the sunken block (flooded, a trapped-water tank aft) hanging submerged from
+    four ropes. The flexible model without a contact (zo free) is accepted, its strength curves
+    close to 1e-9 W and W L with the trapped water per length, and at a stiff hull the tensions
+    are the rigid hull's to 1e-6."""
+    text = (EXAMPLES / "sunken_block_lift.toml").read_text()
+    text = text.replace("cog = [30.0, 0.3, 2.5]",
+                        "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]")
+    text = text.replace("boom_height = 30.0", "boom_height = 31.0")
+    text = text.replace('[[hull.compartments]]\nname = "fore tank"',
+                        'EI = [[0.0, EIVAL]]\n\n[[hull.compartments]]\nname = "fore tank"', 1)
+    text += '\n[analysis]\nhull = "flexible"\n'
+    for ei, tol in ((1e6, None), (1e12, 1e-6)):
+        scene = loads_scene(text.replace("EIVAL", repr(ei)), base=EXAMPLES)
+        eq = solve(scene)
+        assert eq.afloat.state == "hanging submerged" and eq.flexible_hull.used == "flexible"
+        girder = hull_girder(scene, eq)
+        assert abs(girder.closure[0]) < 1e-9 * scene.body.weight
+        assert abs(girder.closure[1]) < 1e-9 * scene.body.weight * 60.0
+        if tol is not None:
+            rigid = np.array(list(eq.flexible_hull.rigid_tensions.values()))
+            assert_allclose(list(eq.tensions.values()), rigid, rtol=tol)
