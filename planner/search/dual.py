@@ -41,6 +41,11 @@ TAU_START, TAU_FACTOR, STAGES, STEPS = 0.05, 0.3, 6, 5
 FIRST_STEPS, BACKTRACK = 12, 30
 #: Newton steps per tau at most, and the decrement (x tau) below which a set has converged.
 MAX_STEPS, DECREMENT = 40, 1e-6
+#: With a finite target: each set is first bounded over only its FIRST_ROWS scenarios of
+#: widest spread (largest value for ``reserve``) at the least-norm preload - fewer rows, a
+#: weaker but valid bound that already passes the target for most sets a search refines -
+#: and over all of them only if it falls short.
+FIRST_ROWS = 4
 #: Weight of the tension limits' penalty (their multipliers stay below it).
 PENALTY = 10.0
 
@@ -73,6 +78,29 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
     numpy.ndarray, shape (N,)
         A valid lower bound on each set's LP value over these scenarios.
     """
+    limits = tuple(np.broadcast_to(v, alpha.shape) for v in limits)
+    m = alpha.shape[1]
+    if not np.isfinite(target) or m <= FIRST_ROWS:
+        return _bound(particular, null, alpha, beta, low, high, limits, reserve, target)
+    # a bound over some of the rows is a bound over all of them (a relaxation)
+    width = alpha.max(axis=2) if reserve else np.ptp(alpha, axis=2)
+    rows = np.argsort(-width, axis=1)[:, :FIRST_ROWS]
+
+    def some(v):
+        return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
+
+    bound = _bound(particular, null, some(alpha), some(beta), low, high,
+                   tuple(some(v) for v in limits), reserve, target)
+    short = np.flatnonzero(bound < target)
+    if short.size:
+        bound[short] = np.maximum(bound[short], _bound(
+            particular[short], null[short], alpha[short], beta[short], low[short], high[short],
+            tuple(v[short] for v in limits), reserve, target))
+    return bound
+
+
+def _bound(particular, null, alpha, beta, low, high, limits, reserve, target):
+    """:func:`preload_lp_bound` over every row given."""
     count, m, n = alpha.shape
     d = null.shape[2]
     limit_low, limit_high = (np.broadcast_to(v, alpha.shape) for v in limits)
@@ -82,34 +110,41 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
     bound = np.full(count, -np.inf)
     open_ = np.arange(count)
     for stage in range(STAGES + 1):
-        k = open_
-        parts = (alpha[k], beta[k], limit_low[k], limit_high[k])
-        box = (particular[k], null[k], low[k], high[k])
-        y[k] = _newton(y[k], tau[k], ridge[k], parts, box, reserve,
-                       STEPS if stage else FIRST_STEPS)
-        values = parts[0] + np.einsum("kmid,kd->kmi", parts[1], y[k])
-        weights = _Weights(values, tau[k], reserve, parts[2], parts[3])
-        # every stage's certificate is valid: keep the best, drop sets already past target
-        box_weights = _box_multipliers(y[k], box, tau[k])
-        bound[k] = np.maximum(bound[k], weights.certificate(
-            particular[k], null[k], parts[0], parts[1], low[k], high[k], box_weights))
-        open_ = k[bound[k] < target]
         if open_.size == 0:
             break
+        open_ = _certify(y, open_, tau, ridge, (alpha, beta, limit_low, limit_high),
+                         (particular, null, low, high), reserve, STEPS if stage else FIRST_STEPS,
+                         MAX_STEPS, bound, target)
         tau = TAU_FACTOR * tau
     return bound
 
 
-def _newton(y, tau, ridge, parts, box, reserve, steps):
+def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, target):
+    """Newton steps on the sets ``open_`` (y changed in place), then their certificate
+    (``bound`` raised in place: every certificate is valid, the best is kept); returns the
+    sets still short of ``target``."""
+    k = open_
+    parts = tuple(v[k] for v in parts)
+    box = tuple(v[k] for v in box)
+    y[k] = _newton(y[k], tau[k], ridge[k], parts, box, reserve, steps, most)
+    values = parts[0] + np.einsum("kmid,kd->kmi", parts[1], y[k])
+    weights = _Weights(values, tau[k], reserve, parts[2], parts[3])
+    box_weights = _box_multipliers(y[k], box, tau[k])
+    bound[k] = np.maximum(bound[k], weights.certificate(box[0], box[1], parts[0], parts[1],
+                                                        box[2], box[3], box_weights))
+    return k[bound[k] < target]
+
+
+def _newton(y, tau, ridge, parts, box, reserve, steps, most=MAX_STEPS):
     """Damped Newton steps on the smoothed objective at fixed tau, for many sets.
 
-    At least ``steps`` steps for every set, and up to MAX_STEPS for a set whose Newton
+    At least ``steps`` steps for every set, and up to ``most`` for a set whose Newton
     decrement is still above DECREMENT x tau (the sets that converge drop out). The preload's
     box (lo <= T_p + N y <= hi) enters the smoothing as a soft penalty too, so that the weights
     found are those of the box-constrained LP (the certificate itself keeps the box exactly)."""
     y = y.copy()
     live = np.arange(len(y))
-    for step_count in range(MAX_STEPS):
+    for step_count in range(most):
         if live.size == 0:
             break
         part = tuple(v[live] for v in parts)
@@ -168,8 +203,37 @@ def _worst(values, reserve):
 
 
 def _log_sum_exp(x, axis):
+    if axis == x.ndim - 1:  # over the ropes: the fast reductions below
+        top = _row_max(x)
+        return np.log(_row_sum(np.exp(x - top[..., None]))) + top
     top = x.max(axis=axis, keepdims=True)
     return np.log(np.exp(x - top).sum(axis=axis)) + np.squeeze(top, axis=axis)
+
+
+# numpy reduces a short last axis (the ropes) slowly; these do the same arithmetic faster.
+def _row_max(x):
+    """Largest value over the last axis."""
+    top = x[..., 0].copy()
+    for i in range(1, x.shape[-1]):
+        np.maximum(top, x[..., i], out=top)
+    return top
+
+
+def _row_sum(x):
+    """Sum over the last axis."""
+    return x @ np.ones(x.shape[-1])
+
+
+#: Below this, log(1 + e^x) and its sigmoid (< 4e-18) are taken as 0.
+SOFT_FLOOR = -40.0
+
+
+def _softplus(x):
+    """log(1 + e^x), elementwise; 0 where x < SOFT_FLOOR (and for -inf: no limit)."""
+    out = np.zeros(x.shape)
+    live = x > SOFT_FLOOR
+    out[live] = np.logaddexp(0.0, x[live])
+    return out
 
 
 def _box_multipliers(y, box, tau):
@@ -201,9 +265,8 @@ def _objective(values, tau, reserve, limit_low, limit_high):
     if not reserve:
         log_k = log_k + _log_sum_exp(-values / t, 2)
     with np.errstate(invalid="ignore"):
-        soft = np.logaddexp(0.0, (values - limit_high) / t) + \
-            np.logaddexp(0.0, (limit_low - values) / t)
-    return tau * _log_sum_exp(log_k, 1) + PENALTY * tau * np.nansum(soft, axis=(1, 2))
+        soft = _softplus((values - limit_high) / t) + _softplus((limit_low - values) / t)
+    return tau * _log_sum_exp(log_k, 1) + PENALTY * tau * soft.sum(axis=(1, 2))
 
 
 def _sigmoid(x):
@@ -218,17 +281,17 @@ class _Weights:
         self.tau, self.reserve = tau, reserve
         self.limit_low, self.limit_high = limit_low, limit_high
         up = values / t
-        top = up.max(axis=2, keepdims=True)
+        top = _row_max(up)[..., None]
         e_up = np.exp(up - top)
-        s_up = e_up.sum(axis=2)
+        s_up = _row_sum(e_up)
         self.p = e_up / s_up[..., None]
         log_k = np.log(s_up) + top[..., 0]  # log sum_i exp(V_k,i / tau)
         self.q = np.zeros_like(values)
         if not reserve:  # times sum_j exp(-V_k,j / tau): the pairs' soft maximum factors
             down = -values / t
-            bottom = down.max(axis=2, keepdims=True)
+            bottom = _row_max(down)[..., None]
             e_down = np.exp(down - bottom)
-            s_down = e_down.sum(axis=2)
+            s_down = _row_sum(e_down)
             self.q = e_down / s_down[..., None]
             log_k = log_k + np.log(s_down) + bottom[..., 0]
         shift = log_k.max(axis=1, keepdims=True)
@@ -242,9 +305,8 @@ class _Weights:
             under = _sigmoid((limit_low - values) / t)
         self.over, self.under = PENALTY * over, PENALTY * under
         with np.errstate(invalid="ignore"):
-            soft = np.logaddexp(0.0, (values - limit_high) / t) + \
-                np.logaddexp(0.0, (limit_low - values) / t)
-        self.objective = self.objective + PENALTY * tau * np.nansum(soft, axis=(1, 2))
+            soft = _softplus((values - limit_high) / t) + _softplus((limit_low - values) / t)
+        self.objective = self.objective + PENALTY * tau * soft.sum(axis=(1, 2))
         self.curvature = PENALTY * (over * (1.0 - over) + under * (1.0 - under)) / t
 
     def derivatives(self, beta, flat):
