@@ -34,6 +34,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from liftplan.planner.search.rows import row_max, row_spread, row_sum
+
 #: Continuation: tau from TAU_START x the initial worst value, times TAU_FACTOR per stage
 #: (STAGES stages, STEPS Newton steps each).
 TAU_START, TAU_FACTOR, STAGES, STEPS = 0.05, 0.3, 6, 5
@@ -83,7 +85,7 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
     if not np.isfinite(target) or m <= FIRST_ROWS:
         return _bound(particular, null, alpha, beta, low, high, limits, reserve, target)
     # a bound over some of the rows is a bound over all of them (a relaxation)
-    width = alpha.max(axis=2) if reserve else np.ptp(alpha, axis=2)
+    width = row_max(alpha) if reserve else row_spread(alpha)
     rows = np.argsort(-width, axis=1)[:, :FIRST_ROWS]
 
     def some(v):
@@ -198,30 +200,16 @@ def _newton_step(y, live, tau, ridge, parts, box, reserve):
 
 def _worst(values, reserve):
     if reserve:
-        return values.max(axis=(1, 2))
-    return np.ptp(values, axis=2).max(axis=1)
+        return row_max(values).max(axis=1)
+    return row_spread(values).max(axis=1)
 
 
 def _log_sum_exp(x, axis):
     if axis == x.ndim - 1:  # over the ropes: the fast reductions below
-        top = _row_max(x)
-        return np.log(_row_sum(np.exp(x - top[..., None]))) + top
+        top = row_max(x)
+        return np.log(row_sum(np.exp(x - top[..., None]))) + top
     top = x.max(axis=axis, keepdims=True)
     return np.log(np.exp(x - top).sum(axis=axis)) + np.squeeze(top, axis=axis)
-
-
-# numpy reduces a short last axis (the ropes) slowly; these do the same arithmetic faster.
-def _row_max(x):
-    """Largest value over the last axis."""
-    top = x[..., 0].copy()
-    for i in range(1, x.shape[-1]):
-        np.maximum(top, x[..., i], out=top)
-    return top
-
-
-def _row_sum(x):
-    """Sum over the last axis."""
-    return x @ np.ones(x.shape[-1])
 
 
 #: Below this, log(1 + e^x) and its sigmoid (< 4e-18) are taken as 0.
@@ -281,17 +269,17 @@ class _Weights:
         self.tau, self.reserve = tau, reserve
         self.limit_low, self.limit_high = limit_low, limit_high
         up = values / t
-        top = _row_max(up)[..., None]
+        top = row_max(up)[..., None]
         e_up = np.exp(up - top)
-        s_up = _row_sum(e_up)
+        s_up = row_sum(e_up)
         self.p = e_up / s_up[..., None]
         log_k = np.log(s_up) + top[..., 0]  # log sum_i exp(V_k,i / tau)
         self.q = np.zeros_like(values)
         if not reserve:  # times sum_j exp(-V_k,j / tau): the pairs' soft maximum factors
             down = -values / t
-            bottom = _row_max(down)[..., None]
+            bottom = row_max(down)[..., None]
             e_down = np.exp(down - bottom)
-            s_down = _row_sum(e_down)
+            s_down = row_sum(e_down)
             self.q = e_down / s_down[..., None]
             log_k = log_k + np.log(s_down) + bottom[..., 0]
         shift = log_k.max(axis=1, keepdims=True)

@@ -30,6 +30,7 @@ import numpy as np
 
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.dual import preload_lp_bound
+from liftplan.planner.search.rows import row_max, row_spread
 from liftplan.planner.search.scenarios import (
     box_attitudes,
     held_model,
@@ -185,8 +186,16 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
     n = sets.shape[1]
     # sets per chunk: the gains (and the dual's null-space slopes) stay within FLOATS each
     chunk = max(1, min(CHUNK, FLOATS // (len(scenarios[0]) * n * (2 * n if dual else n))))
+    hinged = problem.hinge_rows is not None
     for start in range(0, len(sets), chunk):
-        part = slice(start, start + chunk)
+        part = np.arange(start, min(start + chunk, len(sets)))
+        if not hinged:  # plan geometry first: the rest of the screening only where it can hold
+            code = _plan_geometry(problem, sets[part])
+            bound[part[code != FEASIBLE]] = np.inf
+            reason[part] = code
+            part = part[code == FEASIBLE]
+            if part.size == 0:
+                continue
         # collinear sets give singular statics (inf, nan): they are marked, not used
         with np.errstate(divide="ignore", invalid="ignore"):
             bound[part], reason[part] = _screen_chunk(problem, sets[part], cranes[part], scenarios,
@@ -374,6 +383,25 @@ def _collinear(plan_x, plan_y):
     return sxx * syy - sxy**2 <= 1e-12 * (sxx + syy) ** 2
 
 
+def _plan_geometry(problem, sets):
+    """COLLINEAR or CG_OUTSIDE where the lugs' plan alone rules a set out, else FEASIBLE.
+
+    CG_OUTSIDE only where the CG is outside the lugs' polygon by more than rounding (an
+    angular gap above pi): no tensions >= 0 can then hold the level statics, whatever the
+    ropes. (The screening's own tests decide the borderline cases.)"""
+    yaw = math.radians(problem.yaw)
+    c, s = math.cos(yaw), math.sin(yaw)
+    points = problem.points[sets]
+    plan_x = c * points[..., 0] - s * points[..., 1]
+    plan_y = s * points[..., 0] + c * points[..., 1]
+    cog = problem.body.cog
+    cog_x, cog_y = c * cog[0] - s * cog[1], s * cog[0] + c * cog[1]
+    angles = np.sort(np.arctan2(plan_y - cog_y, plan_x - cog_x), axis=1)
+    gaps = np.diff(angles, axis=1, append=angles[:, :1] + 2 * math.pi)
+    code = np.where(gaps.max(axis=1) > math.pi + 1e-9, CG_OUTSIDE, FEASIBLE)
+    return np.where(_collinear(plan_x, plan_y), COLLINEAR, code)
+
+
 def _cog_inside(plan_x, plan_y, cog_x, cog_y):
     """CG strictly inside the convex hull of each set's lugs in plan (no angular gap >= pi)."""
     angles = np.sort(np.arctan2(plan_y - cog_y, plan_x - cog_x), axis=1)
@@ -427,9 +455,9 @@ def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale, hook, 
     margin = 0.0 if hook is None else hook[0]
     reason = _classify_point(preload, tensions, inside, limits, preload_range, margin)
     if reserve:
-        bound = (scale[:, None, :] * (tensions + margin)).max(axis=(1, 2))
+        bound = row_max(scale[:, None, :] * (tensions + margin)).max(axis=1)
     elif hook is None:
-        bound = np.ptp(scale[:, None, :] * tensions, axis=2).max(axis=1)
+        bound = row_spread(scale[:, None, :] * tensions).max(axis=1)
     else:
         bound = _worst_pairs(scale[:, None, :] * tensions, hook[1])
     return np.where(reason == FEASIBLE, bound, np.inf), reason
@@ -489,12 +517,12 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
         def worst(t):
             values = al + t[:, None, None] * be
             if reserve:
-                return (values + lift).max(axis=(1, 2))
+                return row_max(values + lift).max(axis=1)
             if pair is None:
-                return np.ptp(values, axis=2).max(axis=1)
+                return row_spread(values).max(axis=1)
             return _worst_pairs(values, pair)
 
-        lipschitz = np.abs(be).max(axis=(1, 2)) if reserve else np.ptp(be, axis=2).max(axis=1)
+        lipschitz = np.abs(be).max(axis=(1, 2)) if reserve else row_spread(be).max(axis=1)
         bound[ok] = _golden(worst, lo[ok], hi[ok], lipschitz)
     return bound, reason
 
