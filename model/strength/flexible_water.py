@@ -465,6 +465,24 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS):
         iterations=iterations, remeshed=remeshed)
 
 
+def contact_height(scene, state):
+    """Height over the water plane of the ground contact of a solved flexible hull: the chord's
+    pose plus the beam's deflection there (its vertical part, and the section's turn w' about the
+    CG's height)  [m]."""
+    contact = np.asarray(scene.ground.contact, dtype=float)
+    mesh = state.mesh
+    w, slope, _ = mesh.full(state.beam)
+    k = int(np.clip(np.searchsorted(mesh.x, contact[0], side="right") - 1, 0, mesh.m - 2))
+    h = mesh.x[k + 1] - mesh.x[k]
+    t = (contact[0] - mesh.x[k]) / h
+    values = np.array([w[k], slope[k], w[k + 1], slope[k + 1]])
+    deflection = float(hermite(t, h) @ values)
+    turn = float(hermite_slope(t, h) @ values)
+    up = state.rotation[2]
+    return float(up @ contact + state.zo + up[2] * deflection
+                 - up[0] * (contact[2] - float(scene.body.cog[2])) * turn)
+
+
 def _quadrature_exact(setup, tris, kappa, rotation, zo, stations, weights):
     """Whether the Gauss quadrature of the sections (:func:`.sections.immersed_sections`) gives
     the clipped hull's exact buoyancy and first moments at this chord pose (to 1e-12 W, W L):
@@ -567,12 +585,24 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     begin = time.perf_counter()
     state = water_beam_state(scene, rotation_matrix(pose.heel, pose.trim, pose.yaw),
                              pose.lift_height - level, grounded)
+    sank = False
+    if not grounded and scene.ground is not None and state.accepted:
+        # the rigid hull floats or hangs clear of its contact; the bending one may reach it
+        below = WaterSetup(scene).ground_height - contact_height(scene, state)
+        if below > 1e-6 * scene.hull.size:
+            grounded = sank = True
+            state = water_beam_state(scene, state.rotation, state.zo, grounded)
     seconds = time.perf_counter() - begin
     where = "grounded" if grounded else "in water"
     if not state.accepted:
         why = (f"residual {state.residual:.3g}" if state.residual > RESIDUAL_TOL
                else "unstable (the stiffness is not positive definite)")
         raise EquilibriumNotFound(f"hydrostatic, flexible hull {where}: no accepted equilibrium ({why})")
+    if sank and not state.reaction > 0.0:
+        raise EquilibriumNotFound(
+            f"hydrostatic, flexible hull: afloat the bending hull reaches below its ground contact, "
+            f"grounded it lifts off it (reaction {state.reaction:.4g} t); no consistent contact found, "
+            'expected analysis.hull = "rigid" or a stiffer hull.EI')
     if grounded and not state.reaction > 0.0:
         raise EquilibriumNotFound(
             f"hydrostatic, flexible hull: the bending hull lifts off its ground contact (reaction "

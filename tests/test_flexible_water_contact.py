@@ -1,0 +1,81 @@
+"""The flexible hull in water against its ground contact and its own immersed envelope (review H12).
+
+A box barge (the stranded-ship paper's, 100 x 30 x 10 m, 20 000 t, intact) floats level with a
+sagging weight curve (300 t/m amidships, 100 t/m at the ends); its ground contact is the keel
+amidships, with the ground set 10 mm below where the RIGID hull's keel floats (draft
+20 000 / (1.0273 x 3000) = 6.490 m, ground at 6.500 m). A soft girder (EI 7e7 t m2) sags the
+middle by about half a metre: the flexible hull cannot float free there, it rests on the
+ground. Before the fix the flexible solve was done afloat and returned the keel ~0.17 m inside
+the ground with no ground reaction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from liftplan.model import solve
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.scenefile import loads_scene
+from liftplan.model.strength import hull_girder
+
+SIZE = 100.0
+
+
+def barge(lift_height, ei=7e7, hull="flexible"):
+    return loads_scene(f"""
+name = "floating barge over a midship ground contact, sagging weight"
+[body]
+weight = 20000.0
+cog = [0.0, 0.0, 2.0]
+weight_curve = [[-50.0, 100.0], [0.0, 300.0], [50.0, 100.0]]
+[water]
+density = 1.0273
+level = 0.0
+[hull]
+box = {{ min = [-50.0, -15.0, -5.0], max = [50.0, 15.0, 5.0] }}
+EI = [[-50.0, {ei!r}]]
+[ground]
+contact = [0.0, 0.0, -5.0]
+[attitude]
+lift_height = {lift_height!r}
+[analysis]
+hull = "{hull}"
+""")
+
+
+def contact_height(eq):
+    """World height of the deflected contact (the keel amidships): the chord's pose plus the
+    beam's deflection there (the contact is on the girder's axis line x = 0, slope 0 by
+    symmetry)  [m]."""
+    pose = eq.pose
+    rot = rotation_matrix(pose.heel, pose.trim, pose.yaw)
+    flex = eq.flexible_hull
+    w = float(np.interp(0.0, flex.x, flex.deflection)) if hasattr(flex, "deflection") else 0.0
+    return float((rot @ [0.0, 0.0, -5.0])[2]) + pose.lift_height + rot[2, 2] * w
+
+
+def test_bending_hull_rests_on_the_ground_it_would_sink_into():
+    scene = barge(-1.50)          # ground at -6.50 m
+    rigid = solve(barge(-1.50, hull="rigid"))
+    assert rigid.afloat.state == "afloat"          # the rigid keel floats 10 mm above
+    assert contact_height(rigid) == pytest.approx(-20000.0 / (1.0273 * 3000.0), abs=1e-6)
+    eq = solve(scene)
+    ground = -6.50
+    # never inside the ground
+    assert contact_height(eq) >= ground - 1e-6 * SIZE
+    # it rests on it: grounded, a positive reaction closing the vertical forces
+    assert eq.afloat.state == "grounded"
+    assert eq.afloat.ground_reaction > 0.0
+    assert contact_height(eq) == pytest.approx(ground, abs=1e-6 * SIZE)
+    assert eq.afloat.buoyancy + eq.afloat.ground_reaction == pytest.approx(20000.0, abs=1e-6)
+    # the strength curves of that state still close
+    girder = hull_girder(scene, eq)
+    assert abs(girder.closure[0]) < 1e-6 * 20000.0
+
+
+def test_ground_far_below_leaves_the_flexible_hull_afloat():
+    eq = solve(barge(-3.0))        # ground at -8.0 m: 1.5 m of water under the keel
+    assert eq.afloat.state == "afloat" and eq.afloat.ground_reaction == 0.0
+    assert contact_height(eq) > -8.0
+
