@@ -79,3 +79,31 @@ def test_ground_far_below_leaves_the_flexible_hull_afloat():
     assert eq.afloat.state == "afloat" and eq.afloat.ground_reaction == 0.0
     assert contact_height(eq) > -8.0
 
+
+def test_intact_deflected_hull_displaces_its_immersed_envelope():
+    """An intact hull displaces exactly its envelope below the water: the flexible result's
+    immersed volume is the deflected hull's (not the chord's), equal to the displaced volume."""
+    eq = solve(barge(-3.0))
+    a = eq.afloat
+    assert a.displaced_volume == pytest.approx(20000.0 / 1.0273, rel=1e-9)
+    assert a.immersed_volume == pytest.approx(a.displaced_volume, rel=1e-9)
+
+
+def test_flooded_hull_hanging_submerged_immerses_its_whole_envelope():
+    """Flooded (the sunken block, trapped-water tank aft) and hanging fully submerged: the
+    envelope below the water is the whole envelope, whatever the bending; the displaced volume
+    only the steel and the watertight compartments (less)."""
+    from helpers import EXAMPLES
+
+    text = (EXAMPLES / "sunken_block_lift.toml").read_text()
+    text = text.replace("cog = [30.0, 0.3, 2.5]",
+                        "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]")
+    text = text.replace("boom_height = 30.0", "boom_height = 31.0")
+    text = text.replace('[[hull.compartments]]\nname = "fore tank"',
+                        'EI = [[0.0, 1e6]]\n\n[[hull.compartments]]\nname = "fore tank"', 1)
+    text += '\n[analysis]\nhull = "flexible"\n'
+    scene = loads_scene(text, base=EXAMPLES)
+    eq = solve(scene)
+    assert eq.afloat.state == "hanging submerged"
+    assert eq.afloat.immersed_volume == pytest.approx(scene.hull.volume, rel=1e-9)
+    assert eq.afloat.displaced_volume < eq.afloat.immersed_volume

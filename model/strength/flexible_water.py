@@ -213,6 +213,12 @@ class WaterBeamModel:
         tw, tw_y, tw_z = _trapped_per_length(scene, st)
         wdm = ca.DM(ws)
         buoyancy = ca.dot(wdm, b)
+        # the hull envelope below the water (what an intact hull displaces; flooded, more)
+        envelope = scene.hull.triangles
+        e_seg, e_p, e_q, e_one = oriented_segments(envelope, np.ones(len(envelope)), st)
+        e_gather = _sparse(np.arange(len(e_seg)), e_seg, np.ones(len(e_seg)), (len(e_seg), ns))
+        e_area = _clipped(e_p, e_q, e_one, up[1], ca.mtimes(e_gather, uz), ca.mtimes(e_gather, c0))[0]
+        immersed = ca.dot(wdm, ca.mtimes(e_gather.T, e_area))
         # forces (world vertical, up) and moments about the reference point (world x, y)
         trapped_points = [(wt, np.asarray(centre, dtype=float)) for wt, centre in trapped_list]
         net = buoyancy + ca.sum1(tension) - weight_total
@@ -260,9 +266,9 @@ class WaterBeamModel:
         self.evaluate = ca.Function(
             "water_beam_eval", [z],
             [tension, stretch, reaction, zo, buoyancy, first_buoy, residual, dropped, b, s_z,
-             ca.vertcat(tilts), force],
+             ca.vertcat(tilts), force, immersed],
             ["z"], ["tension", "stretch", "reaction", "zo", "buoyancy", "first_buoyancy", "residual",
-                    "dropped", "b", "s_z", "tilts", "force"])
+                    "dropped", "b", "s_z", "tilts", "force", "immersed"])
         self.solve = ca.rootfinder(
             "water_beam_newton", "newton", ca.Function("water_beam_g", [z], [residual]),
             {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
@@ -351,6 +357,8 @@ class WaterBeamState:
         Ground reaction at the contact (0 when not grounded).
     buoyancy : float  [t]
         Total buoyancy of the deflected hull.
+    immersed_volume : float  [m3]
+        The deflected hull envelope's volume below the water plane (intact: buoyancy / density).
     first_buoyancy : numpy.ndarray, shape (3,)  [t m]
         Its first moment about the body origin (world axes, undeformed geometry).
     residual : float  [-]
@@ -373,6 +381,7 @@ class WaterBeamState:
     stretch: np.ndarray
     reaction: float
     buoyancy: float
+    immersed_volume: float
     first_buoyancy: np.ndarray
     residual: float
     stable: bool
@@ -459,7 +468,8 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS):
     return WaterBeamState(
         rotation=rotation, zo=zo, beam=free, tensions=out["tension"].ravel(),
         stretch=out["stretch"].ravel(), reaction=float(out["reaction"].ravel()[0]),
-        buoyancy=float(out["buoyancy"].ravel()[0]), first_buoyancy=out["first_buoyancy"].ravel(),
+        buoyancy=float(out["buoyancy"].ravel()[0]),
+        immersed_volume=float(out["immersed"].ravel()[0]), first_buoyancy=out["first_buoyancy"].ravel(),
         residual=residual, stable=_stable(stiffness(model, z), npose),
         buoyancy_curve=_curves(mesh.x, out["b"].ravel(), out["s_z"].ravel()), mesh=mesh,
         iterations=iterations, remeshed=remeshed)
@@ -636,6 +646,7 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     friction = scene.ground.friction if scene.ground is not None else None
     afloat = dataclasses.replace(
         af, buoyancy=state.buoyancy, displaced_volume=state.buoyancy / scene.water.density,
+        immersed_volume=state.immersed_volume,
         ground_reaction=reaction, centre_of_buoyancy=centre,
         freeing_force=friction * reaction if friction is not None and reaction is not None else None,
         state=water_state(grounded, bottom, top, float(state.tensions.sum()), setup.gravity))
