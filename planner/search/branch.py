@@ -525,7 +525,8 @@ def search(problem, top=None, progress=None):
         raise PlanInfeasible(_unreachable(problem))
     screening = screen(problem, sets, cranes)
     evaluator = SetEvaluator(problem)
-    reasons = Counter(int(r) for r in screening.reason[screening.reason != FEASIBLE])
+    reasons = Counter(dict(zip(*(v.tolist() for v in np.unique(
+        screening.reason[screening.reason != FEASIBLE], return_counts=True)))))
     bound = screening.bound.copy()
     # rows whose bound is refined before they are evaluated: from the coarse screening, or
     # (n >= 5) from the preload-free pair bound to the LP's dual bound

@@ -140,8 +140,9 @@ def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None, hin
     if EA is None:
         EA = [c.EA for c in problem.fleet[:n]]
     plan = points[..., :2]
-    diameter = np.max(np.linalg.norm(plan[..., :, None, :] - plan[..., None, :, :], axis=-1),
-                      axis=(-2, -1))
+    dx = plan[..., :, None, 0] - plan[..., None, :, 0]
+    dy = plan[..., :, None, 1] - plan[..., None, :, 1]
+    diameter = np.sqrt((dx * dx + dy * dy).reshape(*plan.shape[:-2], -1).max(axis=-1))
 
     def column(value, width):
         value = np.asarray(value, dtype=float)
