@@ -23,7 +23,11 @@ SIZE = 100.0
 
 
 def barge(lift_height, ei=7e7, hull="flexible"):
-    return loads_scene(f"""
+    return loads_scene(_BARGE_TEXT.replace("LIFT", repr(lift_height)).replace("EIVAL", repr(ei))
+                       .replace("HULL", hull))
+
+
+_BARGE_TEXT = """
 name = "floating barge over a midship ground contact, sagging weight"
 [body]
 weight = 20000.0
@@ -33,15 +37,15 @@ weight_curve = [[-50.0, 100.0], [0.0, 300.0], [50.0, 100.0]]
 density = 1.0273
 level = 0.0
 [hull]
-box = {{ min = [-50.0, -15.0, -5.0], max = [50.0, 15.0, 5.0] }}
-EI = [[-50.0, {ei!r}]]
+box = { min = [-50.0, -15.0, -5.0], max = [50.0, 15.0, 5.0] }
+EI = [[-50.0, EIVAL]]
 [ground]
 contact = [0.0, 0.0, -5.0]
 [attitude]
-lift_height = {lift_height!r}
+lift_height = LIFT
 [analysis]
-hull = "{hull}"
-""")
+hull = "HULL"
+"""
 
 
 def contact_height(eq):
@@ -107,3 +111,27 @@ def test_flooded_hull_hanging_submerged_immerses_its_whole_envelope():
     assert eq.afloat.state == "hanging submerged"
     assert eq.afloat.immersed_volume == pytest.approx(scene.hull.volume, rel=1e-9)
     assert eq.afloat.displaced_volume < eq.afloat.immersed_volume
+
+
+def test_a_change_from_zero_is_valid_json_and_reads_in_words(tmp_path):
+    """The rigid hull floats free (reaction 0), the flexible one rests on the ground: a change
+    from zero has no ratio. The JSON must stay strict JSON (no ``Infinity``) and the reason
+    says what changed from what."""
+    import json
+
+    from liftplan.planner.cli import main
+
+    path = tmp_path / "barge.toml"
+    text = _BARGE_TEXT.replace("LIFT", "-1.5").replace("EIVAL", "7e7").replace("HULL", "flexible")
+    path.write_text(text)
+    import contextlib
+    import io
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["solve", str(path), "--json"]) == 0
+    data = json.loads(out.getvalue(), parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
+    flex = data["flexible_hull"]
+    assert flex["max_tension_change"] is None
+    assert flex["flexible_ground_reaction"] > 0.0 and flex["rigid_ground_reaction"] == 0.0
+    assert "inf" not in flex["reason"] and "from 0 t" in flex["reason"]

@@ -82,7 +82,9 @@ class FlexibleHull:
             "used": self.used,
             "reason": self.reason,
             "threshold": TENSION_CHANGE,
-            "max_tension_change": self.max_change,
+            # a change from zero (slack rope, or no ground reaction, in the rigid hull) has no
+            # ratio: null, so the JSON stays strict (the reason says it in words)
+            "max_tension_change": self.max_change if np.isfinite(self.max_change) else None,
             "max_tension_change_rope": self.max_change_rope,
             "rigid_tensions": dict(self.rigid_tensions),
             "flexible_tensions": dict(self.flexible_tensions),
@@ -234,14 +236,17 @@ def hull_report(scene, mesh, state, rigid, used, forced, ground=None, buoyancy=N
     if not names:  # afloat without ropes: nothing the rule measures
         names, change = ["nothing (no rope, no ground contact)"], np.zeros(1)
     k = int(np.argmax(change))
+    flexible_values = list(state.tensions) + ([] if ground is None else [ground[1]])
+    by = (f"by {_percent(change[k])}" if np.isfinite(change[k]) else
+          f"from 0 t to {flexible_values[k]:.4g} t")
     w, _, twist = mesh.full(state.beam)
     peak = int(np.argmax(np.abs(w)))
     span = float(mesh.x[-1] - mesh.x[0])
     small = bool(abs(w[peak]) <= SMALL_DEFLECTION * span)
     if forced:
-        reason = f'analysis.hull = "{used}"; flexibility changes {names[k]} by {_percent(change[k])}'
+        reason = f'analysis.hull = "{used}"; flexibility changes {names[k]} {by}'
     elif used == "flexible":
-        reason = (f"flexibility changes {names[k]} by {_percent(change[k])}, more than "
+        reason = (f"flexibility changes {names[k]} {by}, more than "
                   f"{_percent(TENSION_CHANGE)}: the flexible hull is used")
     else:
         what = "tension or ground reaction" if ground is not None else "tension"
