@@ -25,6 +25,7 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.problem.definition import MAX_SETS
 from liftplan.planner.search.bounds import PreloadMinimax
+from liftplan.planner.search.rows import row_spread
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.screen import (
     BOOM_RANGE,
@@ -272,12 +273,20 @@ def robust(tensions, gain, lugset, delta=None):
     delta = lugset.hook_tolerance if delta is None else np.asarray(delta, dtype=float)
     margin = np.abs(gain) @ delta
     first, second = np.nonzero(~np.eye(n, dtype=bool))
+    # scenarios per block of the pair terms: (block, n (n - 1), n) floats stay near 4 million
+    block = max(1, 4_000_000 // max(1, n * n * (n - 1)))
 
     def pairwise(scale):
-        scaled = gain * scale[None, :, None]
-        extra = np.abs(scaled[:, first] - scaled[:, second]) @ delta
         values = tensions * scale
-        return (values[:, first] - values[:, second] + extra).max(axis=1)
+        if not np.any(delta > 0.0):  # no hook errors: each scenario's max - min
+            return row_spread(values)
+        out = np.empty(m)
+        for start in range(0, m, block):
+            rows = slice(start, start + block)
+            scaled = gain[rows] * scale[None, :, None]
+            extra = np.abs(scaled[:, first] - scaled[:, second]) @ delta
+            out[rows] = (values[rows][:, first] - values[rows][:, second] + extra).max(axis=1)
+        return out
 
     spread = pairwise(np.ones(n))
     utilisation = pairwise(1.0 / lugset.swl)
