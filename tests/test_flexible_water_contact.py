@@ -135,3 +135,93 @@ def test_a_change_from_zero_is_valid_json_and_reads_in_words(tmp_path):
     assert flex["max_tension_change"] is None
     assert flex["flexible_ground_reaction"] > 0.0 and flex["rigid_ground_reaction"] == 0.0
     assert "inf" not in flex["reason"] and "from 0 t" in flex["reason"]
+
+
+# -- review H13: the quadrature's convergence, the deflected hull's state ----------------------
+
+_TRIMMED_TEXT = """
+name = "light barge trimmed by the head until its aft keel leaves the water"
+[body]
+weight = 3500.0
+cog = [COGX, 0.0, 2.0]
+weight_curve = [[-50.0, 10.0], [0.0, 10.0], [50.0, 110.0]]
+[water]
+density = 1.0273
+level = 0.0
+[hull]
+box = { min = [-50.0, -15.0, -5.0], max = [50.0, 15.0, 5.0] }
+EI = [[-50.0, 7e7]]
+[attitude]
+lift_height = 0.0
+[analysis]
+hull = "flexible"
+"""
+
+
+def trimmed_barge():
+    """3500 t on a 100 m box: 500 t uniform aft of midships at x -25, 3000 t forward at
+    (500 x 25 + 2500 x 100/3) / 3000; it trims ~2 deg, so the waterline crosses the keel (a
+    section break) at a place the bending moves: the mesh is rebuilt twice before the break
+    sits on a node (measured)."""
+    cog_x = (500.0 * -25.0 + 500.0 * 25.0 + 2500.0 * 100.0 / 3.0) / 3500.0
+    return loads_scene(_TRIMMED_TEXT.replace("COGX", repr(cog_x)))
+
+
+def test_a_quadrature_that_never_becomes_exact_is_refused_in_one_line(monkeypatch):
+    """After the last remesh the Gauss quadrature must be the clipped hull's exact buoyancy; a
+    solve whose section breaks never settle on nodes is refused naming the mesh count and the
+    error in t (it was returned as if converged). This case needs three meshes."""
+    import liftplan.model.strength.flexible_water as fw
+    from liftplan.model.errors import EquilibriumNotFound
+
+    scene = trimmed_barge()
+    monkeypatch.setattr(fw, "REMESH", 3)
+    eq = solve(scene)
+    assert eq.flexible_hull.used == "flexible" and eq.afloat.state == "afloat"
+    assert eq.afloat.buoyancy == pytest.approx(3500.0, rel=1e-9)
+    monkeypatch.setattr(fw, "REMESH", 2)
+    with pytest.raises(EquilibriumNotFound) as err:
+        solve(scene)
+    text = str(err.value)
+    assert "\n" not in text
+    assert "quadrature" in text and "after 2 meshes" in text and " t, first moment " in text
+
+
+_CLEAR_TEXT = """
+name = "barge hanging with its keel 78 mm over the water, sagging between end ropes"
+[body]
+weight = 2000.0
+cog = [0.0, 0.0, 0.0]
+weight_curve = [[-50.0, 20.0], [50.0, 20.0]]
+[water]
+density = 1.0273
+level = 0.0
+[hull]
+box = { min = [-50.0, -15.0, -5.0], max = [50.0, 15.0, 5.0] }
+EI = [[-50.0, 1e8]]
+[analysis]
+hull = "flexible"
+"""
+
+
+def test_state_is_classified_from_the_deflected_hull_not_its_chord():
+    """Four ropes at x = +-45 m hold the chord's keel 78 mm over the water; a soft girder sags
+    the middle 177 mm, so the keel amidships is in the water and carries buoyancy: the state is
+    "piercing the surface" (it was "clear", from the chord's heights, with 140 t of buoyancy)."""
+    from liftplan.model.water.equilibrium import hull_heights
+
+    text = _CLEAR_TEXT
+    for k, (x, y) in enumerate(((-45.0, 10.0), (45.0, 10.0), (45.0, -10.0), (-45.0, -10.0))):
+        text += (f'\n[[lugs]]\nname = "L{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "L{k + 1}"\n'
+                 "boom_height = 30.07\nrope_length = 20.0\nEA = 500000.0\nswl = 2000.0\n")
+    eq = solve(loads_scene(text))
+    pose = eq.pose
+    scene = loads_scene(text)
+    chord_bottom, _ = hull_heights(scene.hull, rotation_matrix(pose.heel, pose.trim, pose.yaw),
+                                   pose.lift_height)
+    sag = eq.flexible_hull.max_deflection.signed
+    assert chord_bottom > 0.05 and sag < -0.15          # the chord clear, the sagging keel not
+    assert eq.afloat.buoyancy > 100.0
+    assert eq.afloat.state == "piercing the surface"
+    # the rigid hull at the same hooks hangs clear
+    assert solve(scene.with_analysis(hull="rigid")).afloat.state == "clear"
