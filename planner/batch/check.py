@@ -129,13 +129,15 @@ def check_plan(problem, indices, preload, cases, grid=3):
         (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2))
     status, reason = [OK] * m, [""] * m
     outside = outside_support(lugset.points[:, :2], cases.cog[:, :2])
+    names = [problem.candidates[i].name for i in lugset.indices]
     for k in np.flatnonzero(flagged | (outside > 0)):  # only flagged cases need a reason
         if outside[k] > 0:
             status[k], reason[k] = INVALID, (
                 f"body.cog lies {outside[k]:.3g} m outside the plan's lugs' support polygon (in "
                 "plan); expected the CG over the lugs")
         else:
-            status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k])
+            status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k],
+                                          names)
     failed = np.array([s in (FAILED, INVALID) for s in status])
 
     def blank(values):
@@ -173,8 +175,9 @@ def outside_support(lugs, points):
     return np.where(beyond > 1e-9 * diameter, beyond, 0.0)
 
 
-def _judge(tensions, heel, trim, swl, min_tension):
-    """Status and reason of one case from its (g, n) tensions."""
+def _judge(tensions, heel, trim, swl, min_tension, names):
+    """Status and reason of one case from its (g, n) tensions; a rope is named by its plan
+    label and its lug (``L20 (S07)``: with many ropes the label alone is hard to place)."""
     if not np.all(np.isfinite(tensions)):
         return FAILED, "tensions not finite: the lugs cannot hold the body (collinear?)"
     for test, bound, word, outcome in (
@@ -185,8 +188,9 @@ def _judge(tensions, heel, trim, swl, min_tension):
         if test.any():
             j, i = np.unravel_index(np.argmax(np.abs(tensions - bound) * test), test.shape)
             where = f"at heel {heel[j]:+.2f}, trim {trim[j]:+.2f} deg"
+            rope = f"rope L{i + 1} ({names[i]})"
             if outcome == FAILED:
-                return FAILED, (f"rope L{i + 1} slack {where}: the all-taut (held) model does "
+                return FAILED, (f"{rope} slack {where}: the all-taut (held) model does "
                                 "not hold there")
-            return UNSAFE, f"rope L{i + 1} {tensions[j, i]:.1f} t {word} {bound:g} t {where}"
+            return UNSAFE, f"{rope} {tensions[j, i]:.1f} t {word} {bound:g} t {where}"
     return OK, ""
