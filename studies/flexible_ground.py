@@ -11,6 +11,13 @@ I = 2 x (30 x 0.020) x 5^2 + 2 x 0.015 x 10^3 / 12 = 32.5 m4, E = 2.1e7 t/m2; no
 (they would stiffen it), no corrosion or damage (they would soften it). The study sweeps EI
 from 0.01 to 100 x that.
 
+Gauge: the flexible hull's statics are taken on the undeformed geometry of the frame the beam
+is held in (the chord through its ends, what ``solve`` uses); held at the stern instead (w = w'
+= 0 there) the same scene gives other forces. ``gauge`` in the JSON has, per EI, both gauges'
+ground reaction and crane load from the rigid pose, and the difference over W x (max deflection
+/ length): measured ~0.12 for the ground reaction, ~0.09 for the crane load, over the whole EI
+range (:data:`liftplan.model.strength.flexible_water.GAUGE_COEFFICIENT`).
+
 Run: ``python studies/flexible_ground.py`` -> studies/out/flexible_ground.json and .png.
 """
 
@@ -78,7 +85,41 @@ def run():
                       "rigid_x": rigid_girder.stations.tolist(), "rigid_moment": rigid_girder.moment.tolist(),
                       "deflection_x": flex.x.tolist(), "deflection": flex.deflection.tolist(),
                       "rigid_max_moment": rigid_girder.max_moment.signed}
-    return {"EI": EI, "rows": rows, "curves": curves}
+    return {"EI": EI, "rows": rows, "curves": curves, "gauge": gauge_rows()}
+
+
+def gauge_rows():
+    """Per EI: the chord and the stern gauge's ground reaction and crane load [t], solved from
+    the rigid hull's pose, and their differences over W x (max deflection / length)."""
+    from liftplan.model import solve
+    from liftplan.model.frames import rotation_matrix
+    from liftplan.model.strength.flexible_water import water_beam_state
+
+    rows = []
+    for s in SCALES:
+        sc = scene(EI * s)
+        pose = solve(sc.with_analysis(hull="rigid")).pose
+        rot = rotation_matrix(pose.heel, pose.trim, pose.yaw)
+        out = {}
+        for gauge in ("chord", "stern"):
+            state = water_beam_state(sc, rot, pose.lift_height - sc.water.level, True, gauge=gauge)
+            if not state.accepted:
+                raise RuntimeError(f"EI x {s:g}, gauge {gauge}: {state.refusal('grounded')}")
+            w, _ = state.bending()
+            out[gauge] = (state.reaction, float(state.tensions.sum()), float(np.max(np.abs(w))))
+        chord, stern = out["chord"], out["stern"]
+        ratio = chord[2] / 100.0  # the barge's length
+        weight = sc.body.weight
+        rows.append({
+            "scale": s, "EI": EI * s, "deflection_over_length": ratio,
+            "chord_ground_reaction": chord[0], "stern_ground_reaction": stern[0],
+            "chord_crane_load": chord[1], "stern_crane_load": stern[1],
+            "ground_reaction_change": (stern[0] - chord[0]) / chord[0],
+            "crane_load_change": (stern[1] - chord[1]) / chord[1],
+            "ground_per_deflection": abs(stern[0] - chord[0]) / (weight * ratio),
+            "crane_per_deflection": abs(stern[1] - chord[1]) / (weight * ratio),
+        })
+    return rows
 
 
 def draw(data):
@@ -128,3 +169,11 @@ if __name__ == "__main__":
               f"at {r['max_moment_x']:.1f} "
               f"[{r['seconds']:.2f} s]")
     print("rigid max M", data["curves"]["rigid_max_moment"])
+    print("gauge: stern-end vs chord (what solve uses), from the rigid pose")
+    print(f"{'EI x':>6} {'defl/L':>8} {'R chord':>9} {'R stern':>9} {'dR':>8} {'dR/(W d/L)':>10} "
+          f"{'cranes chord':>12} {'dC':>8} {'dC/(W d/L)':>10}")
+    for g in data["gauge"]:
+        print(f"{g['scale']:>6g} {g['deflection_over_length']:8.2e} {g['chord_ground_reaction']:9.2f} "
+              f"{g['stern_ground_reaction']:9.2f} {100 * g['ground_reaction_change']:+7.3f}% "
+              f"{g['ground_per_deflection']:10.3f} {g['chord_crane_load']:12.2f} "
+              f"{100 * g['crane_load_change']:+7.3f}% {g['crane_per_deflection']:10.3f}")

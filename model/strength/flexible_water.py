@@ -64,6 +64,14 @@ REMESH = 4
 #: statics are taken on the undeformed geometry of that frame, so the two differ by a term of
 #: the order of the deflection's slope (studies/flexible_ground.py measures it).
 GAUGES = ("chord", "stern")
+#: The gauge dependence per unit deflection: holding the beam at the stern instead of by its
+#: chord moves the ground reaction by about this x W x (max deflection / length), the crane
+#: load by 0.05-0.09 (measured, studies/flexible_ground.py: 0.112-0.126 over EI 7e6-7e10 t m2,
+#: the stranded barge lifted at its bow; one scene, so an estimate, not a bound). A result
+#: says so when it reaches :data:`GAUGE_NOTE` of a force the 1 % rule compares.
+GAUGE_COEFFICIENT = 0.12
+#: ... a tenth of the 1 % rule (:data:`~.flexible.TENSION_CHANGE`): the gauge could then sway it.
+GAUGE_NOTE = 0.001
 # A section break within this fraction of the length of a node is on it: a kink in the
 # buoyancy per length delta off a node errs the quadrature by ~ (slope jump) delta^2
 _ON_NODE = 1e-6
@@ -650,6 +658,31 @@ def _stable(stiffness, npose):
 
 
 # -- the solve: the least hull the scene needs -----------------------------------------------
+def gauge_note(scene, state, forces):
+    """The gauge's limit, said when it matters (else ""): the statics are taken on the chord's
+    undeformed geometry, so the forces hold only to about :data:`GAUGE_COEFFICIENT` x W x
+    (deflection / length); said when that reaches :data:`GAUGE_NOTE` of the smallest positive
+    force the 1 % rule compares (tensions, ground reaction).
+
+    Parameters
+    ----------
+    scene : Scene
+    state : WaterBeamState
+    forces : sequence of float  [t]
+    """
+    w, _ = state.bending()
+    span = float(state.mesh.x[-1] - state.mesh.x[0])
+    ratio = float(np.max(np.abs(w))) / span
+    spread = GAUGE_COEFFICIENT * float(scene.body.weight) * ratio
+    positive = [f for f in forces if f > 1e-9 * scene.body.weight]
+    if not positive or spread < GAUGE_NOTE * min(positive):
+        return ""
+    return (f"equilibrium on the chord's undeformed geometry: with the deflection {ratio:.2g} x the "
+            f"length, where the beam is held moves the forces by about {spread:.3g} t "
+            f"({100 * spread / min(positive):.2g} % of the smallest, {min(positive):.4g} t; "
+            f"measured {GAUGE_COEFFICIENT:g} W x deflection / length, studies/flexible_ground.py)")
+
+
 def _held_rigid(scene, method):
     """Why this water scene's hull is held rigid, or None when it can be flexible."""
     if method != "newton":
@@ -731,8 +764,12 @@ def solve_hull_in_water(scene, method="newton", hull=None):
         ground = (float(rigid.afloat.ground_reaction), state.reaction)
         change = np.append(change, tension_change([ground[0]], [ground[1]], weight))
     used = "flexible" if hull == "flexible" or (change.size and np.max(change) > TENSION_CHANGE) else "rigid"
-    note = ("in water the hull bends but does not twist (hull.GJ unused)"
-            if scene.girder.GJ is not None else "")
+    notes = (["in water the hull bends but does not twist (hull.GJ unused)"]
+             if scene.girder.GJ is not None else [])
+    gauge = gauge_note(scene, state, list(state.tensions) + ([] if ground is None else [ground[1]]))
+    if gauge:
+        notes.append(gauge)
+    note = "; ".join(notes)
     report = hull_report(scene, state.mesh, state, rigid_t, used, forced=hull == "flexible",
                          ground=ground, buoyancy=state.buoyancy_curve, note=note)
     if used == "rigid":
