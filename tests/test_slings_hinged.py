@@ -298,3 +298,27 @@ def test_spreader_that_spans_no_pair_is_refused_with_the_reason():
     with pytest.raises(PlanInfeasible, match="a trapezoid rig sways with the tilt, planned for two "
                                              "cranes only"):
         plan(_spreader_problem(bar_length=5.0))
+
+
+def test_report_labels_each_hook_column_with_its_frame_and_the_legend_prints_swl_as_tables():
+    """Page 1's crane table puts a body-frame height at level (the hook's z) beside a world
+    height (the boom height H): each header names its frame (README "Conventions"). The plan
+    view's legend printed the third crawler's 142.5 t chart SWL as "SWL 142"; it prints it as
+    the table does (one decimal). Wording only, pinned so it stays."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from liftplan.planner.output.sling_report import plan_view, render_html
+
+    result = plan(load_problem(EXAMPLE))
+    assert 142.5 in [float(v) for v in result.hook_swl]
+    page = render_html(result)
+    assert "hook position x, y, z, body frame at level [m]" in page
+    assert "boom height H, world [m]" in page
+    fig = plan_view(result)
+    labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    assert any("SWL 142.5 t" in label for label in labels), labels
+    assert not any("SWL 142 t" in label for label in labels)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)

@@ -66,7 +66,7 @@ def plan_view(plan):
         ax.scatter(lugs[:, 0], lugs[:, 1], s=40, color=colors_c, zorder=3)
         ax.scatter([hook[0]], [hook[1]], marker="^", s=55, color=colors_c, zorder=3,
                    label=f"{crane.name}: hook {plan.hook_nominal[c]:.1f} t, "
-                         f"SWL {plan.hook_swl[c]:.0f} t at {plan.hook_radius[c]:.1f} m")
+                         f"SWL {plan.hook_swl[c]:.1f} t at {plan.hook_radius[c]:.1f} m")
         if crane.position is not None:
             centre = xy(np.array([[*crane.position, 0.0]]))[0]
             ax.scatter([centre[0]], [centre[1]], marker="s", s=40, color=colors_c)
@@ -112,9 +112,9 @@ def render_html(plan, today=None):
     chain = None if isinstance(plan.design, str) else plan.design
     legs_of = {n: ", ".join(label for label in plan.labels if plan.cranes[label] == n) for n in names}
     cranes = _table(
-        ["crane", "lugs", "hook position x, y, z [m]", "radius [m]", "chart SWL [t]",
-         "boom height H [m]", "hook load, level [t]", "hook load, worst [t]", "design hook load [t]",
-         "design / SWL [%]"],
+        ["crane", "lugs", "hook position x, y, z, body frame at level [m]", "radius [m]",
+         "chart SWL [t]", "boom height H, world [m]", "hook load, level [t]", "hook load, worst [t]",
+         "design hook load [t]", "design / SWL [%]"],
         [(crane, legs_of[crane], _xyz(problem, plan.hooks[c]), f"{plan.hook_radius[c]:.1f}",
           f"{plan.hook_swl[c]:.1f}", f"{plan.crane_boom_heights[c]:.3f}",
           f"{plan.hook_nominal[c]:.2f}", f"{plan.hook_worst[c]:.2f}", f"{design[c]:.2f}",
