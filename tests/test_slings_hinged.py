@@ -322,3 +322,41 @@ def test_report_labels_each_hook_column_with_its_frame_and_the_legend_prints_swl
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+
+
+def test_a_pair_that_turns_plumb_in_the_box_is_not_a_hinged_rig():
+    """A 2-leg sling hinged about a pair hangs in the vertical plane through it; a pair 89.5 deg
+    steep turns plumb at heel 2 / trim 1 deg (the box) and the posing divides by zero there
+    (hinged_points, and its numpy twin, return NaN). Such a pair is ruled out where the rigs
+    are built, counted under its reason (it passed the level-only test before); every rig kept
+    poses to finite hooks at the box's corners."""
+    from liftplan.model.frames import rotation_matrix
+    from liftplan.planner.slings.geometry import hinge_rows, hinged_hooks
+    from liftplan.planner.slings.rigs import crane_rigs
+
+    base = _three_crane_problem()
+    candidates = list(base.candidates)
+    steep = (6.0 + 6.0 / np.tan(np.radians(89.5)), 1.2, -3.0)   # below G20 (6, 1.2, 3)
+    candidates[7] = dataclasses.replace(candidates[7], at=steep)
+    problem = dataclasses.replace(base, candidates=tuple(candidates))
+    rigs = crane_rigs(problem, problem.fleet[0], 50.0, parallel=True)
+    pairs = {tuple(sorted(p)) for p in rigs.lugs.tolist()}
+    assert (6, 7) not in pairs and (0, 1) in pairs
+    reason = [k for k in rigs.ruled_out if "plumb" in k]
+    assert len(reason) == 1 and rigs.ruled_out[reason[0]] == 1
+    pts = problem.points
+    # the refused pair passes plumb at trim 0.5 deg: its hinge plane flips there, the hook
+    # jumps across the pair for 0.02 deg of trim (and is NaN where it is exactly plumb)
+    bad = hinge_rows(pts[[6]], pts[[7]])
+    hook = pts[[6]] + [1.0, 0.0, 0.0]   # 1 m off the pair in its plane
+
+    def posed(trim):
+        return hinged_hooks(bad, hook, rotation_matrix(0.0, trim, 0.0))
+
+    jump = max(np.linalg.norm(posed(t - 0.01) - posed(t + 0.01)) for t in (-0.5, 0.5))
+    assert jump > 1.0
+    rows = hinge_rows(pts[rigs.lugs[:, 0]], pts[rigs.lugs[:, 1]])
+    for heel in (-2.0, 2.0):
+        for trim in (-1.0, 1.0):
+            hooks = hinged_hooks(rows, rigs.hook, rotation_matrix(heel, trim, 0.0))
+            assert np.all(np.isfinite(hooks))

@@ -89,6 +89,26 @@ def sling_tuples(problem, legs):
     return np.array(sorted(seen), dtype=np.int64).reshape(-1, legs)
 
 
+#: A hinged pair must stay this far from plumb [deg] at every attitude of the tolerance box:
+#: the hinge plane is the vertical plane through the pair, which turns by 1 / cos(inclination)
+#: per unit of tilt and is undefined at plumb (:func:`liftplan.model.statics.hinged_points`
+#: divides by the pair's horizontal length); at 80 deg a 1 deg tilt swings it ~6 deg.
+PLUMB_MARGIN = 10.0
+
+
+def plumb_in_box(a, b, heel, trim):
+    """Whether each lug pair (a, b: (N, 3) body frame [m]) comes within :data:`PLUMB_MARGIN`
+    of plumb at some attitude of the box |heel| <= heel, |trim| <= trim [deg].
+
+    A tilt turns a line by at most the body's tilt angle, arccos(cos heel cos trim) at the
+    box's corner, so the pair's inclination from the horizontal plus that is kept below
+    90 deg - :data:`PLUMB_MARGIN`."""
+    d = np.asarray(b, dtype=float) - np.asarray(a, dtype=float)
+    incline = np.degrees(np.arctan2(np.abs(d[:, 2]), np.hypot(d[:, 0], d[:, 1])))
+    tilt = np.degrees(np.arccos(np.cos(np.radians(heel)) * np.cos(np.radians(trim))))
+    return incline + tilt >= 90.0 - PLUMB_MARGIN
+
+
 def crane_rigs(problem, crane, load, parallel=False):
     """The rigs ``crane``'s sling can take, and how many were ruled out by each cause.
 
@@ -117,9 +137,10 @@ def crane_rigs(problem, crane, load, parallel=False):
     if sling.legs == 2:
         pairs = np.array(list(combinations(range(len(points)), 2)), dtype=np.int64).reshape(-1, 2)
         a, b = points[pairs[:, 0]], points[pairs[:, 1]]
-        if parallel:  # the hinge needs a pair that is not plumb (its vertical plane)
-            ok = np.hypot(*(b - a)[:, :2].T) > 1e-3 * np.linalg.norm(b - a, axis=1)
-            counts["the pair's lugs lie one above the other (no hinge plane)"] = int(np.sum(~ok))
+        if parallel:  # the hinge needs a pair that stays off plumb (its vertical plane)
+            ok = ~plumb_in_box(a, b, problem.heel_tolerance, problem.trim_tolerance)
+            counts[f"the pair turns within {PLUMB_MARGIN:g} deg of plumb in the heel/trim box "
+                   "(no hinge plane)"] = int(np.sum(~ok))
             pairs, a, b = pairs[ok], a[ok], b[ok]
         if sling.spreader is None:
             ok = 0.5 * np.linalg.norm(b - a, axis=1) < sling.length
