@@ -24,18 +24,47 @@ def _style(ax):
     ax.grid(True, lw=0.3)
 
 
+#: Ropes up to which the tension curves carry one legend entry per rope; beyond, each rope
+#: is coloured by its station along the body and styled by its side (a colour bar, not a
+#: legend of 26 or 64 entries).
+LEGEND_ROPES = 16
+_SIDE_STYLE = {"port": "-", "starboard": "--", "centre line": ":"}
+
+
+def rope_sides(plan):
+    """Each chosen lug's side in the body (``port``, ``starboard`` or ``centre line``), by its
+    y against the middle of the chosen lugs (1 % of their width either side is the centre)."""
+    y = plan.lugset.points[:, 1]
+    middle, width = 0.5 * (y.max() + y.min()), float(np.ptp(y))
+    tol = 0.01 * width
+    return ["port" if v > middle + tol else "starboard" if v < middle - tol else "centre line"
+            for v in y]
+
+
 def tension_curves(plan):
     """Tension of every rope against heel (trim 0) and against trim (heel 0).
 
     The style of Choi & Shin (2003) Figs 7-8, with the plan's preload held; the tolerance
     band is shaded, SWL and min_tension drawn. Heel and trim are on the horizontal axis, as
-    in every figure of the plan; the legend sits below the axes, clear of the lines.
+    in every figure of the plan; the legend sits below the axes, clear of the lines. With
+    more than :data:`LEGEND_ROPES` ropes each rope is coloured by its station x (a colour
+    bar) and drawn solid on the port side, dashed on the starboard side, and the highest
+    and lowest ropes at each end of the curves are named.
     """
     problem = plan.problem
-    fig = Figure(figsize=(_WIDTH * _MM, 100 * _MM), layout="constrained")
+    many = len(plan.labels) > LEGEND_ROPES
+    fig = Figure(figsize=(_WIDTH * _MM, (110 if many else 100) * _MM), layout="constrained")
     axes = fig.subplots(1, 2, sharey=True)
     swl = plan.swl
     equal = len(set(swl.values())) == 1
+    if many:
+        from matplotlib import colormaps
+        from matplotlib.colors import Normalize
+
+        xs, _ = _file_plan(problem, plan.lugset.points[:, :2])
+        norm = Normalize(xs[:, 0].min(), xs[:, 0].max() + 1e-9)
+        cmap = colormaps["viridis"]
+        sides = rope_sides(plan)
     for ax, angle, tol in zip(axes, ("heel", "trim"),
                               (problem.heel_tolerance, problem.trim_tolerance)):
         span = max(_SPAN, 2 * tol)
@@ -43,12 +72,16 @@ def tension_curves(plan):
         zero = np.zeros_like(values)
         tensions = plan.tensions_at(values, zero) if angle == "heel" else \
             plan.tensions_at(zero, values)
-        for label, column in zip(plan.labels, tensions.T):
+        for k, (label, column) in enumerate(zip(plan.labels, tensions.T)):
             extra = "" if equal else f", SWL {swl[label]:.0f} t"
-            line, = ax.plot(values, column, lw=1.3,
-                            label=f"{label} ({plan.lugs[label]}, {plan.cranes[label]}{extra})")
+            style = {"lw": 1.3, "label": f"{label} ({plan.lugs[label]}, {plan.cranes[label]}{extra})"}
+            if many:
+                style = {"lw": 0.9, "color": cmap(norm(xs[k, 0])), "ls": _SIDE_STYLE[sides[k]]}
+            line, = ax.plot(values, column, **style)
             if not equal:
                 ax.axhline(swl[label], color=line.get_color(), ls="--", lw=0.9)
+        if many:
+            _name_extremes(ax, values, tensions, [f"{k} ({plan.lugs[k]})" for k in plan.labels])
         ax.axvspan(-tol, tol, color="0.9", label=f"tolerance box +-{tol:g} deg")
         if equal:
             ax.axhline(next(iter(swl.values())), color="k", ls="--", lw=0.9,
@@ -65,11 +98,32 @@ def tension_curves(plan):
         _style(ax)
     axes[0].set_ylabel("rope tension [t]")
     axes[0].set_ylim(bottom=0.0)
+    if many:
+        for side in dict.fromkeys(sides):
+            axes[0].plot([], [], color="0.3", lw=0.9, ls=_SIDE_STYLE[side],
+                         label=f"{side} ropes (colour: station x)")
+        from matplotlib.cm import ScalarMappable
+
+        bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="right",
+                           fraction=0.04, pad=0.01)
+        bar.set_label("rope's station x [m] (forward)", size=_FONT)
+        bar.ax.tick_params(labelsize=_SMALL)
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncols=2 if not equal else 3,
+    fig.legend(handles, labels, loc="outside lower center", ncols=3 if equal or many else 2,
                fontsize=_SMALL, frameon=False)
-    fig.suptitle("Rope tensions with the plan's preload held (nominal CG)", fontsize=_FONT + 1)
+    title = "Rope tensions with the plan's preload held (nominal CG)"
+    if many:
+        title += f": {len(plan.labels)} ropes, each named in the tables"
+    fig.suptitle(title, fontsize=_FONT + 1)
     return fig
+
+
+def _name_extremes(ax, values, tensions, labels):
+    """Name the highest and the lowest rope at both ends of the curves (many ropes)."""
+    for end, ha, shift in ((0, "left", 2), (-1, "right", -2)):
+        for k, va in ((int(np.argmax(tensions[end])), "bottom"), (int(np.argmin(tensions[end])), "top")):
+            ax.annotate(labels[k], (values[end], tensions[end, k]), fontsize=_SMALL, ha=ha, va=va,
+                        xytext=(shift, 2 if va == "bottom" else -2), textcoords="offset points")
 
 
 def _file_plan(problem, xy):
@@ -138,8 +192,10 @@ def plan_view(plan):
     chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
     taken = {plan.lugs[label] for label in plan.labels}
     metres_per_mm = (high[0] - low[0]) / (_WIDTH - 18.0)
-    for name, (x, y), row in zip(problem.names, pts, _label_rows(problem.names, pts, centre,
-                                                                  metres_per_mm)):
+    names_shown = _label_rows(problem.names, pts, centre, metres_per_mm)
+    for name, (x, y), row in zip(problem.names, pts, names_shown):
+        if row is None:
+            continue
         # away from the body's middle, on screen (the papers' frame draws its z axis down)
         up = (y >= centre[1]) != choi
         rise = 4 + 7 * row
@@ -150,11 +206,15 @@ def plan_view(plan):
     order = np.r_[order, order[:1]]
     ax.plot(chosen[order, 0], chosen[order, 1], color="tab:blue", lw=0.8, ls="--")
     ax.scatter(chosen[:, 0], chosen[:, 1], s=45, color="tab:blue", label="chosen lugs", zorder=3)
-    for label, (x, y) in zip(plan.labels, chosen):
+    shown = _label_rows(plan.labels, chosen, centre, metres_per_mm, rows=1, size=_FONT)
+    for label, (x, y), row in zip(plan.labels, chosen, shown):
+        if row is None:
+            continue
         inward = (y < centre[1]) != choi  # the lug's name goes inside the hull
         ax.annotate(label, (x, y), fontsize=_FONT, color="tab:blue", fontweight="bold",
                     ha="center", va="bottom" if inward else "top",
                     xytext=(0, 5 if inward else -5), textcoords="offset points")
+    thinned = None in shown or None in names_shown
     if _positioned(problem):
         _draw_cranes(ax, plan)
     ax.set_xlim(low[0], high[0])
@@ -168,26 +228,36 @@ def plan_view(plan):
     ax.set_xlabel("x [m] (forward)")
     ax.set_ylabel(side)
     frame = "papers' frame" if choi else "z-up frame"
-    ax.set_title(f"Plan view ({frame}, seen from above)")
+    ax.set_title(f"Plan view ({frame}, seen from above)" + (
+        "\nnames left out where they would overlap; the tables name every lug" if thinned else ""))
     _style(ax)
     fig.legend(loc="outside lower center", ncols=4, fontsize=_SMALL, frameon=False)
     return fig
 
 
-def _label_rows(names, points, centre, metres_per_mm):
-    """Row (0 or 1) of each point's name: a name that would run into its neighbour's on the
-    same side of the body steps out one row."""
-    width = [len(n) * 0.62 * (_SMALL - 0.5) * 0.3528 * metres_per_mm + 1.5 * metres_per_mm
+def _label_rows(names, points, centre, metres_per_mm, rows=2, size=_SMALL - 0.5):
+    """Row (0 .. rows - 1) of each point's name, or None where it is left out: along each
+    side of the body (by x), a name that would run into its neighbour's steps out a row, and
+    where every row is taken it is not drawn (many points: the figure stays legible and the
+    tables name every point). The last point of a side is always named (the one before it
+    gives way)."""
+    width = [len(n) * 0.62 * size * 0.3528 * metres_per_mm + 1.5 * metres_per_mm
              for n in names]  # [m]: characters x em fraction x pt -> mm -> m, plus a gap
-    rows = [0] * len(names)
+    placed = [None] * len(names)
     for side in (points[:, 1] >= centre[1], points[:, 1] < centre[1]):
-        last = {}  # row -> (x, half width) of the last name placed in it
-        for k in sorted(np.flatnonzero(side), key=lambda k: points[k, 0]):
+        last = {}  # row -> (index, x, half width) of the last name placed in it
+        order = sorted(np.flatnonzero(side), key=lambda k: points[k, 0])
+        for pos, k in enumerate(order):
             x, half = points[k, 0], width[k] / 2
-            free = [r for r in (0, 1) if r not in last or x - last[r][0] >= last[r][1] + half]
-            rows[k] = free[0] if free else 1
-            last[rows[k]] = (x, half)
-    return rows
+            free = [r for r in range(rows) if r not in last or x - last[r][1] >= last[r][2] + half]
+            if not free and pos == len(order) - 1:  # the side's end: its neighbour gives way
+                row = min(last, key=lambda r: last[r][1])
+                placed[last[row][0]] = None
+                free = [row]
+            if free:
+                placed[k] = free[0]
+                last[free[0]] = (k, x, half)
+    return placed
 
 
 def _cog_envelope(ax, problem, cog, span):

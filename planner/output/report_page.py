@@ -51,6 +51,7 @@ th, td { border: 1px solid #bbb; padding: 0.2em 0.35em; text-align: right;
 th { background: #eee; font-weight: bold; hyphens: auto; }
 td:first-child, th:first-child { text-align: left; }
 td.text, th.text { text-align: left; }
+td.nw, th.nw { white-space: nowrap; }
 table.title-block { width: 100%%; font-size: 9pt; margin-top: 0; }
 table.title-block td { text-align: left; height: 1.6em; vertical-align: middle; }
 table.title-block td.k { width: 17%%; background: #eee; font-weight: bold; }
@@ -102,6 +103,8 @@ def document(title, body, header, footer=""):
 
 #: Per-rope columns a table holds before it is split into several (many lifting points).
 ROPE_COLUMNS = 8
+#: Text cells up to this many characters are not broken across lines.
+NOWRAP_CHARS = 10
 
 
 def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), ropes=None):
@@ -144,8 +147,11 @@ def one_table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
     classes = " ".join(c for c, on in (("full", full), ("keep", keep)) if on)
 
     def cell(tag, k, value):
-        align = ' class="text"' if k in text_columns else ""
-        return f"<{tag}{align}>{html.escape(str(value))}</{tag}>"
+        value = str(value)
+        # a short name ("crane 10", "not given") on one line: many-rope tables stay one line a row
+        align = ((' class="text nw"' if len(value) <= NOWRAP_CHARS else ' class="text"')
+                 if k in text_columns else "")
+        return f"<{tag}{align}>{html.escape(value)}</{tag}>"
 
     head = "".join(cell("th", k, h) for k, h in enumerate(headers))
     body = "".join("<tr>" + "".join(cell("td", k, c) for k, c in enumerate(row)) + "</tr>"
