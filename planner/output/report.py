@@ -208,14 +208,7 @@ def render_html(plan, today=None):
     fleet = _table(
         ["crane", "slew centre x, y, z [m]", "load chart (radius m: SWL t)", "rope EA [t]",
          "rope length l0 [m]", "boom height range [m]"],
-        [
-            (c.name, "-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
-             f"{c.swl:g} t at any radius" if c.swl is not None else
-             ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
-             f"{c.EA:.0f}", f"{c.rope_length:.2f}", f"{c.boom_min:g} to {c.boom_max:g}")
-            for c in problem.fleet
-        ],
-        "Crane fleet", text_columns=(0, 2),
+        _fleet_rows(problem), "Crane fleet", text_columns=(0, 2),
     )
     ranking = _table(
         ["rank", "lugs (crane)" if unequal else "lugs", "nominal spread [t]", "worst spread [t]",
@@ -325,6 +318,23 @@ def render_html(plan, today=None):
     )
     return report_page.document(name, body, report_page.running_header(info, name),
                                 report_page.running_footer(info))
+
+
+def _fleet_rows(problem):
+    """One row per crane; a run of cranes alike in everything but the name is one row
+    ("crane 1 to crane 64 (64 alike)": a fleet of strand jacks is one line, not two pages)."""
+    rows = []
+    for c in problem.fleet:
+        values = ("-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
+                  f"{c.swl:g} t at any radius" if c.swl is not None else
+                  ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
+                  f"{c.EA:.0f}", f"{c.rope_length:.2f}", f"{c.boom_min:g} to {c.boom_max:g}")
+        if rows and rows[-1][1] == values and values[0] == "-":
+            rows[-1][0].append(c.name)
+        else:
+            rows.append(([c.name], values))
+    return [(names[0] if len(names) == 1 else f"{names[0]} to {names[-1]} ({len(names)} alike)",
+             *values) for names, values in rows]
 
 
 #: Monte-Carlo draws per row of the report's hook table (seeded: the report is reproducible).

@@ -116,6 +116,9 @@ def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), rope
         return one_table(headers, rows, caption, full=full, keep=keep, text_columns=text_columns)
     start, count = ropes
     stop = start + count
+    if len(rows) == 1 and stop == len(headers):  # one row of values: one table, wrapped
+        return _wrapped_row(headers, rows[0], caption, start, full=full, keep=keep,
+                            text_columns=text_columns)
     parts = []
     for first in range(0, count, ROPE_COLUMNS):
         last = min(first + ROPE_COLUMNS, count)
@@ -126,6 +129,29 @@ def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), rope
             f"{caption} ({first + 1} to {last} of {count})", full=full, keep=keep,
             text_columns=tuple(where[k] for k in text_columns if k in where)))
     return "".join(parts)
+
+
+def _wrapped_row(headers, row, caption, start, *, full, keep, text_columns):
+    """One row of many per-rope values as one table of :data:`ROPE_COLUMNS` ropes a line,
+    each line under its own header row (the label columns repeated)."""
+    keep = True if keep is None else keep
+    classes = " ".join(c for c, on in (("full", full), ("keep", keep)) if on)
+    label = [html.escape(str(v)) for v in row[:start]]
+    lines = []
+    for first in range(start, len(headers), ROPE_COLUMNS):
+        names = headers[first:first + ROPE_COLUMNS]
+        pad = ROPE_COLUMNS - len(names)
+        blank = "<th></th>" * pad
+        lines.append("<tr>" + "".join(f'<th class="text">{html.escape(str(h))}</th>'
+                                      for h in headers[:start])
+                     + "".join(f"<th>{html.escape(str(h))}</th>" for h in names) + blank + "</tr>")
+        cells = "".join(f"<td>{html.escape(str(v))}</td>" for v in row[first:first + ROPE_COLUMNS])
+        text = ' class="text"'
+        lines.append("<tr>" + "".join(f"<td{text if k in text_columns else ''}>{v}</td>"
+                                      for k, v in enumerate(label))
+                     + cells + "<td></td>" * pad + "</tr>")
+    return (f'<table class="{classes}"><caption>{html.escape(caption)}</caption>'
+            f"<tbody>{''.join(lines)}</tbody></table>")
 
 
 def one_table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
