@@ -59,7 +59,7 @@ def test_64_elastic_equals_paper_elastic_at_its_own_pose():
     """Equal jacks and cables, coplanar lugs: at the elastic pose both models' tensions are
     affine in the lugs' plan coordinates and close the same three statics equations, so they
     are the same tensions. (paper-elastic's stretched length differs from rope to rope by the
-    pose's lug heights, 0.2 m in 110 m: 1e-5 W is that, measured 2e-6 W.)"""
+    pose's lug heights, 0.2 m in 110 m: 1e-5 W allows for that; measured 1.0e-6 W.)"""
     scene = load_scene(SCENE64)
     elastic = solve(scene)
     pose = elastic.pose
