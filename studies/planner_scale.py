@@ -2,8 +2,9 @@
 
 Problems: the 1500 GT tanker's hull with C candidates (C / 2 frame stations between the aft
 peak and the collision bulkhead, a port and a starboard candidate on each; the papers' deck
-height; the example's CG box, weight, cranes and tolerances; no hook error), n cranes; and the
-154 m hull's 26 of 80 (examples/hull154_plan.toml). Methods, each on every problem it can run:
+height; the example's CG box, weight, cranes and tolerances; no hook error), n cranes, from 16
+to 100 candidates, and 5 and 6 of 16 without the CG box; and the 154 m hull's 26 of 80
+(examples/hull154_plan.toml). Methods, each on every problem it can run:
 
 * ``exact``: every lug set, bounded and pruned (n >= 5: the pair bound refined to the LP's
   dual bound); proves the optimum;
@@ -38,10 +39,10 @@ ROOT = HERE.parent
 LIMIT = 300.0
 
 
-def tanker_with(candidates, cranes):
+def tanker_with(candidates, cranes, cog_box=True):
     from liftplan.model.frames import choi_to_zup
     from liftplan.planner import load_problem
-    from liftplan.planner.problem.definition import Candidate
+    from liftplan.planner.problem.definition import Candidate, CogEnvelope
 
     base = load_problem(ROOT / "examples" / "tanker_plan.toml")
     if candidates == 16:
@@ -50,14 +51,18 @@ def tanker_with(candidates, cranes):
         stations = np.linspace(4.2, 73.6, candidates // 2)
         points = tuple(Candidate(f"F{k + 1:02d}-{side}", choi_to_zup((float(x), 6.0, z)))
                        for k, x in enumerate(stations) for side, z in (("P", 0.0), ("S", 12.0)))
+    extra = {} if cog_box else dict(cog_envelope=CogEnvelope())
     return dataclasses.replace(base, candidates=points, cranes=cranes, hook_tolerance=0.0,
-                               fleet=(), top=1, time_limit=LIMIT)
+                               fleet=(), top=1, time_limit=LIMIT, **extra)
 
 
 def problems(quick):
-    cases = [(16, 4), (16, 5), (16, 6)] + ([] if quick else [(16, 8), (24, 5), (40, 4), (40, 5)])
+    cases = [(16, 4), (16, 5), (16, 6)] + ([] if quick else [(16, 8), (24, 5), (40, 4), (40, 5),
+                                                               (100, 4)])
     for candidates, cranes in cases:
         yield f"tanker {cranes} of {candidates}", tanker_with(candidates, cranes)
+    for candidates, cranes in [(16, 5), (16, 6)]:  # the CG at its nominal point only
+        yield f"tanker {cranes} of {candidates}, no CG box", tanker_with(candidates, cranes, False)
     if not quick:
         from liftplan.planner import load_problem
 

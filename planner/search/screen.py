@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from itertools import combinations, permutations
+from itertools import permutations
 
 import numpy as np
 
@@ -100,10 +100,22 @@ class Screening:
 
 def all_sets(problem):
     """Every lug set, shape (N, n), in lexicographic order."""
-    count = len(problem.candidates)
-    return np.array(list(combinations(range(count), problem.cranes)), dtype=np.int64).reshape(
-        -1, problem.cranes
-    )
+    return _combinations(len(problem.candidates), problem.cranes)
+
+
+def _combinations(count, n):
+    """Every n-subset of range(count) as rows of ascending indices, in lexicographic order
+    (as itertools.combinations, built column by column in numpy)."""
+    rows = np.arange(count - n + 1, dtype=np.int64)[:, None]  # the first index
+    for column in range(1, n):
+        last = rows[:, -1]
+        # each row continues with every index above its last that leaves room for the rest
+        reach = count - n + column + 1
+        counts = reach - (last + 1)
+        nxt = np.repeat(last + 1, counts) + (np.arange(counts.sum()) -
+                                              np.repeat(np.cumsum(counts) - counts, counts))
+        rows = np.column_stack([np.repeat(rows, counts, axis=0), nxt])
+    return rows
 
 
 def assignments(problem):
@@ -138,9 +150,11 @@ def set_rows(problem, sets=None):
     sets = all_sets(problem) if sets is None else np.asarray(sets, dtype=np.int64)
     patterns = assignments(problem)
     swl = problem.reach[1]
+    if len(patterns) == 1 and not np.any(np.isnan(swl[:, patterns[0]])):
+        return sets, np.broadcast_to(patterns[0], sets.shape), 0  # one way, every lug in reach
     sets_r = np.repeat(sets, len(patterns), axis=0)
     cranes_r = np.tile(patterns, (len(sets), 1))
-    ok = ~np.any(np.isnan(swl[sets_r, cranes_r]), axis=1)
+    ok = ~row_max(np.isnan(swl[sets_r, cranes_r]))
     return sets_r[ok], cranes_r[ok], int(np.sum(~ok))
 
 
