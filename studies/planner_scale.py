@@ -3,7 +3,8 @@
 Problems: the 1500 GT tanker's hull with C candidates (C / 2 frame stations between the aft
 peak and the collision bulkhead, a port and a starboard candidate on each; the papers' deck
 height; the example's CG box, weight, cranes and tolerances; no hook error), n cranes, from 16
-to 100 candidates, and 5 and 6 of 16 without the CG box; and the 154 m hull's 26 of 80
+to 200 candidates (past 5 million sets the local search only), and 5 and 6 of 16 without
+the CG box; and the 154 m hull's 26 of 80
 (examples/hull154_plan.toml). Methods, each on every problem it can run:
 
 * ``exact``: every lug set, bounded and pruned (n >= 5: the pair bound refined to the LP's
@@ -58,7 +59,7 @@ def tanker_with(candidates, cranes, cog_box=True):
 
 def problems(quick):
     cases = [(16, 4), (16, 5), (16, 6)] + ([] if quick else [(16, 8), (24, 5), (40, 4), (40, 5),
-                                                               (100, 4)])
+                                                               (100, 4), (200, 4), (40, 12)])
     for candidates, cranes in cases:
         yield f"tanker {cranes} of {candidates}", tanker_with(candidates, cranes)
     for candidates, cranes in [(16, 5), (16, 6)]:  # the CG at its nominal point only
