@@ -70,7 +70,8 @@ class SlingSpec:
         Each leg's length, pin to pin.
     legs : int
         Number of legs, 2 to 4: the planner takes that many candidates for the crane. A 2-leg
-        sling hinges about its pair (two cranes only); 3 and 4 legs fix the hook to the body.
+        sling hinges about its pair (the hook hangs in the vertical plane through it: a hinged
+        lift point, any number of cranes); 3 and 4 legs fix the hook to the body.
     EA : float or None  [t]
         Each leg's axial stiffness; or give ``diameter``.
     diameter : float or None  [mm]
