@@ -17,7 +17,7 @@ HERE = Path(__file__).parent
 STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
            "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "flexible_hull", "flexible_ground",
            "draining", "tilt_per_direction", "rope_lengths", "hook_montecarlo", "ferry_strength",
-           "planner_scale", "benchmarks", "jit_cache", "report_screenshot"]
+           "planner_scale", "many_ropes_timing", "benchmarks", "jit_cache", "report_screenshot"]
 
 
 def main():

@@ -66,3 +66,19 @@ def test_plan_geometry_never_rules_out_a_set_the_full_screening_keeps():
                                           screening_scenarios(problem))
         assert np.all(np.isinf(bound))
         assert np.array_equal(reason, code[dropped])
+
+
+def test_distinct_orders_of_a_multiset_are_itertools_set():
+    from liftplan.planner.search.screen import _distinct_orders
+
+    for labels in ([0, 0, 1], [0, 1, 1, 2], [0, 0, 0, 1, 1], [0, 1, 2, 3], [2, 2]):
+        assert _distinct_orders(labels) == sorted(set(itertools.permutations(labels)))
+
+
+def test_twenty_six_equal_cranes_on_their_twenty_six_points_is_one_row():
+    """One crane class: one assignment, not 26! orderings (which never finished)."""
+    from liftplan.planner.search.screen import assignments
+
+    problem = load_problem(EXAMPLES / "hull154_26_given.toml")
+    sets, cranes, out = set_rows(problem)
+    assert assignments(problem).shape == (1, 26) and sets.shape == (1, 26) and out == 0

@@ -88,7 +88,7 @@ def unit_grid(count):
     return grid[np.argsort(np.abs(grid).sum(axis=1), kind="stable")]
 
 
-def check_plan(problem, indices, preload, cases, grid=3):
+def check_plan(problem, indices, preload, cases, grid=3, cranes=None):
     """Tensions of one plan over every case's tolerance box.
 
     Parameters
@@ -103,12 +103,15 @@ def check_plan(problem, indices, preload, cases, grid=3):
     cases : CheckCases
     grid : int
         Attitudes per axis of each box (3: corners, edge middles and level).
+    cranes : sequence of int, optional
+        The plan's fleet index of the crane on each lug (default: crane k on the k-th lug);
+        each rope is checked against its own crane's SWL at its radius.
 
     Returns
     -------
     CheckResult
     """
-    lugset = LugSet(problem, indices)
+    lugset = LugSet(problem, indices, cranes)
     n, m = lugset.n, len(cases)
     units = unit_grid(grid)
     g = len(units)
@@ -116,7 +119,8 @@ def check_plan(problem, indices, preload, cases, grid=3):
     trim = cases.trim_tolerance[:, None] * units[None, :, 1]
     x = np.column_stack([np.full(m * g, problem.lift_height),
                          np.radians(heel).ravel(), np.radians(trim).ravel()])
-    params = pack(problem, lugset.points, cases.cog, lugset.boom_heights(preload), cases.weight)
+    params = pack(problem, lugset.points, cases.cog, lugset.boom_heights(preload), cases.weight,
+                  rope_length=lugset.rope_length, EA=lugset.EA)
     tensions, _, _ = run_block(rope_model(n).held_columns, n, x, np.repeat(params, g, axis=0))
     tensions = tensions.reshape(m, g, n)
 
@@ -124,7 +128,7 @@ def check_plan(problem, indices, preload, cases, grid=3):
     worst = np.argmax(spread, axis=1)
     rows = np.arange(m)
     low, high = tensions.min(axis=(1, 2)), tensions.max(axis=(1, 2))
-    swl = problem.crane.swl
+    swl = lugset.swl  # (n,): each crane's chart SWL at its radius
     flagged = ~np.all(np.isfinite(tensions), axis=(1, 2)) | np.any(
         (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2))
     status, reason = [OK] * m, [""] * m
@@ -147,7 +151,7 @@ def check_plan(problem, indices, preload, cases, grid=3):
         status=status, reason=reason,
         worst_spread=blank(spread[rows, worst]),
         worst_heel=blank(heel[rows, worst]), worst_trim=blank(trim[rows, worst]),
-        min_tension=blank(low), max_tension=blank(high), utilisation=blank(high / swl),
+        min_tension=blank(low), max_tension=blank(high), utilisation=blank((tensions / swl).max(axis=(1, 2))),
     )
 
 
@@ -186,7 +190,9 @@ def _judge(tensions, heel, trim, swl, min_tension, names):
         (tensions < min_tension, min_tension, "below min_tension", UNSAFE),
     ):
         if test.any():
+            bound = np.broadcast_to(bound, tensions.shape)  # swl: one per rope
             j, i = np.unravel_index(np.argmax(np.abs(tensions - bound) * test), test.shape)
+            bound = bound[j, i]
             where = f"at heel {heel[j]:+.2f}, trim {trim[j]:+.2f} deg"
             rope = f"rope L{i + 1} ({names[i]})"
             if outcome == FAILED:

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from itertools import permutations
 
 import numpy as np
 
@@ -127,15 +126,40 @@ def assignments(problem):
         Row p: the fleet index of the crane on the k-th lug of a set (candidate order).
     """
     classes = problem.crane_classes
+    if len(classes) == 1:  # one crane class: one way (no n! orderings to build and merge)
+        return np.arange(problem.cranes, dtype=np.int64)[None, :]
     label = np.empty(problem.cranes, dtype=np.int64)
     for c, group in enumerate(classes):
         label[list(group)] = c
-    patterns = sorted(set(permutations(label.tolist())))
+    patterns = _distinct_orders(label.tolist())
     rows = []
     for pattern in patterns:
         taken = [list(group) for group in classes]
         rows.append([taken[c].pop(0) for c in pattern])
     return np.array(rows, dtype=np.int64).reshape(-1, problem.cranes)
+
+
+def _distinct_orders(labels):
+    """Every distinct ordering of a multiset of labels, sorted (not the n! permutations)."""
+    counts = {}
+    for label in labels:
+        counts[label] = counts.get(label, 0) + 1
+    out, order = [], []
+
+    def extend():
+        if len(order) == len(labels):
+            out.append(tuple(order))
+            return
+        for label in sorted(counts):
+            if counts[label]:
+                counts[label] -= 1
+                order.append(label)
+                extend()
+                order.pop()
+                counts[label] += 1
+
+    extend()
+    return out
 
 
 def set_rows(problem, sets=None):
