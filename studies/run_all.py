@@ -15,8 +15,9 @@ from pathlib import Path
 HERE = Path(__file__).parent
 #: In order: stranded_methods feeds speed_accuracy's hydrostatics panel.
 STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
-           "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "flexible_hull", "flexible_ground",
-           "draining", "tilt_per_direction", "rope_lengths", "hook_montecarlo", "ferry_strength",
+           "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "flexible_hull",
+           "flexible_ground", "draining", "tilt_per_direction", "rope_lengths", "hook_montecarlo",
+           "ferry_strength",
            "planner_scale", "many_ropes_timing", "benchmarks", "jit_cache", "report_screenshot"]
 
 
