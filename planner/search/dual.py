@@ -205,14 +205,14 @@ def _worst(values, reserve):
 
 
 def _log_sum_exp(x, axis):
-    if axis == x.ndim - 1:  # over the ropes: the fast reductions below
+    if axis == x.ndim - 1:  # over the ropes: the fast reductions of planner/search/rows.py
         top = row_max(x)
         return np.log(row_sum(np.exp(x - top[..., None]))) + top
     top = x.max(axis=axis, keepdims=True)
     return np.log(np.exp(x - top).sum(axis=axis)) + np.squeeze(top, axis=axis)
 
 
-#: Below this, log(1 + e^x) and its sigmoid (< 4e-18) are taken as 0.
+#: Below this, log(1 + e^x) (< 4e-18) is taken as 0.
 SOFT_FLOOR = -40.0
 
 
