@@ -650,10 +650,10 @@ def search(problem, top=None, progress=None):
 
 
 #: ``search = "auto"``: the exact search for five or more lugs up to this many sets
-#: (studies/planner_scale.py: 5 of 24 candidates, 42 504 sets, proved in 24 s; 5 of 40,
-#: 658 008 sets, stopped at 300 s with an 89 % gap and a plan 18 % worse than the local
-#: search's, found in 1.3 s).
-AUTO_EXACT_MANY = 50_000
+#: (studies/planner_scale.py on an idle machine: 5 of 24 candidates, 42 504 sets, proved in
+#: 6.0 s; 5 of 40, 658 008 sets, proved in 159 s, where the local search is 0.9 % above in
+#: 0.7 s; about a quarter of a millisecond a set, so some 50 s at this limit).
+AUTO_EXACT_MANY = 200_000
 
 
 def auto_exact_limit(cranes):
