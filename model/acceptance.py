@@ -116,3 +116,21 @@ def positive_definite(hessian):
         return False
     scale = 1.0 / np.sqrt(diag)
     return bool(np.min(np.linalg.eigvalsh(h * np.outer(scale, scale))) > _NEUTRAL)
+
+
+def schur_positive_definite(matrix, npose):
+    """Whether a symmetric matrix [[pose, coupling], [coupling^T, beam]] is positive definite,
+    judged as a pose with a stiff elastic part (the flexible hull): the beam block by Cholesky,
+    then its Schur complement on the first ``npose`` unknowns by :func:`positive_definite`
+    (scaled to a unit diagonal, so the pose's mixed units do not matter)."""
+    k = np.asarray(matrix, dtype=float)
+    k = 0.5 * (k + k.T)
+    if not np.all(np.isfinite(k)):
+        return False
+    pose, beam, coupling = k[:npose, :npose], k[npose:, npose:], k[:npose, npose:]
+    try:
+        factor = np.linalg.cholesky(beam)
+    except np.linalg.LinAlgError:
+        return False
+    half = np.linalg.solve(factor, coupling.T)
+    return positive_definite(pose - half.T @ half)

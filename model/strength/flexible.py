@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..acceptance import RESIDUAL_TOL, positive_definite
+from ..acceptance import RESIDUAL_TOL, schur_positive_definite
 from .beam import ELEMENTS, girder_mesh
 from .flexible_model import flexible_model
 from .piecewise import Extreme
@@ -186,25 +186,7 @@ def flexible_state(scene, p, x_start, elements=ELEMENTS):
         beam_residual = np.inf
     return FlexibleState(x=z[:3], beam=z[3:], tensions=tensions.ravel(), stretch=stretch.ravel(),
                          statics=statics.ravel(), beam_residual=beam_residual,
-                         stable=_schur_stable(hess), mesh=mesh)
-
-
-def _schur_stable(hess):
-    """Positive definiteness of the energy Hessian through its Schur complement on the pose.
-
-    The beam block (strain + ropes) is checked positive definite, then the pose block less
-    its coupling to the beam: together, the whole Hessian is (the 3 x 3 complement is
-    judged as the rigid model's Hessian is, scaled to a unit diagonal)."""
-    h = 0.5 * (hess + hess.T)
-    pose, beam, coupling = h[:3, :3], h[3:, 3:], h[:3, 3:]
-    if not np.all(np.isfinite(h)):
-        return False
-    try:
-        factor = np.linalg.cholesky(beam)
-    except np.linalg.LinAlgError:
-        return False
-    half = np.linalg.solve(factor, coupling.T)
-    return positive_definite(pose - half.T @ half)
+                         stable=schur_positive_definite(hess, 3), mesh=mesh)
 
 
 def hull_report(scene, mesh, state, rigid, used, forced, ground=None, buoyancy=None, note=""):

@@ -44,11 +44,13 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from ..acceptance import schur_positive_definite
 from ..afloat import buoyancy_weights
 from ..errors import EquilibriumNotFound, InvalidScene
 from ..frames import rotation_matrix, tilt
 from .beam import _GAUSS3, ELEMENTS, girder_mesh, hermite, hermite_slope, node_of
 from .piecewise import Piecewise
+from .sections import cut_segments
 
 #: Accepted when the scaled residuals (forces / W, moments / (W L)) are below this (as the
 #: rigid water model, :data:`liftplan.model.water.equilibrium.RESIDUAL_TOL`).
@@ -103,20 +105,7 @@ def oriented_segments(triangles, kappa, stations):
     """
     lo, hi = triangles[:, :, 0].min(axis=1), triangles[:, :, 0].max(axis=1)
     station, tri = np.nonzero((lo[None, :] < stations[:, None]) & (hi[None, :] > stations[:, None]))
-    tris, s = triangles[tri], stations[station]
-    d = tris[:, :, 0] - s[:, None]
-    positive = d > 0.0
-    lone = np.where(positive.sum(axis=1) == 1, np.argmax(positive, axis=1), np.argmin(positive, axis=1))
-    rows = np.arange(len(tris))
-    k0, k1, k2 = lone, (lone + 1) % 3, (lone + 2) % 3
-    v0, v1, v2 = tris[rows, k0], tris[rows, k1], tris[rows, k2]
-    d0, d1, d2 = d[rows, k0], d[rows, k1], d[rows, k2]
-    p = v0 + (d0 / (d0 - d1))[:, None] * (v1 - v0)
-    q = v0 + (d0 / (d0 - d2))[:, None] * (v2 - v0)
-    normal = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
-    along = q - p
-    flip = (-along[:, 1] * normal[:, 2] + along[:, 2] * normal[:, 1]) < 0.0
-    p, q = np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
+    p, q = cut_segments(triangles[tri], stations[station])
     return station, p[:, 1:], q[:, 1:], kappa[tri]
 
 
@@ -563,7 +552,7 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         stretch=out["stretch"].ravel(), reaction=float(out["reaction"].ravel()[0]),
         buoyancy=float(out["buoyancy"].ravel()[0]),
         immersed_volume=float(out["immersed"].ravel()[0]), first_buoyancy=out["first_buoyancy"].ravel(),
-        residual=residual, stable=_stable(stiffness(model, z), npose),
+        residual=residual, stable=schur_positive_definite(stiffness(model, z), npose),
         buoyancy_curve=_curves(mesh.x, out["b"].ravel(), out["s_z"].ravel()), mesh=mesh,
         iterations=iterations, remeshed=remeshed, quadrature_error=error, quadrature_exact=exact,
         gauge=gauge)
@@ -637,24 +626,6 @@ def _curves(x, b, s_z):
     scale = h ** -np.arange(3)
     return (Piecewise(x, (b.reshape(-1, 3) @ inverse.T) * scale),
             Piecewise(x, (s_z.reshape(-1, 3) @ inverse.T) * scale))
-
-
-def _stable(stiffness, npose):
-    """Stiffness (symmetric part) positive definite: the beam block by Cholesky, then its Schur
-    complement on the pose (scaled to a unit diagonal: :func:`..acceptance.positive_definite`)."""
-    from ..acceptance import positive_definite
-
-    k = np.asarray(stiffness, dtype=float)
-    k = 0.5 * (k + k.T)
-    if not np.all(np.isfinite(k)):
-        return False
-    pose, beam, coupling = k[:npose, :npose], k[npose:, npose:], k[:npose, npose:]
-    try:
-        factor = np.linalg.cholesky(beam)
-    except np.linalg.LinAlgError:
-        return False
-    half = np.linalg.solve(factor, coupling.T)
-    return positive_definite(pose - half.T @ half)
 
 
 # -- the solve: the least hull the scene needs -----------------------------------------------

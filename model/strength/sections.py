@@ -90,9 +90,10 @@ def immersed_sections(triangles, kappa, up, zo, stations):
     return per_length, moment
 
 
-def _segments(tris, s, up, zo):
-    """Signed area and first moment (about z = 0) that each cut triangle's wet boundary
-    segment adds to its section, with the reference point on the section's waterline."""
+def cut_segments(tris, s):
+    """Where the plane x = s_k cuts each triangle k (which straddles it): the segment's ends
+    p, q (k, 3) [m], ordered so that the section's outline runs counter-clockwise in (y, z)
+    (the hull's outward normal on the right)."""
     d = tris[:, :, 0] - s[:, None]
     positive = d > 0.0
     lone = np.where(positive.sum(axis=1) == 1, np.argmax(positive, axis=1), np.argmin(positive, axis=1))
@@ -105,7 +106,13 @@ def _segments(tris, s, up, zo):
     normal = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
     along = q - p
     flip = (-along[:, 1] * normal[:, 2] + along[:, 2] * normal[:, 1]) < 0.0
-    p, q = np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
+    return np.where(flip[:, None], q, p), np.where(flip[:, None], p, q)
+
+
+def _segments(tris, s, up, zo):
+    """Signed area and first moment (about z = 0) that each cut triangle's wet boundary
+    segment adds to its section, with the reference point on the section's waterline."""
+    p, q = cut_segments(tris, s)
     hp, hq = p @ up + zo, q @ up + zo
     wet_p, wet_q = hp < 0.0, hq < 0.0
     crossing = wet_p != wet_q
