@@ -73,7 +73,7 @@ def tension_curves(plan):
         tensions = plan.tensions_at(values, zero) if angle == "heel" else \
             plan.tensions_at(zero, values)
         for k, (label, column) in enumerate(zip(plan.labels, tensions.T)):
-            extra = "" if equal else f", SWL {swl[label]:.0f} t"
+            extra = "" if equal else f", SWL {swl[label]:.1f} t"
             style = {"lw": 1.3, "label": f"{label} ({plan.lugs[label]}, {plan.cranes[label]}{extra})"}
             if many:
                 style = {"lw": 0.9, "color": cmap(norm(xs[k, 0])), "ls": _SIDE_STYLE[sides[k]]}
@@ -85,7 +85,7 @@ def tension_curves(plan):
         ax.axvspan(-tol, tol, color="0.9", label=f"tolerance box +-{tol:g} deg")
         if equal:
             ax.axhline(next(iter(swl.values())), color="k", ls="--", lw=0.9,
-                       label=f"SWL {next(iter(swl.values())):.0f} t")
+                       label=f"SWL {next(iter(swl.values())):.1f} t")
         else:
             ax.plot([], [], color="0.3", ls="--", lw=0.9, label="SWL (dashed, in the rope's colour)")
         if problem.min_tension > 0:
@@ -309,7 +309,7 @@ def _draw_cranes(ax, plan):
             x, y = chosen[k]
             label = plan.labels[k]
             ax.plot([cx, x], [cy, y], color=color, lw=1.1)
-            text += f"\n{label}: radius {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.0f} t"
+            text += f"\n{label}: radius {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.1f} t"
         # the crane's text away from the hull, on screen
         up = (cy >= centre[1]) != choi
         ax.annotate(text, (cx, cy), fontsize=_SMALL, color=color, ha="center",
