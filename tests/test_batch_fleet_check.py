@@ -3,11 +3,11 @@ at its radius, with the plan's crane assignment (not the first cranes of the fle
 nor one [crane] SWL for all)."""
 
 import numpy as np
+from helpers import EXAMPLES
 
 from liftplan.planner import load_problem, plan
 from liftplan.planner.batch.check import CheckCases, check_plan
 from liftplan.planner.search.scenarios import LugSet, Scenario
-from tests.helpers import EXAMPLES
 
 
 def test_check_uses_each_ropes_crane_and_its_chart_swl():

@@ -20,6 +20,7 @@ import dataclasses
 import json
 import math
 
+import helpers
 import numpy as np
 import pytest
 from helpers import EXAMPLES
@@ -110,23 +111,8 @@ def test_ground_at_midship_ropes_at_both_ends_by_closed_form(ei):
 
 
 def three_supports(x1, springs, ei, x0, x2, q=Q):
-    """Reactions of a uniform beam on three supports at x0 < x1 < x2 with springs K_i (inf: rigid),
-    unloaded supports level (three-moment equation with settlements d_i = R_i / K_i; see
-    tests/test_flexible_hull.py::three_supports for the derivation)."""
-    l1, l2 = x1 - x0, x2 - x1
-
-    def reactions(m1):
-        r0, r2 = q * l1 / 2 + m1 / l1, q * l2 / 2 + m1 / l2
-        return np.array([r0, q * (l1 + l2) - r0 - r2, r2])
-
-    def mismatch(m1):
-        d = reactions(m1) / np.asarray(springs, dtype=float)
-        return (2 * m1 * (l1 + l2) + q * (l1**3 + l2**3) / 4
-                - 6 * ei * ((d[1] - d[0]) / l1 + (d[1] - d[2]) / l2))
-
-    f0 = mismatch(0.0)
-    m1 = -f0 / (mismatch(1.0) - f0)
-    return reactions(m1), m1
+    """:func:`helpers.three_supports` (the three-moment equation with spring settlements)."""
+    return helpers.three_supports(x1, springs, ei, q, x0, x2)
 
 
 @pytest.mark.parametrize("where, ea, ei", [

@@ -6,6 +6,7 @@ import itertools
 
 import numpy as np
 import pytest
+from helpers import EXAMPLES
 
 from liftplan.planner import load_problem
 from liftplan.planner.search import rows
@@ -19,7 +20,6 @@ from liftplan.planner.search.screen import (
     screening_scenarios,
     set_rows,
 )
-from tests.helpers import EXAMPLES
 
 
 @pytest.mark.parametrize("count, n", [(7, 3), (10, 4), (16, 5), (12, 12), (5, 1), (9, 2), (20, 6)])
