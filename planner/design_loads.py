@@ -44,10 +44,11 @@ from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 class PlanChain(DesignLoadChain):
     """The rules' chain with the notes naming the planner's static input.
 
-    :class:`~liftplan.model.rules.DesignLoadChain` calls its ``worst`` input "the worst
-    searched". With a breakout case that input is the breakout tension where it is larger
-    (:attr:`CraneDesign.static_input`), so the tilt and CoG notes here say which load is
-    the input and what it governs over; the numbers are the chain's own.
+    :class:`~liftplan.model.rules.DesignLoadChain` calls its ``worst`` input the crane's worst
+    tension over the tolerance box and the CG envelope. With a breakout case that input is the
+    breakout tension where it is larger (:attr:`CraneDesign.static_input`), so the tilt and CoG
+    notes here (:meth:`factor_notes`) say which load is the input and what it governs over;
+    the numbers are the chain's own.
 
     Parameters
     ----------
@@ -57,16 +58,18 @@ class PlanChain(DesignLoadChain):
 
     inputs: tuple = ()
 
-    def _crane(self, crane):
-        result = super()._crane(crane)
+    def factor_notes(self, crane):
+        """The chain's notes, the tilt and CoG ones from the planner's loads where it has them
+        (:meth:`CraneDesign.tilt_note_for`, :meth:`CraneDesign.cog_note`; an empty one keeps
+        the chain's own)."""
+        notes = super().factor_notes(crane)
         design = dict(self.inputs).get(crane.name)
         if design is None:
-            return result
-        notes = {"tilt": design.tilt_note_for(crane.tilt, self.tilt_note),
-                 "cog": design.cog_note(self.cog_searched)}
-        factors = tuple(replace(f, note=notes[f.name]) if f.name in notes and notes[f.name] else f
-                        for f in result.factors)
-        return replace(result, factors=factors)
+            return notes
+        mine = {"tilt": design.tilt_note_for(crane.tilt, self.tilt_note),
+                "cog": design.cog_note(self.cog_searched)}
+        notes.update({name: note for name, note in mine.items() if note})
+        return notes
 
 
 def rope_skew(lugset, preload, delta):

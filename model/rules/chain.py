@@ -2,7 +2,9 @@
 
 Per crane (0027/ND Rev 11 6.2, 10.3)::
 
-    static share   S = max(worst searched share, share at the rules' tilt)      [t]
+    static share   S = max(worst tension, share at the rules' tilt)             [t]
+                   (worst tension: the crane's largest over the heel/trim tolerance box
+                   and the CG envelope, as the planner found it)
     static hook    SHL = S x weight contingency x CoG factor x skew (hook) + rigging weight
     dynamic hook   DHL = SHL x DAF            -> checked against the chart SWL at the radius
 
@@ -13,13 +15,15 @@ Per lug (6.3, 11.4)::
     design load    leg load x consequence factor (1.30), with its in-plane and out-of-plane parts
                    (the leg's own angle out of the lug's plane, plus the lateral allowance)
 
-The CoG factor is 1 when the planner searched a CoG envelope (the worst share already holds
+The CoG factor is 1 when the planner searched a CoG envelope (the worst tension already holds
 the envelope's extremes); the tilt factor only raises the share to the rules' tilt when the
 planner's own tolerance box did not already reach it (the larger of the two is used, never
 their product); skew applies to hook loads only when the hooks share the load indeterminately
 (four or more), to lug loads also when one hook carries four or more slings; yaw only to lug
 loads of a hook with more than one sling. Each factor is reported with its value, source and
-what it applies to, so a reader can redo the sums.
+what it applies to, so a reader can redo the sums. A caller whose static input is not that
+worst tension (the planner's breakout tension) names it in the notes through
+:meth:`DesignLoadChain.factor_notes`.
 """
 
 from __future__ import annotations
@@ -91,7 +95,8 @@ class CraneLoads:
     nominal : float  [t]
         Share at the level attitude, nominal weight and CG.
     worst : float  [t]
-        Worst share the planner found over what it searched (tolerance box, CoG envelope).
+        The crane's worst tension: its largest share over the heel/trim tolerance box and the
+        CG envelope, as the planner found it.
     tilt : float or None  [t]
         Share at the rules' tilt (worst direction and CoG vertex; see
         :meth:`~liftplan.model.rules.tilt.TiltGeometry.worst`). Needed with two or more cranes.
@@ -222,7 +227,7 @@ class DesignLoadChain:
         The lifted item's weight before contingency (net, weighed or NTE weight).
     rules : Rules
     cog_searched : bool
-        The shares are already the worst over a CoG envelope (then no CoG factor).
+        The worst tensions already hold a CG envelope's extremes (then no CoG factor).
     tilt_note : str
         How the tilt shares were found (shown with the tilt factor), e.g. "3 deg governs
         (hook elevation 1 m over 25 m = 2.29 deg)".
@@ -295,6 +300,42 @@ class DesignLoadChain:
                 "rules": _rules_json(self.rules), "cog_searched": self.cog_searched,
                 "cranes": [r.to_json() for r in self.results]}
 
+    def factor_notes(self, crane):
+        """The notes of the ``cog`` and ``tilt`` factors of one crane, in words.
+
+        The public hook for a caller whose static input is not the crane's worst tension over
+        the tolerance box and the CG envelope (the planner's breakout tension,
+        :class:`liftplan.planner.design_loads.PlanChain`): override it to name that input,
+        calling this one for the notes it keeps. The factors' values never depend on the notes.
+
+        Parameters
+        ----------
+        crane : CraneLoads
+
+        Returns
+        -------
+        dict of str to str
+            ``{"cog": ..., "tilt": ...}``.
+        """
+        worst = crane.worst
+        if self.cog_searched and crane.nominal > 0:
+            cog = (f"CoG envelope searched by the planner: in the worst tension (worst / nominal = "
+                   f"{worst / crane.nominal:.4f})")
+        elif self.cog_searched:
+            cog = "CoG envelope searched by the planner"
+        else:
+            cog = "no CoG envelope searched: [rules] cog_factor"
+        if crane.tilt is None:
+            tilt = "single hook: no multi-hook tilt"
+        else:
+            over = ("the heel/trim tolerance box and the CG envelope" if self.cog_searched
+                    else "the heel/trim tolerance box (no CG envelope)")
+            tilt = (f"share at the rules' tilt {crane.tilt:.4g} t against {worst:.4g} t, the crane's "
+                    f"worst tension over {over}")
+        if self.tilt_note:
+            tilt += f"; {self.tilt_note}"
+        return {"cog": cog, "tilt": tilt}
+
     # -- one crane ------------------------------------------------------------------------------
     def _crane(self, crane):
         rules, hooks = self.rules, len(self.cranes)
@@ -335,14 +376,8 @@ class DesignLoadChain:
         skew_note = f"{how}; rules' default {factors.DEFAULT_SKEW_FACTOR:g}"
         if crane.skew is not None and how != "computed":
             skew_note += f", computed {crane.skew:.4g}"
-        cog_note = (f"CoG envelope searched by the planner: in the worst share (worst / nominal = "
-                    f"{crane.worst / crane.nominal:.4f})" if self.cog_searched and crane.nominal > 0
-                    else "CoG envelope searched by the planner" if self.cog_searched
-                    else "no CoG envelope searched: [rules] cog_factor")
-        tilt_note = (f"share at the rules' tilt {crane.tilt:.4g} t against the worst searched {base:.4g} t"
-                     if crane.tilt is not None else "single hook: no multi-hook tilt")
-        if self.tilt_note:
-            tilt_note += f"; {self.tilt_note}"
+        own = self.factor_notes(crane)
+        cog_note, tilt_note = own["cog"], own["tilt"]
         table = (
             Factor("weight_contingency", wc, factors.SOURCES["weight_contingency"], "hook and lug"),
             Factor("cog", cog, factors.SOURCES["cog_envelope" if self.cog_searched else "cog_factor"],
