@@ -117,6 +117,96 @@ def _unit(v):
     return v / ca.repmat(ca.sqrt(ca.sum1(v * v)), v.shape[0], 1)
 
 
+#: A hinged pair must stay this far from plumb [deg] at every attitude of the tolerance box:
+#: the hinge plane is the vertical plane through the pair, which turns by 1 / cos(inclination)
+#: per unit of tilt and is undefined at plumb (:func:`hinged_points` divides by the pair's
+#: horizontal length); at 80 deg a 1 deg tilt swings it ~6 deg. The sling planner rules such
+#: pairs out with the same margin (``planner/slings/rigs.py``, ``PLUMB_MARGIN``).
+PLUMB_MARGIN = 10.0
+
+
+def pair_inclination(a, b):
+    """Inclination from the horizontal of each lug pair a -> b ((N, 3), body frame [m])  [deg]."""
+    d = np.asarray(b, dtype=float) - np.asarray(a, dtype=float)
+    return np.degrees(np.arctan2(np.abs(d[:, 2]), np.hypot(d[:, 0], d[:, 1])))
+
+
+def box_tilt(heel, trim):
+    """The most a tilt of the box |heel| <= heel, |trim| <= trim [deg] turns a line  [deg]:
+    the body's tilt at the box's corner, arccos(cos heel cos trim)."""
+    return float(np.degrees(np.arccos(np.cos(np.radians(heel)) * np.cos(np.radians(trim)))))
+
+
+def near_plumb(a, b, heel, trim):
+    """Whether each lug pair comes within :data:`PLUMB_MARGIN` of plumb at some attitude of the
+    heel/trim box: its inclination plus :func:`box_tilt` reaches 90 deg - :data:`PLUMB_MARGIN`
+    (the rule the sling planner rules pairs out by)."""
+    return pair_inclination(a, b) + box_tilt(heel, trim) >= 90.0 - PLUMB_MARGIN
+
+
+def check_hinges(rows, heel, trim, yaw=0.0, names=None, shown=tuple):
+    """Refuse hinge rows that :func:`hinged_points` cannot pose everywhere in the heel/trim box.
+
+    A row's lugs A, B must be two points (the sling hinges about the line AB) that stay more
+    than :data:`PLUMB_MARGIN` off plumb over the box (:func:`near_plumb`): near plumb the
+    hinge plane (the vertical plane through AB) flips and the hooks, tensions and bounds turn
+    to NaN. A planning file's slings never reach here with such a pair (the sling planner rules
+    them out); a ``PlanProblem(..., hinges=...)`` built from Python does.
+
+    Parameters
+    ----------
+    rows : array_like, shape (N, 8)
+        Hinge rows (:class:`HingedLayout`: A (3), B (3), c, w), body frame ``z-up``  [m, t].
+    heel, trim : float  [deg]
+        Half-widths of the tolerance box.
+    yaw : float  [deg]
+        The lift's yaw (the attitude named in the message is evaluated with it).
+    names : sequence of str, optional
+        Each row's candidate name, for the message.
+    shown : callable
+        Maps a ``z-up`` point to the frame the user wrote (default: as it is).
+
+    Raises
+    ------
+    InvalidScene
+        One line naming the row, the pair, its inclination and the box's attitude where it is
+        steepest.
+    """
+    from .errors import InvalidScene
+    from .frames import rotation_matrix
+
+    rows = np.asarray(rows, dtype=float).reshape(-1, 8)
+    a, b = rows[:, 0:3], rows[:, 3:6]
+
+    def where(i):
+        name = f" ({names[i]})" if names is not None else ""
+        pa, pb = (", ".join(f"{v + 0.0:g}" for v in shown(tuple(p))) for p in (a[i], b[i]))
+        return f"hinges[{i}]{name}: the lug pair A ({pa}) B ({pb}) m"
+
+    length = np.linalg.norm(b - a, axis=1)
+    short = np.flatnonzero(~(length > 1e-9))
+    if short.size:
+        raise InvalidScene(f"{where(short[0])} is one point: expected two lugs apart (the sling "
+                           "hinges about the line between them)")
+    bad = np.flatnonzero(near_plumb(a, b, heel, trim))
+    if not bad.size:
+        return
+    i = int(bad[0])
+    d = (b[i] - a[i]) / length[i]
+    # where in the box the pair is steepest (a 41 x 41 grid, edges and corners on it)
+    grid = [(h, t) for h in np.linspace(-heel, heel, 41) for t in np.linspace(-trim, trim, 41)]
+    steep = [abs(rotation_matrix(h, t, yaw)[2] @ d) for h, t in grid]
+    k = int(np.argmax(steep))
+    tilt = box_tilt(heel, trim)
+    raise InvalidScene(
+        f"{where(i)} is {pair_inclination(a[[i]], b[[i]])[0]:.2f} deg from the horizontal and the "
+        f"heel/trim box (+-{heel:g}, +-{trim:g} deg) tilts it by up to {tilt:.2f} deg (steepest "
+        f"{np.degrees(np.arcsin(min(1.0, steep[k]))):.2f} deg at heel {grid[k][0] + 0.0:.2f}, trim "
+        f"{grid[k][1] + 0.0:.2f} deg): within {PLUMB_MARGIN:g} deg of plumb the sling's hinge plane "
+        f"flips; expected a pair less than {90.0 - PLUMB_MARGIN - tilt:.2f} deg from the "
+        "horizontal, or a smaller plan.tolerance")
+
+
 def hinged_points(points, hinges, rot, lift):
     """World positions of hinged lift points at a pose, and the bar weights' moment term.
 

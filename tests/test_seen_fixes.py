@@ -18,6 +18,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+
 from liftplan.model.rules import CraneLoads, DesignLoadChain, Rules
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -87,3 +89,109 @@ def test_sling_plan_json_tilt_note_names_the_worst_tension(capsys):
     notes = [f["note"] for c in cranes for f in c["factors"] if f["name"] == "tilt"]
     assert len(notes) == 2
     assert all("the crane's worst tension over the heel/trim tolerance box" in n for n in notes)
+
+
+# -- 2. hinge rows from Python meet the planning file's plumb rule ---------------------------
+STEEP = 85.0  # deg from the horizontal: 85 + 2.83 (the +-2/+-2 box's tilt) > 80
+
+
+def _steep_file(tmp_path):
+    """The three-crawler 2-leg sling example with one more candidate 3 m below X+7.0-PO, on the
+    same frame, so that the pair is 85 deg steep (and 3 m apart: the 8 m legs reach it)."""
+    import math
+
+    text = (EXAMPLES / "block_three_slings_plan.toml").read_text()
+    dx = 3.0 / math.tan(math.radians(STEEP))
+    extra = (f'\n[[candidates]]\nname = "STEEP"\nat = [{7.0 + dx!r}, 5.5, 0.0]\n'
+             'bulkhead = "frame x = +7.0 m"\n')
+    text = text.replace("\n[plan]", extra + "\n[plan]", 1)
+    path = tmp_path / "steep.toml"
+    path.write_text(text)
+    return path
+
+
+def test_file_path_rules_the_steep_pair_out_and_its_derived_problem_passes_the_guard(tmp_path):
+    from liftplan.planner import load_problem
+    from liftplan.planner.slings.apex import apex_problem
+
+    problem = load_problem(_steep_file(tmp_path))
+    derived, rigs = apex_problem(problem)          # builds PlanProblem(..., hinges=...) itself
+    steep = problem.names.index("STEEP")
+    assert not any(steep in pair for pair in rigs.lugs.tolist())
+    reason = [k for k in rigs.ruled_out if "plumb" in k]
+    assert len(reason) == 1 and rigs.ruled_out[reason[0]] >= 1
+    assert len(derived.hinges) == len(rigs.lugs) > 0
+
+
+def test_python_hinges_with_a_pair_near_plumb_are_refused_in_one_line(tmp_path):
+    """The same pair given as a hinge row from Python: refused where the problem is built (it
+    was accepted, and the plan's tensions went NaN or the search crashed)."""
+    import dataclasses
+
+    import numpy as np
+
+    from liftplan.model.errors import InvalidScene
+    from liftplan.planner import load_problem
+    from liftplan.planner.slings.apex import apex_problem
+
+    problem = load_problem(_steep_file(tmp_path))
+    derived, _ = apex_problem(problem)
+    rows = np.array(derived.hinges)
+    pts = problem.points
+    rows[2, 0:3] = pts[problem.names.index("X+7.0-PO")]
+    rows[2, 3:6] = pts[problem.names.index("STEEP")]
+    with pytest.raises(InvalidScene) as err:
+        dataclasses.replace(derived, hinges=tuple(map(tuple, rows)))
+    text = str(err.value)
+    assert "\n" not in text
+    name = derived.names[2]
+    assert text.startswith(f"hinges[2] ({name}): the lug pair A (7, 5.5, 3) B (")
+    assert f"is {STEEP:.2f} deg from the horizontal" in text
+    assert "heel/trim box (+-2, +-2 deg) tilts it by up to 2.83 deg" in text
+    assert "steepest 87.00 deg at heel 0.00, trim 2.00 deg" in text   # the pair leans forward
+    assert "expected a pair less than 77.17 deg from the horizontal" in text
+    # exactly plumb, and one point
+    rows[2, 3:6] = rows[2, 0:3] + [0.0, 0.0, 2.0]
+    with pytest.raises(InvalidScene, match=r"hinges\[2\] .* is 90.00 deg from the horizontal"):
+        dataclasses.replace(derived, hinges=tuple(map(tuple, rows)))
+    rows[2, 3:6] = rows[2, 0:3]
+    with pytest.raises(InvalidScene, match=r"hinges\[2\] .* is one point: expected two lugs apart"):
+        dataclasses.replace(derived, hinges=tuple(map(tuple, rows)))
+    # 75 deg is off plumb in this box (75 + 2.83 < 80): accepted
+    rows[2, 3:6] = rows[2, 0:3] + [2.0 / np.tan(np.radians(75.0)), 0.0, 2.0]
+    dataclasses.replace(derived, hinges=tuple(map(tuple, rows)))
+
+
+def test_python_guard_names_the_pair_in_the_files_frame():
+    """A ``choi``-frame problem shows the pair as written (x, y up, z to starboard)."""
+    import dataclasses
+
+    from liftplan.model.errors import InvalidScene
+    from liftplan.model.statics import fixed_hinges
+    from liftplan.planner import load_problem
+
+    problem = load_problem(EXAMPLES / "tanker_plan.toml")       # frame = "choi"
+    rows = fixed_hinges(problem.points)
+    rows[1, 3:6] = rows[1, 0:3] + [0.0, 0.0, 1.0]               # z-up: straight up
+    with pytest.raises(InvalidScene) as err:
+        dataclasses.replace(problem, hinges=tuple(map(tuple, rows)))
+    # BH1-S is at (4.2, 6, 12) in the file; one metre up is +y in the papers' frame
+    assert "hinges[1] (BH1-S): the lug pair A (4.2, 6, 12) B (4.2, 7, 12) m" in str(err.value)
+
+
+@pytest.mark.parametrize("heel, trim", [(0.0, 0.0), (2.0, 1.0), (5.0, 5.0), (20.0, 3.0)])
+def test_python_guard_is_the_sling_planners_rule(heel, trim):
+    """The model's :func:`near_plumb` and the sling planner's ``plumb_in_box`` give the same
+    answer on 20 000 random pairs (seeded), so neither path accepts what the other refuses."""
+    import numpy as np
+
+    from liftplan.model.statics import PLUMB_MARGIN, near_plumb
+    from liftplan.planner.slings.rigs import PLUMB_MARGIN as RIGS_MARGIN
+    from liftplan.planner.slings.rigs import plumb_in_box
+
+    assert PLUMB_MARGIN == RIGS_MARGIN
+    rng = np.random.default_rng(14)
+    a = rng.uniform(-10.0, 10.0, (20000, 3))
+    b = a + rng.normal(size=(20000, 3)) * [1.0, 1.0, 4.0]
+    mine, theirs = near_plumb(a, b, heel, trim), plumb_in_box(a, b, heel, trim)
+    assert np.array_equal(mine, theirs) and 0 < mine.sum() < len(a)

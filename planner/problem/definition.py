@@ -337,6 +337,11 @@ class PlanProblem:
             if rows.shape != (len(candidates), 8) or not np.all(np.isfinite(rows)):
                 raise InvalidScene(f"hinges: shape {rows.shape}: expected one row of 8 finite values "
                                    f"(A, B, c, w) per candidate, ({len(candidates)}, 8)")
+            from liftplan.model.statics import check_hinges
+
+            # the sling planner's rule for its own pairs, for rows given from Python too
+            check_hinges(rows, self.heel_tolerance, self.trim_tolerance, self.yaw, names,
+                         zup_to_choi if self.frame == "choi" else tuple)
             _set(self, "hinges", tuple(tuple(float(v) for v in r) for r in rows))
 
     def _check_fleet(self):
