@@ -195,3 +195,21 @@ def test_python_guard_is_the_sling_planners_rule(heel, trim):
     b = a + rng.normal(size=(20000, 3)) * [1.0, 1.0, 4.0]
     mine, theirs = near_plumb(a, b, heel, trim), plumb_in_box(a, b, heel, trim)
     assert np.array_equal(mine, theirs) and 0 < mine.sum() < len(a)
+
+
+# -- 3. the flexible hull in water: public helpers, and its model built once -----------------
+def test_flexible_water_imports_no_private_helpers():
+    """flexible_water.py takes the water model's rotation and result assembly by their public,
+    documented names (it imported ``_rotation`` and ``_result``)."""
+    import ast
+
+    import liftplan.model.water.equilibrium as equilibrium
+
+    tree = ast.parse((ROOT / "model" / "strength" / "flexible_water.py").read_text())
+    taken = [alias.name for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)
+             for alias in node.names]
+    assert "tilted_rotation" in taken and "equilibrium_result" in taken
+    assert not [name for name in taken if name.startswith("_") and name != "_GAUSS3"]
+    for name in ("tilted_rotation", "equilibrium_result"):
+        assert "Parameters" in getattr(equilibrium, name).__doc__
+    assert equilibrium._rotation is equilibrium.tilted_rotation   # the package still exports it

@@ -509,7 +509,7 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         after :data:`REMESH` meshes: the caller refuses it (:meth:`WaterBeamState.refusal`).
     """
     from ..afloat import buoyancy_weights
-    from ..water.equilibrium import WaterSetup, _rotation
+    from ..water.equilibrium import WaterSetup, tilted_rotation
     from .sections import section_breaks
 
     check_span(scene)
@@ -531,7 +531,7 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         z = np.asarray(model.solve(ca.DM(z0))).ravel()
         iterations = int(model.solve.stats().get("iter_count", -1))
         out = {k: np.asarray(v) for k, v in model.evaluate(z=ca.DM(z)).items()}
-        new_rotation = _rotation(out["tilts"].ravel(), rotation)
+        new_rotation = tilted_rotation(out["tilts"].ravel(), rotation)
         new_zo = float(out["zo"].ravel()[0])
         rotation, zo = new_rotation, new_zo
         if not np.all(np.isfinite(z)):
@@ -686,7 +686,7 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     """
     from ..results import SolverInfo
     from ..water import solve_hydrostatic
-    from ..water.equilibrium import WaterSetup, _result, water_state
+    from ..water.equilibrium import WaterSetup, equilibrium_result, water_state
     from .flexible import TENSION_CHANGE, RigidHullNote, hull_report, tension_change
 
     hull = hull or scene.analysis.hull
@@ -747,7 +747,7 @@ def solve_hull_in_water(scene, method="newton", hull=None):
         return dataclasses.replace(rigid, flexible_hull=report)
     setup = WaterSetup(scene)
     info = SolverInfo("newton (flexible hull)", True, state.iterations, seconds)
-    skeleton = _result(setup, state.zo, state.rotation, 0.0, info, grounded=grounded)
+    skeleton = equilibrium_result(setup, state.zo, state.rotation, 0.0, info, grounded=grounded)
     # the skeleton is the rigid hull at the chord's pose: put in the flexible forces
     turn = rotation_matrix(skeleton.pose.heel, skeleton.pose.trim, skeleton.pose.yaw) @ state.rotation.T
     af = skeleton.afloat

@@ -235,14 +235,14 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
         seconds = time.perf_counter() - begin
         residual, force, zo, _ = (np.asarray(v).ravel() for v in setup.model.grounded(tilts, p))
         tol = RESIDUAL_TOL if paper_tol is None else paper_tol / (setup.gravity * scene.hull.size)
-        rot = _rotation(tilts, start.rotation)
+        rot = tilted_rotation(tilts, start.rotation)
         if _converged(residual, rot, tol):
             _check_turn(rot, start.rotation, "grounded")
             _check_stable(setup.model.grounded_stiffness(tilts, p), rot, scene.hull.size, "grounded")
             reaction = -float(force[0]) * gravity
             if reaction > 0.0:
                 info = SolverInfo(method, True, iterations, seconds)
-                return _result(setup, float(zo[0]), rot, hoist, info, grounded=True, loads=loads)
+                return equilibrium_result(setup, float(zo[0]), rot, hoist, info, grounded=True, loads=loads)
             start, zo_start = Start(float(zo[0]), rot), float(zo[0])
             p = setup.params(rot, hoist, loads)
         elif method == "paper-newton":
@@ -254,7 +254,7 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
     x, iterations = _root(setup.model.free_root, [zo_start, 0.0, 0.0], p)
     seconds = time.perf_counter() - begin
     residual = np.asarray(setup.model.free(x, p)[0]).ravel()
-    rot = _rotation(x[1:], start.rotation)
+    rot = tilted_rotation(x[1:], start.rotation)
     if not _converged(residual, rot):
         what = "floating or hanging" if scene.ground is None else "grounded or afloat"
         heel, trim, _ = attitude_angles(rot) if np.all(np.isfinite(rot)) else (math.nan,) * 3
@@ -274,7 +274,7 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
             )
     info = SolverInfo("newton" if method == "newton" else "newton (afloat after paper-newton)",
                       True, iterations, seconds)
-    return _result(setup, float(x[0]), rot, hoist, info, grounded=False, loads=loads)
+    return equilibrium_result(setup, float(x[0]), rot, hoist, info, grounded=False, loads=loads)
 
 
 @dataclass(frozen=True)
@@ -383,10 +383,26 @@ def _check_stable(stiffness, rot, length, what):
         )
 
 
-def _rotation(tilts, start):
-    """R = tilt(a, b) R0, numeric."""
+def tilted_rotation(tilts, start):
+    """The attitude after the hydrostatic models' unknown tilts: R = tilt(a, b) R0, numeric.
+
+    Parameters
+    ----------
+    tilts : array_like, shape (2,)  [rad]
+        (a, b) about the world's x and y axes (:func:`liftplan.model.frames.tilt`).
+    start : numpy.ndarray, shape (3, 3)
+        The start attitude R0 they act on.
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 3)
+    """
     a, b = (float(v) for v in np.asarray(tilts).ravel())
     return np.asarray(ca.DM(tilt(a, b))) @ start
+
+
+#: The former private name, kept for the package's export and the scripts that use it.
+_rotation = tilted_rotation
 
 
 def _label(scene):
@@ -472,7 +488,7 @@ def paper_newton(setup, start, tol=PAPER_TOL, max_iter=PAPER_MAX_ITER):
             break
         if not np.all(np.isfinite(step)):
             break
-        rot = _rotation(step, rot)  # a rotation about the world's horizontal axes
+        rot = tilted_rotation(step, rot)  # a rotation about the world's horizontal axes
     return rot, iteration
 
 
@@ -539,12 +555,33 @@ def water_state(grounded, bottom, top, crane_load, weight):
     return "hanging submerged" if top < 0.0 else "piercing the surface"
 
 
-def _result(setup, zo, rot, hoist, solver, grounded, loads=None):
-    """Assemble the Equilibrium (world frame) of a converged pose (zo [m], attitude).
+def equilibrium_result(setup, zo, rot, hoist, solver, grounded, loads=None):
+    """Assemble the Equilibrium (world frame) of a converged pose of a hull in water.
 
     With ``loads``, the soil's pull is a weight at the contact: the ground reaction
     reported is what the ground pushes up, W + water - B - sum T - soil, at least 0 (the
-    soil's pull is :attr:`Settled.soil`)."""
+    soil's pull is :attr:`Settled.soil`).
+
+    Parameters
+    ----------
+    setup : WaterSetup
+    zo : float  [m]
+        Height of the body origin over the water plane.
+    rot : numpy.ndarray, shape (3, 3)
+        Attitude.
+    hoist : float  [m]
+        Every hook raised by this over the scene's boom heights.
+    solver : SolverInfo
+    grounded : bool
+        Resting on the ground contact (its reaction closes the vertical forces).
+    loads : BodyLoads, optional
+        The body's weights (default the scene's: compartments full, no soil).
+
+    Returns
+    -------
+    Equilibrium
+        ``model = "hydrostatic"``, with ``afloat``.
+    """
     scene = setup.scene
     rot = unyaw(rot, scene.attitude.yaw)
     p = setup.params(rot, hoist, loads)
@@ -666,7 +703,7 @@ def solve_hydrostatic(scene, method="newton"):
                 top = zo + float(np.max((rot @ scene.hull.vertices.T)[2]))
                 if top < 0.0:
                     info = dataclasses.replace(eq.solver, method="newton (constant buoyancy)")
-                    result = _result(setup, zo, rot, 0.0, info, grounded=False)
+                    result = equilibrium_result(setup, zo, rot, 0.0, info, grounded=False)
                     if result.residual <= 1e-7 * setup.gravity:
                         return dataclasses.replace(result, model="submerged")
                 start = Start(zo, rot)
