@@ -213,3 +213,47 @@ def test_flexible_water_imports_no_private_helpers():
     for name in ("tilted_rotation", "equilibrium_result"):
         assert "Parameters" in getattr(equilibrium, name).__doc__
     assert equilibrium._rotation is equilibrium.tilted_rotation   # the package still exports it
+
+
+def _bow_lift(ei, boom=40.0):
+    """The stranded barge grounded at the stern, lifted at the bow by four cranes (the scene of
+    studies/flexible_ground.py), hooks at ``boom``."""
+    from liftplan.model.scenefile import loads_scene
+
+    text = (EXAMPLES / "stranded_barge.toml").read_text()
+    text = text.replace("cog = [5.0, 0.0, 2.0]",
+                        "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]")
+    text = text.replace("[ground]", f"EI = [[-50.0, {ei!r}]]\n\n[ground]")
+    text = text.replace("contact = [30.0, -2.0, -5.0]", "contact = [-45.0, 0.0, -5.0]")
+    text += '\n[analysis]\nhull = "flexible"\n'
+    for k, (x, y) in enumerate(((40.0, 10.0), (48.0, 10.0), (48.0, -10.0), (40.0, -10.0))):
+        text += (f'\n[[lugs]]\nname = "B{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "B{k + 1}"\n'
+                 f"boom_height = {boom + 0.01 * k!r}\nrope_length = 35.0\nEA = 50000.0\nswl = 2000.0\n")
+    return loads_scene(text, base=EXAMPLES)
+
+
+def _numbers(eq):
+    return [*eq.tensions.values(), eq.afloat.ground_reaction, eq.afloat.buoyancy, eq.pose.heel,
+            eq.pose.trim, eq.flexible_hull.max_deflection.signed]
+
+
+def test_flexible_hull_in_water_builds_its_model_once_per_discretisation():
+    """A second scene of the same discretisation (another EI, other hook heights) solves on the
+    model built for the first (no new build: ~1.8 s a scene before), and gives what a fresh
+    build gives."""
+    import liftplan.model.strength.flexible_water as fw
+    from liftplan.model import solve
+
+    fw.water_beam_model.cache_clear()
+    first = solve(_bow_lift(7e8))
+    built = fw.water_beam_model.cache_info()
+    assert first.flexible_hull.used == "flexible" and built.misses >= 1
+    other = _bow_lift(2.1e9, boom=40.2)
+    again = solve(other)
+    reused = fw.water_beam_model.cache_info()
+    assert reused.misses == built.misses and reused.hits > built.hits
+    fw.water_beam_model.cache_clear()
+    fresh = solve(other)
+    assert fw.water_beam_model.cache_info().misses >= 1
+    assert _numbers(again) == pytest.approx(_numbers(fresh), rel=1e-9, abs=1e-9)
+    assert _numbers(again) != pytest.approx(_numbers(first), rel=1e-6)   # other numbers went in

@@ -30,6 +30,11 @@ waterline crossings, :func:`.sections.section_breaks`) are beam nodes: they are 
 chord's pose and the model is rebuilt until the solved pose moves none of them off a node.
 The deflected waterline's own crossings are not placed (a second-order effect of w).
 
+The casadi model is built once per discretisation (:class:`WaterBeamShape`: rope and node
+counts, the lugs' and the contact's nodes, which station each section segment belongs to) and
+cached (:func:`water_beam_model`); every number of the scene, the mesh and the start pose is a
+parameter, so an EI sweep or a second mesh of the same size reuses it.
+
 Torsion is not modelled in water (``hull.GJ`` is then unused, and the result says so): the
 hull bends; its heel is the pose's.
 """
@@ -38,8 +43,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import threading
 import time
 from dataclasses import dataclass
+from functools import cache, cached_property, lru_cache
 
 import casadi as ca
 import numpy as np
@@ -120,7 +127,9 @@ def _sparse(rows, cols, values, shape):
 # -- the casadi model ------------------------------------------------------------------------
 @dataclass(frozen=True)
 class WaterBeamData:
-    """Everything numeric the model is built from (one scene, one mesh, one start pose).
+    """One solve's mesh, start pose and contact (one scene): the model's shape
+    (:func:`water_beam_shape`) and, with the scene, its parameters
+    (:meth:`WaterBeamModel.parameters`) come from it.
 
     Parameters
     ----------
@@ -179,29 +188,126 @@ def beam_at(mesh, w, slope, x):
     return (shape * values).sum(-1), (turn * values).sum(-1)
 
 
-class WaterBeamModel:
-    """The flexible hull in water as one casadi root-finding problem (module docstring).
+@dataclass(frozen=True)
+class WaterBeamShape:
+    """What a :class:`WaterBeamModel` is built for: the discretisation, not the numbers.
 
-    Unknowns ``z``: grounded ``(a, b, d)``, else ``(zo, a, b, d)``. :attr:`solve` maps a start
-    ``z0`` to the root; :attr:`evaluate` gives the physical outputs at ``z``.
+    Two scenes (or two meshes of one scene) with equal shapes share one built model
+    (:func:`water_beam_model`); every number (the pose it starts from, the ropes, the hull's
+    section outlines, the mesh's node positions, stiffness and weight loads, the water trapped)
+    is a parameter (:meth:`WaterBeamModel.parameters`).
+
+    Parameters
+    ----------
+    n : int
+        Ropes.
+    m : int
+        Beam nodes (3 Gauss stations per element: 3 (m - 1) stations).
+    grounded : bool
+    gauge : {"chord", "stern"}
+    lug_nodes : tuple of int
+        The node of each lug.
+    contact_node : int
+        The node of the ground contact (-1 when not grounded).
+    segments : tuple of int
+        The station of each section boundary segment of the buoyant triangles (hull and
+        compartments, :func:`oriented_segments`), in order.
+    envelope : tuple of int
+        The same for the hull envelope's triangles (its immersed volume).
+    trapped : int
+        Compartments holding water (each a weight at its centre).
     """
 
-    def __init__(self, scene, setup, data):
-        mesh, m = data.mesh, data.mesh.m
-        body, n = scene.body, scene.n
-        weight_total, z_g = float(setup.gravity), float(body.cog[2])
-        span = float(mesh.x[-1] - mesh.x[0])
-        self.npose = 2 if data.grounded else 3
-        nfree = 2 * m - 2
-        z = ca.SX.sym("z", self.npose + nfree)
-        if data.grounded:
+    n: int
+    m: int
+    grounded: bool
+    gauge: str
+    lug_nodes: tuple
+    contact_node: int
+    segments: tuple
+    envelope: tuple
+    trapped: int
+
+    @property
+    def stations(self):
+        """Gauss stations, 3 per element."""
+        return 3 * (self.m - 1)
+
+    @property
+    def unknowns(self):
+        """Size of z: the pose's (2 grounded, else 3) and the free beam unknowns."""
+        return (2 if self.grounded else 3) + 2 * self.m - 2
+
+    def blocks(self):
+        """(name, size) of each block of the parameter vector, in order."""
+        n, m, ns = self.n, self.m, self.stations
+        k, ke = len(self.segments), len(self.envelope)
+        return (("rot0", 9), ("contact", 3), ("ground", 1), ("gravity", 1), ("weight", 1),
+                ("cog", 3), ("reference", 3), ("span", 1), ("hooks", n), ("lengths", n), ("ea", n),
+                ("points", 3 * n), ("stations", ns), ("weights", ns),
+                ("shape_w", _station_pattern(m).nnz()), ("shape_s", _station_pattern(m).nnz()),
+                ("segment_p", 2 * k), ("segment_q", 2 * k), ("kappa", k),
+                ("envelope_p", 2 * ke), ("envelope_q", 2 * ke), ("trapped_line", 2 * ns),
+                ("trapped", 4 * self.trapped), ("loads", 2 * m),
+                ("stiffness", _stiffness_pattern(m).nnz()))
+
+
+@cache
+def _station_pattern(m):
+    """Sparsity of the Hermite rows (3 (m - 1) stations x 2 m: each station's element's 4
+    unknowns)."""
+    ns = 3 * (m - 1)
+    rows = np.repeat(np.arange(ns), 4)
+    cols = (2 * (np.arange(ns) // 3)[:, None] + np.arange(4)[None, :]).ravel()
+    return ca.Sparsity.triplet(ns, 2 * m, rows.tolist(), cols.tolist())
+
+
+@cache
+def _stiffness_pattern(m):
+    """Sparsity of the assembled bending stiffness (2 m x 2 m: overlapping 4 x 4 blocks)."""
+    mask = np.zeros((2 * m, 2 * m))
+    for e in range(m - 1):
+        mask[2 * e : 2 * e + 4, 2 * e : 2 * e + 4] = 1.0
+    return ca.sparsify(ca.DM(mask)).sparsity()
+
+
+def _values(pattern, dense):
+    """The entries of ``dense`` at the nonzeros of ``pattern``, in casadi's order."""
+    rows, cols = pattern.get_triplet()
+    return np.asarray(dense)[np.asarray(rows, dtype=int), np.asarray(cols, dtype=int)]
+
+
+class WaterBeamModel:
+    """The flexible hull in water as one casadi root-finding problem (module docstring), built
+    for a :class:`WaterBeamShape`; use the cached :func:`water_beam_model`.
+
+    Unknowns ``z``: grounded ``(a, b, d)``, else ``(zo, a, b, d)``; parameters ``p``:
+    :meth:`parameters`. :attr:`solve` maps ``(z0, p)`` to the root; :attr:`evaluate` gives the
+    physical outputs at ``(z, p)``; :attr:`stiffness` the tangent stiffness. Hold :attr:`lock`
+    around a solve and its ``stats()`` (the model is shared between threads).
+    """
+
+    def __init__(self, shape):
+        self.shape = shape
+        self.lock = threading.Lock()
+        m, n, ns = shape.m, shape.n, shape.stations
+        self.npose = 2 if shape.grounded else 3
+        z = ca.SX.sym("z", shape.unknowns)
+        p = ca.SX.sym("p", sum(size for _, size in shape.blocks()))
+        block, at = {}, 0
+        for name, size in shape.blocks():
+            block[name] = p[at : at + size]
+            at += size
+        weight_total, body_weight, cog = block["gravity"], block["weight"], block["cog"]
+        z_g, span = cog[2], block["span"]
+        if shape.grounded:
             tilts, free = z[0:2], z[2:]
         else:
             tilts, free = z[1:3], z[3:]
-        rot = ca.mtimes(tilt(tilts[0], tilts[1]), ca.DM(data.rot0))
+        rot = ca.mtimes(tilt(tilts[0], tilts[1]), ca.reshape(block["rot0"], 3, 3))
         up = rot[2, :].T
         # the full bending vector (the gauge's entries held at 0)
-        keep = gauge_free(m, data.gauge)
+        keep = gauge_free(m, shape.gauge)
         bend = ca.SX.zeros(2 * m, 1)
         for k, row in enumerate(keep):
             bend[int(row)] = free[k]
@@ -211,115 +317,195 @@ class WaterBeamModel:
             """Vertical world motion of a body point at node, dz above the CG [m]."""
             return up[2] * w_nodes[node] - up[0] * dz * slope_nodes[node]
 
-        if data.grounded:
-            c = data.contact
-            contact_node = node_of(mesh.x, c[0])
-            zo = data.ground - ca.dot(up, ca.DM(c)) - moved(contact_node, c[2] - z_g)
+        contact = block["contact"]
+        if shape.grounded:
+            zo = block["ground"] - ca.dot(up, contact) - moved(shape.contact_node, contact[2] - z_g)
         else:
             zo = z[0]
         # ropes: vertical, each lug's height moved by the beam
         tension, stretch = ca.SX.zeros(n, 1), ca.SX.zeros(n, 1)
-        points = scene.lug_points()
-        if n:
-            level = scene.water.level
-            hooks = np.array(scene.crane_values("boom_height", "hydrostatic")) - level
-            lengths = np.array(scene.crane_values("rope_length", "hydrostatic"))
-            ea = np.array(scene.crane_values("EA", "hydrostatic"))
-            for i, (lug, node) in enumerate(zip(points, mesh.lug_nodes)):
-                height = ca.dot(up, ca.DM(lug)) + zo + moved(node, lug[2] - z_g)
-                stretch[i] = hooks[i] - height - lengths[i]
-                tension[i] = ea[i] / lengths[i] * ca.fmax(0, stretch[i])
+        points = ca.reshape(block["points"], 3, n)
+        hooks, lengths, ea = block["hooks"], block["lengths"], block["ea"]
+        for i, node in enumerate(shape.lug_nodes):
+            lug = points[:, i]
+            height = ca.dot(up, lug) + zo + moved(node, lug[2] - z_g)
+            stretch[i] = hooks[i] - height - lengths[i]
+            tension[i] = ea[i] / lengths[i] * ca.fmax(0, stretch[i])
         # buoyancy per length at the Gauss stations of the deflected hull
-        st, ws = data.stations, data.weights
-        ns = len(st)
-        elem = np.clip(np.searchsorted(mesh.x, st, side="right") - 1, 0, m - 2)
-        h = mesh.x[elem + 1] - mesh.x[elem]
-        t = (st - mesh.x[elem]) / h
-        cols = 2 * elem[:, None] + np.arange(4)[None, :]
-        n_w = _sparse(np.repeat(np.arange(ns), 4), cols.ravel(), _rows(hermite, t, h), (ns, 2 * m))
-        n_s = _sparse(np.repeat(np.arange(ns), 4), cols.ravel(), _rows(hermite_slope, t, h), (ns, 2 * m))
+        st, wdm = block["stations"], block["weights"]
+        n_w = ca.SX(_station_pattern(m), block["shape_w"])
+        n_s = ca.SX(_station_pattern(m), block["shape_s"])
         w_st, s_st = ca.mtimes(n_w, bend), ca.mtimes(n_s, bend)
         uz = up[2] - up[0] * s_st
-        c0 = up[0] * ca.DM(st) + zo + up[2] * w_st + up[0] * z_g * s_st
-        tris, kappa, trapped_list = buoyancy_weights(scene.hull, body.weight, scene.water.density)
-        seg, p, q, kap = oriented_segments(tris, kappa, st)
+        c0 = up[0] * st + zo + up[2] * w_st + up[0] * z_g * s_st
+        seg = np.asarray(shape.segments, dtype=int)
         gather = _sparse(np.arange(len(seg)), seg, np.ones(len(seg)), (len(seg), ns))
-        area_k, first_y, first_z = _clipped(p, q, kap, up[1], ca.mtimes(gather, uz), ca.mtimes(gather, c0))
+        area_k, first_y, first_z = _clipped(
+            ca.reshape(block["segment_p"], len(seg), 2), ca.reshape(block["segment_q"], len(seg), 2),
+            block["kappa"], up[1], ca.mtimes(gather, uz), ca.mtimes(gather, c0))
         scatter = gather.T
         b = ca.mtimes(scatter, area_k)         # t/m
         s_y = ca.mtimes(scatter, first_y)      # t m / m, about body y = 0
         s_z = ca.mtimes(scatter, first_z)      # t m / m, about body z = 0
         # trapped water per length (uniform over each compartment), and its first moments
-        tw, tw_y, tw_z = _trapped_per_length(scene, st)
-        wdm = ca.DM(ws)
+        tw, tw_z = block["trapped_line"][0:ns], block["trapped_line"][ns : 2 * ns]
         buoyancy = ca.dot(wdm, b)
         # the hull envelope below the water (what an intact hull displaces; flooded, more)
-        envelope = scene.hull.triangles
-        e_seg, e_p, e_q, e_one = oriented_segments(envelope, np.ones(len(envelope)), st)
+        e_seg = np.asarray(shape.envelope, dtype=int)
         e_gather = _sparse(np.arange(len(e_seg)), e_seg, np.ones(len(e_seg)), (len(e_seg), ns))
-        e_area = _clipped(e_p, e_q, e_one, up[1], ca.mtimes(e_gather, uz), ca.mtimes(e_gather, c0))[0]
+        e_area = _clipped(
+            ca.reshape(block["envelope_p"], len(e_seg), 2), ca.reshape(block["envelope_q"], len(e_seg), 2),
+            ca.DM.ones(len(e_seg)), up[1], ca.mtimes(e_gather, uz), ca.mtimes(e_gather, c0))[0]
         immersed = ca.dot(wdm, ca.mtimes(e_gather.T, e_area))
         # forces (world vertical, up) and moments about the reference point (world x, y)
-        trapped_points = [(wt, np.asarray(centre, dtype=float)) for wt, centre in trapped_list]
         net = buoyancy + ca.sum1(tension) - weight_total
-        if data.grounded:
-            ref = ca.mtimes(rot[0:2, :], ca.DM(data.contact))
-        else:
-            ref = ca.mtimes(rot[0:2, :], ca.DM(setup.cog))
+        ref = ca.mtimes(rot[0:2, :], contact if shape.grounded else block["reference"])
         first_buoy = ca.vertcat(*(
-            ca.dot(wdm, rot[r, 0] * ca.DM(st) * b + rot[r, 1] * s_y + rot[r, 2] * s_z) for r in range(3)))
-        first = first_buoy[0:2] - float(body.weight) * ca.mtimes(rot[0:2, :], ca.DM(body.cog))
-        for wt, centre in trapped_points:
-            first -= wt * ca.mtimes(rot[0:2, :], ca.DM(centre))
+            ca.dot(wdm, rot[r, 0] * st * b + rot[r, 1] * s_y + rot[r, 2] * s_z) for r in range(3)))
+        first = first_buoy[0:2] - body_weight * ca.mtimes(rot[0:2, :], cog)
+        trapped = ca.reshape(block["trapped"], 4, shape.trapped)
+        for j in range(shape.trapped):
+            first -= trapped[0, j] * ca.mtimes(rot[0:2, :], trapped[1:4, j])
         if n:
-            first += ca.mtimes(ca.mtimes(rot[0:2, :], ca.DM(points.T)), tension)
+            first += ca.mtimes(ca.mtimes(rot[0:2, :], points), tension)
         # moment of vertical forces f at (x, y): Mx = sum f (y - y_ref), My = -sum f (x - x_ref)
         mx = first[1] - ref[1] * net
         my = -(first[0] - ref[0] * net)
-        reaction = -net if data.grounded else ca.SX(0)
+        reaction = -net if shape.grounded else ca.SX(0)
         # the beam's loads (body components of the world-vertical forces; virtual work)
         force = ca.SX.zeros(2 * m, 1)
-        for i, (lug, node) in enumerate(zip(points, mesh.lug_nodes)):
+        for i, node in enumerate(shape.lug_nodes):
             force[2 * node] += tension[i] * up[2]
-            force[2 * node + 1] += -tension[i] * up[0] * (lug[2] - z_g)
-        if data.grounded:
-            force[2 * contact_node] += reaction * up[2]
-            force[2 * contact_node + 1] += -reaction * up[0] * (data.contact[2] - z_g)
-        normal = wdm * (b - ca.DM(tw))
-        couple = -up[0] * wdm * ((s_z - z_g * b) - ca.DM(tw_z - z_g * tw))
+            force[2 * node + 1] += -tension[i] * up[0] * (points[2, i] - z_g)
+        if shape.grounded:
+            node = shape.contact_node
+            force[2 * node] += reaction * up[2]
+            force[2 * node + 1] += -reaction * up[0] * (contact[2] - z_g)
+        normal = wdm * (b - tw)
+        couple = -up[0] * wdm * ((s_z - z_g * b) - (tw_z - z_g * tw))
         force += ca.mtimes(n_w.T, normal) * up[2] + ca.mtimes(n_s.T, couple)
-        force -= up[2] * ca.DM(mesh.weight)
-        stiffness = _sparse(*_global_stiffness(mesh), (2 * m, 2 * m))
+        force -= up[2] * block["loads"]
+        stiffness = ca.SX(_stiffness_pattern(m), block["stiffness"])
         rows = ca.mtimes(stiffness, bend) - force
-        moment_rows = np.array([r % 2 == 1 for r in range(2 * m)])
-        row_scale = np.where(moment_rows, weight_total * span, weight_total)
-        scaled_rows = rows / ca.DM(row_scale)
+        moment_rows = ca.DM([1.0 if r % 2 == 1 else 0.0 for r in range(2 * m)])
+        row_scale = weight_total * (span * moment_rows + (1 - moment_rows))
+        scaled_rows = rows / row_scale
         statics = [mx / (weight_total * span), my / (weight_total * span)]
         generalised = [mx, my]
-        if not data.grounded:
+        if not shape.grounded:
             statics.insert(0, net / weight_total)
             generalised.insert(0, net)
         residual = ca.vertcat(*statics, scaled_rows[keep.tolist()])
-        dropped = scaled_rows[gauge_fixed(m, data.gauge)]
+        dropped = scaled_rows[gauge_fixed(m, shape.gauge)]
         # generalised forces conjugate to z (pose: force and moments; beam: loads - K d)
-        self._gen, self._z = ca.vertcat(*generalised, -rows[keep.tolist()]), z
+        self._gen, self._z, self._p = ca.vertcat(*generalised, -rows[keep.tolist()]), z, p
         self.evaluate = ca.Function(
-            "water_beam_eval", [z],
+            "water_beam_eval", [z, p],
             [tension, stretch, reaction, zo, buoyancy, first_buoy, residual, dropped, b, s_z,
              ca.vertcat(tilts), force, immersed],
-            ["z"], ["tension", "stretch", "reaction", "zo", "buoyancy", "first_buoyancy", "residual",
-                    "dropped", "b", "s_z", "tilts", "force", "immersed"])
+            ["z", "p"], ["tension", "stretch", "reaction", "zo", "buoyancy", "first_buoyancy",
+                         "residual", "dropped", "b", "s_z", "tilts", "force", "immersed"])
         self.solve = ca.rootfinder(
-            "water_beam_newton", "newton", ca.Function("water_beam_g", [z], [residual]),
+            "water_beam_newton", "newton", ca.Function("water_beam_g", [z, p], [residual]),
             {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
              "show_eval_warnings": False})
 
+    @cached_property
+    def stiffness(self):
+        """(z, p) -> minus the Jacobian of the generalised forces (pose: net force and moments;
+        beam: loads - K d), in t/m, t, t m/rad (built on first use: it is slow to build)."""
+        return ca.Function("water_beam_stiffness", [self._z, self._p],
+                           [-ca.jacobian(self._gen, self._z)])
 
-def stiffness(model, z):
-    """Tangent stiffness at z: minus the Jacobian of the generalised forces (pose: net force and
-    moments; beam: loads - K d), in t/m, t, t m/rad (built on demand: it is slow to build)."""
-    jac = ca.Function("water_beam_stiffness", [model._z], [-ca.jacobian(model._gen, model._z)])
-    return np.asarray(jac(ca.DM(z)))
+    @staticmethod
+    def parameters(scene, setup, data, shape):
+        """The parameter vector of one scene, mesh and start pose (``shape`` from
+        :func:`water_beam_shape` of the same ``data``)."""
+        mesh, m, ns = data.mesh, data.mesh.m, shape.stations
+        body = scene.body
+        st = np.asarray(data.stations, dtype=float)
+        elem = np.clip(np.searchsorted(mesh.x, st, side="right") - 1, 0, m - 2)
+        if not np.array_equal(elem, np.arange(ns) // 3):   # 3 Gauss points inside each element
+            raise ValueError("water beam stations: expected three inside each element, in order")
+        h = mesh.x[elem + 1] - mesh.x[elem]
+        t = (st - mesh.x[elem]) / h
+        cols = 2 * elem[:, None] + np.arange(4)[None, :]
+        rows = np.repeat(np.arange(ns), 4)
+        shape_w, shape_s = np.zeros((ns, 2 * m)), np.zeros((ns, 2 * m))
+        shape_w[rows, cols.ravel()] = _rows(hermite, t, h)
+        shape_s[rows, cols.ravel()] = _rows(hermite_slope, t, h)
+        stiffness = np.zeros((2 * m, 2 * m))
+        r, c, v = _global_stiffness(mesh)
+        np.add.at(stiffness, (r, c), v)
+        tris, kappa, trapped = buoyancy_weights(scene.hull, body.weight, scene.water.density)
+        seg, p, q, kap = oriented_segments(tris, kappa, st)
+        envelope = scene.hull.triangles
+        e_seg, e_p, e_q, _ = oriented_segments(envelope, np.ones(len(envelope)), st)
+        if tuple(seg.tolist()) != shape.segments or tuple(e_seg.tolist()) != shape.envelope:
+            raise ValueError("water beam parameters: the segments are not the shape's")
+        if scene.n:
+            level = scene.water.level
+            hooks = np.array(scene.crane_values("boom_height", "hydrostatic")) - level
+            lengths = np.array(scene.crane_values("rope_length", "hydrostatic"))
+            ea = np.array(scene.crane_values("EA", "hydrostatic"))
+            points = np.asarray(scene.lug_points(), dtype=float).ravel()
+        else:
+            hooks = lengths = ea = points = np.zeros(0)
+        tw, _, tw_z = _trapped_per_length(scene, st)
+        parts = {
+            "rot0": np.asarray(data.rot0, dtype=float).ravel(order="F"),
+            "contact": np.zeros(3) if data.contact is None else np.asarray(data.contact, dtype=float),
+            "ground": [float(data.ground)], "gravity": [float(setup.gravity)],
+            "weight": [float(body.weight)], "cog": np.asarray(body.cog, dtype=float),
+            "reference": np.asarray(setup.cog, dtype=float),
+            "span": [float(mesh.x[-1] - mesh.x[0])],
+            "hooks": hooks, "lengths": lengths, "ea": ea, "points": points,
+            "stations": st, "weights": np.asarray(data.weights, dtype=float),
+            "shape_w": _values(_station_pattern(m), shape_w),
+            "shape_s": _values(_station_pattern(m), shape_s),
+            "segment_p": p.ravel(order="F"), "segment_q": q.ravel(order="F"), "kappa": kap,
+            "envelope_p": e_p.ravel(order="F"), "envelope_q": e_q.ravel(order="F"),
+            "trapped_line": np.concatenate([tw, tw_z]),
+            "trapped": np.array([[w, *np.asarray(centre, dtype=float)] for w, centre in trapped]).ravel(),
+            "loads": np.asarray(mesh.weight, dtype=float),
+            "stiffness": _values(_stiffness_pattern(m), stiffness),
+        }
+        out = [np.asarray(parts[name], dtype=float).ravel() for name, _ in shape.blocks()]
+        for (name, size), part in zip(shape.blocks(), out):
+            if part.size != size:
+                raise ValueError(f"water beam parameter {name}: {part.size} values, expected {size}")
+        return np.concatenate(out)
+
+
+def water_beam_shape(scene, data):
+    """The :class:`WaterBeamShape` of one scene, mesh and start pose."""
+    tris, kappa, trapped = buoyancy_weights(scene.hull, scene.body.weight, scene.water.density)
+    seg = oriented_segments(tris, kappa, data.stations)[0]
+    envelope = scene.hull.triangles
+    e_seg = oriented_segments(envelope, np.ones(len(envelope)), data.stations)[0]
+    return WaterBeamShape(
+        n=scene.n, m=data.mesh.m, grounded=bool(data.grounded), gauge=data.gauge,
+        lug_nodes=tuple(int(k) for k in data.mesh.lug_nodes),
+        contact_node=node_of(data.mesh.x, data.contact[0]) if data.grounded else -1,
+        segments=tuple(seg.tolist()), envelope=tuple(e_seg.tolist()), trapped=len(trapped))
+
+
+#: Built models kept (each a few MB of casadi expressions; a study's sweep or a lift's steps
+#: reuse one or two).
+MODELS_KEPT = 8
+
+
+@lru_cache(maxsize=MODELS_KEPT)
+def water_beam_model(shape):
+    """The cached :class:`WaterBeamModel` of a :class:`WaterBeamShape` (built once per
+    discretisation: building it and its stiffness took ~1.8 s a scene)."""
+    return WaterBeamModel(shape)
+
+
+def stiffness(model, z, p):
+    """Tangent stiffness at z for parameters p: minus the Jacobian of the generalised forces
+    (pose: net force and moments; beam: loads - K d), in t/m, t, t m/rad."""
+    return np.asarray(model.stiffness(ca.DM(z), ca.DM(p)))
 
 
 def _rows(shape, t, h):
@@ -342,8 +528,9 @@ def _global_stiffness(mesh):
 def _clipped(p, q, kappa, uy, uz, c0):
     """kappa x (area, first moment about y = 0, about z = 0) each wet segment adds to its
     section, the reference point on the section's waterline (Green's theorem: the waterline's
-    closing segment adds nothing). Heights h = uy y + uz z + c0 (< 0: wet)."""
-    py, pz, qy, qz = (ca.DM(v) for v in (p[:, 0], p[:, 1], q[:, 0], q[:, 1]))
+    closing segment adds nothing). Heights h = uy y + uz z + c0 (< 0: wet). p, q: (k, 2)
+    segment ends (y, z) and kappa (k,), casadi."""
+    py, pz, qy, qz = p[:, 0], p[:, 1], q[:, 0], q[:, 1]
     hp = uy * py + uz * pz + c0
     hq = uy * qy + uz * qz + c0
     wet_p, wet_q = hp < 0, hq < 0
@@ -359,7 +546,7 @@ def _clipped(p, q, kappa, uy, uz, c0):
     across = uy**2 + uz**2
     y0, z0 = -c0 * uy / across, -c0 * uz / across
     area = 0.5 * ((ay - y0) * (bz - z0) - (az - z0) * (by - y0))
-    area = ca.if_else(wet, area, 0) * ca.DM(kappa)
+    area = ca.if_else(wet, area, 0) * kappa
     return area, area * (y0 + ay + by) / 3.0, area * (z0 + az + bz) / 3.0
 
 
@@ -524,13 +711,16 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         data = WaterBeamData(mesh=mesh, rot0=rotation, grounded=grounded, contact=contact,
                              ground=float(setup.ground_height), stations=stations, weights=weights,
                              gauge=gauge)
-        model = WaterBeamModel(scene, setup, data)
+        shape = water_beam_shape(scene, data)
+        model = water_beam_model(shape)
+        params = WaterBeamModel.parameters(scene, setup, data, shape)
         z0 = np.zeros(model.npose + 2 * mesh.m - 2)
         if not grounded:
             z0[0] = zo
-        z = np.asarray(model.solve(ca.DM(z0))).ravel()
-        iterations = int(model.solve.stats().get("iter_count", -1))
-        out = {k: np.asarray(v) for k, v in model.evaluate(z=ca.DM(z)).items()}
+        with model.lock:   # the iteration count is the last call's
+            z = np.asarray(model.solve(ca.DM(z0), ca.DM(params))).ravel()
+            iterations = int(model.solve.stats().get("iter_count", -1))
+        out = {k: np.asarray(v) for k, v in model.evaluate(z=ca.DM(z), p=ca.DM(params)).items()}
         new_rotation = tilted_rotation(out["tilts"].ravel(), rotation)
         new_zo = float(out["zo"].ravel()[0])
         rotation, zo = new_rotation, new_zo
@@ -552,7 +742,7 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         stretch=out["stretch"].ravel(), reaction=float(out["reaction"].ravel()[0]),
         buoyancy=float(out["buoyancy"].ravel()[0]),
         immersed_volume=float(out["immersed"].ravel()[0]), first_buoyancy=out["first_buoyancy"].ravel(),
-        residual=residual, stable=schur_positive_definite(stiffness(model, z), npose),
+        residual=residual, stable=schur_positive_definite(stiffness(model, z, params), npose),
         buoyancy_curve=_curves(mesh.x, out["b"].ravel(), out["s_z"].ravel()), mesh=mesh,
         iterations=iterations, remeshed=remeshed, quadrature_error=error, quadrature_exact=exact,
         gauge=gauge)
