@@ -510,6 +510,7 @@ class Plan:
             "gap": self.stats.gap,
             "relative_gap": self.stats.relative_gap,
             "search": {"sets": self.stats.sets, "rows": self.stats.rows, "stopped": self.stats.stopped,
+                       "method": self.stats.method,
                        "out_of_reach": self.stats.out_of_reach,
                        "screened_out": self.stats.screened_out,
                        "evaluated": self.stats.evaluated, "pruned": self.stats.pruned,

@@ -391,6 +391,7 @@ def _appendix(plan):
             ("gap between the two", fmt.format(stats.gap), unit),
             ("relative gap", f"{100 * stats.relative_gap:.2f}", "%"),
             ("why the search ended", stats.stopped, "-"),
+            ("how the lug sets were searched (plan.search)", stats.method, "-"),
             ("least worst spread for the recommended lugs (linear programme over the preloads)",
              f"{chosen.bound:.2f}", "t"),
         ],

@@ -42,7 +42,7 @@ CONTROLS = ("hoist", "force")
 #: Lug sets the exact search will enumerate; beyond this ``search = "auto"`` takes the local
 #: search (planner/search/local.py) and ``"exact"`` is refused.
 MAX_SETS = 5_000_000
-SEARCHES = ("auto", "exact", "local")
+SEARCHES = ("auto", "exact", "local", "mip")
 
 
 def _set(obj, name, value):
@@ -209,10 +209,12 @@ class PlanProblem:
         Relative optimality gap at which the search may stop (0: prove the optimum).
     time_limit : float or None  [s]
         Stop the search after this long with the best plan and its honest gap.
-    search : {"auto", "exact", "local"}
+    search : {"auto", "exact", "local", "mip"}
         ``exact``: every lug set, bounded and pruned (proves the optimum or states the gap);
-        ``local``: swaps from an even spread (a local optimum, no gap proved); ``auto``: exact
-        up to :data:`MAX_SETS` sets, local beyond.
+        ``local``: swaps from an even spread (a local optimum, no gap proved); ``mip``: one
+        mixed-integer program over candidates, cranes and scenarios, no set enumerated
+        (:mod:`~liftplan.planner.search.mip`; proves the optimum or states the gap); ``auto``:
+        exact up to :data:`MAX_SETS` sets, local beyond.
     rules : Rules
         The lifting rules' settings for the design-load chain (``[rules]``; default: the
         rules' defaults, see ``docs/design-loads.md``).

@@ -69,7 +69,7 @@ class _Plan(Table):
     strength_weights: _StrengthWeights | None = None
     gap: Num = 0.0
     time_limit: Num | None = None
-    search: Literal["auto", "exact", "local"] = "auto"
+    search: Literal["auto", "exact", "local", "mip"] = "auto"
     tolerance: _Tolerance = _Tolerance()
     min_tension: Num = 0.0
     hook_tolerance: Num = 0.0

@@ -165,6 +165,10 @@ class GapMixin:
         return self.gap / self.best if self.best > 0 else 0.0
 
 
+_ENDED = {"proved": "optimum proved", "gap": "within the gap target", "time_limit":
+          "stopped at the time limit", "interrupted": "interrupted"}
+
+
 @dataclass(frozen=True)
 class SearchStats(GapMixin):
     """How the search went.
@@ -196,6 +200,9 @@ class SearchStats(GapMixin):
     stopped : {"proved", "gap", "time_limit", "interrupted", "local"}
         Why the search ended: the top plans proved, the gap target reached, the time limit,
         Ctrl-C, or a local optimum of the local search (no gap proved).
+    method : {"enumeration", "local", "mip"}
+        How the sets were searched (``plan.search``; ``refined`` counts the local search's
+        swaps, or the MIP's cutting-plane rounds).
     """
 
     sets: int
@@ -210,10 +217,15 @@ class SearchStats(GapMixin):
     lower_bound: float = 0.0
     best: float = math.inf
     stopped: str = "proved"
+    method: str = "enumeration"
 
     @property
     def summary(self):
         """What the search did, in one line."""
+        if self.method == "mip":
+            return (f"{self.sets} lug sets: one mixed-integer program over candidates, cranes and "
+                    f"scenarios (HiGHS), {self.refined} cutting-plane rounds, {self.evaluated} "
+                    f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)")
         if self.stopped == "local":
             return (f"{self.sets} lug sets: local search, {self.refined} swaps from an even spread "
                     f"of the candidates to a local optimum (no gap proved) ({self.seconds:.2f} s)")
@@ -362,7 +374,7 @@ class SetEvaluator:
                                             scale=lugset.scale, hook=hook)
             except PlanInfeasible:
                 raise SetInfeasible(self.diagnose(lugset, scenarios)) from None
-            found = self._search(lugset, result.preload)
+            found = self.dense_search(lugset, result.preload)
             worst, low, over = found.worst, found.low, found.over
             violated = low[0] < low_limit - self.tol or over[0] > self.tol
             if worst[0] <= result.worst_spread + self._tol(lugset) and not violated:
@@ -406,7 +418,7 @@ class SetEvaluator:
         """Agreement asked in the objective's unit."""
         return self.tol if self.problem.objective == "spread" else self.tol / float(np.min(lugset.swl))
 
-    def _search(self, lugset, preload):
+    def dense_search(self, lugset, preload):
         """The dense search over the box with T* held: see :class:`DenseSearch`.
 
         With hook-height tolerances each scenario's values are the exact worst over the hook
@@ -527,6 +539,10 @@ def search(problem, top=None, progress=None):
     """
     started = time.perf_counter()
     top = top or problem.top
+    if problem.search == "mip":
+        from liftplan.planner.search.mip import search_mip
+
+        return search_mip(problem, started, progress)
     if problem.search == "local" or (problem.search == "auto" and
                                      problem.set_count > auto_exact_limit(problem.cranes)):
         return _local(problem, started)
@@ -680,7 +696,7 @@ def _local(problem, started):
     stats = SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
                         seconds=time.perf_counter() - started, rows=problem.set_count,
                         refined=moves, lower_bound=min(bound, result.worst_value),
-                        best=result.worst_value, stopped="local")
+                        best=result.worst_value, stopped="local", method="local")
     return [result], stats
 
 

@@ -1,0 +1,520 @@
+"""Which lugs, which crane on each and which preload: one mixed-integer linear program.
+
+No lug set is enumerated. With the boom heights set at level and the hooks then moved as a
+rigid plane (:mod:`~liftplan.planner.search.scenarios`), the tension of a rope on candidate i
+with crane c at scenario k (attitude, CG position) is, exactly while it is taut,
+
+    T_k,ic = P_ic + kappa_c (h_k(p_i) - r_k,i),      h_k(p) = c_k0 + c_k1 x0 + c_k2 y0,
+
+P the level preload, kappa_c = EA / l0 the crane's rope stiffness, r_k,i the lug's rise from
+level to the scenario's pose (known), and h_k the hook plane's shift at the candidate's level
+plan position: three unknowns per scenario shared by every rope, whatever the set. Every
+quantity but the set is linear. One binary y_ic per (candidate, crane class) chooses; the
+product y_ic h_k(p_i) is written exactly (McCormick) with bounds on the hook plane
+(:func:`hook_bounds`), the statics at each scenario sum over all candidates, and every
+unchosen candidate's tensions are zero:
+
+    minimise z   subject to   sum_i y_ic = n_c,  sum_c y_ic <= 1,
+        level statics A0 P = b0,  preload, boom-height and code-margin bounds on P,
+        for each scenario k:  A_k T_k = b_k,  min_tension y <= T_k <= limit y,
+                              hi_k >= s T_k,  lo_k <= s T_k + (1 - y) W / n,  z >= hi_k - lo_k
+
+(s = 1 for ``spread``, 1 / SWL for ``utilisation``; ``reserve``: z >= T_k / SWL). It is solved
+by HiGHS through cvxpy over a scenario list that grows by cutting planes: the chosen set is
+evaluated exactly over the dense box (:class:`~liftplan.planner.search.branch.SetEvaluator`)
+and its worst scenario is added until the MIP's value reaches the dense worst. HiGHS's dual
+bound over a scenario list is a certified lower bound for every set over the whole box (the
+list is part of the box).
+
+Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
+(a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
+change |T_k,i - P_i| (:func:`change_bound`) and from it the hook plane, rigorously
+(:func:`hook_bounds`); a problem symmetric about its centre plane searches one of each mirror
+pair. Even so the relaxation is weak: with the y fractional the spread's lower side averages
+out; README "Many lifting points" charts what that costs against the enumeration.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from liftplan.model.errors import PlanInfeasible, SolverFailed
+from liftplan.model.frames import rotation_matrix
+from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.scenarios import LugSet, Scenario
+
+#: Angles at which the sets' least width is bounded (:func:`least_width`).
+ANGLES = 720
+#: Cutting-plane rounds at most.
+MAX_ROUNDS = 20
+
+
+@dataclass(frozen=True)
+class Poses:
+    """Set-independent data of a scenario list, for every candidate.
+
+    Parameters
+    ----------
+    scenarios : list of Scenario
+    a_mat : numpy.ndarray, shape (m, 3, C)
+        Statics rows (1, X, Y) of each candidate at each scenario's pose (world plan)  [-, m].
+    b_vec : numpy.ndarray, shape (m, 3)  [t, t m]
+        W (1, X_G, Y_G) at each pose.
+    rise : numpy.ndarray, shape (m, C)  [m]
+        Each lug's height at the pose minus its height at level.
+    level_plan : numpy.ndarray, shape (C, 2)  [m]
+        Level world plan positions (the hook plane's coordinates).
+    """
+
+    scenarios: list
+    a_mat: np.ndarray
+    b_vec: np.ndarray
+    rise: np.ndarray
+    level_plan: np.ndarray
+
+
+def poses(problem, scenarios):
+    """:class:`Poses` of ``scenarios`` (body-fixed candidates)."""
+    points = problem.points
+    cog = np.array(problem.body.cog, dtype=float)
+    level = points @ rotation_matrix(0.0, 0.0, problem.yaw).T
+    a_mat, b_vec, rise = [], [], []
+    for s in scenarios:
+        rot = rotation_matrix(s.heel, s.trim, problem.yaw)
+        world = points @ rot.T
+        g = rot @ (cog + np.asarray(s.cog_offset, dtype=float))
+        a_mat.append(np.vstack([np.ones(len(points)), world[:, 0], world[:, 1]]))
+        b_vec.append(problem.body.weight * np.array([1.0, g[0], g[1]]))
+        rise.append(world[:, 2] - level[:, 2])
+    return Poses(list(scenarios), np.array(a_mat), np.array(b_vec), np.array(rise),
+                 level[:, :2].copy())
+
+
+def first_scenarios(problem):
+    """Level at the nominal CG, then each CG vertex at level and at the box's four corners."""
+    h, t = problem.heel_tolerance, problem.trim_tolerance
+    tilts = [(0.0, 0.0)] + sorted({(a, b) for a in (-h, h) for b in (-t, t)} - {(0.0, 0.0)})
+    out = [Scenario(0.0, 0.0)]
+    for offset in problem.cog_envelope.offsets():
+        for a, b in tilts:
+            s = Scenario(float(a), float(b), tuple(float(v) for v in offset))
+            if s not in out:
+                out.append(s)
+    return out
+
+
+@dataclass(frozen=True)
+class Classes:
+    """The fleet in classes of interchangeable cranes.
+
+    Parameters
+    ----------
+    members : list of tuple of int
+        Fleet indices of each class.
+    stiffness : numpy.ndarray, shape (K,)  [t/m]
+    """
+
+    members: list
+    stiffness: np.ndarray
+
+    @property
+    def counts(self):
+        return np.array([len(m) for m in self.members])
+
+
+def crane_classes(problem):
+    """One class for an equal fleet; otherwise one class per crane."""
+    fleet = problem.fleet[:problem.cranes]
+    members = [tuple(range(problem.cranes))] if problem.equal_cranes else \
+        [(j,) for j in range(problem.cranes)]
+    stiffness = np.array([fleet[m[0]].EA / fleet[m[0]].rope_length for m in members])
+    return Classes(members, stiffness)
+
+
+def change_bound(problem, swl, cutoff):
+    """Largest |T_k,i - P_i| [t] a chosen rope of chart SWL ``swl`` can see in any set whose
+    worst value is below ``cutoff`` (the objective's unit).
+
+    Every tension lies within the spread of the mean W / n at each scenario (``spread``); the
+    utilisations within ``cutoff`` of W / sum SWL (``utilisation``); between min_tension and
+    cutoff SWL (``reserve``).
+    """
+    if problem.objective == "spread":
+        return np.full(np.shape(swl), 2.0 * cutoff)
+    if problem.objective == "utilisation":
+        return 2.0 * cutoff * np.asarray(swl)
+    return np.maximum(cutoff * np.asarray(swl) - problem.min_tension, 0.0)
+
+
+def least_width(problem, data, change):
+    """A lower bound on the least plan width [m] of any lug set whose chosen ropes change by
+    at most ``change`` [t] between scenarios.
+
+    Between scenarios k and m the moment about a plan direction w changes by
+    sum_i (T_k,i - T_m,i) (w . P_i) = W (w . (G_k - G_m)) - sum_i T_k,i (w . (P_k,i - P_m,i))
+    (P the lugs' world plan positions); the changes sum to zero, so the left side is at most
+    n x change x (the set's width along w) / 2, and the last sum is within
+    W ptp_i(w . dP_i) / 2 of W times its mid value. Hence a width along every direction.
+    """
+    n = problem.cranes
+    angles = np.linspace(0.0, math.pi, ANGLES, endpoint=False)
+    w = np.column_stack([np.cos(angles), np.sin(angles)])
+    cog = data.b_vec[:, 1:] / data.b_vec[:, :1]  # (m, 2) world plan CG
+    plan = data.a_mat[:, 1:, :]  # (m, 2, C)
+    best = np.zeros(len(angles))
+    lipschitz = 0.0
+    for k in range(len(cog)):
+        d_cog = (cog[k] - cog) @ w.T  # (m, A)
+        d_lug = np.einsum("mdc,ad->mac", plan[k][None] - plan, w)  # (m, A, C)
+        mid = 0.5 * (d_lug.max(axis=2) + d_lug.min(axis=2))
+        half = 0.5 * (d_lug.max(axis=2) - d_lug.min(axis=2))
+        best = np.maximum(best, (np.abs(d_cog - mid) - half).max(axis=0))
+        lipschitz = max(lipschitz, float(np.linalg.norm(cog[k] - cog, axis=1).max()) +
+                        2.0 * float(np.linalg.norm(plan[k][None] - plan, axis=1).max()))
+    # between two sampled angles each term moves by at most its Lipschitz constant x half a step
+    least = float(best.min()) - lipschitz * (math.pi / ANGLES) / 2.0
+    width = problem.body.weight * least / (0.5 * n * change)  # at some scenario's pose
+    # at level: the lugs move in plan by at most `shift` between level and any pose
+    shift = float(np.linalg.norm(plan - data.level_plan.T[None], axis=1).max())
+    return max(width - 2.0 * shift, 0.0)
+
+
+def hook_bounds(problem, data, change, stiffness):
+    """Bounds [m] on the hook plane's shift h_k at every candidate, valid for every set whose
+    chosen ropes change by at most ``change`` [t] (a chosen lug's own bound is tighter: h_k
+    is within change / kappa of its rise there).
+
+    Let rho_k be the rises' affine fit over the candidates (misfit eps_k) and a = h_k - rho_k:
+    affine, within B = change / kappa + eps_k on the chosen lugs, so its slope is at most
+    2 B / (the set's least width, :func:`least_width`) and at a candidate q it is within
+    B + slope x (q's largest distance to any candidate).
+
+    Returns
+    -------
+    centre, half : numpy.ndarray, shape (m, C)  [m]
+    """
+    width = least_width(problem, data, change)
+    if width <= 0.0:
+        raise PlanInfeasible(
+            "search = \"mip\" needs the CG envelope or the tilt tolerance to move the CG "
+            "against the lugs in every plan direction (it bounds the hook plane from that); "
+            "expected cog_tolerance or heel/trim tolerances, or search = \"exact\"")
+    plan = data.level_plan
+    basis = np.column_stack([np.ones(len(plan)), plan])
+    coef, *_ = np.linalg.lstsq(basis, data.rise.T, rcond=None)
+    centre = (basis @ coef).T  # (m, C)
+    bound = change / float(np.min(stiffness)) + np.abs(data.rise - centre).max(axis=1, keepdims=True)
+    reach = np.sqrt(((plan[:, None, :] - plan[None, :, :]) ** 2).sum(axis=2)).max(axis=1)
+    return centre, bound + 2.0 * bound / width * reach[None, :]
+
+
+def mirror_map(problem):
+    """Candidate index of each candidate's mirror image about the centre plane, or None when
+    the problem (candidates, CG, envelope, equal fleet) is not symmetric about it."""
+    if not problem.equal_cranes:
+        return None
+    rot = rotation_matrix(0.0, 0.0, problem.yaw)
+    level = problem.points @ rot.T
+    cog = rot @ np.array(problem.body.cog, dtype=float)
+    scale = max(1.0, float(np.abs(level).max()))
+    if abs(cog[1]) > 1e-9 * scale:
+        return None
+    offsets = problem.cog_envelope.offsets() @ rot.T
+    flipped = offsets * [1.0, -1.0, 1.0]
+    if not all(np.any(np.all(np.abs(offsets - f) < 1e-9 * scale, axis=1)) for f in flipped):
+        return None
+    image = level * [1.0, -1.0, 1.0]
+    match = np.all(np.abs(level[None, :, :] - image[:, None, :]) < 1e-9 * scale, axis=2)
+    if not np.all(match.sum(axis=1) == 1):
+        return None
+    return np.argmax(match, axis=1)
+
+
+@dataclass(frozen=True)
+class MipSolution:
+    """One solve of the lug-choice MIP over a scenario list.
+
+    Parameters
+    ----------
+    indices : tuple of int or None
+        Chosen candidates (candidate order); None when no set beats the cutoff.
+    cranes : tuple of int or None
+        Fleet index of the crane on each chosen lug.
+    preload : numpy.ndarray or None  [t]
+        The MIP's level preload of each chosen lug.
+    value : float
+        The MIP's objective for that choice over the list (inf when none).
+    bound : float
+        HiGHS's dual bound: no set does better over the list (the cutoff when none beats it).
+    status : {"optimal", "gap", "time_limit", "cutoff"}
+    seconds : float  [s]
+    """
+
+    indices: tuple | None
+    cranes: tuple | None
+    preload: np.ndarray | None
+    value: float
+    bound: float
+    status: str
+    seconds: float
+
+
+class LugMip:
+    """The lug-choice MIP of a problem (module docstring), rebuilt per scenario list.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Body-fixed candidates, no hook-height tolerance.
+    cutoff : float
+        An incumbent's worst value (the objective's unit): sets that cannot beat it are cut off.
+    """
+
+    def __init__(self, problem, cutoff):
+        if problem.hinge_rows is not None:
+            raise PlanInfeasible("search = \"mip\" takes body-fixed lugs; expected search = "
+                                 "\"exact\" or \"local\" for lift points hinged on slings")
+        if problem.hook_tolerance > 0.0 or any(c.hook_tolerance for c in problem.fleet):
+            raise PlanInfeasible("search = \"mip\" does not take a hook-height tolerance (its "
+                                 "worst case depends on the set's twist gains, not linear in "
+                                 "the choice); expected hook_tolerance = 0 or search = \"exact\"")
+        self.problem = problem
+        self.cutoff = float(cutoff)
+        self.classes = crane_classes(problem)
+        fleet = problem.fleet
+        count = len(problem.candidates)
+        radius, swl = problem.reach  # (C, fleet)
+        first = [m[0] for m in self.classes.members]
+        self.swl = swl[:, first]  # (C, K); NaN: out of reach
+        reach_swl = np.where(np.isnan(self.swl), 1.0, self.swl)
+        cranes = np.broadcast_to(np.array(first), self.swl.shape)
+        self.limit, self.share = rule_limits(problem, reach_swl, cranes)
+        boom_zero = problem.lift_height + problem.points[:, 2][:, None] + \
+            np.array([fleet[j].rope_length for j in first])[None, :]
+        kappa = self.classes.stiffness[None, :]
+        low = kappa * (np.array([fleet[j].boom_min for j in first])[None, :] - boom_zero)
+        high = kappa * (np.array([fleet[j].boom_max for j in first])[None, :] - boom_zero)
+        self.preload_low = np.maximum(low, problem.min_tension)
+        self.preload_high = np.minimum(high, self.share)
+        self.usable = ~np.isnan(self.swl) & (self.preload_low <= self.preload_high)
+        self.scale = np.ones_like(reach_swl) if problem.objective == "spread" else 1.0 / reach_swl
+        self.reach_swl = reach_swl
+        self.mirror = mirror_map(problem)
+        self.count = count
+
+    def solve(self, scenarios, gap=0.0, time_limit=None, forbidden=()):
+        """Solve over ``scenarios``; a :class:`MipSolution`.
+
+        Parameters
+        ----------
+        scenarios : list of Scenario
+        gap : float  [-]   HiGHS's relative gap target
+        time_limit : float, optional  [s]
+        forbidden : iterable of tuple of int
+            Lug sets not to choose again (found infeasible over the dense box).
+        """
+        import cvxpy as cp
+
+        from liftplan.planner.search.bounds import _stdout_silenced
+
+        problem, classes = self.problem, self.classes
+        data = poses(problem, scenarios)
+        m, count, kinds = len(scenarios), self.count, len(classes.members)
+        change = change_bound(problem, self.reach_swl, self.cutoff)  # (C, K)
+        centre, off = hook_bounds(problem, data, float(change.max()), classes.stiffness)
+        col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
+        col_class = np.tile(np.arange(kinds), count)
+        usable = self.usable.ravel()
+        kappa = classes.stiffness[col_class]
+        y = cp.Variable(count * kinds, boolean=True)
+        preload = cp.Variable(count * kinds)
+        plane = cp.Variable((m, 3))
+        hooks = plane @ np.vstack([np.ones(count), data.level_plan.T])  # (m, C)
+        hooks = hooks[:, col_cand]
+        product = cp.Variable((m, count * kinds))  # y h_k(p_i)
+        ones = np.ones((m, 1))
+        chosen = ones @ cp.reshape(y, (1, count * kinds), order="C")
+        rise = data.rise[:, col_cand]
+        on_lo = rise - (change.ravel() / kappa)[None, :]
+        on_hi = rise + (change.ravel() / kappa)[None, :]
+        off_lo = centre[:, col_cand] - off[:, col_cand]
+        off_hi = centre[:, col_cand] + off[:, col_cand]
+        tension = ones @ cp.reshape(preload, (1, count * kinds), order="C") + \
+            cp.multiply(kappa[None, :], product - cp.multiply(rise, chosen))
+        weight = problem.body.weight
+        scale = self.scale.ravel()[None, :]
+        limit = self.limit.ravel()[None, :]
+        cons = [
+            y <= usable.astype(float),
+            cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=0) == classes.counts,
+            cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1) <= 1,  # a lug, one crane
+            preload >= cp.multiply(np.where(usable, self.preload_low.ravel(), 0.0), y),
+            preload <= cp.multiply(np.where(usable, self.preload_high.ravel(), 0.0), y),
+            product <= cp.multiply(on_hi, chosen), product >= cp.multiply(on_lo, chosen),
+            product <= hooks - cp.multiply(off_lo, 1 - chosen),
+            product >= hooks - cp.multiply(off_hi, 1 - chosen),
+            tension >= problem.min_tension * chosen,
+            tension <= cp.multiply(limit, chosen),
+        ]
+        per_candidate = np.zeros((count * kinds, count))
+        per_candidate[np.arange(count * kinds), col_cand] = 1.0
+        level_a = poses(problem, [Scenario(0.0, 0.0)])
+        cons.append(level_a.a_mat[0] @ (per_candidate.T @ preload) == level_a.b_vec[0])
+        load = tension @ per_candidate  # (m, C)
+        for row in range(3):
+            cons.append(cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) == data.b_vec[:, row])
+        z = cp.Variable()
+        scaled = cp.multiply(scale, tension)
+        if problem.objective == "reserve":
+            cons.append(scaled <= z)
+        else:
+            high, low = cp.Variable(m), cp.Variable(m)
+            gate = float(np.max(scale)) * weight / problem.cranes
+            cons += [scaled <= high[:, None] @ np.ones((1, count * kinds)),
+                     low[:, None] @ np.ones((1, count * kinds)) <= scaled + gate * (1 - chosen),
+                     z >= high - low]
+        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
+        for lugs in forbidden:
+            cons.append(cp.sum(per_set[list(lugs)]) <= problem.cranes - 1)
+        if self.mirror is not None:  # one of each mirror pair of sets
+            side = np.sign(np.round(data.level_plan[:, 1], 9))[col_cand]
+            cons.append(side @ y >= 0)
+        mip = cp.Problem(cp.Minimize(z), cons)
+        options = dict(mip_rel_gap=gap, objective_bound=self.cutoff, random_seed=0)
+        if time_limit is not None:
+            options["time_limit"] = max(float(time_limit), 0.1)
+        started = time.perf_counter()
+        try:
+            with _stdout_silenced():
+                mip.solve(solver=cp.HIGHS, **options)
+        except cp.error.SolverError as err:
+            raise SolverFailed(f"lug-choice MIP: HiGHS failed ({err})") from None
+        seconds = time.perf_counter() - started
+        info = mip.solver_stats.extra_stats if mip.solver_stats is not None else None
+        dual = float(getattr(info, "mip_dual_bound", -math.inf)) if info is not None else -math.inf
+        infeasible = (cp.INFEASIBLE, cp.settings.INFEASIBLE_OR_UNBOUNDED)
+        if mip.status in infeasible or y.value is None:
+            if mip.status in infeasible or (mip.status == cp.USER_LIMIT and dual >= self.cutoff):
+                # every set is cut off: none beats the cutoff over these scenarios
+                return MipSolution(None, None, None, math.inf, self.cutoff, "cutoff", seconds)
+            if mip.status == cp.USER_LIMIT:  # time limit before any set below the cutoff
+                return MipSolution(None, None, None, math.inf, min(max(dual, 0.0), self.cutoff),
+                                   "time_limit", seconds)
+            raise SolverFailed(f"lug-choice MIP: HiGHS ended with status {mip.status!r}")
+        picked = np.flatnonzero(y.value > 0.5)
+        value = float(z.value)
+        bound = min(max(dual, 0.0), value)
+        if mip.status == cp.OPTIMAL:
+            status = "optimal" if value - bound <= 1e-6 * max(abs(value), 1.0) + gap * value else "gap"
+        else:
+            status = "time_limit"
+        indices = col_cand[picked]
+        order = np.argsort(indices)
+        members = [list(classes.members[c]) for c in range(kinds)]
+        cranes = [members[c].pop(0) for c in col_class[picked][order]]
+        return MipSolution(tuple(int(i) for i in indices[order]), tuple(cranes),
+                           np.asarray(preload.value)[picked][order], value, bound, status, seconds)
+
+
+def search_mip(problem, started, progress=None):
+    """Plan by the lug-choice MIP with cutting planes (module docstring).
+
+    A local search gives the first incumbent (the cutoff). Each round solves the MIP over the
+    scenario list within what is left of ``problem.time_limit`` and to ``problem.gap``,
+    evaluates its set over the dense box and adds that set's worst scenario, until the
+    MIP's value reaches the set's dense worst (the optimum proved, or within the gap), or
+    the time runs out. The certified lower bound is the least of the last MIP's dual bound
+    and the best value found.
+
+    Returns
+    -------
+    ranking : list of SetResult
+        Every set evaluated, best first (the first is the plan).
+    stats : SearchStats
+    """
+    from collections import Counter
+
+    from liftplan.planner.search.branch import (
+        REASONS,
+        Interrupted,
+        SearchStats,
+        SetEvaluator,
+        SetInfeasible,
+        _local,
+        _progress_bar,
+        tolerance,
+    )
+
+    ranking, _ = _local(problem, started)
+    evaluator = SetEvaluator(problem)
+    mip = LugMip(problem, ranking[0].worst_value)
+    scenarios = first_scenarios(problem)
+    forbidden, reasons = [], Counter()
+    lower, rounds, stopped = 0.0, 0, "proved"
+    deadline = math.inf if problem.time_limit is None else started + problem.time_limit
+    bar = _progress_bar(MAX_ROUNDS, progress)
+
+    def stats_now():
+        best = ranking[0].worst_value
+        return SearchStats(sets=problem.set_count, screened_out=0, evaluated=len(ranking) + len(forbidden),
+                           pruned=0, infeasible={REASONS[c]: k for c, k in reasons.most_common()},
+                           seconds=time.perf_counter() - started, rows=problem.set_count,
+                           refined=rounds, lower_bound=min(lower, best), best=best, stopped=stopped,
+                           method="mip")
+
+    try:
+        while True:
+            if rounds >= MAX_ROUNDS or time.perf_counter() >= deadline:
+                stopped = "time_limit"
+                break
+            rounds += 1
+            left = None if deadline == math.inf else deadline - time.perf_counter()
+            solution = mip.solve(scenarios, gap=problem.gap, time_limit=left, forbidden=forbidden)
+            best = ranking[0].worst_value
+            if solution.indices is None:  # nothing beats the incumbent over the list
+                lower = min(solution.bound, best)
+                stopped = "proved" if solution.status == "cutoff" else "time_limit"
+                break
+            try:
+                result = evaluator.evaluate(solution.indices, solution.cranes)
+            except SetInfeasible as err:
+                reasons[err.code] += 1
+                forbidden.append(solution.indices)
+                continue
+            found = evaluator.dense_search(LugSet(problem, solution.indices, solution.cranes),
+                                           solution.preload)
+            if all(r.indices != result.indices or r.cranes != result.cranes for r in ranking):
+                ranking.append(result)
+                ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
+            best = ranking[0].worst_value
+            mip.cutoff = best
+            lower = min(solution.bound, best)
+            if bar is not None:
+                bar.update(1)
+                bar.set_postfix_str(f"best {best:.4g}, bound {lower:.4g}", refresh=False)
+            if solution.status == "time_limit":
+                stopped = "time_limit"
+                break
+            tol = tolerance(problem) * (1.0 if problem.objective == "spread"
+                                        else 1.0 / float(np.max(result.swl)))
+            cuts = [found.worst[1]] if found.worst[0] > solution.value + tol else []
+            if found.low[0] < problem.min_tension - tolerance(problem):
+                cuts.append(found.low[1])
+            if found.over[0] > tolerance(problem):
+                cuts.append(found.over[1])
+            cuts = [c for c in dict.fromkeys(cuts) if c not in scenarios]
+            if not cuts:  # the MIP's choice and preload hold over the dense box
+                stopped = "proved" if best - lower <= tol else "gap"
+                break
+            scenarios += cuts
+    except KeyboardInterrupt:
+        stopped = "interrupted"
+        raise Interrupted(ranking, stats_now()) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    return ranking, stats_now()
