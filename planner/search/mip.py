@@ -28,7 +28,7 @@ list is part of the box).
 
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
-change |T_k,i - P_i| (:func:`change_bound`) and from it the hook plane, rigorously
+tension and its change |T_k,i - P_i| (:func:`tension_band`) and from it the hook plane, rigorously
 (:func:`hook_bounds`); a problem symmetric about its centre plane searches one of each mirror
 pair. Even so the relaxation is weak: with the y fractional the spread's lower side averages
 out; README "Many lifting points" charts what that costs against the enumeration.
@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -135,19 +136,29 @@ def crane_classes(problem):
     return Classes(members, stiffness)
 
 
-def change_bound(problem, swl, cutoff):
-    """Largest |T_k,i - P_i| [t] a chosen rope of chart SWL ``swl`` can see in any set whose
-    worst value is below ``cutoff`` (the objective's unit).
+def tension_band(problem, swl, cutoff):
+    """Bounds [t] on every tension of a chosen rope of chart SWL ``swl`` (any array), at any
+    scenario, in any set whose worst value is below ``cutoff`` (the objective's unit).
 
-    Every tension lies within the spread of the mean W / n at each scenario (``spread``); the
-    utilisations within ``cutoff`` of W / sum SWL (``utilisation``); between min_tension and
-    cutoff SWL (``reserve``).
+    ``spread``: every tension lies within the spread of the mean W / n. ``utilisation``: every
+    T_i / SWL_i within ``cutoff`` of W / sum SWL, the sum between n times the least and the
+    largest SWL. ``reserve``: at most ``cutoff`` SWL. Each within min_tension and above.
+
+    Returns
+    -------
+    low, high : numpy.ndarray, the shape of ``swl``
     """
+    swl = np.asarray(swl, dtype=float)
+    weight, n = problem.body.weight, problem.cranes
     if problem.objective == "spread":
-        return np.full(np.shape(swl), 2.0 * cutoff)
-    if problem.objective == "utilisation":
-        return 2.0 * cutoff * np.asarray(swl)
-    return np.maximum(cutoff * np.asarray(swl) - problem.min_tension, 0.0)
+        low, high = weight / n - cutoff, weight / n + cutoff
+    elif problem.objective == "utilisation":
+        low = swl * (weight / (n * np.nanmax(swl)) - cutoff)
+        high = swl * (weight / (n * np.nanmin(swl)) + cutoff)
+    else:
+        low, high = -np.inf, cutoff * swl
+    low = np.maximum(np.broadcast_to(low, swl.shape), problem.min_tension)
+    return low, np.maximum(np.broadcast_to(high, swl.shape), low)
 
 
 def least_width(problem, data, change):
@@ -158,29 +169,29 @@ def least_width(problem, data, change):
     sum_i (T_k,i - T_m,i) (w . P_i) = W (w . (G_k - G_m)) - sum_i T_k,i (w . (P_k,i - P_m,i))
     (P the lugs' world plan positions); the changes sum to zero, so the left side is at most
     n x change x (the set's width along w) / 2, and the last sum is within
-    W ptp_i(w . dP_i) / 2 of W times its mid value. Hence a width along every direction.
+    W ptp_i(w . dP_i) / 2 of W times its mid value. Hence a width along every direction, at
+    level (m a level scenario of the list; :func:`first_scenarios` has one per CG vertex).
     """
     n = problem.cranes
     angles = np.linspace(0.0, math.pi, ANGLES, endpoint=False)
     w = np.column_stack([np.cos(angles), np.sin(angles)])
     cog = data.b_vec[:, 1:] / data.b_vec[:, :1]  # (m, 2) world plan CG
     plan = data.a_mat[:, 1:, :]  # (m, 2, C)
+    # the width is taken at a level pose m (where the plan positions are the level ones)
+    level = [j for j, s in enumerate(data.scenarios) if s.heel == 0.0 and s.trim == 0.0]
     best = np.zeros(len(angles))
     lipschitz = 0.0
     for k in range(len(cog)):
-        d_cog = (cog[k] - cog) @ w.T  # (m, A)
-        d_lug = np.einsum("mdc,ad->mac", plan[k][None] - plan, w)  # (m, A, C)
+        d_cog = (cog[k] - cog[level]) @ w.T  # (levels, A)
+        d_lug = np.einsum("mdc,ad->mac", plan[k][None] - plan[level], w)  # (levels, A, C)
         mid = 0.5 * (d_lug.max(axis=2) + d_lug.min(axis=2))
         half = 0.5 * (d_lug.max(axis=2) - d_lug.min(axis=2))
         best = np.maximum(best, (np.abs(d_cog - mid) - half).max(axis=0))
-        lipschitz = max(lipschitz, float(np.linalg.norm(cog[k] - cog, axis=1).max()) +
-                        2.0 * float(np.linalg.norm(plan[k][None] - plan, axis=1).max()))
+        lipschitz = max(lipschitz, float(np.linalg.norm(cog[k] - cog[level], axis=1).max()) +
+                        2.0 * float(np.linalg.norm(plan[k][None] - plan[level], axis=1).max()))
     # between two sampled angles each term moves by at most its Lipschitz constant x half a step
     least = float(best.min()) - lipschitz * (math.pi / ANGLES) / 2.0
-    width = problem.body.weight * least / (0.5 * n * change)  # at some scenario's pose
-    # at level: the lugs move in plan by at most `shift` between level and any pose
-    shift = float(np.linalg.norm(plan - data.level_plan.T[None], axis=1).max())
-    return max(width - 2.0 * shift, 0.0)
+    return max(problem.body.weight * least / (0.5 * n * change), 0.0)
 
 
 def hook_bounds(problem, data, change, stiffness):
@@ -213,25 +224,33 @@ def hook_bounds(problem, data, change, stiffness):
 
 
 def mirror_map(problem):
-    """Candidate index of each candidate's mirror image about the centre plane, or None when
-    the problem (candidates, CG, envelope, equal fleet) is not symmetric about it."""
+    """Candidate index of each candidate's mirror image about the fore-and-aft plane through
+    the CG, or None when the problem (candidates, CG envelope, equal fleet) is not symmetric
+    about it."""
     if not problem.equal_cranes:
         return None
     rot = rotation_matrix(0.0, 0.0, problem.yaw)
     level = problem.points @ rot.T
-    cog = rot @ np.array(problem.body.cog, dtype=float)
-    scale = max(1.0, float(np.abs(level).max()))
-    if abs(cog[1]) > 1e-9 * scale:
-        return None
+    centre = (rot @ np.array(problem.body.cog, dtype=float))[1]
+    scale = 1e-9 * max(1.0, float(np.abs(level).max()))
     offsets = problem.cog_envelope.offsets() @ rot.T
     flipped = offsets * [1.0, -1.0, 1.0]
-    if not all(np.any(np.all(np.abs(offsets - f) < 1e-9 * scale, axis=1)) for f in flipped):
+    if not all(np.any(np.all(np.abs(offsets - f) < scale, axis=1)) for f in flipped):
         return None
-    image = level * [1.0, -1.0, 1.0]
-    match = np.all(np.abs(level[None, :, :] - image[:, None, :]) < 1e-9 * scale, axis=2)
+    image = level.copy()
+    image[:, 1] = 2.0 * centre - level[:, 1]
+    match = np.all(np.abs(level[None, :, :] - image[:, None, :]) < scale, axis=2)
     if not np.all(match.sum(axis=1) == 1):
         return None
     return np.argmax(match, axis=1)
+
+
+def mirror_side(problem):
+    """+1 / -1 / 0: each candidate's side of the fore-and-aft plane through the CG (level)."""
+    rot = rotation_matrix(0.0, 0.0, problem.yaw)
+    lateral = (problem.points @ rot.T)[:, 1] - (rot @ np.array(problem.body.cog, dtype=float))[1]
+    return np.where(np.abs(lateral) < 1e-9 * max(1.0, float(np.abs(lateral).max())), 0.0,
+                    np.sign(lateral))
 
 
 @dataclass(frozen=True)
@@ -324,7 +343,8 @@ class LugMip:
         problem, classes = self.problem, self.classes
         data = poses(problem, scenarios)
         m, count, kinds = len(scenarios), self.count, len(classes.members)
-        change = change_bound(problem, self.reach_swl, self.cutoff)  # (C, K)
+        band_low, band_high = tension_band(problem, self.reach_swl, self.cutoff)  # (C, K)
+        change = band_high - band_low
         centre, off = hook_bounds(problem, data, float(change.max()), classes.stiffness)
         col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
         col_class = np.tile(np.arange(kinds), count)
@@ -352,13 +372,15 @@ class LugMip:
             y <= usable.astype(float),
             cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=0) == classes.counts,
             cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1) <= 1,  # a lug, one crane
-            preload >= cp.multiply(np.where(usable, self.preload_low.ravel(), 0.0), y),
-            preload <= cp.multiply(np.where(usable, self.preload_high.ravel(), 0.0), y),
+            preload >= cp.multiply(np.where(usable, np.maximum(self.preload_low, band_low).ravel(),
+                                            0.0), y),
+            preload <= cp.multiply(np.where(usable, np.minimum(self.preload_high, band_high).ravel(),
+                                            0.0), y),
             product <= cp.multiply(on_hi, chosen), product >= cp.multiply(on_lo, chosen),
             product <= hooks - cp.multiply(off_lo, 1 - chosen),
             product >= hooks - cp.multiply(off_hi, 1 - chosen),
-            tension >= problem.min_tension * chosen,
-            tension <= cp.multiply(limit, chosen),
+            tension >= cp.multiply(band_low.ravel()[None, :], chosen),
+            tension <= cp.multiply(np.minimum(limit, band_high.ravel()[None, :]), chosen),
         ]
         per_candidate = np.zeros((count * kinds, count))
         per_candidate[np.arange(count * kinds), col_cand] = 1.0
@@ -381,15 +403,15 @@ class LugMip:
         for lugs in forbidden:
             cons.append(cp.sum(per_set[list(lugs)]) <= problem.cranes - 1)
         if self.mirror is not None:  # one of each mirror pair of sets
-            side = np.sign(np.round(data.level_plan[:, 1], 9))[col_cand]
-            cons.append(side @ y >= 0)
+            cons.append(mirror_side(problem)[col_cand] @ y >= 0)
         mip = cp.Problem(cp.Minimize(z), cons)
         options = dict(mip_rel_gap=gap, objective_bound=self.cutoff, random_seed=0)
         if time_limit is not None:
             options["time_limit"] = max(float(time_limit), 0.1)
         started = time.perf_counter()
         try:
-            with _stdout_silenced():
+            with _stdout_silenced(), warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)  # a time limit: handled below
                 mip.solve(solver=cp.HIGHS, **options)
         except cp.error.SolverError as err:
             raise SolverFailed(f"lug-choice MIP: HiGHS failed ({err})") from None
