@@ -257,3 +257,66 @@ def test_flexible_hull_in_water_builds_its_model_once_per_discretisation():
     assert fw.water_beam_model.cache_info().misses >= 1
     assert _numbers(again) == pytest.approx(_numbers(fresh), rel=1e-9, abs=1e-9)
     assert _numbers(again) != pytest.approx(_numbers(first), rel=1e-6)   # other numbers went in
+
+
+# -- 4. the console at many ropes: 100 columns, long tables in groups ------------------------
+def test_fold_and_grouped():
+    from liftplan.planner.output.console_text import fold, grouped
+
+    rows = [f"row {k}" for k in range(20)]
+    out = grouped(rows)
+    assert out[8] == "" and out[17] == "" and [r for r in out if r] == rows
+    assert grouped(rows[:16]) == rows[:16]     # two groups or fewer: as they are
+    line = ("spread: nominal 44.73 t, worst 66.56 t at heel +1.00 deg, trim +0.50 deg, "
+            "CG (-5.00, 0.60, 7.00) m")
+    folded = fold(line, width=80)
+    assert folded == ["spread: nominal 44.73 t, worst 66.56 t at heel +1.00 deg, trim +0.50 deg,",
+                      "  CG (-5.00, 0.60, 7.00) m"]        # the point stays on one line
+    assert fold("short") == ["short"]
+
+
+def _check_console(text, n):
+    lines = text.splitlines()
+    assert max(len(line) for line in lines) <= 100
+    head = next(k for k, line in enumerate(lines) if line.startswith("lug  candidate crane"))
+    rows = lines[head + 2 : head + 2 + n + (n - 1) // 8]
+    assert [line for line in rows if line][0].startswith("L1 ")
+    assert [line.split()[0] for line in rows if line] == [f"L{k + 1}" for k in range(n)]
+    assert all(rows[k] == "" for k in range(8, len(rows), 9))          # groups of eight
+    for title in ("worst in the box (CG in the file's frame):", "at the rules' tilt"):
+        at = next(k for k, line in enumerate(lines) if line.startswith(title))
+        assert lines[at + 2].split()[0] == "L1" and lines[at + 10] == ""
+    sensitivity = next(k for k, line in enumerate(lines) if line.startswith("tension change per cm"))
+    cells = lines[sensitivity + 1].split()
+    assert cells[0] == "L1" and cells[14] == "L8" and len(cells) == 16    # eight hooks a line
+    rank = next(k for k, line in enumerate(lines) if line.startswith("rank "))
+    assert lines[rank].endswith("lugs (crane)") and lines[rank + 1].startswith("1 ")
+
+
+def test_plan_console_at_26_ropes_fits_100_columns_in_groups():
+    from liftplan.planner import load_problem, plan
+    from liftplan.planner.output.plan_console import plan_table
+
+    _check_console(plan_table(plan(load_problem(EXAMPLES / "hull154_26_given.toml"))), 26)
+
+
+@pytest.mark.slow
+def test_plan_and_solve_consoles_at_64_ropes(capsys):
+    """``liftplan plan examples/hull154_64_given.toml`` (~15 s) and the 64-rope solve table."""
+    from liftplan.planner.cli import main
+
+    assert main(["plan", str(EXAMPLES / "hull154_64_given.toml")]) == 0
+    _check_console(capsys.readouterr().out, 64)
+    assert main(["solve", str(EXAMPLES / "hull154_64_points.toml")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    table = lines[lines.index("") + 4 :]
+    assert max(len(line) for line in table) <= 100   # the rows (the summary lines are text)
+
+
+def test_sling_console_fits_100_columns():
+    from liftplan.planner import load_problem, plan
+    from liftplan.planner.output.plan_console import plan_table
+
+    text = plan_table(plan(load_problem(EXAMPLES / "block_sling_plan.toml")))
+    assert max(len(line) for line in text.splitlines()) <= 100
+    assert "ruled out: 4 beyond the crane's reach" in text

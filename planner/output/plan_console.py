@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from liftplan.planner.output.console_text import GROUP, WIDTH, fold, grouped
 from liftplan.planner.plan import FRAMES, OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
 
@@ -49,18 +50,21 @@ def plan_table(plan):
         f" deg; tensions {problem.min_tension:g} t to {swl_text}",
         "objective: " + OBJECTIVE_TEXT[plan.objective],
         "",
-        f"{'lug':<4}{'candidate':<10}{'crane':<12}{'R [m]':>8}{'SWL [t]':>8}{'H [m]':>8}"
-        f"{'level T [t]':>12}{'worst [t]':>10}{'tilt [t]':>9}{'design [t]':>11}{'util. [%]':>10}  check",
+        f"{'lug':<5}{'candidate':<10}{'crane':<11}{'R':>7}{'SWL':>8}{'H':>9}{'level T':>9}"
+        f"{'worst':>9}{'tilt':>9}{'design':>9}{'util.':>7}  check",
+        f"{'':<26}{'[m]':>7}{'[t]':>8}{'[m]':>9}{'[t]':>9}{'[t]':>9}{'[t]':>9}{'[t]':>9}{'[%]':>7}",
     ]
+    rows = []
     for c in plan.capacity:
         radius = "-" if c.radius is None else f"{c.radius:.1f}"
         tilt = "-" if c.tilt is None else f"{c.tilt.load:.2f}"
         ok = c.design is not None and c.design.check.ok
-        lines.append(
-            f"{c.label:<4}{c.lug[:9]:<10}{c.crane[:11]:<12}{radius:>8}{c.swl:>8.1f}"
-            f"{plan.boom_heights[c.label]:>8.3f}{c.nominal:>12.2f}{c.worst:>10.2f}{tilt:>9}"
-            f"{c.design_hook_load:>11.2f}{100 * c.utilisation:>10.1f}  {'ok' if ok else 'FAIL'}"
+        rows.append(
+            f"{c.label:<5}{c.lug[:9]:<10}{c.crane[:10]:<11}{radius:>7}{c.swl:>8.1f}"
+            f"{plan.boom_heights[c.label]:>9.3f}{c.nominal:>9.2f}{c.worst:>9.2f}{tilt:>9}"
+            f"{c.design_hook_load:>9.2f}{100 * c.utilisation:>7.1f}  {'ok' if ok else 'FAIL'}"
         )
+    lines += grouped(rows)
     lines.append("(level T: nominal CG, level; worst: largest in the box over the CG envelope; tilt: at "
                  "the rules' tilt; design: the rules' design hook load; util. = design / chart SWL)")
     if plan.lengths is not None:  # the planner chose the rope lengths
@@ -94,7 +98,7 @@ def plan_table(plan):
         *_crew_lines(plan),
     ]
     lines += _ranking_lines(plan)
-    return "\n".join(lines)
+    return "\n".join(folded for line in lines for folded in fold(line))
 
 
 def _hook_line(plan):
@@ -116,9 +120,17 @@ def _crew_lines(plan):
     """Tension change per centimetre of each hook (load-cell watchers act on it) and what a
     crew worse than assumed would see."""
     own = np.diag(plan.hook_sensitivity)
-    lines = ["tension change per cm of a hook off its height (own rope, pose held): "
-             + ", ".join(f"{label} {v:.2f}" for label, v in zip(plan.labels, own))
-             + f" t/cm; worst combination of 1 cm errors: {plan.twist_stiffness:.2f} t/cm"]
+    cells = [f"{label} {v:.2f}" for label, v in zip(plan.labels, own)]
+    worst = f"worst combination of 1 cm errors: {plan.twist_stiffness:.2f} t/cm"
+    if len(cells) <= GROUP:
+        lines = ["tension change per cm of a hook off its height (own rope, pose held): "
+                 + ", ".join(cells) + f" t/cm; {worst}"]
+    else:  # eight hooks a line, aligned
+        lines = ["tension change per cm of a hook off its height [t/cm] (own rope, pose held):"]
+        width = max(len(label) for label in plan.labels)
+        cells = [f"{label:<{width}} {v:>6.2f}" for label, v in zip(plan.labels, own)]
+        lines += ["  " + "  ".join(cells[k : k + GROUP]) for k in range(0, len(cells), GROUP)]
+        lines.append(worst)
     needed = plan.hook_accuracy_needed
     lines.append("the plan's limits hold for hook errors up to "
                  + (f"+-{needed:.3f} m on every hook" if np.isfinite(needed) else "any size")
@@ -139,8 +151,9 @@ def _chain_lines(plan, design):
     if design.chain is None:
         return ["", f"design loads NOT computed: {design.missing}"]
     lines = ["", f"design-load chain: tilt {design.tilt_note}",
-             f"{'crane':<12}{'contingency':>12}{'tilt':>8}{'skew':>8}{'DAF':>7}{'rigging [t]':>13}"
-             f"{'static hook [t]':>17}{'code margin [t]':>17}  check"]
+             f"{'crane':<12}{'contingency':>12}{'tilt':>8}{'skew':>8}{'DAF':>7}{'rigging [t]':>12}"
+             f"{'static hook [t]':>16}{'code margin [t]':>17}  check"]
+    rows = []
     for c in plan.capacity:
         r = c.design
         factor = {f.name: f for f in r.factors}
@@ -148,23 +161,42 @@ def _chain_lines(plan, design):
         margin, margin_ok = ("-", True) if r.code_margin is None else \
             (f"{r.code_margin.value:.1f} <= {r.code_margin.limit:.1f}" if r.code_margin.ok else
              f"{r.code_margin.value:.1f} > {r.code_margin.limit:.1f}", r.code_margin.ok)
-        lines.append(f"{c.crane[:11]:<12}{factor['weight_contingency'].value:>12.3f}"
-                     f"{factor['tilt'].value:>8.4f}{skew:>8.4f}{factor['daf'].value:>7.3f}"
-                     f"{r.rigging_weight:>13.2f}{r.static_hook_load:>17.2f}{margin:>17}  "
-                     f"{'ok' if margin_ok else 'FAIL'}")
+        rows.append(f"{c.crane[:11]:<12}{factor['weight_contingency'].value:>12.3f}"
+                    f"{factor['tilt'].value:>8.4f}{skew:>8.4f}{factor['daf'].value:>7.3f}"
+                    f"{r.rigging_weight:>12.2f}{r.static_hook_load:>16.2f}{margin:>17}  "
+                    f"{'ok' if margin_ok else 'FAIL'}")
+    lines += grouped(rows)
     static = "worst" if design.breakout is None else "max(worst, breakout)"
     lines.append(f"(static hook = max({static}, tilt) x contingency x skew + rigging; design = static hook "
                  "x DAF; code margin: (level T x contingency + rigging) x (1 + margin) <= SWL)")
-    lines.append("worst cases (CG position in the file's frame):")
-    for c in plan.capacity:
-        text = f"  {c.label} {c.crane}: worst {c.worst:.2f} t at {_where(plan, c.worst_at)}"
-        if c.tilt is not None:
-            axis = plan.in_file_frame(c.tilt.axis)
-            cog = plan.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))
-            text += (f"; tilt {c.tilt.load:.2f} t at {c.tilt.tilt:.2f} deg about axis "
-                     f"({axis[0]:+.3f}, {axis[1]:+.3f}, {axis[2]:+.3f}), CG {_xyz(cog)} m")
-        lines.append(text)
+    lines += _worst_lines(plan)
     return lines
+
+
+def _worst_lines(plan):
+    """Where each crane's worst load in the box and its load at the rules' tilt occur: two
+    tables (the CG and the tilt axis in the file's frame)."""
+    width = max(len(c.crane[:14]) for c in plan.capacity) + 2
+    lines = ["worst in the box (CG in the file's frame):",
+             f"  {'lug':<5}{'crane':<{width}}{'worst [t]':>10}{'heel [deg]':>12}{'trim [deg]':>12}"
+             f"   CG x, y, z [m]"]
+    lines += grouped([f"  {c.label:<5}{c.crane[:14]:<{width}}{c.worst:>10.2f}{c.worst_at.heel:>+12.2f}"
+                      f"{c.worst_at.trim:>+12.2f}   {_xyz(plan.cog_at(c.worst_at))}"
+                      for c in plan.capacity])
+    tilted = [c for c in plan.capacity if c.tilt is not None]
+    if not tilted:
+        return lines
+    lines += ["at the rules' tilt (the hoists holding the level tensions; axis and CG in the file's frame):",
+              f"  {'lug':<5}{'crane':<{width}}{'tilt [t]':>10}{'tilt [deg]':>12}   "
+              f"{'axis x, y, z [-]':<26}CG x, y, z [m]"]
+    rows = []
+    for c in tilted:
+        axis = plan.in_file_frame(c.tilt.axis)
+        cog = plan.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))
+        text = f"({axis[0]:+.3f}, {axis[1]:+.3f}, {axis[2]:+.3f})"
+        rows.append(f"  {c.label:<5}{c.crane[:14]:<{width}}{c.tilt.load:>10.2f}{c.tilt.tilt:>12.2f}   "
+                    f"{text:<26}{_xyz(cog)}")
+    return lines + grouped(rows)
 
 
 def _breakout_lines(plan, design):
@@ -175,17 +207,19 @@ def _breakout_lines(plan, design):
     load, force = case.load, case.load.breakout
     model = {"soil": "soil model", "factor": "factor on the submerged weight",
              "none": "no breakout model"}[force.model]
-    lines = ["", f"breakout from the seabed ({plan.problem.breakout_scene.name or 'breakout scene'}): "
-                 f"peak total hook load {load.total:.2f} t = submerged weight "
-                 f"{force.submerged_weight:.2f} t + breakout force {force.force:.2f} t ({model}), "
-                 f"{load.weight_factor:.3f} x W, through {_xyz(plan.in_file_frame(load.point))} m",
+    lines = ["", f"breakout from the seabed ({plan.problem.breakout_scene.name or 'breakout scene'}):",
+             f"  peak total hook load {load.total:.2f} t = submerged weight "
+             f"{force.submerged_weight:.2f} t + breakout force {force.force:.2f} t ({model}), "
+             f"{load.weight_factor:.3f} x W, through {_xyz(plan.in_file_frame(load.point))} m",
              "held by each crane at the level attitude, the plan's preload held (the hooks moved "
              "rigidly to hold it level):",
-             f"{'lug':<4}{'crane':<12}{'T breakout [t]':>15}{'+ rigging [t]':>14}{'SWL [t]':>9}"
-             f"{'hook shift [m]':>15}  chain's static input"]
+             f"{'lug':<5}{'crane':<12}{'T breakout [t]':>15}{'+ rigging [t]':>14}{'SWL [t]':>9}"
+             f"{'hook shift [m]':>15}  check",
+             f"{'':<5}chain's static input"]
     for c, rigging, shift, check in zip(design.cranes, case.rigging, case.hook_shift, case.checks):
-        lines.append(f"{c.label:<4}{c.crane[:11]:<12}{c.breakout:>15.2f}{rigging:>14.2f}{c.swl:>9.1f}"
-                     f"{shift:>15.3f}  {c.static_note}{'' if check.ok else '  FAIL'}")
+        lines.append(f"{c.label:<5}{c.crane[:11]:<12}{c.breakout:>15.2f}{rigging:>14.2f}{c.swl:>9.1f}"
+                     f"{shift:>15.3f}  {'ok' if check.ok else 'FAIL'}")
+        lines.append(f"{'':<5}{c.static_note}")
     return lines
 
 
@@ -193,18 +227,31 @@ def _ranking_lines(plan):
     problem = plan.problem
     unit = "[t]" if plan.objective == "spread" else "[%]"
     scale = 1.0 if plan.objective == "spread" else 100.0
-    lines = ["", f"{'rank':<6}{'lugs (crane)':<64}{'nominal ' + unit:>13}{'worst ' + unit:>12}"
-                 f"{'design util. [%]':>18}"]
+    lines = ["", f"{'rank':<6}{'nominal ' + unit:>13}{'worst ' + unit:>12}{'design util. [%]':>18}"
+                 "   lugs (crane)"]
     for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design)):
-        names = " ".join(lug if problem.equal_cranes else f"{lug}({crane})"
-                         for lug, crane in zip(r.lugs, r.crane_names))
+        names = [lug if problem.equal_cranes else f"{lug}({crane})"
+                 for lug, crane in zip(r.lugs, r.crane_names)]
         util = "n/a" if d.chain is None else f"{100 * d.max_utilisation:.1f}" + ("" if d.ok else " FAIL")
-        lines.append(f"{k + 1:<6}{names:<64}{scale * r.nominal_value:>13.2f}"
-                     f"{scale * r.worst_value:>12.2f}{util:>18}")
+        row = f"{k + 1:<6}{scale * r.nominal_value:>13.2f}{scale * r.worst_value:>12.2f}{util:>18}   "
+        lines += _names_after(row, names)
         lines.append(f"{'':<6}worst at {_where(plan, r.worst)}")
     lines.append("(nominal / worst: the objective, level and largest in the box; design util.: the highest "
                  "design hook load / chart SWL of the set's cranes, FAIL if any design check fails)")
     return lines
+
+
+def _names_after(row, names):
+    """``row`` followed by the names, as many a line as fit in :data:`WIDTH`; further lines
+    indented to the names' column."""
+    lines, line, count = [], row, 0
+    for name in names:
+        if count and len(line) + len(name) > WIDTH:
+            lines.append(line.rstrip())
+            line, count = " " * len(row), 0
+        line += name + " "
+        count += 1
+    return lines + [line.rstrip()]
 
 
 def _where(plan, scenario):

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from liftplan.planner.output.console_text import fold, grouped
+
 OBJECTIVES = {"reserve": "the largest hook load / SWL", "utilisation": "max - min of hook load / SWL",
               "spread": "max - min hook load"}
 
@@ -49,17 +51,19 @@ def sling_table(plan):
     names = plan.crane_names
     design = plan.design_hook_loads
     lines = [problem.name or "lift plan", *_search_lines(plan), "",
-             f"{'crane':<14}{'lugs (below)':<18}{'R [m]':>7}{'SWL [t]':>8}{'H [m]':>8}"
+             f"{'crane':<13}{'lugs (below)':<17}{'R [m]':>7}{'SWL [t]':>8}{'H [m]':>8}"
              f"{'hook [t]':>9}{'worst [t]':>10}{'design [t]':>11}{'util. [%]':>10}  check"]
     chain = None if isinstance(plan.design, str) else plan.design
+    rows = []
     for c, name in enumerate(names):
         lugs = ",".join(label for label in plan.labels if plan.cranes[label] == name)
         ok = chain is not None and chain.results[c].check.ok
-        lines.append(
-            f"{name[:13]:<14}{lugs[:17]:<18}{plan.hook_radius[c]:>7.1f}{plan.hook_swl[c]:>8.1f}"
+        rows.append(
+            f"{name[:12]:<13}{lugs[:16]:<17}{plan.hook_radius[c]:>7.1f}{plan.hook_swl[c]:>8.1f}"
             f"{plan.crane_boom_heights[c]:>8.3f}{plan.hook_nominal[c]:>9.2f}"
             f"{plan.hook_worst[c]:>10.2f}{design[c]:>11.2f}{100 * design[c] / plan.hook_swl[c]:>10.1f}"
             f"  {'ok' if ok else 'FAIL'}")
+    lines += grouped(rows)
     lines.append("(hook = level, nominal CG; worst = largest over the tolerance and the CG envelope; "
                  "design = the rules' chain, docs/design-loads.md; util. = design / chart SWL)")
     if chain is None:
@@ -69,11 +73,13 @@ def sling_table(plan):
                   f"{'leg, worst [t]':>15}{'lug design [t]':>15}"]
     angles, level, worst = (np.concatenate([np.ravel(a) for a in v])
                             for v in (plan.leg_angles, plan.legs_nominal, plan.legs_worst))
+    rows = []
     for k, label in enumerate(plan.labels):
         lug = plan.lugs[label]
         value = lug_design[lug].design_load if lug in lug_design else float("nan")
-        lines.append(f"{label:<5}{lug[:11]:<12}{plan.cranes[label][:13]:<14}{angles[k]:>12.1f}"
-                     f"{level[k]:>15.2f}{worst[k]:>15.2f}{value:>15.2f}")
+        rows.append(f"{label:<5}{lug[:11]:<12}{plan.cranes[label][:13]:<14}{angles[k]:>12.1f}"
+                    f"{level[k]:>15.2f}{worst[k]:>15.2f}{value:>15.2f}")
+    lines += grouped(rows)
     for c, top in enumerate(plan.top_legs):
         if top is not None:
             lines.append(f"{names[c]}: spreader bar {plan.bar_weights[c]:g} t on the hook; top legs "
@@ -93,7 +99,7 @@ def sling_table(plan):
     for k, slings, value in _ranking(plan):
         lines.append(f"{k:<6}{scale * value:>12.2f}  {slings[0]}")
         lines += [f"{'':<20}{text}" for text in slings[1:]]
-    return "\n".join(lines)
+    return "\n".join(folded for line in lines for folded in fold(line))
 
 
 def _ranking(plan):
