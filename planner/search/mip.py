@@ -391,13 +391,18 @@ class LugMip:
             cons.append(cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) == data.b_vec[:, row])
         z = cp.Variable()
         scaled = cp.multiply(scale, tension)
+        # the largest scaled tension is at least the mean W / n (spread) or W / (n max SWL),
+        # the least at most W / n or W / (n min SWL): an unchosen candidate stands at those
+        # (the perspective of max / min over the chosen; tighter than a plain big M)
+        floor = weight / problem.cranes * float(np.min(scale))
+        ceiling = weight / problem.cranes * float(np.max(scale))
         if problem.objective == "reserve":
-            cons.append(scaled <= z)
+            cons.append(scaled + floor * (1 - chosen) <= z)
         else:
             high, low = cp.Variable(m), cp.Variable(m)
-            gate = float(np.max(scale)) * weight / problem.cranes
-            cons += [scaled <= high[:, None] @ np.ones((1, count * kinds)),
-                     low[:, None] @ np.ones((1, count * kinds)) <= scaled + gate * (1 - chosen),
+            across = np.ones((1, count * kinds))
+            cons += [scaled + floor * (1 - chosen) <= high[:, None] @ across,
+                     low[:, None] @ across <= scaled + ceiling * (1 - chosen),
                      z >= high - low]
         per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
         for lugs in forbidden:
@@ -419,7 +424,10 @@ class LugMip:
         info = mip.solver_stats.extra_stats if mip.solver_stats is not None else None
         dual = float(getattr(info, "mip_dual_bound", -math.inf)) if info is not None else -math.inf
         infeasible = (cp.INFEASIBLE, cp.settings.INFEASIBLE_OR_UNBOUNDED)
-        if mip.status in infeasible or y.value is None:
+        # at a time limit HiGHS may hand back a vector that is no solution (status 2: feasible)
+        found = y.value is not None and (mip.status == cp.OPTIMAL or
+                                         getattr(info, "primal_solution_status", 0) == 2)
+        if mip.status in infeasible or not found:
             if mip.status in infeasible or (mip.status == cp.USER_LIMIT and dual >= self.cutoff):
                 # every set is cut off: none beats the cutoff over these scenarios
                 return MipSolution(None, None, None, math.inf, self.cutoff, "cutoff", seconds)
