@@ -146,7 +146,7 @@ def tension_band(problem, swl, cutoff):
 
     Returns
     -------
-    low, high : numpy.ndarray, the shape of ``swl``
+    low, high : numpy.ndarray, the shape of ``swl`` (NaN where ``swl`` is: out of reach)
     """
     swl = np.asarray(swl, dtype=float)
     weight, n = problem.body.weight, problem.cranes
@@ -343,7 +343,8 @@ class LugMip:
         problem, classes = self.problem, self.classes
         data = poses(problem, scenarios)
         m, count, kinds = len(scenarios), self.count, len(classes.members)
-        band_low, band_high = tension_band(problem, self.reach_swl, self.cutoff)  # (C, K)
+        band_low, band_high = tension_band(problem, self.swl, self.cutoff)  # (C, K)
+        band_low, band_high = (np.nan_to_num(v, nan=0.0) for v in (band_low, band_high))
         change = band_high - band_low
         centre, off = hook_bounds(problem, data, float(change.max()), classes.stiffness)
         col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
@@ -394,8 +395,8 @@ class LugMip:
         # the largest scaled tension is at least the mean W / n (spread) or W / (n max SWL),
         # the least at most W / n or W / (n min SWL): an unchosen candidate stands at those
         # (the perspective of max / min over the chosen; tighter than a plain big M)
-        floor = weight / problem.cranes * float(np.min(scale))
-        ceiling = weight / problem.cranes * float(np.max(scale))
+        floor = weight / problem.cranes * float(np.min(scale[:, usable]))
+        ceiling = weight / problem.cranes * float(np.max(scale[:, usable]))
         if problem.objective == "reserve":
             cons.append(scaled + floor * (1 - chosen) <= z)
         else:
@@ -453,8 +454,10 @@ class LugMip:
 def search_mip(problem, started, progress=None):
     """Plan by the lug-choice MIP with cutting planes (module docstring).
 
-    A local search gives the first incumbent (the cutoff). Each round solves the MIP over the
-    scenario list within what is left of ``problem.time_limit`` and to ``problem.gap``,
+    A first plan gives the cutoff: the local search's (equal cranes) or the exact search's
+    first evaluated set (a fleet; the local search plans equal cranes only). Each round
+    solves the MIP over the scenario list within what is left of ``problem.time_limit`` and
+    to ``problem.gap``,
     evaluates its set over the dense box and adds that set's worst scenario, until the
     MIP's value reaches the set's dense worst (the optimum proved, or within the gap), or
     the time runs out. The certified lower bound is the least of the last MIP's dual bound
@@ -474,12 +477,11 @@ def search_mip(problem, started, progress=None):
         SearchStats,
         SetEvaluator,
         SetInfeasible,
-        _local,
         _progress_bar,
         tolerance,
     )
 
-    ranking, _ = _local(problem, started)
+    ranking = _incumbent(problem, started)
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value)
     scenarios = first_scenarios(problem)
@@ -548,3 +550,16 @@ def search_mip(problem, started, progress=None):
         if bar is not None:
             bar.close()
     return ranking, stats_now()
+
+
+def _incumbent(problem, started):
+    """A first plan (ranking of one) to cut off with: the local search's for equal cranes, the
+    exact search's first evaluated (set, assignment) for a fleet."""
+    import dataclasses
+
+    from liftplan.planner.search.branch import _local, search
+
+    if problem.equal_cranes:
+        return _local(problem, started)[0]
+    first = dataclasses.replace(problem, search="exact", gap=0.0, time_limit=1e-9)
+    return search(first, 1)[0]
