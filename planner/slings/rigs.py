@@ -21,6 +21,9 @@ from itertools import combinations
 
 import numpy as np
 
+# the rule a hinged pair must meet (the model's, which a Python-built PlanProblem meets too)
+from liftplan.model.statics import PLUMB_MARGIN
+from liftplan.model.statics import near_plumb as plumb_in_box
 from liftplan.planner.slings.geometry import FIT, leg_angles, leg_split, pair_apex, spreader_hook, tripod_apex
 
 #: The most k-tuples one crane's sling may have before the rule is refused as too loose.
@@ -87,26 +90,6 @@ def sling_tuples(problem, legs):
                 raise InvalidScene(f"candidates: more than {MAX_TUPLES} {legs}-lug tuples on adjacent "
                                    "groups; expected bulkhead labels that group the candidates")
     return np.array(sorted(seen), dtype=np.int64).reshape(-1, legs)
-
-
-#: A hinged pair must stay this far from plumb [deg] at every attitude of the tolerance box:
-#: the hinge plane is the vertical plane through the pair, which turns by 1 / cos(inclination)
-#: per unit of tilt and is undefined at plumb (:func:`liftplan.model.statics.hinged_points`
-#: divides by the pair's horizontal length); at 80 deg a 1 deg tilt swings it ~6 deg.
-PLUMB_MARGIN = 10.0
-
-
-def plumb_in_box(a, b, heel, trim):
-    """Whether each lug pair (a, b: (N, 3) body frame [m]) comes within :data:`PLUMB_MARGIN`
-    of plumb at some attitude of the box |heel| <= heel, |trim| <= trim [deg].
-
-    A tilt turns a line by at most the body's tilt angle, arccos(cos heel cos trim) at the
-    box's corner, so the pair's inclination from the horizontal plus that is kept below
-    90 deg - :data:`PLUMB_MARGIN`."""
-    d = np.asarray(b, dtype=float) - np.asarray(a, dtype=float)
-    incline = np.degrees(np.arctan2(np.abs(d[:, 2]), np.hypot(d[:, 0], d[:, 1])))
-    tilt = np.degrees(np.arccos(np.cos(np.radians(heel)) * np.cos(np.radians(trim))))
-    return incline + tilt >= 90.0 - PLUMB_MARGIN
 
 
 def crane_rigs(problem, crane, load, parallel=False):
