@@ -88,13 +88,14 @@ def test_spread_start_spans_the_candidates(tanker):
 
 def test_local_search_is_never_better_than_the_exact_search(tanker):
     """On the tanker with five cranes (4 368 sets) the local search ends on a feasible set whose
-    exact worst is no lower than the proved optimum; the plan says no gap is proved."""
+    exact worst is no lower than the proved optimum; its lower bound (the two deck lines'
+    statics, planner/search/lines.py) is no higher than that optimum, and the plan says so."""
     problem = dataclasses.replace(tanker, cranes=5, hook_tolerance=0.0, fleet=())
     exact, exact_stats = search(problem, 1)
     assert exact_stats.stopped == "proved"
     local, stats = search(dataclasses.replace(problem, search="local"), 1)
-    assert stats.stopped == "local" and stats.lower_bound == 0.0
-    assert "no gap proved" in stats.summary
+    assert stats.stopped == "local" and 0.0 < stats.lower_bound <= exact[0].worst_value
+    assert f"gap {100 * stats.relative_gap:.1f} %" in stats.summary
     tol = 1e-6 * problem.body.weight
     assert local[0].worst_value >= exact[0].worst_value - tol
     # the local optimum: no swap's dual bound beats its LP bound over the same scenarios

@@ -25,6 +25,7 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.problem.definition import MAX_SETS
 from liftplan.planner.search.bounds import PreloadMinimax
+from liftplan.planner.search.lines import line_bound
 from liftplan.planner.search.rows import row_spread
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.screen import (
@@ -227,8 +228,10 @@ class SearchStats(GapMixin):
                     f"scenarios (HiGHS), {self.refined} cutting-plane rounds, {self.evaluated} "
                     f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)")
         if self.stopped == "local":
+            proved = (f"every set's worst is at least {self.lower_bound:.4g}: gap "
+                      f"{100 * self.relative_gap:.1f} %" if self.lower_bound > 0 else "no gap proved")
             return (f"{self.sets} lug sets: local search, {self.refined} swaps from an even spread "
-                    f"of the candidates to a local optimum (no gap proved) ({self.seconds:.2f} s)")
+                    f"of the candidates to a local optimum ({proved}) ({self.seconds:.2f} s)")
         return None
 
 
@@ -683,16 +686,17 @@ def _local(problem, started):
     from liftplan.planner.search.local import local_search
 
     indices, moves, _ = local_search(problem, time_limit=problem.time_limit)
+    evaluator = SetEvaluator(problem)
     try:
-        result = SetEvaluator(problem).evaluate(indices)
+        result = evaluator.evaluate(indices)
     except SetInfeasible as err:
         raise PlanInfeasible(f"the local search ended on {', '.join(problem.names[i] for i in indices)}"
                              f" after {moves} swaps, which is infeasible over the box: "
                              f"{REASONS[err.code]}") from None
     if problem.objective == "reserve":  # every rope shares W: max T_i / SWL_i >= W / sum SWL
         bound = problem.body.weight / float(np.sum(result.swl))
-    else:
-        bound = 0.0
+    else:  # candidates on two lines: what each line carries is fixed by the statics
+        bound = line_bound(problem, evaluator.dense)
     stats = SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
                         seconds=time.perf_counter() - started, rows=problem.set_count,
                         refined=moves, lower_bound=min(bound, result.worst_value),
