@@ -46,6 +46,7 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.frames import rotation_matrix
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.scenarios import LugSet, Scenario
 
 #: Angles at which the sets' least width is bounded (:func:`least_width`).
@@ -324,6 +325,15 @@ class LugMip:
         self.reach_swl = reach_swl
         self.mirror = mirror_map(problem)
         self.count = count
+        # candidates on two lines: each count of lugs per line has a bound of its own
+        self.lines = two_lines(problem)
+        if self.lines is not None and (problem.objective == "spread" or (
+                problem.objective == "utilisation" and np.nanmax(swl) == np.nanmin(swl))):
+            from liftplan.planner.search.branch import SetEvaluator
+
+            self.line_counts = count_bounds(problem, self.lines, SetEvaluator(problem).dense)
+        else:
+            self.line_counts = None
 
     def solve(self, scenarios, gap=0.0, time_limit=None, forbidden=()):
         """Solve over ``scenarios``; a :class:`MipSolution`.
@@ -406,6 +416,12 @@ class LugMip:
                      low[:, None] @ across <= scaled + ceiling * (1 - chosen),
                      z >= high - low]
         per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
+        if self.line_counts is not None:  # z >= B(n1): n1 lugs on line 0 (planner/search/lines)
+            allowed = np.flatnonzero(np.isfinite(self.line_counts))
+            pick = cp.Variable(len(allowed), boolean=True)
+            cons += [cp.sum(pick) == 1,
+                     allowed @ pick == cp.sum(per_set[np.flatnonzero(self.lines.line == 0)]),
+                     z >= self.line_counts[allowed] @ pick]
         for lugs in forbidden:
             cons.append(cp.sum(per_set[list(lugs)]) <= problem.cranes - 1)
         if self.mirror is not None:  # one of each mirror pair of sets
