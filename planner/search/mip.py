@@ -473,11 +473,11 @@ def search_mip(problem, started, progress=None):
     A first plan gives the cutoff: the local search's (equal cranes) or the exact search's
     first evaluated set (a fleet; the local search plans equal cranes only). Each round
     solves the MIP over the scenario list within what is left of ``problem.time_limit`` and
-    to ``problem.gap``,
-    evaluates its set over the dense box and adds that set's worst scenario, until the
-    MIP's value reaches the set's dense worst (the optimum proved, or within the gap), or
-    the time runs out. The certified lower bound is the least of the last MIP's dual bound
-    and the best value found.
+    to ``problem.gap``, checks its set and preload over the dense box and adds the worst
+    scenario found, until the MIP's value holds over the box (the optimum proved, or within
+    the gap), or the time runs out. The certified lower bound is the larger of the first
+    plan's (the two-line bound, :mod:`~liftplan.planner.search.lines`) and the least of the
+    last MIP's dual bound and the best value found.
 
     Returns
     -------
@@ -497,12 +497,12 @@ def search_mip(problem, started, progress=None):
         tolerance,
     )
 
-    ranking = _incumbent(problem, started)
+    ranking, first = _incumbent(problem, started)
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value)
     scenarios = first_scenarios(problem)
     forbidden, reasons = [], Counter()
-    lower, rounds, stopped = 0.0, 0, "proved"
+    lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
     bar = _progress_bar(MAX_ROUNDS, progress)
 
@@ -511,7 +511,8 @@ def search_mip(problem, started, progress=None):
         return SearchStats(sets=problem.set_count, screened_out=0, evaluated=len(ranking) + len(forbidden),
                            pruned=0, infeasible={REASONS[c]: k for c, k in reasons.most_common()},
                            seconds=time.perf_counter() - started, rows=problem.set_count,
-                           refined=rounds, lower_bound=min(lower, best), best=best, stopped=stopped,
+                           refined=rounds, lower_bound=min(lower, best),
+                           best=best, stopped=stopped,
                            method="mip")
 
     try:
@@ -524,7 +525,7 @@ def search_mip(problem, started, progress=None):
             solution = mip.solve(scenarios, gap=problem.gap, time_limit=left, forbidden=forbidden)
             best = ranking[0].worst_value
             if solution.indices is None:  # nothing beats the incumbent over the list
-                lower = min(solution.bound, best)
+                lower = max(min(solution.bound, best), first.lower_bound)
                 stopped = "proved" if solution.status == "cutoff" else "time_limit"
                 break
             try:
@@ -540,7 +541,7 @@ def search_mip(problem, started, progress=None):
                 ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
             best = ranking[0].worst_value
             mip.cutoff = best
-            lower = min(solution.bound, best)
+            lower = max(min(solution.bound, best), first.lower_bound)
             if bar is not None:
                 bar.update(1)
                 bar.set_postfix_str(f"best {best:.4g}, bound {lower:.4g}", refresh=False)
@@ -569,13 +570,12 @@ def search_mip(problem, started, progress=None):
 
 
 def _incumbent(problem, started):
-    """A first plan (ranking of one) to cut off with: the local search's for equal cranes, the
-    exact search's first evaluated (set, assignment) for a fleet."""
+    """A first plan to cut off with, (ranking, stats): the local search's for equal cranes,
+    the exact search's first evaluated (set, assignment) for a fleet."""
     import dataclasses
 
     from liftplan.planner.search.branch import _local, search
 
     if problem.equal_cranes:
-        return _local(problem, started)[0]
-    first = dataclasses.replace(problem, search="exact", gap=0.0, time_limit=1e-9)
-    return search(first, 1)[0]
+        return _local(problem, started)
+    return search(dataclasses.replace(problem, search="exact", gap=0.0, time_limit=1e-9), 1)
