@@ -418,9 +418,12 @@ def _appendix(plan):
             ("lug sets", stats.sets, "-"),
             ("(set, crane assignment) pairs in reach", stats.rows, "-"),
             ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
-            ("ruled out by screening", stats.screened_out, "-"),
-            ("evaluated (linear programme + dense search of the box)", stats.evaluated, "-"),
-            ("not evaluated: their bound could not beat the ranked sets", stats.pruned, "-"),
+            *((("the MIP's cutting-plane rounds (no set enumerated)", stats.refined, "-"),
+               ("sets evaluated (the first plan's and the MIP's choices)", stats.evaluated, "-"))
+              if stats.method == "mip" else
+              (("ruled out by screening", stats.screened_out, "-"),
+               ("evaluated (linear programme + dense search of the box)", stats.evaluated, "-"),
+               ("not evaluated: their bound could not beat the ranked sets", stats.pruned, "-"))),
             *((f"infeasible: {text}", n, "sets") for text, n in stats.infeasible.items()),
             ("search time", f"{stats.seconds:.2f}", "s"),
         ],

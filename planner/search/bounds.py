@@ -62,6 +62,18 @@ def _run(problem, what):
     raise SolverFailed(f"{what}: {failure}")
 
 
+def run_highs(problem, what, **options):
+    """Solve a cvxpy problem (a MIP) with HiGHS: its banner kept off stdout (the JSON goes
+    there), the "inaccurate" warning of a time or gap limit silenced (the caller reads the
+    status and the dual bound), a solver error raised as :class:`SolverFailed` naming ``what``."""
+    try:
+        with _stdout_silenced(), warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            problem.solve(solver=cp.HIGHS, **options)
+    except cp.error.SolverError as err:
+        raise SolverFailed(f"{what}: HiGHS failed ({err})") from None
+
+
 @contextlib.contextmanager
 def _stdout_silenced():
     """Send what native code writes to the process's stdout (fd 1) to /dev/null meanwhile."""

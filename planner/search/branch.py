@@ -225,7 +225,8 @@ class SearchStats(GapMixin):
         """What the search did, in one line."""
         if self.method == "mip":
             return (f"{self.sets} lug sets: one mixed-integer program over candidates, cranes and "
-                    f"scenarios (HiGHS), {self.refined} cutting-plane rounds, {self.evaluated} "
+                    f"scenarios (HiGHS), {self.refined} cutting-plane round"
+                    f"{'' if self.refined == 1 else 's'}, {self.evaluated} "
                     f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)")
         if self.stopped == "local":
             proved = (f"every set's worst is at least {self.lower_bound:.4g}: gap "
@@ -670,8 +671,8 @@ def search(problem, top=None, progress=None):
 
 #: ``search = "auto"``: the exact search for five or more lugs up to this many sets
 #: (studies/planner_scale.py on an idle machine: 5 of 24 candidates, 42 504 sets, proved in
-#: 6.0 s; 5 of 40, 658 008 sets, proved in 159 s, where the local search is 0.9 % above in
-#: 0.7 s; about a quarter of a millisecond a set, so some 50 s at this limit).
+#: 5.7 s; 5 of 40, 658 008 sets, proved in 151 s, where the local search is 0.9 % above in
+#: 0.9 s; about a quarter of a millisecond a set, so some 50 s at this limit).
 AUTO_EXACT_MANY = 200_000
 
 

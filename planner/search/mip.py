@@ -38,7 +38,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -348,7 +347,7 @@ class LugMip:
         """
         import cvxpy as cp
 
-        from liftplan.planner.search.bounds import _stdout_silenced
+        from liftplan.planner.search.bounds import run_highs
 
         problem, classes = self.problem, self.classes
         data = poses(problem, scenarios)
@@ -431,12 +430,7 @@ class LugMip:
         if time_limit is not None:
             options["time_limit"] = max(float(time_limit), 0.1)
         started = time.perf_counter()
-        try:
-            with _stdout_silenced(), warnings.catch_warnings():
-                warnings.simplefilter("ignore", UserWarning)  # a time limit: handled below
-                mip.solve(solver=cp.HIGHS, **options)
-        except cp.error.SolverError as err:
-            raise SolverFailed(f"lug-choice MIP: HiGHS failed ({err})") from None
+        run_highs(mip, "lug-choice MIP", **options)
         seconds = time.perf_counter() - started
         info = mip.solver_stats.extra_stats if mip.solver_stats is not None else None
         dual = float(getattr(info, "mip_dual_bound", -math.inf)) if info is not None else -math.inf

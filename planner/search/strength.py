@@ -32,7 +32,6 @@ solution are found with :mod:`liftplan.model.strength.piecewise` and added as cu
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import cvxpy as cp
@@ -42,7 +41,7 @@ from scipy import sparse
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.scene import curve_totals
 from liftplan.model.strength.piecewise import Piecewise, on_breaks
-from liftplan.planner.search.bounds import _checked, _run, _stdout_silenced
+from liftplan.planner.search.bounds import _checked, _run, run_highs
 
 #: Equal steps over the weight curve's span in the first list of sections.
 SECTION_GRID = 60
@@ -514,12 +513,7 @@ class CandidateMIP:
         options = {"mip_rel_gap": MIP_GAP}
         if time_limit is not None:
             options["time_limit"] = float(max(time_limit, 1.0))
-        try:
-            with _stdout_silenced(), warnings.catch_warnings():
-                warnings.simplefilter("ignore", UserWarning)  # a time limit: handled below
-                problem.solve(solver=cp.HIGHS, **options)
-        except cp.error.SolverError as err:
-            raise SolverFailed(f"lug choice (MIP): HiGHS failed ({err})") from None
+        run_highs(problem, "lug choice (MIP)", **options)
         if problem.status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE):
             raise PlanInfeasible("lug choice (MIP): no lug set and tensions satisfy the limits")
         complete = problem.status == cp.OPTIMAL
