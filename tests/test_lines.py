@@ -87,3 +87,19 @@ def test_the_hull_plan_has_a_certified_gap():
     assert bound == pytest.approx(71.81, abs=0.01)
     counts = count_bounds(hull, two_lines(hull), SetEvaluator(hull).dense)
     assert int(np.argmin(counts)) in (12, 14)  # 14 on the port line (line 0) or its mirror
+
+
+def test_lines_one_above_the_other_bound_nothing():
+    """Two lines in one vertical plane (upper and lower lugs of one bulkhead row): the statics
+    do not split the load between them, so the bound is 0, not a number."""
+    from liftplan.planner.problem.definition import Candidate
+
+    hull = load_problem(EXAMPLES / "hull154_plan.toml")
+    row = tuple(Candidate(f"{tier}{k}", (x, 0.0, z)) for k, x in enumerate(np.linspace(-60, 60, 8))
+                for tier, z in (("U", 16.0), ("L", 4.0)))
+    problem = dataclasses.replace(hull, candidates=row, cranes=4, fleet=())
+    lines = two_lines(problem)
+    assert lines is not None and list(lines.counts) == [8, 8]
+    scenarios = [Scenario(1.0, 0.5), Scenario(0.0, 0.0)]
+    assert np.all(count_bounds(problem, lines, scenarios)[[0, 4]] == 0.0)
+    assert line_bound(problem, scenarios) == 0.0

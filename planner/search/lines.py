@@ -78,7 +78,8 @@ def two_lines(problem):
 
 def count_bounds(problem, lines, scenarios):
     """B(n1) for n1 = 0 .. n (module docstring), in the objective's unit; inf where no set has
-    that count (too few candidates on a line, or every lug on one line: collinear).
+    that count (too few candidates on a line, or every lug on one line: collinear); 0 for every
+    count when the two lines lie one above the other in plan at some pose (no split).
 
     Parameters
     ----------
@@ -101,7 +102,7 @@ def count_bounds(problem, lines, scenarios):
         across = np.array([-along[1], along[0]])  # the lines' plan normal at this pose
         a1, a2 = across @ (rot @ first)[:2], across @ (rot @ second)[:2]
         if abs(a1 - a2) <= 1e-9 * max(1.0, float(np.ptp(points, axis=0).max())):
-            return np.full(n + 1, np.inf) * 0.0  # one line above the other in plan: no split
+            return np.zeros(n + 1)  # one line above the other in plan: the statics split nothing
         g = across @ (rot @ (cog + np.asarray(s.cog_offset, dtype=float)))[:2]
         share[k] = weight * (g - a2) / (a1 - a2)  # what line 0's lugs carry together [t]
     out = np.full(n + 1, np.inf)
