@@ -200,7 +200,8 @@ class SearchStats(GapMixin):
         The plan's worst value of the objective.
     stopped : {"proved", "gap", "time_limit", "interrupted", "local"}
         Why the search ended: the top plans proved, the gap target reached, the time limit,
-        Ctrl-C, or a local optimum of the local search (no gap proved).
+        Ctrl-C, or a local optimum of the local search (its lower bound holds for every set but
+        is not its value: :mod:`~liftplan.planner.search.lines`, or 0).
     method : {"enumeration", "local", "mip"}
         How the sets were searched (``plan.search``; ``refined`` counts the local search's
         swaps, or the MIP's cutting-plane rounds).
@@ -586,7 +587,9 @@ def search(problem, top=None, progress=None):
             rows=len(sets),
             out_of_reach=out_of_reach,
             refined=refine_count,
-            lower_bound=min(lower_bound(), best),
+            # stopped early: the two-line bound may be the better of two valid bounds
+            lower_bound=min(lower_bound() if stopped == "proved" else
+                            max(lower_bound(), line_bound(problem, evaluator.dense)), best),
             best=best,
             stopped=stopped,
         )
