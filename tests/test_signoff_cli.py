@@ -151,9 +151,9 @@ def interrupt(args, ready, tmp_path, after=0.5, loop=None):
     code = ("import sys\n" + patch + "from liftplan.planner.cli import main\n"
             "print('started', file=sys.stderr, flush=True)\n"
             f"sys.exit(main({[str(a) for a in args]!r}))\n")
-    # as from a shell: Ctrl-C at its default in the child, whatever an earlier test's library
-    # left in this process (an ignored SIGINT is inherited across exec, and Python then keeps
-    # it ignored: the full suite once hung here for 60 s on both commands)
+    # as from a shell: Ctrl-C at its default in the child, whatever this process inherited (a
+    # suite started as a background job of a non-interactive shell ignores SIGINT; that is
+    # inherited across exec and Python keeps it: the children then ran on for 60 s)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, start_new_session=True, cwd=tmp_path,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
