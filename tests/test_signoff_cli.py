@@ -166,7 +166,12 @@ def interrupt(args, ready, tmp_path, after=0.5, loop=None):
     time.sleep(after)
     os.killpg(proc.pid, signal.SIGINT)
     os.set_blocking(proc.stderr.fileno(), True)
-    out, err = proc.communicate(timeout=60)
+    try:
+        out, err = proc.communicate(timeout=60)
+    finally:  # never leave a looping child behind (it would load the machine for hours)
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
     return proc.returncode, out.decode(), (seen + err).decode()
 
 
