@@ -291,9 +291,11 @@ class LugMip:
         Body-fixed candidates, no hook-height tolerance.
     cutoff : float
         An incumbent's worst value (the objective's unit): sets that cannot beat it are cut off.
+    dense : list of Scenario, optional
+        The dense check's scenarios, for the two-line cut (default: a new evaluator's).
     """
 
-    def __init__(self, problem, cutoff):
+    def __init__(self, problem, cutoff, dense=None):
         if problem.hinge_rows is not None:
             raise PlanInfeasible("search = \"mip\" takes body-fixed lugs; expected search = "
                                  "\"exact\" or \"local\" for lift points hinged on slings")
@@ -328,9 +330,11 @@ class LugMip:
         self.lines = two_lines(problem)
         if self.lines is not None and (problem.objective == "spread" or (
                 problem.objective == "utilisation" and np.nanmax(swl) == np.nanmin(swl))):
-            from liftplan.planner.search.branch import SetEvaluator
+            if dense is None:
+                from liftplan.planner.search.branch import SetEvaluator
 
-            self.line_counts = count_bounds(problem, self.lines, SetEvaluator(problem).dense)
+                dense = SetEvaluator(problem).dense
+            self.line_counts = count_bounds(problem, self.lines, dense)
         else:
             self.line_counts = None
 
@@ -493,7 +497,7 @@ def search_mip(problem, started, progress=None):
 
     ranking, first = _incumbent(problem, started)
     evaluator = SetEvaluator(problem)
-    mip = LugMip(problem, ranking[0].worst_value)
+    mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
     scenarios = first_scenarios(problem)
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
