@@ -686,10 +686,16 @@ def auto_exact_limit(cranes):
 
 
 def _local(problem, started):
-    """:func:`~liftplan.planner.search.local.local_search`, its set evaluated exactly."""
+    """:func:`~liftplan.planner.search.local.local_search`, its set evaluated exactly, and the
+    lower bound that holds for every set: the two-line bound, refined cell by cell where the
+    lugs are stations on two lines in one plane (:mod:`~liftplan.planner.search.line_cells`)
+    towards the plan's value less the gap aimed at. With a time limit the search takes half
+    of it and the bound the rest."""
+    from liftplan.planner.search.line_cells import applies, cell_bound
     from liftplan.planner.search.local import local_search
 
-    indices, moves, _ = local_search(problem, time_limit=problem.time_limit)
+    limit = problem.time_limit
+    indices, moves, _ = local_search(problem, time_limit=None if limit is None else 0.5 * limit)
     evaluator = SetEvaluator(problem)
     try:
         result = evaluator.evaluate(indices)
@@ -701,6 +707,10 @@ def _local(problem, started):
         bound = problem.body.weight / float(np.sum(result.swl))
     else:  # candidates on two lines: what each line carries is fixed by the statics
         bound = line_bound(problem, evaluator.dense)
+        if applies(problem) and bound < result.worst_value:
+            deadline = None if limit is None else started + limit
+            target = result.worst_value * (1.0 - problem.gap * (1.0 - 1e-9))  # gap <= target
+            bound = max(bound, cell_bound(problem, evaluator.dense, target, deadline).value)
     stats = SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
                         seconds=time.perf_counter() - started, rows=problem.set_count,
                         refined=moves, lower_bound=min(bound, result.worst_value),

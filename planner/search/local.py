@@ -12,9 +12,15 @@ the dense check of the whole box).
 
 It does so from the even spread and from RESTARTS perturbations of it (a third of the
 candidates swapped at random, seeded) and keeps the best. The result is a local optimum:
-good, not proved best. Its lower bound is only what holds for
-every set (for ``reserve``, W / the sum of the cranes' SWL; otherwise 0), and the plan says so
-(``search.stopped = "local"``).
+good, not proved best; the plan states the lower bound that holds for every set (README
+"Two lug lines") and says so (``search.stopped = "local"``).
+
+Lugs in one body plane on equal ropes (:mod:`~liftplan.planner.search.coplanar`, no hook
+tolerance): each swap that the screening bound does not rule out is ranked by the exact LP
+over the corners of the box (:class:`~liftplan.planner.search.coplanar.PlaneLP`, in order of
+the screening bound, so the best swap is found without solving the rest), and candidates on
+two lines add a first start: lugs at both ends of each line (:func:`line_starts`), the layout
+that resists the CG's moves along the lines best; the perturbations are then of it.
 """
 
 from __future__ import annotations
@@ -25,6 +31,9 @@ import time
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.search.coplanar import PlaneLP, coplanar
+from liftplan.planner.search.lines import count_bounds, two_lines
+from liftplan.planner.search.scenarios import Scenario
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
 #: Improvement below which a swap is not taken (relative to the current value).
@@ -49,6 +58,42 @@ def spread_start(problem, count=None):
         taken.append(k)
         distance = np.minimum(distance, np.linalg.norm(plan - plan[k], axis=1))
     return tuple(sorted(taken))
+
+
+def corner_scenarios(problem):
+    """Level at the nominal CG, and each CG vertex at each corner of the heel/trim box."""
+    h, t = problem.heel_tolerance, problem.trim_tolerance
+    tilts = sorted({(a, b) for a in (-h, h) for b in (-t, t)})
+    return [Scenario(0.0, 0.0)] + [Scenario(float(a), float(b), tuple(float(v) for v in o))
+                                   for o in problem.cog_envelope.offsets() for a, b in tilts]
+
+
+def line_starts(problem, spread=2):
+    """Lugs at both ends of each of two lines: candidate sets (indices ascending), or [] if
+    the candidates are not on two lines.
+
+    The count on each line is the one with the least two-line bound. Line j takes k_j
+    stations from one end and the rest from the other; k_j* brings the line's mean along it
+    nearest the CG's, and every k_j within ``spread`` of it is returned.
+    """
+    lines = two_lines(problem)
+    if lines is None:
+        return []
+    bounds = count_bounds(problem, lines, corner_scenarios(problem))
+    if not np.any(np.isfinite(bounds)):
+        return []
+    n0 = int(np.argmin(bounds))
+    points = np.asarray(problem.points, dtype=float)
+    along = points @ lines.direction
+    target = float(np.asarray(problem.body.cog, dtype=float) @ lines.direction)
+    options = []
+    for line, count in ((0, n0), (1, problem.cranes - n0)):
+        members = np.flatnonzero(lines.line == line)
+        members = members[np.argsort(along[members], kind="stable")]
+        ends = [np.r_[members[:k], members[len(members) - count + k:]] for k in range(count + 1)]
+        best = min(range(count + 1), key=lambda k: abs(float(along[ends[k]].mean()) - target))
+        options.append([ends[k] for k in range(max(0, best - spread), min(count, best + spread) + 1)])
+    return [tuple(sorted(int(i) for i in np.r_[a, b])) for a in options[0] for b in options[1]]
 
 
 def swaps(current, count):
@@ -100,7 +145,12 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     count, n = len(problem.candidates), problem.cranes
     first = tuple(sorted(start)) if start is not None else spread_start(problem)
     rng = np.random.default_rng(seed)
-    starts = [first]
+    plane = _plane_lp(problem)
+    lined = line_starts(problem) if start is None and plane is not None else []
+    if lined:  # the two best end layouts first; the perturbations are of the best
+        lined = sorted(lined, key=plane.value)[:2]
+        first = lined[0]
+    starts = lined + [first if not lined else spread_start(problem)]
     for _ in range(RESTARTS if restarts is None else restarts):
         kept = rng.choice(first, n - max(1, n // 3), replace=False)
         others = np.setdiff1d(np.arange(count), kept)
@@ -110,7 +160,7 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     for begin in dict.fromkeys(starts):  # a repeated start is run once
         if deadline is not None and time.perf_counter() > deadline and best[0] is not None:
             break
-        current, value, taken, why = _descend(problem, begin, deadline, max_moves)
+        current, value, taken, why = _descend(problem, begin, deadline, max_moves, plane)
         moves += taken
         reason = reason or why
         if value < best[1]:
@@ -121,12 +171,25 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     return best[0], moves, best[1]
 
 
-def _descend(problem, current, deadline, max_moves):
-    """Swaps from one start while they lower the bound: (set, value, swaps, why not)."""
+def _plane_lp(problem):
+    """:class:`PlaneLP` over the box corners where the plane model is exact, else None."""
+    if coplanar(problem) is None or problem.hook_tolerance > 0 or \
+            any(c.hook_tolerance for c in problem.fleet):
+        return None
+    return PlaneLP(problem, corner_scenarios(problem))
+
+
+def _descend(problem, current, deadline, max_moves, plane=None):
+    """Swaps from one start while they lower the value: (set, value, swaps, why not).
+
+    The value is the screening bound, or with ``plane`` its exact LP over the box corners.
+    """
     count = len(problem.candidates)
     first = screen(problem, np.array([current]), dual=True)
     value = float(first.bound[0]) if first.reason[0] == FEASIBLE else math.inf
     why = None if first.reason[0] == FEASIBLE else REASONS.get(int(first.reason[0]))
+    if plane is not None and math.isfinite(value):
+        value = plane.value(current)
     moves = 0
     while moves < max_moves:
         if deadline is not None and time.perf_counter() > deadline:
@@ -134,12 +197,22 @@ def _descend(problem, current, deadline, max_moves):
         near = swaps(current, count)
         target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
         found = screen(problem, near, dual=True, target=target)
-        ok = found.reason == FEASIBLE
-        if not np.any(ok):
+        ok = np.flatnonzero((found.reason == FEASIBLE) & (found.bound < target))
+        if not len(ok):
             break
-        k = int(np.flatnonzero(ok)[np.argmin(found.bound[ok])])
-        if not found.bound[k] < target:
-            break
-        current, value = tuple(int(i) for i in near[k]), float(found.bound[k])
+        if plane is None:
+            k = int(ok[np.argmin(found.bound[ok])])
+            best = float(found.bound[k])
+        else:  # exact values in order of the bound, until the bound passes the best found
+            k, best = None, target
+            for j in ok[np.argsort(found.bound[ok], kind="stable")]:
+                if found.bound[j] >= best:
+                    break
+                exact = plane.value(near[j])
+                if exact < best:
+                    k, best = int(j), exact
+            if k is None:
+                break
+        current, value = tuple(int(i) for i in near[k]), best
         moves += 1
     return current, value, moves, why
