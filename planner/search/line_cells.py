@@ -404,6 +404,8 @@ def cell_bound(problem, scenarios, target, deadline=None):
     -------
     CellBound
     """
+    if not np.isfinite(target):
+        raise ValueError(f"cell_bound: target = {target!r}, expected a finite value")
     started = time.perf_counter()
     lay = layout(problem)
     plane = coplanar(problem)
