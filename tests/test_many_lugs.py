@@ -11,7 +11,7 @@ from liftplan.model import PlanInfeasible
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.search.bounds import PreloadMinimax
 from liftplan.planner.search.branch import SetEvaluator, SetInfeasible, search
-from liftplan.planner.search.local import local_search, spread_start, swaps
+from liftplan.planner.search.local import _plane_lp, local_search, spread_start, swaps
 from liftplan.planner.search.scenarios import LugSet, Scenario
 from liftplan.planner.search.screen import FEASIBLE, all_sets, screen, screening_scenarios
 
@@ -95,15 +95,18 @@ def test_local_search_is_never_better_than_the_exact_search(tanker):
     assert exact_stats.stopped == "proved"
     local, stats = search(dataclasses.replace(problem, search="local"), 1)
     assert stats.stopped == "local" and 0.0 < stats.lower_bound <= exact[0].worst_value
-    assert f"gap {100 * stats.relative_gap:.1f} %" in stats.summary
+    gap = 100 * stats.relative_gap
+    assert f"gap {gap:.2f} %" in stats.summary if gap < 10 else f"gap {gap:.1f} %" in stats.summary
     tol = 1e-6 * problem.body.weight
     assert local[0].worst_value >= exact[0].worst_value - tol
-    # the local optimum: no swap's dual bound beats its LP bound over the same scenarios
+    # the local optimum: the deck lugs are in one plane on equal ropes, so the search ranks
+    # swaps by the exact LP over the box's corners; no swap beats the set on it
     indices, moves, value = local_search(problem)
     assert tuple(local[0].indices) == indices
+    plane = _plane_lp(problem)
+    assert plane is not None and value == pytest.approx(plane.value(indices))
     near = swaps(indices, len(problem.candidates))
-    found = screen(problem, near, dual=True)
-    assert np.all(found.bound[found.reason == FEASIBLE] >= value * (1 - 1e-6) - tol)
+    assert min(plane.value(s) for s in near) >= value * (1 - 1e-6) - tol
 
 
 def test_local_search_needs_equal_cranes():

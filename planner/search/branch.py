@@ -230,10 +230,12 @@ class SearchStats(GapMixin):
                     f"{'' if self.refined == 1 else 's'}, {self.evaluated} "
                     f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)")
         if self.stopped == "local":
-            proved = (f"every set's worst is at least {self.lower_bound:.4g}: gap "
-                      f"{100 * self.relative_gap:.1f} %" if self.lower_bound > 0 else "no gap proved")
-            return (f"{self.sets} lug sets: local search, {self.refined} swaps from an even spread "
-                    f"of the candidates to a local optimum ({proved}) ({self.seconds:.2f} s)")
+            gap = 100 * self.relative_gap
+            text = f"{gap:.2f} %" if gap < 10 else f"{gap:.1f} %"
+            proved = (f"every set's worst is at least {self.lower_bound:.4g}: gap {text}"
+                      if self.lower_bound > 0 else "no gap proved")
+            return (f"{self.sets} lug sets: local search, {self.refined} swaps from its starts "
+                    f"to a local optimum ({proved}) ({self.seconds:.2f} s)")
         return None
 
 

@@ -130,7 +130,8 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     moves : int
         Swaps taken over all starts.
     bound : float
-        Its LP bound over the screening scenarios (the value the moves lowered).
+        The value the moves lowered: its LP over the box's corners on the plane model
+        (coplanar lugs, no hook tolerance), else its LP bound over the screening scenarios.
 
     Raises
     ------
