@@ -197,3 +197,35 @@ def test_deadline_keeps_a_valid_bound(small, small_values):
     optimum = min(values.values())
     early = cell_bound(small, evaluator.dense, optimum, deadline=0.0)
     assert not early.complete and early.value <= optimum + 1e-9 and early.searched == 0
+
+
+def test_ctrl_c_keeps_a_valid_bound_and_the_plan(small, small_values, monkeypatch):
+    """Ctrl-C in the cells: cell_bound returns what it has (the open cells at their closed
+    form, below the optimum, flagged interrupted); the local search's plan is kept with that
+    bound (Interrupted, stopped "interrupted")."""
+    import liftplan.planner.search.line_cells as line_cells
+    from liftplan.planner.search.branch import Interrupted, search
+
+    evaluator, values = small_values
+    optimum = min(values.values())
+    calls = []
+    closes = line_cells._closes
+
+    def interrupted_later(*args):
+        calls.append(1)
+        if len(calls) > 1:
+            raise KeyboardInterrupt
+        return closes(*args)
+
+    monkeypatch.setattr(line_cells, "_closes", interrupted_later)
+    ticks = []
+    early = cell_bound(small, evaluator.dense, 0.99 * optimum, tick=lambda *t: ticks.append(t))
+    assert early.interrupted and not early.complete and early.value <= optimum + 1e-9
+    assert [t[0] for t in ticks] == list(range(1, len(ticks) + 1)) and ticks
+    assert all(t[2] <= optimum + 1e-9 for t in ticks)
+    calls.clear()
+    with pytest.raises(Interrupted) as caught:
+        search(dataclasses.replace(small, search="local"), 1)
+    stats = caught.value.stats
+    assert stats.stopped == "interrupted" and caught.value.ranking
+    assert 0 < stats.lower_bound <= optimum + 1e-9 <= caught.value.ranking[0].worst_value + 1e-9

@@ -234,7 +234,8 @@ class SearchStats(GapMixin):
             text = f"{gap:.2f} %" if gap < 10 else f"{gap:.1f} %"
             proved = (f"every set's worst is at least {self.lower_bound:.4g}: gap {text}"
                       if self.lower_bound > 0 else "no gap proved")
-            return (f"{self.sets} lug sets: local search, {self.refined} swaps from its starts "
+            swaps = "swap" if self.refined == 1 else "swaps"
+            return (f"{self.sets} lug sets: local search, {self.refined} {swaps} from its starts "
                     f"to a local optimum ({proved}) ({self.seconds:.2f} s)")
         return None
 
@@ -552,7 +553,7 @@ def search(problem, top=None, progress=None):
         return search_mip(problem, started, progress)
     if problem.search == "local" or (problem.search == "auto" and
                                      problem.set_count > auto_exact_limit(problem.cranes)):
-        return _local(problem, started)
+        return _local(problem, started, progress)
     sets, cranes, out_of_reach = set_rows(problem)
     if len(sets) == 0:
         raise PlanInfeasible(_unreachable(problem))
@@ -687,12 +688,13 @@ def auto_exact_limit(cranes):
     return MAX_SETS if cranes <= 4 else AUTO_EXACT_MANY
 
 
-def _local(problem, started):
+def _local(problem, started, progress=None):
     """:func:`~liftplan.planner.search.local.local_search`, its set evaluated exactly, and the
     lower bound that holds for every set: the two-line bound, refined cell by cell where the
     lugs are stations on two lines in one plane (:mod:`~liftplan.planner.search.line_cells`)
     towards the plan's value less the gap aimed at. With a time limit the search takes half
-    of it and the bound the rest."""
+    of it and the bound the rest; Ctrl-C during the bound keeps the plan with the bound so far
+    (:class:`Interrupted`)."""
     from liftplan.planner.search.line_cells import applies, cell_bound
     from liftplan.planner.search.local import local_search
 
@@ -712,12 +714,36 @@ def _local(problem, started):
         if applies(problem) and bound < result.worst_value:
             deadline = None if limit is None else started + limit
             target = result.worst_value * (1.0 - problem.gap * (1.0 - 1e-9))  # gap <= target
-            bound = max(bound, cell_bound(problem, evaluator.dense, target, deadline).value)
-    stats = SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
-                        seconds=time.perf_counter() - started, rows=problem.set_count,
-                        refined=moves, lower_bound=min(bound, result.worst_value),
-                        best=result.worst_value, stopped="local", method="local")
-    return [result], stats
+            bar = _progress_bar(None, progress)
+            best = result.worst_value
+            if bar is not None:
+                bar.set_description("bound: cells")
+                bar.unit = "cell"
+
+            def tick(done, total, low):
+                if bar is not None:
+                    bar.total, bar.n = total, done
+                    bar.set_postfix_str(f"best {best:.4g}, bound {low:.4g}, gap "
+                                        f"{100 * (best - low) / best:.2g} %", refresh=True)
+
+            try:
+                cells = cell_bound(problem, evaluator.dense, target, deadline, tick)
+            finally:
+                if bar is not None:
+                    bar.close()
+            bound = max(bound, cells.value)
+            if cells.interrupted:  # Ctrl-C: the plan, with the bound so far
+                raise Interrupted([result], _local_stats(problem, started, moves, bound, result,
+                                                         "interrupted"))
+    return [result], _local_stats(problem, started, moves, bound, result, "local")
+
+
+def _local_stats(problem, started, moves, bound, result, stopped):
+    """:class:`SearchStats` of a local search's plan."""
+    return SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
+                       seconds=time.perf_counter() - started, rows=problem.set_count,
+                       refined=moves, lower_bound=min(bound, result.worst_value),
+                       best=result.worst_value, stopped=stopped, method="local")
 
 
 def _progress_bar(total, progress):

@@ -117,8 +117,10 @@ class CellBound:
         Searched cells not closed at the target (each bounded by bisection).
     seconds : float
     complete : bool
-        False when a deadline stopped the search (the open cells then count at their
-        one-scenario bound).
+        False when a deadline or Ctrl-C stopped the search (the open cells then count at
+        their one-scenario bound).
+    interrupted : bool
+        True when it was Ctrl-C.
     """
 
     value: float
@@ -127,6 +129,7 @@ class CellBound:
     failed: int
     seconds: float
     complete: bool
+    interrupted: bool = False
 
 
 def layout(problem):
@@ -385,7 +388,7 @@ def _closes(cells, sums, target, tolerance):
     return False
 
 
-def cell_bound(problem, scenarios, target, deadline=None):
+def cell_bound(problem, scenarios, target, deadline=None, tick=None):
     """No lug set does better than the returned value over ``scenarios`` (module docstring).
 
     Parameters
@@ -399,6 +402,12 @@ def cell_bound(problem, scenarios, target, deadline=None):
         bound is ``target`` when every cell closes, else the least failed cell's own bound.
     deadline : float, optional
         ``time.perf_counter()`` value after which open cells count at their one-scenario bound.
+    tick : callable, optional
+        Called after each searched cell with (cells searched, cells to search in this count,
+        the bound if the search stopped now) [-, -, objective unit].
+
+    Ctrl-C (KeyboardInterrupt) ends the search like the deadline: the result says it is
+    incomplete and counts the open cells at their one-scenario bound.
 
     Returns
     -------
@@ -417,7 +426,7 @@ def cell_bound(problem, scenarios, target, deadline=None):
     # the two-line bound of each count, over the same corners (in the problem's line order)
     counts = count_bounds(problem, lines, corners) / unit
     n = problem.cranes
-    value, total, searched, failed, complete = np.inf, 0, 0, 0, True
+    value, total, searched, failed, complete, interrupted = np.inf, 0, 0, 0, True, False
     span = max(float(np.ptp(np.concatenate([grid.s for grid in lay.grids]))), 1.0)
     tolerance = 1e-12 * float(problem.body.weight) * span ** 2
     for n0 in range(1, n):
@@ -433,22 +442,30 @@ def cell_bound(problem, scenarios, target, deadline=None):
                                     indexing="ij"), axis=-1).reshape(-1, 2)
         total += len(grid)
         single = np.maximum(cells.one_scenario(grid), counts[n0])
-        open_cells = grid[single < target]
+        open_cells, open_single = grid[single < target], single[single < target]
         for k, sums in enumerate(open_cells):
-            if deadline is not None and time.perf_counter() > deadline:
-                complete = False
-                rest = single[single < target][k:]
-                value = min(value, float(rest.min()))
+            try:
+                if deadline is not None and time.perf_counter() > deadline:
+                    raise TimeoutError
+                searched += 1
+                if not _closes(cells, sums, target, tolerance):
+                    failed += 1
+                    low, high = float(open_single[k]), target
+                    for _ in range(BISECTIONS):
+                        middle = 0.5 * (low + high)
+                        low, high = ((middle, high) if _closes(cells, sums, middle, tolerance)
+                                     else (low, middle))
+                    value = min(value, low)
+            except (TimeoutError, KeyboardInterrupt) as err:  # open cells at their closed form
+                complete, interrupted = False, isinstance(err, KeyboardInterrupt)
+                value = min(value, float(open_single[k:].min()))
                 break
-            searched += 1
-            if _closes(cells, sums, target, tolerance):
-                continue
-            failed += 1
-            low, high = float(single[single < target][k]), target
-            for _ in range(BISECTIONS):
-                middle = 0.5 * (low + high)
-                low, high = (middle, high) if _closes(cells, sums, middle, tolerance) else (low, middle)
-            value = min(value, low)
+            if tick is not None:
+                rest = float(open_single[k + 1:].min()) if k + 1 < len(open_cells) else np.inf
+                tick(k + 1, len(open_cells), min(value, target, rest) * unit)
         value = min(value, target)
+        if not complete:
+            break
     return CellBound(value=float(value * unit), cells=total, searched=searched, failed=failed,
-                     seconds=time.perf_counter() - started, complete=complete)
+                     seconds=time.perf_counter() - started, complete=complete,
+                     interrupted=interrupted)
