@@ -26,6 +26,12 @@ and its worst scenario is added until the MIP's value reaches the dense worst. H
 bound over a scenario list is a certified lower bound for every set over the whole box (the
 list is part of the box).
 
+Hook-height tolerances fit the same formulation: a hook raised by e_i adds kappa e_i to the
+rope (the hook plane takes up the errors' plane through the statics), so a scenario may carry
+a hook error for every candidate (:class:`Cut`: the worst errors the dense check finds for the
+chosen set, zero elsewhere) and stays linear. The list starts with none (a part of the
+errors' box, so still a lower bound) and grows by the chosen set's worst errors.
+
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
 tension and its change |T_k,i - P_i| (:func:`tension_band`) and from it the hook plane, rigorously
@@ -93,6 +99,41 @@ def poses(problem, scenarios):
         rise.append(world[:, 2] - level[:, 2])
     return Poses(list(scenarios), np.array(a_mat), np.array(b_vec), np.array(rise),
                  level[:, :2].copy())
+
+
+@dataclass(frozen=True)
+class Cut:
+    """A scenario with hook-height errors: ``errors`` ((column, metres), ...) over the MIP's
+    (candidate, crane class) columns, candidate-major; a column not named has none."""
+
+    scenario: Scenario
+    errors: tuple = ()
+
+
+def worst_errors(lugset, preload, scenario, kind):
+    """The hook-height errors [m] of each rope, within its tolerance, at which the chosen set
+    meets its worst at ``scenario`` (the held model is affine in them there): ``"value"`` the
+    objective's worst (the pair of ropes or, for ``reserve``, the rope :func:`robust` finds),
+    ``"low"`` the lowest tension, ``"over"`` the largest excess over the limit."""
+    tensions, gain = lugset.tensions_and_gain(preload, [scenario])
+    tensions, gain, delta = tensions[0], gain[0], lugset.hook_tolerance
+    if kind == "low":
+        rope = int(np.argmin(tensions - np.abs(gain) @ delta))
+        return -delta * np.sign(gain[rope])
+    if kind == "over":
+        rope = int(np.argmax(tensions + np.abs(gain) @ delta - lugset.limit))
+        return delta * np.sign(gain[rope])
+    objective = lugset.problem.objective
+    if objective == "reserve":
+        rope = int(np.argmax((tensions + np.abs(gain) @ delta) / lugset.swl))
+        return delta * np.sign(gain[rope])
+    scale = lugset.scale
+    values, scaled = tensions * scale, gain * scale[:, None]
+    n = len(tensions)
+    pairs = [(a, b) for a in range(n) for b in range(n) if a != b]
+    a, b = max(pairs, key=lambda p: values[p[0]] - values[p[1]]
+               + np.abs(scaled[p[0]] - scaled[p[1]]) @ delta)
+    return delta * np.sign(scaled[a] - scaled[b])
 
 
 def first_scenarios(problem):
@@ -194,7 +235,7 @@ def least_width(problem, data, change):
     return max(problem.body.weight * least / (0.5 * n * change), 0.0)
 
 
-def hook_bounds(problem, data, change, stiffness):
+def hook_bounds(problem, data, change, stiffness, errors=0.0):
     """Bounds [m] on the hook plane's shift h_k at every candidate, valid for every set whose
     chosen ropes change by at most ``change`` [t] (a chosen lug's own bound is tighter: h_k
     is within change / kappa of its rise there).
@@ -202,7 +243,8 @@ def hook_bounds(problem, data, change, stiffness):
     Let rho_k be the rises' affine fit over the candidates (misfit eps_k) and a = h_k - rho_k:
     affine, within B = change / kappa + eps_k on the chosen lugs, so its slope is at most
     2 B / (the set's least width, :func:`least_width`) and at a candidate q it is within
-    B + slope x (q's largest distance to any candidate).
+    B + slope x (q's largest distance to any candidate). Hook errors of at most ``errors`` [m]
+    in the scenarios widen B by as much (h_k is then within change / kappa of r_k - e there).
 
     Returns
     -------
@@ -218,7 +260,8 @@ def hook_bounds(problem, data, change, stiffness):
     basis = np.column_stack([np.ones(len(plan)), plan])
     coef, *_ = np.linalg.lstsq(basis, data.rise.T, rcond=None)
     centre = (basis @ coef).T  # (m, C)
-    bound = change / float(np.min(stiffness)) + np.abs(data.rise - centre).max(axis=1, keepdims=True)
+    bound = change / float(np.min(stiffness)) + errors + \
+        np.abs(data.rise - centre).max(axis=1, keepdims=True)
     reach = np.sqrt(((plan[:, None, :] - plan[None, :, :]) ** 2).sum(axis=2)).max(axis=1)
     return centre, bound + 2.0 * bound / width * reach[None, :]
 
@@ -288,7 +331,7 @@ class LugMip:
     Parameters
     ----------
     problem : PlanProblem
-        Body-fixed candidates, no hook-height tolerance.
+        Body-fixed candidates.
     cutoff : float
         An incumbent's worst value (the objective's unit): sets that cannot beat it are cut off.
     dense : list of Scenario, optional
@@ -299,10 +342,6 @@ class LugMip:
         if problem.hinge_rows is not None:
             raise PlanInfeasible("search = \"mip\" takes body-fixed lugs; expected search = "
                                  "\"exact\" or \"local\" for lift points hinged on slings")
-        if problem.hook_tolerance > 0.0 or any(c.hook_tolerance for c in problem.fleet):
-            raise PlanInfeasible("search = \"mip\" does not take a hook-height tolerance (its "
-                                 "worst case depends on the set's twist gains, not linear in "
-                                 "the choice); expected hook_tolerance = 0 or search = \"exact\"")
         self.problem = problem
         self.cutoff = float(cutoff)
         self.classes = crane_classes(problem)
@@ -343,7 +382,7 @@ class LugMip:
 
         Parameters
         ----------
-        scenarios : list of Scenario
+        scenarios : list of Scenario or Cut
         gap : float  [-]   HiGHS's relative gap target
         time_limit : float, optional  [s]
         forbidden : iterable of tuple of int
@@ -354,12 +393,18 @@ class LugMip:
         from liftplan.planner.search.bounds import run_highs
 
         problem, classes = self.problem, self.classes
-        data = poses(problem, scenarios)
-        m, count, kinds = len(scenarios), self.count, len(classes.members)
+        cuts = [c if isinstance(c, Cut) else Cut(c) for c in scenarios]
+        data = poses(problem, [c.scenario for c in cuts])
+        m, count, kinds = len(cuts), self.count, len(classes.members)
+        errors = np.zeros((m, count * kinds))  # each column's hook error at each scenario [m]
+        for k, cut in enumerate(cuts):
+            for column, value in cut.errors:
+                errors[k, column] = value
         band_low, band_high = tension_band(problem, self.swl, self.cutoff)  # (C, K)
         band_low, band_high = (np.nan_to_num(v, nan=0.0) for v in (band_low, band_high))
         change = band_high - band_low
-        centre, off = hook_bounds(problem, data, float(change.max()), classes.stiffness)
+        centre, off = hook_bounds(problem, data, float(change.max()), classes.stiffness,
+                                  float(np.abs(errors).max(initial=0.0)))
         col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
         col_class = np.tile(np.arange(kinds), count)
         usable = self.usable.ravel()
@@ -372,7 +417,7 @@ class LugMip:
         product = cp.Variable((m, count * kinds))  # y h_k(p_i)
         ones = np.ones((m, 1))
         chosen = ones @ cp.reshape(y, (1, count * kinds), order="C")
-        rise = data.rise[:, col_cand]
+        rise = data.rise[:, col_cand] - errors  # a hook raised by e: as if the lug sank by e
         on_lo = rise - (change.ravel() / kappa)[None, :]
         on_hi = rise + (change.ravel() / kappa)[None, :]
         off_lo = centre[:, col_cand] - off[:, col_cand]
@@ -498,7 +543,7 @@ def search_mip(problem, started, progress=None):
     ranking, first = _incumbent(problem, started)
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
-    scenarios = first_scenarios(problem)
+    scenarios = [Cut(s) for s in first_scenarios(problem)]
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
@@ -532,8 +577,9 @@ def search_mip(problem, started, progress=None):
                 reasons[err.code] += 1
                 forbidden.append(solution.indices)
                 continue
-            found = evaluator.dense_search(LugSet(problem, solution.indices, solution.cranes),
-                                           solution.preload)
+            lugset = LugSet(problem, solution.indices, solution.cranes)
+            found = evaluator.dense_search(lugset, solution.preload)
+
             if all(r.indices != result.indices or r.cranes != result.cranes for r in ranking):
                 ranking.append(result)
                 ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
@@ -548,11 +594,12 @@ def search_mip(problem, started, progress=None):
                 break
             tol = tolerance(problem) * (1.0 if problem.objective == "spread"
                                         else 1.0 / float(np.max(result.swl)))
-            cuts = [found.worst[1]] if found.worst[0] > solution.value + tol else []
+            cuts = [_cut(mip, solution, lugset, found.worst[1], "value")] \
+                if found.worst[0] > solution.value + tol else []
             if found.low[0] < problem.min_tension - tolerance(problem):
-                cuts.append(found.low[1])
+                cuts.append(_cut(mip, solution, lugset, found.low[1], "low"))
             if found.over[0] > tolerance(problem):
-                cuts.append(found.over[1])
+                cuts.append(_cut(mip, solution, lugset, found.over[1], "over"))
             cuts = [c for c in dict.fromkeys(cuts) if c not in scenarios]
             if not cuts:  # the MIP's choice and preload hold over the dense box
                 stopped = "proved" if best - lower <= tol else "gap"
@@ -565,6 +612,19 @@ def search_mip(problem, started, progress=None):
         if bar is not None:
             bar.close()
     return ranking, stats_now()
+
+
+def _cut(mip, solution, lugset, scenario, kind):
+    """The scenario as a :class:`Cut`, with the chosen set's worst hook errors there (on its
+    columns; :func:`worst_errors`) when its cranes have a hook tolerance."""
+    if not lugset.hook_uncertain:
+        return Cut(scenario)
+    errors = worst_errors(lugset, solution.preload, scenario, kind)
+    kinds = len(mip.classes.members)
+    crane_class = {j: c for c, members in enumerate(mip.classes.members) for j in members}
+    return Cut(scenario, tuple((int(i) * kinds + crane_class[j], float(e))
+                               for i, j, e in zip(solution.indices, solution.cranes, errors)
+                               if e != 0.0))
 
 
 def _incumbent(problem, started):
