@@ -560,6 +560,10 @@ def search_mip(problem, started, progress=None):
 
     try:
         while True:
+            best = ranking[0].worst_value
+            if best - lower <= problem.gap * best:  # the first plan's bound already suffices
+                stopped = "gap" if best > lower else "proved"
+                break
             if rounds >= MAX_ROUNDS or time.perf_counter() >= deadline:
                 stopped = "time_limit"
                 break
