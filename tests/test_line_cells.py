@@ -18,6 +18,7 @@ from liftplan.planner.problem.file import load_problem
 from liftplan.planner.search.branch import SetEvaluator
 from liftplan.planner.search.coplanar import PlaneLP, coplanar, corner_scenarios, effective_cogs
 from liftplan.planner.search.line_cells import (
+    Same,
     _Cells,
     _families,
     _programme,
@@ -161,20 +162,18 @@ def _line_part(data, j, subset, families, lam, target, m):
     for f, la in zip(families, lam):
         if la <= 0:
             continue
-        if f[0] == "same":
-            _, high, kappa, theta, gamma, const = f
-            sign = -1.0 if j == high else 1.0
-            split = (1 - theta) if j == high else theta
-            w = 1.0 / n + sign * kappa * u
+        total -= la * (target - f.const) * np.sum(u * u)
+        if isinstance(f, Same):
+            sign = -1.0 if j == f.high else 1.0
+            split = (1 - f.theta) if j == f.high else f.theta
+            w = 1.0 / n + sign * f.kappa * u
             before = np.cumsum(w) - w
             bottom = np.clip(split - before, 0.0, w)
-            total += la * (weight * gamma * np.sum(u * (w - 2 * bottom)) - (target - const) * np.sum(u * u))
+            total += la * weight * f.gamma * np.sum(u * (w - 2 * bottom))
         else:
-            _, p, q, gamma, const = f
-            total -= la * (target - const) * np.sum(u * u)
-            for (line, end), sign in ((p, 1.0), (q, -1.0)):
+            for (line, end), sign in ((f.p, 1.0), (f.q, -1.0)):
                 if line == j:
-                    total += la * sign * weight * gamma / 2 * (u[-1] if end else u[0])
+                    total += la * sign * weight * f.gamma / 2 * (u[-1] if end else u[0])
     return total
 
 

@@ -17,12 +17,15 @@ the moment sum rho_i u_i = W e_r, e_r = r_s - (F_0(r) m_0 + F_1(r) m_1) / W: how
 stands along the lines from where the lines' lugs would hold it evenly. The spread's LP
 dual then gives closed lower bounds for any set, in which the preload cancels:
 
-* one scenario: a line H above a line L, weights 1 / n_H - kappa u on H and
-  1 / n_L + kappa u on L (kappa keeping them >= 0):  spread >= D + kappa W (s-moment) ...
-  in full  D_g - kappa W e_g, with D_g = mu_H(g) - mu_L(g);
-* two scenarios A, B (``same``): the same weights split between them, mass theta to A,
-  each line's lugs in order along it:  theta D_A + (1 - theta) D_B + (W gamma / V) Z - kappa W e_r;
-* two scenarios and two lugs (``pair``): (Delta_p - Delta_q) / 2 with Delta = T(A) - T(B).
+* one scenario g, a line H taken as the upper and L as the lower, weights 1 / n_H - kappa u
+  on H's lugs and 1 / n_L + kappa u on L's (kappa keeping every station's weight >= 0):
+  spread >= D_g - kappa W e_g, D_g = mu_H(g) - mu_L(g) (kappa = 0 is the two-line bound);
+* two scenarios A, B (``same``): those weights shared between them, mass theta to A, each
+  line's lugs taken in order along it: theta D_A + (1 - theta) D_B + (W gamma / V) Z -
+  kappa W e_r, with r = (A + B) / 2, gamma = (A - r)_s - (A - r)_t (m_0 - m_1) / (t_0 - t_1)
+  and Z the sum of weight x u over H's lugs in A's part and L's in B's, less the rest;
+* two scenarios and two lugs (``pair``): (Delta_p - Delta_q) / 2 with Delta = T(A) - T(B),
+  p and q a line's first or last lug.
 
 A set's bound depends on it through (n_0, m_0, m_1) and sums over its lugs. So the sets are
 split into cells of equal counts and index sums on each line (the means m_j are then
@@ -40,6 +43,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import linprog
@@ -226,8 +230,29 @@ class _Cells:
         return best
 
 
+class Same(NamedTuple):
+    """A two-scenario bound: theta D_A + (1 - theta) D_B - kappa W e_r (``const``, t) plus
+    W ``gamma`` Z / V; line ``high`` is H."""
+
+    high: int
+    kappa: float
+    theta: float
+    gamma: float
+    const: float
+
+
+class Pair(NamedTuple):
+    """A two-scenario, two-lug bound: ``const`` (t) plus W ``gamma`` (u_p - u_q) / (2 V); p and
+    q are (line, 1 for its last lug or 0 for its first)."""
+
+    p: tuple
+    q: tuple
+    gamma: float
+    const: float
+
+
 def _families(cells, m):
-    """The ``same`` and ``pair`` bounds of one cell (means m): a list of tuples."""
+    """The :class:`Same` and :class:`Pair` bounds of one cell (line means m)."""
     weight, h = cells.weight, cells.t[0] - cells.t[1]
     dm = m[0] - m[1]
     out = []
@@ -249,8 +274,8 @@ def _families(cells, m):
                 if not np.isfinite(kappa):
                     continue
                 for theta in THETAS:
-                    out.append(("same", high, float(kappa), theta, float(gamma),
-                                theta * d_a + (1 - theta) * d_b - kappa * weight * e_r))
+                    out.append(Same(high, float(kappa), theta, float(gamma),
+                                    theta * d_a + (1 - theta) * d_b - kappa * weight * e_r))
     for a in range(count):
         for b in range(count):
             if a == b:
@@ -260,7 +285,7 @@ def _families(cells, m):
             delta = (cells.shares(ga[1]) - cells.shares(gb[1])) / cells.n  # Delta mu per line
             for p, q in (((0, 1), (1, 0)), ((0, 0), (1, 1)), ((0, 1), (0, 0)), ((1, 1), (1, 0)),
                          ((1, 1), (0, 0)), ((1, 0), (0, 1))):  # (line, 1 = last / 0 = first)
-                out.append(("pair", p, q, float(gamma), 0.5 * (delta[p[0]] - delta[q[0]])))
+                out.append(Pair(p, q, float(gamma), 0.5 * (delta[p[0]] - delta[q[0]])))
     return out
 
 
@@ -273,11 +298,11 @@ def _values(cells, families, sets, m):
         u = [s[j] - m[j] for j in (0, 1)]
         vv = float(sum(np.sum(x * x) for x in u))
         row = np.empty(len(families))
-        same = [k for k, f in enumerate(families) if f[0] == "same"]
+        same = [k for k, f in enumerate(families) if isinstance(f, Same)]
         if same:
-            high = np.array([families[k][1] for k in same])
-            kappa = np.array([families[k][2] for k in same])
-            theta = np.array([families[k][3] for k in same])
+            high = np.array([families[k].high for k in same])
+            kappa = np.array([families[k].kappa for k in same])
+            theta = np.array([families[k].theta for k in same])
             z = np.zeros(len(same))
             for j in (0, 1):
                 is_high = high == j
@@ -286,15 +311,14 @@ def _values(cells, families, sets, m):
                 before = np.cumsum(w, axis=1) - w
                 bottom = np.clip(split - before, 0.0, w)
                 z += np.sum(u[j][None, :] * (w - 2 * bottom), axis=1)
-            gamma = np.array([families[k][4] for k in same])
-            const = np.array([families[k][5] for k in same])
+            gamma = np.array([families[k].gamma for k in same])
+            const = np.array([families[k].const for k in same])
             row[same] = const + weight * gamma * z / vv
         for k, f in enumerate(families):
-            if f[0] == "pair":
-                _, p, q, gamma, const = f
-                up = u[p[0]][-1 if p[1] else 0]
-                uq = u[q[0]][-1 if q[1] else 0]
-                row[k] = const + weight * gamma * (up - uq) / (2 * vv)
+            if isinstance(f, Pair):
+                up = u[f.p[0]][-1 if f.p[1] else 0]
+                uq = u[f.q[0]][-1 if f.q[1] else 0]
+                row[k] = f.const + weight * f.gamma * (up - uq) / (2 * vv)
         rows.append(row)
     return np.array(rows)
 
@@ -310,21 +334,18 @@ def _programme(cells, j, total, families, lam, target, m):
     for f, la in zip(families, lam):
         if la <= 0:
             continue
-        if f[0] == "same":
-            _, high, kappa, theta, gamma, const = f
-            c_total += la * (target - const)
-            sign = -1.0 if j == high else 1.0
-            split = (1 - theta) if j == high else theta
-            same.append((la * weight * gamma, sign * kappa, split))
-        else:
-            _, p, q, gamma, const = f
-            c_total += la * (target - const)
-            for (line, end), sign in ((p, 1.0), (q, -1.0)):
-                if line == j:
-                    if end:
-                        last += la * sign * weight * gamma / 2
-                    else:
-                        first += la * sign * weight * gamma / 2
+        c_total += la * (target - f.const)
+        if isinstance(f, Same):
+            sign = -1.0 if j == f.high else 1.0
+            split = (1 - f.theta) if j == f.high else f.theta
+            same.append((la * weight * f.gamma, sign * f.kappa, split))
+            continue
+        for (line, end), sign in ((f.p, 1.0), (f.q, -1.0)):
+            if line == j:
+                if end:
+                    last += la * sign * weight * f.gamma / 2
+                else:
+                    first += la * sign * weight * f.gamma / 2
     sums = np.arange(width)
     table = np.full((len(grid.index) + 1, n + 1, width), _INF)
     table[0, 0, 0] = 0.0
