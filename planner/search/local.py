@@ -33,7 +33,7 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.search.coplanar import PlaneLP, coplanar
 from liftplan.planner.search.lines import count_bounds, two_lines
-from liftplan.planner.search.scenarios import Scenario
+from liftplan.planner.search.mip import first_scenarios
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
 #: Improvement below which a swap is not taken (relative to the current value).
@@ -60,14 +60,6 @@ def spread_start(problem, count=None):
     return tuple(sorted(taken))
 
 
-def corner_scenarios(problem):
-    """Level at the nominal CG, and each CG vertex at each corner of the heel/trim box."""
-    h, t = problem.heel_tolerance, problem.trim_tolerance
-    tilts = sorted({(a, b) for a in (-h, h) for b in (-t, t)})
-    return [Scenario(0.0, 0.0)] + [Scenario(float(a), float(b), tuple(float(v) for v in o))
-                                   for o in problem.cog_envelope.offsets() for a, b in tilts]
-
-
 def line_starts(problem, spread=2):
     """Lugs at both ends of each of two lines: candidate sets (indices ascending), or [] if
     the candidates are not on two lines.
@@ -79,7 +71,7 @@ def line_starts(problem, spread=2):
     lines = two_lines(problem)
     if lines is None:
         return []
-    bounds = count_bounds(problem, lines, corner_scenarios(problem))
+    bounds = count_bounds(problem, lines, first_scenarios(problem))
     if not np.any(np.isfinite(bounds)):
         return []
     n0 = int(np.argmin(bounds))
@@ -177,7 +169,7 @@ def _plane_lp(problem):
     if coplanar(problem) is None or problem.hook_tolerance > 0 or \
             any(c.hook_tolerance for c in problem.fleet):
         return None
-    return PlaneLP(problem, corner_scenarios(problem))
+    return PlaneLP(problem, first_scenarios(problem))
 
 
 def _descend(problem, current, deadline, max_moves, plane=None):
@@ -207,7 +199,8 @@ def _descend(problem, current, deadline, max_moves, plane=None):
         else:  # exact values in order of the bound, until the bound passes the best found
             k, best = None, target
             for j in ok[np.argsort(found.bound[ok], kind="stable")]:
-                if found.bound[j] >= best:
+                if found.bound[j] >= best or (deadline is not None and
+                                              time.perf_counter() > deadline):
                     break
                 exact = plane.value(near[j])
                 if exact < best:
