@@ -228,3 +228,39 @@ def test_ctrl_c_keeps_a_valid_bound_and_the_plan(small, small_values, monkeypatc
     stats = caught.value.stats
     assert stats.stopped == "interrupted" and caught.value.ranking
     assert 0 < stats.lower_bound <= optimum + 1e-9 <= caught.value.ranking[0].worst_value + 1e-9
+
+
+def test_local_plan_bound_against_a_proved_optimum():
+    """The tanker's 40 frame candidates (one spacing, one deck plane), 4 cranes: the local
+    plan's bound, raised by the cells well above the two-line bound, stays at or below the
+    optimum the exact search proves."""
+    import sys
+
+    from helpers import ROOT
+
+    from liftplan.planner.search.branch import search
+    from liftplan.planner.search.lines import line_bound
+
+    sys.path.insert(0, str(ROOT / "studies"))
+    from planner_scale import tanker_with
+
+    problem = dataclasses.replace(tanker_with(40, 4), time_limit=None)
+    assert applies(problem)
+    exact, proved = search(problem, 1)
+    assert proved.stopped == "proved"
+    local, stats = search(dataclasses.replace(problem, search="local"), 1)
+    optimum = exact[0].worst_value
+    lines = line_bound(problem, SetEvaluator(problem).dense)
+    assert lines < 0.9 * stats.lower_bound  # the cells, not the two-line bound
+    assert stats.lower_bound <= optimum * (1 + 1e-9) <= local[0].worst_value * (1 + 1e-9)
+
+
+@pytest.mark.slow
+def test_hull_plan_is_certified_within_one_percent(hull):
+    """The 154 m hull's 26 of 80 with gap = 0.01 and no time limit (deterministic): a plan
+    whose certified gap is at most 1 %."""
+    from liftplan.planner.search.branch import search
+
+    ranking, stats = search(dataclasses.replace(hull, gap=0.01, time_limit=None), 1)
+    assert stats.stopped == "local" and 0.0 < stats.relative_gap <= 0.01
+    assert stats.lower_bound <= ranking[0].worst_value
