@@ -56,6 +56,8 @@ KAPPAS = (1.0, 0.7, 0.4, 0.0, -0.4, -0.7, -1.0)
 THETAS = (0.0, 0.05, 0.1, 0.2, 0.35, 0.5, 0.65, 0.8, 0.9, 0.95, 1.0)
 #: Column-generation rounds per cell, and bisection steps for a cell that fails the target.
 ROUNDS, BISECTIONS = 12, 6
+#: Cells whose one-scenario bound is evaluated at once.
+CHUNK = 200_000
 _INF = 1e300
 
 
@@ -409,6 +411,25 @@ def _closes(cells, sums, target, tolerance):
     return False
 
 
+def _open_cells(cells, lay, two_line, target):
+    """The cells of one count split whose one-scenario bound (at least ``two_line``) is
+    below ``target``: (index sums (k, 2), their bounds (k,), cells in all). Evaluated in
+    blocks of about CHUNK cells."""
+    n0, n1 = int(cells.n[0]), int(cells.n[1])
+    first = np.arange(lay.grids[0].sums(n0)[0], lay.grids[0].sums(n0)[1] + 1)
+    second = np.arange(lay.grids[1].sums(n1)[0], lay.grids[1].sums(n1)[1] + 1)
+    step = max(1, CHUNK // len(second))
+    found, bounds = [], []
+    for start in range(0, len(first), step):
+        block = np.stack(np.meshgrid(first[start:start + step], second, indexing="ij"),
+                         axis=-1).reshape(-1, 2)
+        single = np.maximum(cells.one_scenario(block), two_line)
+        below = single < target
+        found.append(block[below])
+        bounds.append(single[below])
+    return np.concatenate(found), np.concatenate(bounds), len(first) * len(second)
+
+
 def cell_bound(problem, scenarios, target, deadline=None, tick=None):
     """No lug set does better than the returned value over ``scenarios`` (module docstring).
 
@@ -453,17 +474,12 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
     for n0 in range(1, n):
         if n0 > len(lay.grids[0].index) or n - n0 > len(lay.grids[1].index):
             continue
-        if not np.isfinite(counts[n0]) or counts[n0] >= target:
-            value = min(value, counts[n0])
+        if not complete or not np.isfinite(counts[n0]) or counts[n0] >= target:
+            value = min(value, counts[n0])  # stopped: the rest at their two-line bound
             continue
         cells = _Cells(problem, lay, g, n0)
-        lo0, hi0 = lay.grids[0].sums(n0)
-        lo1, hi1 = lay.grids[1].sums(n - n0)
-        grid = np.stack(np.meshgrid(np.arange(lo0, hi0 + 1), np.arange(lo1, hi1 + 1),
-                                    indexing="ij"), axis=-1).reshape(-1, 2)
-        total += len(grid)
-        single = np.maximum(cells.one_scenario(grid), counts[n0])
-        open_cells, open_single = grid[single < target], single[single < target]
+        open_cells, open_single, size = _open_cells(cells, lay, counts[n0], target)
+        total += size
         for k, sums in enumerate(open_cells):
             try:
                 if deadline is not None and time.perf_counter() > deadline:
@@ -485,8 +501,6 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
                 rest = float(open_single[k + 1:].min()) if k + 1 < len(open_cells) else np.inf
                 tick(k + 1, len(open_cells), min(value, target, rest) * unit)
         value = min(value, target)
-        if not complete:
-            break
     return CellBound(value=float(value * unit), cells=total, searched=searched, failed=failed,
                      seconds=time.perf_counter() - started, complete=complete,
                      interrupted=interrupted)
