@@ -101,8 +101,9 @@ class PlaneLP:
     """The preload LP of a lug set over the corner scenarios, on the plane model.
 
     Minimises the worst spread of s_i T_i (s = 1 for ``spread``, 1 / SWL for
-    ``utilisation``) over the corners, with every tension within [min_tension, the rules'
-    limit] there and the level tensions within the boom-height range, as
+    ``utilisation``), or for ``reserve`` the largest T_i / SWL_i, over the corners, with
+    every tension within [min_tension, the rules' limit] there and the level tensions within
+    the boom-height range, as
     :class:`~liftplan.planner.search.branch.SetEvaluator` does over its scenario list.
 
     Parameters
@@ -155,14 +156,22 @@ class PlaneLP:
             tension[:, :n] = eye
             tension[:, c0 + 3 * k:c0 + 3 * k + 3] = rows
             scaled = scale[:, None] * tension
+            ub_blocks += [-tension, tension]
+            ub_rhs += [-np.full(n, low_limit), high_limit]
+            if problem.objective == "reserve":  # z >= T_i / SWL_i
+                upper = scaled.copy()
+                upper[:, zi] = -1.0
+                ub_blocks.append(upper)
+                ub_rhs.append(np.zeros(n))
+                continue
             upper = scaled.copy()
             upper[:, hi0 + k] = -1.0  # s T <= hi_k
             lower = -scaled
             lower[:, lo0 + k] = 1.0  # lo_k <= s T
             band = np.zeros((1, size))
             band[0, hi0 + k], band[0, lo0 + k], band[0, zi] = 1.0, -1.0, -1.0
-            ub_blocks += [upper, lower, -tension, tension, band]
-            ub_rhs += [np.zeros(n), np.zeros(n), -np.full(n, low_limit), high_limit, [0.0]]
+            ub_blocks += [upper, lower, band]
+            ub_rhs += [np.zeros(n), np.zeros(n), [0.0]]
         low, high = lugset.preload_range()
         bounds = [(float(a), float(b)) for a, b in zip(low, high)] + [(None, None)] * (size - n)
         cost = np.zeros(size)
