@@ -583,7 +583,6 @@ def search_mip(problem, started, progress=None):
                 continue
             lugset = LugSet(problem, solution.indices, solution.cranes)
             found = evaluator.dense_search(lugset, solution.preload)
-
             if all(r.indices != result.indices or r.cranes != result.cranes for r in ranking):
                 ranking.append(result)
                 ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
