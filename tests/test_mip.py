@@ -201,6 +201,27 @@ def test_hook_tolerance_fits_the_same_formulation(monkeypatch):
         assert stats.lower_bound <= exact[0].worst_value * (1 + 1e-9)
 
 
+def test_rounds_run_out_with_an_honest_gap(monkeypatch):
+    """With one cutting-plane round where the proof needs more, the MIP says its rounds ran
+    out (not a time limit it was never given) and its bound is still below the optimum."""
+    import liftplan.planner.search.mip as lug_mip
+
+    first = lug_mip._incumbent
+
+    def unproved(problem, started):
+        ranking, stats = first(problem, started)
+        return ranking, dataclasses.replace(stats, lower_bound=0.0)
+
+    monkeypatch.setattr(lug_mip, "_incumbent", unproved)
+    monkeypatch.setattr(lug_mip, "MAX_ROUNDS", 1)
+    problem = small_problem(4, hook_tolerance=0.02)
+    exact, _ = search(dataclasses.replace(problem, search="exact"), 1)
+    ranking, stats = search(mip(problem), 1)
+    assert stats.stopped == "rounds" and problem.time_limit is None
+    assert "cutting-plane rounds" in stats.summary
+    assert stats.lower_bound <= exact[0].worst_value * (1 + 1e-9) <= ranking[0].worst_value * (1 + 1e-9)
+
+
 def test_refusals_name_what_is_wrong():
     level = small_problem(4, heel_tolerance=0.0, trim_tolerance=0.0, cog_envelope=CogEnvelope())
     with pytest.raises(PlanInfeasible, match=r"needs the CG envelope or the tilt tolerance"):

@@ -167,7 +167,8 @@ class GapMixin:
 
 
 _ENDED = {"proved": "optimum proved", "gap": "within the gap target", "time_limit":
-          "stopped at the time limit", "interrupted": "interrupted"}
+          "stopped at the time limit", "interrupted": "interrupted",
+          "rounds": "stopped after its cutting-plane rounds"}
 
 
 @dataclass(frozen=True)
@@ -198,10 +199,12 @@ class SearchStats(GapMixin):
         of the LP bounds of the rows evaluated and the screening bounds of the rows not).
     best : float  [t or -]
         The plan's worst value of the objective.
-    stopped : {"proved", "gap", "time_limit", "interrupted", "local"}
+    stopped : {"proved", "gap", "time_limit", "interrupted", "local", "rounds"}
         Why the search ended: the top plans proved, the gap target reached, the time limit,
-        Ctrl-C, or a local optimum of the local search (its lower bound holds for every set but
-        is not its value: :mod:`~liftplan.planner.search.lines`, or 0).
+        Ctrl-C, a local optimum of the local search (its lower bound holds for every set but
+        is not its value: :mod:`~liftplan.planner.search.lines`,
+        :mod:`~liftplan.planner.search.line_cells`, or 0), or the MIP's cutting-plane rounds
+        run out (its bound still holds).
     method : {"enumeration", "local", "mip"}
         How the sets were searched (``plan.search``; ``refined`` counts the local search's
         swaps, or the MIP's cutting-plane rounds).

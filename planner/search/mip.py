@@ -565,7 +565,7 @@ def search_mip(problem, started, progress=None):
                 stopped = "gap" if best > lower else "proved"
                 break
             if rounds >= MAX_ROUNDS or time.perf_counter() >= deadline:
-                stopped = "time_limit"
+                stopped = "rounds" if rounds >= MAX_ROUNDS else "time_limit"
                 break
             rounds += 1
             left = None if deadline == math.inf else deadline - time.perf_counter()
