@@ -385,29 +385,46 @@ def _programme(cells, j, total, families, lam, target, m):
     return float(best), np.array(sorted(chosen))
 
 
-def _closes(cells, sums, target, tolerance):
-    """True when no set in the cell (index sums ``sums``) falls below ``target`` (the
-    programme's least value at or above -``tolerance``, in t m2: rounding)."""
-    m = cells.means(np.asarray(sums))
-    families = _families(cells, m)
-    rows = []
-    lam = np.zeros(len(families))
-    lam[0] = 1.0
+class _Cell:
+    """One cell's bounds and the sets its programme has found (their bounds do not depend on
+    the target, so a bisection reuses them)."""
+
+    def __init__(self, cells, sums):
+        self.sums = np.asarray(sums)
+        self.m = cells.means(self.sums)
+        self.families = _families(cells, self.m)
+        self.values = []  # each found set's bound under every family
+
+    def combination(self, target):
+        """The combination of bounds that does best against the sets found so far, or None
+        when some found set is below ``target`` under every combination (a small LP)."""
+        count = len(self.families)
+        if not self.values:
+            first = np.zeros(count)
+            first[0] = 1.0
+            return first
+        table = np.array(self.values) - target
+        found = linprog(np.r_[np.zeros(count), -1.0],
+                        A_ub=np.hstack([-table, np.ones((len(table), 1))]),
+                        b_ub=np.zeros(len(table)), A_eq=[np.r_[np.ones(count), 0.0]], b_eq=[1.0],
+                        bounds=[(0, None)] * count + [(None, None)], method="highs")
+        return None if found.status != 0 or -found.fun < 0 else found.x[:count]
+
+
+def _closes(cells, cell, target, tolerance):
+    """True when no set in the :class:`_Cell` falls below ``target`` (the programme's least
+    value at or above -``tolerance``, in t m2: rounding)."""
     for _ in range(ROUNDS):
-        parts = [_programme(cells, j, int(sums[j]), families, lam, target, m) for j in (0, 1)]
+        lam = cell.combination(target)
+        if lam is None:
+            return False  # some set found is below the target for every combination
+        parts = [_programme(cells, j, int(cell.sums[j]), cell.families, lam, target, cell.m)
+                 for j in (0, 1)]
         if any(p[1] is None and p[0] == -np.inf for p in parts):
             return False
         if any(p[0] == np.inf for p in parts) or sum(p[0] for p in parts) >= -tolerance:
             return True
-        rows.append(_values(cells, families, [[parts[0][1], parts[1][1]]], m)[0] - target)
-        table = np.array(rows)
-        count = len(families)
-        found = linprog(np.r_[np.zeros(count), -1.0], A_ub=np.hstack([-table, np.ones((len(table), 1))]),
-                        b_ub=np.zeros(len(table)), A_eq=[np.r_[np.ones(count), 0.0]], b_eq=[1.0],
-                        bounds=[(0, None)] * count + [(None, None)], method="highs")
-        if found.status != 0 or -found.fun < 0:
-            return False  # some set found is below the target for every combination
-        lam = found.x[:count]
+        cell.values.append(_values(cells, cell.families, [[parts[0][1], parts[1][1]]], cell.m)[0])
     return False
 
 
@@ -485,12 +502,13 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
                 if deadline is not None and time.perf_counter() > deadline:
                     raise TimeoutError
                 searched += 1
-                if not _closes(cells, sums, target, tolerance):
+                cell = _Cell(cells, sums)
+                if not _closes(cells, cell, target, tolerance):
                     failed += 1
                     low, high = float(open_single[k]), target
                     for _ in range(BISECTIONS):
                         middle = 0.5 * (low + high)
-                        low, high = ((middle, high) if _closes(cells, sums, middle, tolerance)
+                        low, high = ((middle, high) if _closes(cells, cell, middle, tolerance)
                                      else (low, middle))
                     value = min(value, low)
             except (TimeoutError, KeyboardInterrupt) as err:  # open cells at their closed form
