@@ -123,8 +123,8 @@ class PlaneLP:
         self.cogs = effective_cogs(problem, plane, self.corners)
 
     def value(self, indices):
-        """The set's least worst spread over the corners  [objective unit]; inf if no preload
-        holds it (or its lugs are collinear)."""
+        """The set's least worst objective over the corners  [objective unit]; inf if no
+        preload holds it (or its lugs are collinear)."""
         problem = self.problem
         lugset = LugSet(problem, indices)
         n, m = lugset.n, len(self.cogs)

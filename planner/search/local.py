@@ -17,8 +17,9 @@ good, not proved best; the plan states the lower bound that holds for every set 
 
 Lugs in one body plane on equal ropes (:mod:`~liftplan.planner.search.coplanar`, no hook
 tolerance): each swap that the screening bound does not rule out is ranked by the exact LP
-over the corners of the box (:class:`~liftplan.planner.search.coplanar.PlaneLP`, in order of
-the screening bound, so the best swap is found without solving the rest), and candidates on
+over the screening's scenarios (:class:`~liftplan.planner.search.coplanar.PlaneLP` on the
+corners they span; in order of the screening bound, a lower bound of it, so the best swap is
+found without solving the rest), and candidates on
 two lines add a first start: lugs at both ends of each line (:func:`line_starts`), the layout
 that resists the CG's moves along the lines best; the perturbations are then of it.
 """
@@ -34,6 +35,7 @@ from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.search.coplanar import PlaneLP, coplanar
 from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.mip import first_scenarios
+from liftplan.planner.search.scenarios import Scenario, box_attitudes
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
 #: Improvement below which a swap is not taken (relative to the current value).
@@ -122,8 +124,8 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     moves : int
         Swaps taken over all starts.
     bound : float
-        The value the moves lowered: its LP over the box's corners on the plane model
-        (coplanar lugs, no hook tolerance), else its LP bound over the screening scenarios.
+        The value the moves lowered: its exact LP over the screening scenarios on the plane
+        model (coplanar lugs, no hook tolerance), else its LP bound over them.
 
     Raises
     ------
@@ -165,17 +167,21 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
 
 
 def _plane_lp(problem):
-    """:class:`PlaneLP` over the box corners where the plane model is exact, else None."""
+    """:class:`PlaneLP` where the plane model is exact, else None. Its scenarios are the
+    screening's (the 3 x 3 box grid at every CG vertex), so a swap's screening bound is a
+    lower bound of its exact value and the swaps it rules out need no LP."""
     if coplanar(problem) is None or problem.hook_tolerance > 0 or \
             any(c.hook_tolerance for c in problem.fleet):
         return None
-    return PlaneLP(problem, first_scenarios(problem))
+    grid = box_attitudes(problem, 3, 3)
+    return PlaneLP(problem, [Scenario(float(h), float(t), tuple(float(v) for v in o))
+                             for o in problem.cog_envelope.offsets() for h, t in grid])
 
 
 def _descend(problem, current, deadline, max_moves, plane=None):
     """Swaps from one start while they lower the value: (set, value, swaps, why not).
 
-    The value is the screening bound, or with ``plane`` its exact LP over the box corners.
+    The value is the screening bound, or with ``plane`` its exact LP over the same scenarios.
     """
     count = len(problem.candidates)
     first = screen(problem, np.array([current]), dual=True)
