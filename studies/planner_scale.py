@@ -84,16 +84,16 @@ def problems(quick):
 MIP_LIMIT, HULL_LIMIT = 120.0, 60.0
 
 METHODS = {
-    "exact": dict(search="exact"),
-    "exact, pair bound": dict(search="exact"),
+    "exact": dict(search="exact", gap=0.0),
+    "exact, pair bound": dict(search="exact", gap=0.0),
     "exact, gap 10 %": dict(search="exact", gap=0.10),
     "exact, gap 1 %": dict(search="exact", gap=0.01),
-    "local": dict(search="local"),
+    "local": dict(search="local", gap=0.0),  # the file's own gap set aside
     "local, gap 1 %": dict(search="local", gap=0.01),
     "mip, gap 10 %": dict(search="mip", gap=0.10),
     "mip, gap 1 %": dict(search="mip", gap=0.01),
     "mip, gap 0.1 %": dict(search="mip", gap=0.001),
-    "mip": dict(search="mip"),
+    "mip": dict(search="mip", gap=0.0),
 }
 
 
