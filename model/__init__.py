@@ -12,22 +12,33 @@ The names below are loaded on first use (PEP 562), so ``import liftplan.model`` 
 command line's ``--help``) does not pay for casadi, numpy or pydantic until they are needed.
 """
 
-from .lazy import lazy_package
+from liftplan.model.lazy import lazy_package
 
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
-    **dict.fromkeys(("EquilibriumNotFound", "InvalidScene", "LiftPlanError", "PlanInfeasible",
-                     "SolverFailed"), "errors"),
+    **dict.fromkeys(
+        ("EquilibriumNotFound", "InvalidScene", "LiftPlanError", "PlanInfeasible", "SolverFailed"), "errors"
+    ),
     **dict.fromkeys(("choi_to_zup", "rotation_matrix", "zup_to_choi"), "frames"),
     **dict.fromkeys(("Compartment", "Hull"), "hull"),
     **dict.fromkeys(("LoadCurve", "load_curve"), "lift"),
     **dict.fromkeys(("BreakoutLoad", "breakout_load"), "water.breakout"),
     **dict.fromkeys(("Equilibrium", "Pose", "SolverInfo"), "results"),
-    **dict.fromkeys(("Analysis", "Attitude", "Body", "Crane", "Ground", "Lug", "Redundant", "Scene",
-                     "Water"), "scene"),
+    **dict.fromkeys(
+        ("Analysis", "Attitude", "Body", "Crane", "Ground", "Lug", "Redundant", "Scene", "Water"), "scene"
+    ),
     **dict.fromkeys(("load_scene", "loads_scene"), "scenefile"),
-    **dict.fromkeys(("paper_elastic_tensions", "pick_model", "solve", "solve_elastic",
-                     "solve_paper_elastic", "solve_rigid"), "solve"),
+    **dict.fromkeys(
+        (
+            "paper_elastic_tensions",
+            "pick_model",
+            "solve",
+            "solve_elastic",
+            "solve_paper_elastic",
+            "solve_rigid",
+        ),
+        "solve",
+    ),
     **dict.fromkeys(("rigging_checks", "solve_rigging"), "rigging"),
     **dict.fromkeys(("Leg", "RiggingLimits", "Sling", "Spreader", "sling_ea"), "rigging_gear"),
     "RiggingState": "results",

@@ -71,8 +71,10 @@ class Verdict:
         if not self.upright:
             return f"the body turned over ({where})"
         if not self.stable:
-            return (f"the equilibrium at {where} is unstable (energy Hessian not positive "
-                    "definite: the body would leave it at the smallest push)")
+            return (
+                f"the equilibrium at {where} is unstable (energy Hessian not positive "
+                "definite: the body would leave it at the smallest push)"
+            )
         return ""
 
 

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from .frames import tilt
-from .hydrostatics import wet_parts
+from liftplan.model.frames import tilt
+from liftplan.model.hydrostatics import wet_parts
 
 ROOT_TOL = 1e-12  # on the scaled residual: 1e-12 W (force) and 1e-12 W L (moments)
 
@@ -138,17 +138,22 @@ class AfloatModel:
         x_full = ca.vertcat(zo2, x2)
         grounded = self.free.call({"x": x_full, "p": p})
         self.grounded = ca.Function(
-            "grounded", [x2, p], [grounded["r"][1:], grounded["r"][0], zo2, grounded["tension"]],
-            ["x", "p"], ["r", "force", "zo", "tension"],
+            "grounded",
+            [x2, p],
+            [grounded["r"][1:], grounded["r"][0], zo2, grounded["tension"]],
+            ["x", "p"],
+            ["r", "force", "zo", "tension"],
         )
         # stiffness in physical units (t/m, t, t m/rad): minus the Jacobian of the forces
         unscale = ca.diag(ca.vertcat(weight, weight * scale, weight * scale))
         free_r = self.free.call([x3, p])[0]
         grounded_r = self.grounded.call([x2, p])[0]
         self.free_stiffness = ca.Function(
-            "free_stiffness", [x3, p], [-ca.mtimes(unscale, ca.jacobian(free_r, x3))])
+            "free_stiffness", [x3, p], [-ca.mtimes(unscale, ca.jacobian(free_r, x3))]
+        )
         self.grounded_stiffness = ca.Function(
-            "grounded_stiffness", [x2, p], [-ca.mtimes(unscale[1:, 1:], ca.jacobian(grounded_r, x2))])
+            "grounded_stiffness", [x2, p], [-ca.mtimes(unscale[1:, 1:], ca.jacobian(grounded_r, x2))]
+        )
         self.free_root = self._rootfinder("free_root", x3, p, free_r)
         self.grounded_root = self._rootfinder("grounded_root", x2, p, grounded_r)
 
@@ -161,8 +166,14 @@ class AfloatModel:
     def _rootfinder(name, x, p, residual):
         problem = ca.Function(name + "_g", [x, p], [residual])
         return ca.rootfinder(
-            name, "newton", problem,
-            {"abstol": ROOT_TOL, "abstolStep": 1e-14, "max_iter": 60, "error_on_fail": False,
-             "show_eval_warnings": False},
+            name,
+            "newton",
+            problem,
+            {
+                "abstol": ROOT_TOL,
+                "abstolStep": 1e-14,
+                "max_iter": 60,
+                "error_on_fail": False,
+                "show_eval_warnings": False,
+            },
         )
-

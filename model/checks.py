@@ -71,8 +71,10 @@ class Check:
         sign = ("<=" if upper else ">=") if self.ok else (">" if upper else "<")
         word = "ok  " if self.ok else "FAIL"
         note = f" ({self.note})" if self.note else ""
-        return (f"{word} {self.name} {self.subject}: {self.value:.4g} {self.unit} {sign} "
-                f"{self.limit:.4g} {self.unit}{note}")
+        return (
+            f"{word} {self.name} {self.subject}: {self.value:.4g} {self.unit} {sign} "
+            f"{self.limit:.4g} {self.unit}{note}"
+        )
 
 
 def failed(checks):

@@ -181,9 +181,15 @@ def _build(code, cc, entry):
         staged = build / "entry"
         staged.mkdir()
         library = _library(entry).name
-        subprocess.run([*cc, *FLAGS, "function.c", "-o", f"entry/{library}", "-lm"], check=True, cwd=build,
-                       env=dict(os.environ, TMPDIR=str(build)), stdin=subprocess.DEVNULL,
-                       capture_output=True, timeout=600)
+        subprocess.run(
+            [*cc, *FLAGS, "function.c", "-o", f"entry/{library}", "-lm"],
+            check=True,
+            cwd=build,
+            env=dict(os.environ, TMPDIR=str(build)),
+            stdin=subprocess.DEVNULL,
+            capture_output=True,
+            timeout=600,
+        )
         (staged / "sha256").write_text(_digest(staged / library))
         try:
             os.rename(staged, entry)
@@ -256,5 +262,7 @@ def _same(function, loaded):
     expected = [expected] if function.n_out() == 1 else expected
     got = [got] if function.n_out() == 1 else got
     # the same C arithmetic as casadi's VM up to the compiler's reassociation (-O2, no fast-math)
-    return all(np.allclose(np.array(g), np.array(e), rtol=1e-9, atol=1e-12, equal_nan=True)
-               for g, e in zip(got, expected))
+    return all(
+        np.allclose(np.array(g), np.array(e), rtol=1e-9, atol=1e-12, equal_nan=True)
+        for g, e in zip(got, expected)
+    )

@@ -32,8 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import InvalidScene
-from .scene import finite, point, positive
+from liftplan.model.errors import InvalidScene
+from liftplan.model.scene import finite, point, positive
 
 FLOODING = ("intact", "flooded")
 CONTENTS = ("air", "water")
@@ -306,4 +306,3 @@ class Hull:
                 "expected a heavier steel_density or a larger hull"
             )
         return volume
-

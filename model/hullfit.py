@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidScene
+from liftplan.model.errors import InvalidScene
 
 # mesh resolution: points along each fined end, along the parallel body, levels in the
 # bilge and between the bilge and the waterline (about 3 000 triangles)
@@ -106,8 +106,10 @@ class HullForm:
         for name in ("aft", "fwd", "run", "entrance", "run_power", "entrance_power", "bilge", "cutup"):
             object.__setattr__(self, name, _finite(f"hull form {name}", getattr(self, name)))
         if not self.depth > self.draft:
-            raise InvalidScene(f"hull form depth = {self.depth:g} m: expected more than the draft "
-                               f"{self.draft:g} m (the deck above the waterline)")
+            raise InvalidScene(
+                f"hull form depth = {self.depth:g} m: expected more than the draft "
+                f"{self.draft:g} m (the deck above the waterline)"
+            )
         length = self.fwd - self.aft
         if not length > 0.0:
             raise InvalidScene(f"hull form fwd = {self.fwd:g} m: expected forward of aft = {self.aft:g} m")
@@ -115,19 +117,27 @@ class HullForm:
             if getattr(self, name) < 0.0:
                 raise InvalidScene(f"hull form {name} = {getattr(self, name):g} m: expected >= 0 m")
         if self.run + self.entrance > length:
-            raise InvalidScene(f"hull form run + entrance = {self.run + self.entrance:g} m: expected at most "
-                               f"the waterline length {length:g} m")
+            raise InvalidScene(
+                f"hull form run + entrance = {self.run + self.entrance:g} m: expected at most "
+                f"the waterline length {length:g} m"
+            )
         for name in ("run_power", "entrance_power"):
             if getattr(self, name) < 1.0:
-                raise InvalidScene(f"hull form {name} = {getattr(self, name):g}: expected >= 1 (1: straight "
-                                   "waterlines to a point, 2: parabolic)")
+                raise InvalidScene(
+                    f"hull form {name} = {getattr(self, name):g}: expected >= 1 (1: straight "
+                    "waterlines to a point, 2: parabolic)"
+                )
         if self.bilge > min(0.5 * self.beam, self.draft):
-            raise InvalidScene(f"hull form bilge = {self.bilge:g} m: expected at most half the beam "
-                               f"{0.5 * self.beam:g} m and the draft {self.draft:g} m")
+            raise InvalidScene(
+                f"hull form bilge = {self.bilge:g} m: expected at most half the beam "
+                f"{0.5 * self.beam:g} m and the draft {self.draft:g} m"
+            )
         if self.run + self.cutup + self.entrance > length:
-            raise InvalidScene(f"hull form cutup = {self.cutup:g} m: expected at most the parallel body's "
-                               f"length {length - self.run - self.entrance:g} m (the run stays aft of "
-                               "the entrance at the keel)")
+            raise InvalidScene(
+                f"hull form cutup = {self.cutup:g} m: expected at most the parallel body's "
+                f"length {length - self.run - self.entrance:g} m (the run stays aft of "
+                "the entrance at the keel)"
+            )
 
     @classmethod
     def box(cls, length, beam, draft, depth):
@@ -294,8 +304,11 @@ class Particulars:
 
     def known(self):
         """The given particulars, name -> value."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
-                if getattr(self, f.name) is not None}
+        return {
+            f.name: getattr(self, f.name)
+            for f in dataclasses.fields(self)
+            if getattr(self, f.name) is not None
+        }
 
 
 def particulars(form):
@@ -317,9 +330,17 @@ def particulars(form):
     ixx = ((px * px + px * qx + qx * qx) * cross).sum() / 12.0  # int x^2 dA
     iyy = ((py * py + py * qy + qy * qy) * cross).sum() / 12.0  # int y^2 dA
     return Particulars(
-        length=form.length, beam=form.beam, draft=form.draft, depth=form.depth, volume=volume,
-        lcb=float(centre[0]), vcb=float(centre[2]), waterplane_area=float(area), lcf=float(xf),
-        i_t=float(iyy), i_l=float(ixx - area * xf * xf),
+        length=form.length,
+        beam=form.beam,
+        draft=form.draft,
+        depth=form.depth,
+        volume=volume,
+        lcb=float(centre[0]),
+        vcb=float(centre[2]),
+        waterplane_area=float(area),
+        lcf=float(xf),
+        i_t=float(iyy),
+        i_l=float(ixx - area * xf * xf),
     )
 
 
@@ -327,7 +348,9 @@ def _scales(target):
     """What each particular's residual is divided by: itself, or the length (lcb, lcf) or
     the draft (vcb) for positions."""
     return {
-        "lcb": target.length, "lcf": target.length, "vcb": target.draft,
+        "lcb": target.length,
+        "lcf": target.length,
+        "vcb": target.draft,
     }
 
 
@@ -345,8 +368,11 @@ def residuals(form, target):
     """
     got = particulars(form)
     scales = _scales(target)
-    return {name: (getattr(got, name) - value) / (scales.get(name) or abs(value))
-            for name, value in target.known().items() if name not in ("draft", "depth")}
+    return {
+        name: (getattr(got, name) - value) / (scales.get(name) or abs(value))
+        for name, value in target.known().items()
+        if name not in ("draft", "depth")
+    }
 
 
 # free parameters of the fit, each mapped from an unbounded number
@@ -359,10 +385,17 @@ def _unpack(theta, target, beam):
     beam = beam if beam is not None else math.exp(theta[8]) * target.beam
     bilge = _logistic(theta[6]) * min(0.5 * beam, target.draft)
     return HullForm(
-        beam=beam, draft=target.draft, depth=target.depth, aft=aft, fwd=aft + span,
-        run=run, entrance=entrance,
-        run_power=1.0 + math.exp(theta[4]), entrance_power=1.0 + math.exp(theta[5]),
-        bilge=bilge, cutup=_logistic(theta[7]) * (span - run - entrance),
+        beam=beam,
+        draft=target.draft,
+        depth=target.depth,
+        aft=aft,
+        fwd=aft + span,
+        run=run,
+        entrance=entrance,
+        run_power=1.0 + math.exp(theta[4]),
+        entrance_power=1.0 + math.exp(theta[5]),
+        bilge=bilge,
+        cutup=_logistic(theta[7]) * (span - run - entrance),
     )
 
 
@@ -431,19 +464,23 @@ def fitted_hull(target, free_beam=False, weights=None):
             raise InvalidScene(f"particulars.{name}: missing; expected it for the fit (m or m3)")
     block = target.volume / (target.length * target.beam * target.draft)
     if not block < 1.0:
-        raise InvalidScene(f"particulars.volume = {target.volume:g} m3: more than the box L x B x T "
-                           f"({target.length * target.beam * target.draft:g} m3); expected a block "
-                           "coefficient below 1")
+        raise InvalidScene(
+            f"particulars.volume = {target.volume:g} m3: more than the box L x B x T "
+            f"({target.length * target.beam * target.draft:g} m3); expected a block "
+            "coefficient below 1"
+        )
     weights = dict(weights or {})
     for name, value in weights.items():
         if name not in target.known():
-            raise InvalidScene(f"weights[{name!r}]: not a given particular; expected one of "
-                               f"{', '.join(target.known())}")
+            raise InvalidScene(
+                f"weights[{name!r}]: not a given particular; expected one of {', '.join(target.known())}"
+            )
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
             raise InvalidScene(f"weights[{name!r}] = {value!r}: expected a number >= 0")
     beam = None if free_beam else target.beam
-    names = [n for n in residuals(HullForm.box(target.length, target.beam, target.draft, target.depth),
-                                  target)]
+    names = [
+        n for n in residuals(HullForm.box(target.length, target.beam, target.draft, target.depth), target)
+    ]
     w = np.array([weights.get(n, 1.0) for n in names])
 
     def vector(theta):
@@ -456,8 +493,14 @@ def fitted_hull(target, free_beam=False, weights=None):
         theta = theta[:8]
     theta, iterations, converged = _levenberg_marquardt(vector, theta)
     form = _unpack(theta, target, beam)
-    return HullFit(form=form, target=target, achieved=particulars(form), residuals=residuals(form, target),
-                   iterations=iterations, converged=converged)
+    return HullFit(
+        form=form,
+        target=target,
+        achieved=particulars(form),
+        residuals=residuals(form, target),
+        iterations=iterations,
+        converged=converged,
+    )
 
 
 def _levenberg_marquardt(fun, theta):

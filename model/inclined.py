@@ -35,10 +35,10 @@ from functools import cache, cached_property
 import casadi as ca
 import numpy as np
 
-from .acceptance import RESIDUAL_TOL, judge
-from .errors import EquilibriumNotFound, InvalidScene
-from .frames import rotation
-from .results import Equilibrium, Pose, SolverInfo
+from liftplan.model.acceptance import RESIDUAL_TOL, judge
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.frames import rotation
+from liftplan.model.results import Equilibrium, Pose, SolverInfo
 
 __all__ = ["RESIDUAL_TOL", "Member", "RopeForce", "Topology", "network_model", "solve_inclined"]
 
@@ -110,8 +110,9 @@ class Topology:
 
     def pack(self, lug_points, tips, lengths, stiffness, weights, weight, cog, scale):
         """The parameter vector, from arrays in the order of :attr:`size`."""
-        return np.concatenate([np.ravel(lug_points), np.ravel(tips), lengths, stiffness,
-                               weights, [weight], cog, [scale]]).astype(float)
+        return np.concatenate(
+            [np.ravel(lug_points), np.ravel(tips), lengths, stiffness, weights, [weight], cog, [scale]]
+        ).astype(float)
 
 
 class NetworkModel:
@@ -137,9 +138,11 @@ class NetworkModel:
         rot = rotation(x[3], x[4], x[5])
         centre = x[:3] + ca.mtimes(rot, cog)
         free = ca.reshape(x[6:], 3, nf)
-        points = {"lug": [x[:3] + ca.mtimes(rot, lug_points[:, i]) for i in range(nl)],
-                  "tip": [tips[:, i] for i in range(nt)],
-                  "free": [free[:, i] for i in range(nf)]}
+        points = {
+            "lug": [x[:3] + ca.mtimes(rot, lug_points[:, i]) for i in range(nl)],
+            "tip": [tips[:, i] for i in range(nt)],
+            "free": [free[:, i] for i in range(nf)],
+        }
         body_force = ca.vertcat(0, 0, -weight)
         body_moment = ca.SX.zeros(3)
         free_force = [ca.vertcat(0, 0, -weights[j]) for j in range(nf)]
@@ -164,30 +167,53 @@ class NetworkModel:
             tensions.append(tension)
             pulls.append(pull)
             spans.append(span)
-        residual = ca.vertcat(body_force / weight, body_moment / (weight * scale),
-                              *[f / weight for f in free_force])
+        residual = ca.vertcat(
+            body_force / weight, body_moment / (weight * scale), *[f / weight for f in free_force]
+        )
         energy = energy / (weight * scale)
         self._x, self._p, self._residual, self._energy = x, p, residual, energy
         self.evaluate = ca.Function(
-            "network", [x, p],
+            "network",
+            [x, p],
             [residual, ca.vertcat(*tensions), ca.horzcat(*pulls), ca.vertcat(*spans)],
-            ["x", "p"], ["r", "tension", "pull", "length"])
+            ["x", "p"],
+            ["r", "tension", "pull", "length"],
+        )
         self.hessian = ca.Function("network_hessian", [x, p], [ca.hessian(energy, x)[0]])
 
     @cached_property
     def newton(self):
         # Newton's own failure flag is off (casadi would print and raise); the answer is
         # judged by the acceptance instead.
-        return ca.rootfinder("network_root", "newton", ca.Function("g", [self._x, self._p], [self._residual]),
-                             {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 80, "error_on_fail": False,
-                              "show_eval_warnings": False})
+        return ca.rootfinder(
+            "network_root",
+            "newton",
+            ca.Function("g", [self._x, self._p], [self._residual]),
+            {
+                "abstol": 1e-13,
+                "abstolStep": 1e-15,
+                "max_iter": 80,
+                "error_on_fail": False,
+                "show_eval_warnings": False,
+            },
+        )
 
     @cached_property
     def energy_solver(self):
         """IPOPT on the potential energy: the slower, more forgiving fallback."""
-        return ca.nlpsol("network_energy", "ipopt", {"x": self._x, "p": self._p, "f": self._energy},
-                         {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
-                          "ipopt.sb": "yes", "ipopt.max_iter": 1000, "show_eval_warnings": False})
+        return ca.nlpsol(
+            "network_energy",
+            "ipopt",
+            {"x": self._x, "p": self._p, "f": self._energy},
+            {
+                "ipopt.print_level": 0,
+                "print_time": False,
+                "ipopt.tol": 1e-14,
+                "ipopt.sb": "yes",
+                "ipopt.max_iter": 1000,
+                "show_eval_warnings": False,
+            },
+        )
 
     def verdict(self, x, p):
         """The acceptance (:func:`liftplan.model.acceptance.judge`) of a candidate state."""
@@ -255,8 +281,9 @@ def crane_tips(scene):
 def start_pose(scene):
     """The body's start: origin at (0, 0, lift_height), the scene's attitude  (m, rad)."""
     a = scene.attitude
-    return np.array([0.0, 0.0, a.lift_height, math.radians(a.heel), math.radians(a.trim),
-                     math.radians(a.yaw)])
+    return np.array(
+        [0.0, 0.0, a.lift_height, math.radians(a.heel), math.radians(a.trim), math.radians(a.yaw)]
+    )
 
 
 def refuse_water(scene, what):
@@ -284,14 +311,24 @@ def solve_inclined(scene):
     """
     refuse_water(scene, "cranes.tip: inclined ropes")
     if scene.slings:
-        raise InvalidScene("cranes.sling given, but the inclined model hangs one rope per lug; "
-                           "expected model 'rigging' (or no model: it is picked for slings)")
+        raise InvalidScene(
+            "cranes.sling given, but the inclined model hangs one rope per lug; "
+            "expected model 'rigging' (or no model: it is picked for slings)"
+        )
     n = scene.n
     length, stiffness = scene.crane_values("rope_length", "inclined"), scene.crane_values("EA", "inclined")
     topology = Topology(n, n, 0, tuple(Member("line", ("lug", i), ("tip", i)) for i in range(n)))
     body = scene.body
-    p = topology.pack(scene.lug_points(), crane_tips(scene), length, stiffness, [], body.weight,
-                      body.cog, max(scene.plan_diameter, 1.0))
+    p = topology.pack(
+        scene.lug_points(),
+        crane_tips(scene),
+        length,
+        stiffness,
+        [],
+        body.weight,
+        body.cog,
+        max(scene.plan_diameter, 1.0),
+    )
     model = network_model(topology)
     x, info = model.solve(start_pose(scene), p, "inclined")
     _, tensions, pulls, _ = (np.asarray(v) for v in model.evaluate(x, p))
@@ -306,8 +343,9 @@ def solve_inclined(scene):
     residual = np.asarray(model.evaluate(x, p)[0]).ravel()
     return Equilibrium(
         model="inclined",
-        pose=Pose(heel=math.degrees(x[3]), trim=math.degrees(x[4]), yaw=math.degrees(x[5]),
-                  lift_height=float(x[2])),
+        pose=Pose(
+            heel=math.degrees(x[3]), trim=math.degrees(x[4]), yaw=math.degrees(x[5]), lift_height=float(x[2])
+        ),
         tensions=dict(zip(names, tensions.tolist())),
         weight=body.weight,
         swl={c.lug: c.swl for c in scene.cranes},

@@ -45,8 +45,11 @@ def lazy_package(name, exports):
 
     class _Package(types.ModuleType):
         def __setattr__(self, attribute, value):
-            if (isinstance(value, types.ModuleType) and exports.get(attribute) == attribute
-                    and value.__name__ == f"{name}.{attribute}"):
+            if (
+                isinstance(value, types.ModuleType)
+                and exports.get(attribute) == attribute
+                and value.__name__ == f"{name}.{attribute}"
+            ):
                 value = getattr(value, attribute)
             super().__setattr__(attribute, value)
 

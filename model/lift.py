@@ -38,9 +38,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .errors import EquilibriumNotFound, InvalidScene
-from .frames import rotation_matrix
-from .water import WaterSetup, hull_heights, settle
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.water import WaterSetup, hull_heights, settle
 
 # Bracket width [m] at which an event's bisection stops (the event is reported at the
 # bracket's middle, to +-half of it). Hooks are set to centimetres; 0.1 mm costs about a
@@ -94,8 +94,12 @@ class Event:
         return EVENTS[self.name] + (f" ({self.subject})" if self.subject else "")
 
     def to_json(self):
-        out = {"event": self.name, "hoist": self.hoist, "tolerance": self.tolerance,
-               "description": self.description}
+        out = {
+            "event": self.name,
+            "hoist": self.hoist,
+            "tolerance": self.tolerance,
+            "description": self.description,
+        }
         if self.time is not None:
             out["time"] = self.time
         if self.subject is not None:
@@ -130,11 +134,14 @@ class MaxLoad:
     to_end: bool
 
     def to_json(self):
-        return {"tension": self.tension, "lug": self.lug,
-                "plateau": [{"from": a, "to": b} for a, b in self.plateau],
-                "tolerance": self.tolerance,
-                "tolerance_rule": f"within {100 * PLATEAU_REL:g} % of the peak",
-                "to_end": self.to_end}
+        return {
+            "tension": self.tension,
+            "lug": self.lug,
+            "plateau": [{"from": a, "to": b} for a, b in self.plateau],
+            "tolerance": self.tolerance,
+            "tolerance_rule": f"within {100 * PLATEAU_REL:g} % of the peak",
+            "to_end": self.to_end,
+        }
 
 
 @dataclass(frozen=True)
@@ -254,11 +261,17 @@ class LoadCurve:
             if self.time is not None:
                 row["time"] = float(self.time[k])
             row.update({f"T_{name}": float(t) for name, t in zip(self.lugs, self.tensions[k])})
-            row.update(crane_load=float(self.crane_load[k]), heel=float(self.heel[k]),
-                       trim=float(self.trim[k]), buoyancy=float(self.buoyancy[k]),
-                       displaced_volume=float(self.displaced_volume[k]),
-                       ground_reaction=float(self.ground_reaction[k]), bottom=float(self.bottom[k]),
-                       top=float(self.top[k]), state=self.state[k])
+            row.update(
+                crane_load=float(self.crane_load[k]),
+                heel=float(self.heel[k]),
+                trim=float(self.trim[k]),
+                buoyancy=float(self.buoyancy[k]),
+                displaced_volume=float(self.displaced_volume[k]),
+                ground_reaction=float(self.ground_reaction[k]),
+                bottom=float(self.bottom[k]),
+                top=float(self.top[k]),
+                state=self.state[k],
+            )
             if self.soil_force is not None:
                 row["soil_force"] = float(self.soil_force[k])
             if self.water is not None:
@@ -281,12 +294,13 @@ class LoadCurve:
             "failed": [{"hoist": h, "reason": r} for h, r in self.failed],
         }
         if self.breakout is not None or self.speed is not None or self.drainage:
-            out["max_crane_load"] = {"load": load, "hoist": at,
-                                     "time": self.hoist_time(at)}
+            out["max_crane_load"] = {"load": load, "hoist": at, "time": self.hoist_time(at)}
             out["breakout"] = self.breakout.to_json() if self.breakout is not None else None
             out["speed"] = self.speed
-            out["drainage"] = {"note": self.drainage_note,
-                               "compartments": [t.to_json() for t in self.drainage]}
+            out["drainage"] = {
+                "note": self.drainage_note,
+                "compartments": [t.to_json() for t in self.drainage],
+            }
         return out
 
     def hoist_time(self, hoist):
@@ -326,7 +340,7 @@ class _Lift:
     """Solves at any hoist from a given pose (one built model)."""
 
     def __init__(self, scene, speed=None):
-        from .water.draining import Drainage
+        from liftplan.model.water.draining import Drainage
 
         self.scene = scene
         self.setup = WaterSetup(scene)
@@ -357,8 +371,9 @@ class _Lift:
             reaction = scene.body.weight + water - eq.afloat.buoyancy - sum(eq.tensions.values())
         tanks = ()
         if drainage is not None:
-            tanks = tuple(float(v) * drainage.density
-                          for v in drainage.volumes(pose.rotation, pose.zo, timed))
+            tanks = tuple(
+                float(v) * drainage.density for v in drainage.volumes(pose.rotation, pose.zo, timed)
+            )
         return _Point(float(hoist), eq, pose, bottom, top, state.soil, state.phase, reaction, water, tanks)
 
     def bisect(self, lo, hi, test):
@@ -383,8 +398,9 @@ class _Lift:
 def _adjacent(points, failed):
     """Pairs of neighbouring solved points (k, k + 1) with no failed hoist between them."""
     bad = [h for h, _ in failed]
-    return [k for k in range(len(points) - 1)
-            if not any(points[k].hoist < h < points[k + 1].hoist for h in bad)]
+    return [
+        k for k in range(len(points) - 1) if not any(points[k].hoist < h < points[k + 1].hoist for h in bad)
+    ]
 
 
 def _events(lift, points, failed):
@@ -411,7 +427,7 @@ def _events(lift, points, failed):
             hoist, tol = 0.5 * (a + b), 0.5 * (b - a)
         out.append(Event(name, hoist, tol))
     if lift.history is not None:
-        from .water.draining import RTOL
+        from liftplan.model.water.draining import RTOL
 
         for tank, t in lift.history.drain_times.items():
             hoist = t * lift.speed / 60.0
@@ -485,10 +501,12 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
     drainage = lift.drainage
     if drainage is not None:
         if speed is None:
-            note = ("no hoist speed: compartments with finite openings carried full (never drain, "
-                    "the conservative bound)")
+            note = (
+                "no hoist speed: compartments with finite openings carried full (never drain, "
+                "the conservative bound)"
+            )
         elif drainage.timed:
-            from .water.draining import integrate
+            from liftplan.model.water.draining import integrate
 
             seconds = hoists[-1] * 60.0 / speed
             lift.history = integrate(drainage, seconds, step * 60.0 / speed) if seconds > 0 else None
@@ -558,7 +576,7 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
 
 
 def _summaries(lift, compartments, hoist):
-    from .water.draining import TankSummary
+    from liftplan.model.water.draining import TankSummary
 
     history = lift.history
     out = []

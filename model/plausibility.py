@@ -22,19 +22,22 @@ def weight_warnings(key, weight, swl_total=None):
     """Warnings on a weight  [t], given the cranes' total SWL  [t] when known."""
     out = []
     if weight > MAX_WEIGHT:
-        out.append(f"{key} = {weight:g} t: heavier than any crane lift (> {MAX_WEIGHT:g} t); "
-                   "kg typed as t?")
+        out.append(f"{key} = {weight:g} t: heavier than any crane lift (> {MAX_WEIGHT:g} t); kg typed as t?")
     elif swl_total and swl_total < MIN_SWL_FRACTION * weight:
-        out.append(f"{key} = {weight:g} t: over {1 / MIN_SWL_FRACTION:g} times the cranes' total SWL "
-                   f"{swl_total:g} t; kg typed as t?")
+        out.append(
+            f"{key} = {weight:g} t: over {1 / MIN_SWL_FRACTION:g} times the cranes' total SWL "
+            f"{swl_total:g} t; kg typed as t?"
+        )
     return out
 
 
 def height_warnings(key, height):
     """Warnings on a height of the body above the datum  [m]."""
     if height < LOWEST_HEIGHT:
-        return [f"{key} = {height:g} m: far below the datum (< {LOWEST_HEIGHT:g} m); "
-                "a sign slip, or mm typed as m?"]
+        return [
+            f"{key} = {height:g} m: far below the datum (< {LOWEST_HEIGHT:g} m); "
+            "a sign slip, or mm typed as m?"
+        ]
     return []
 
 
@@ -43,8 +46,10 @@ def coordinate_warnings(key, points):
     for name, at in points:
         far = max(abs(v) for v in at)
         if far > LARGEST_COORDINATE:
-            return [f"{key}[{name}].at: {far:g} m from the body origin (> {LARGEST_COORDINATE:g} m); "
-                    "mm typed as m?"]
+            return [
+                f"{key}[{name}].at: {far:g} m from the body origin (> {LARGEST_COORDINATE:g} m); "
+                "mm typed as m?"
+            ]
     return []
 
 
@@ -85,6 +90,8 @@ def equilibrium_warnings(scene, eq):
     """
     height = eq.pose.lift_height
     if height < LOWEST_HEIGHT and scene.attitude.lift_height >= LOWEST_HEIGHT:
-        return [f"solved lift_height = {height:.4g} m: the body hangs far below the datum "
-                f"(< {LOWEST_HEIGHT:g} m); check body.weight (kg typed as t?), EA and rope_length"]
+        return [
+            f"solved lift_height = {height:.4g} m: the body hangs far below the datum "
+            f"(< {LOWEST_HEIGHT:g} m); check body.weight (kg typed as t?), EA and rope_length"
+        ]
     return []

@@ -263,10 +263,7 @@ class Equilibrium:
     @property
     def utilisation(self):
         """Tension over the crane's SWL, keyed as ``tensions`` (None where no SWL)  [-]."""
-        return {
-            name: (t / self.swl[name] if self.swl[name] else None)
-            for name, t in self.tensions.items()
-        }
+        return {name: (t / self.swl[name] if self.swl[name] else None) for name, t in self.tensions.items()}
 
     @property
     def spread(self):
@@ -307,15 +304,18 @@ class Equilibrium:
             out["position"] = _in_frame(self.position, self.frame)
         if self.rigging is not None:
             r = self.rigging
-            out.update({
-                "hook_loads": dict(self.tensions),
-                "legs": dict(r.legs),
-                "sling_angles": dict(r.sling_angles),
-                "hook_positions": {k: _in_frame(v, self.frame) for k, v in r.hook_positions.items()},
-                "spreaders": {k: {"compression": c, "ends": [_in_frame(e, self.frame)
-                                                             for e in r.spreader_ends[k]]}
-                              for k, c in r.spreader_compression.items()},
-            })
+            out.update(
+                {
+                    "hook_loads": dict(self.tensions),
+                    "legs": dict(r.legs),
+                    "sling_angles": dict(r.sling_angles),
+                    "hook_positions": {k: _in_frame(v, self.frame) for k, v in r.hook_positions.items()},
+                    "spreaders": {
+                        k: {"compression": c, "ends": [_in_frame(e, self.frame) for e in r.spreader_ends[k]]}
+                        for k, c in r.spreader_compression.items()
+                    },
+                }
+            )
         if self.afloat is not None:
             out.update(self.afloat.to_json(self.frame))
         if self.flexible_hull is not None:

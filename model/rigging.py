@@ -48,20 +48,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .checks import Check
-from .errors import InvalidScene
-from .frames import rotation_matrix
-from .inclined import Member, RopeForce, Topology, network_model, refuse_water, start_pose
-from .results import Equilibrium, Pose, RiggingState
+from liftplan.model.checks import Check
+from liftplan.model.errors import InvalidScene
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.inclined import Member, RopeForce, Topology, network_model, refuse_water, start_pose
+from liftplan.model.results import Equilibrium, Pose, RiggingState
 
 
 @dataclass(frozen=True)
 class _Part:
     """One member of the network as the results name it."""
 
-    key: str      # crane label, "CRANE/LUG", "CRANE/top1|2" or "CRANE/spreader"
-    role: str     # "hoist", "leg", "top" or "bar"
-    crane: str    # crane label
+    key: str  # crane label, "CRANE/LUG", "CRANE/top1|2" or "CRANE/spreader"
+    role: str  # "hoist", "leg", "top" or "bar"
+    crane: str  # crane label
     lug: str | None = None
 
 
@@ -76,9 +76,9 @@ class _Builder:
         self.lug_start = scene.lug_points() @ rot.T + [0.0, 0.0, a.lift_height]
         self.tips, self.free, self.weights = [], [], []
         self.members, self.parts, self.lengths, self.stiffness = [], [], [], []
-        self.hooks = {}    # crane label -> free index
-        self.bars = {}     # crane label -> (free index of end 1, end 2)
-        self.hoists = []   # (tip index, upper end of the hoist rope, l0, EA)
+        self.hooks = {}  # crane label -> free index
+        self.bars = {}  # crane label -> (free index of end 1, end 2)
+        self.hoists = []  # (tip index, upper end of the hoist rope, l0, EA)
         self.sheaves = []  # (member index of leg 1, of leg 2, the rope's unstretched length)
 
     def add_free(self, position, weight=0.0):
@@ -112,8 +112,9 @@ class _Builder:
         if crane.sling is None:
             start = self.lug_start[self.lug_index[crane.lug]]
             tip = self.tip(crane, start)
-            self.add("line", self.lug(crane.lug), tip, length, stiffness,
-                     _Part(label, "hoist", label, crane.lug))
+            self.add(
+                "line", self.lug(crane.lug), tip, length, stiffness, _Part(label, "hoist", label, crane.lug)
+            )
             self.hoists.append((tip[1], ("lug", self.lug_index[crane.lug]), length, stiffness))
             return
         sling = crane.sling
@@ -125,8 +126,14 @@ class _Builder:
             hook = self.add_free((centre[0], centre[1], height))
             first = len(self.members)
             for leg in sling.legs:
-                self.add("line", self.lug(leg.lug), hook, leg.length, leg.stiffness,
-                         _Part(f"{label}/{leg.lug}", "leg", label, leg.lug))
+                self.add(
+                    "line",
+                    self.lug(leg.lug),
+                    hook,
+                    leg.length,
+                    leg.stiffness,
+                    _Part(f"{label}/{leg.lug}", "leg", label, leg.lug),
+                )
             if sling.equalised:
                 self.sheaves.append((first, first + 1, sling.rope_length))
         else:
@@ -138,18 +145,33 @@ class _Builder:
             ends = [middle - 0.5 * bar.length * axis, middle + 0.5 * bar.length * axis]
             height = _hang_height([(leg, lugs[k], ends[leg.end - 1]) for k, leg in enumerate(sling.legs)])
             points = [self.add_free((e[0], e[1], height), 0.5 * bar.weight) for e in ends]
-            top = max(math.sqrt(max(leg.length**2 - (0.5 * bar.length) ** 2, (0.05 * leg.length) ** 2))
-                      for leg in bar.top)
+            top = max(
+                math.sqrt(max(leg.length**2 - (0.5 * bar.length) ** 2, (0.05 * leg.length) ** 2))
+                for leg in bar.top
+            )
             hook = self.add_free((middle[0], middle[1], height + top))
             self.bars[label] = (points[0][1], points[1][1])
             for k, leg in enumerate(bar.top):
-                self.add("line", points[k], hook, leg.length, leg.stiffness,
-                         _Part(f"{label}/top{k + 1}", "top", label))
-            self.add("strut", points[0], points[1], bar.length, bar.EA,
-                     _Part(f"{label}/spreader", "bar", label))
+                self.add(
+                    "line",
+                    points[k],
+                    hook,
+                    leg.length,
+                    leg.stiffness,
+                    _Part(f"{label}/top{k + 1}", "top", label),
+                )
+            self.add(
+                "strut", points[0], points[1], bar.length, bar.EA, _Part(f"{label}/spreader", "bar", label)
+            )
             for leg in sling.legs:
-                self.add("line", self.lug(leg.lug), points[leg.end - 1], leg.length, leg.stiffness,
-                         _Part(f"{label}/{leg.lug}", "leg", label, leg.lug))
+                self.add(
+                    "line",
+                    self.lug(leg.lug),
+                    points[leg.end - 1],
+                    leg.length,
+                    leg.stiffness,
+                    _Part(f"{label}/{leg.lug}", "leg", label, leg.lug),
+                )
         self.add("line", hook, tip, length, stiffness, _Part(label, "hoist", label))
         self.hooks[label] = hook[1]
         self.hoists.append((tip[1], hook, length, stiffness))
@@ -188,8 +210,11 @@ class _Builder:
         """Vertical stretch of the lines hanging from free point ``upper`` under ``load``
         shared equally among them  [m] (a start estimate)."""
         drops = []
-        hanging = [(m, length, ea) for m, length, ea in zip(self.members, self.lengths, self.stiffness)
-                   if m.kind == "line" and m.b == ("free", upper)]
+        hanging = [
+            (m, length, ea)
+            for m, length, ea in zip(self.members, self.lengths, self.stiffness)
+            if m.kind == "line" and m.b == ("free", upper)
+        ]
         for member, length, stiffness in hanging:
             lower = self.free[member.a[1]] if member.a[0] == "free" else self.lug_start[member.a[1]]
             sine = max(0.2, min(1.0, (self.free[upper][2] - lower[2]) / length))
@@ -201,7 +226,8 @@ def _need(crane, field):
     value = getattr(crane, field)
     if value is None:
         raise InvalidScene(
-            f"cranes[{crane.label}].{field}: missing, the rigging model needs it for every crane")
+            f"cranes[{crane.label}].{field}: missing, the rigging model needs it for every crane"
+        )
     return value
 
 
@@ -251,8 +277,16 @@ def solve_rigging(scene):
     x0 = build.start()
     topology = Topology(scene.n, len(build.tips), len(build.free), tuple(build.members))
     body = scene.body
-    p = topology.pack(scene.lug_points(), np.array(build.tips), build.lengths, build.stiffness,
-                      build.weights, body.weight, body.cog, max(scene.plan_diameter, 1.0))
+    p = topology.pack(
+        scene.lug_points(),
+        np.array(build.tips),
+        build.lengths,
+        build.stiffness,
+        build.weights,
+        body.weight,
+        body.cog,
+        max(scene.plan_diameter, 1.0),
+    )
     model = network_model(topology)
     x, info = model.solve(x0, p, "rigging")
     if build.sheaves:
@@ -278,9 +312,9 @@ def _equalise(scene, build, topology, model, x, p, info):
     """
     import time
 
-    from .acceptance import RESIDUAL_TOL
-    from .errors import EquilibriumNotFound
-    from .results import SolverInfo
+    from liftplan.model.acceptance import RESIDUAL_TOL
+    from liftplan.model.errors import EquilibriumNotFound
+    from liftplan.model.results import SolverInfo
 
     begin = time.perf_counter()
     offset = 3 * topology.lugs + 3 * topology.tips  # the unstretched lengths in p
@@ -302,8 +336,7 @@ def _equalise(scene, build, topology, model, x, p, info):
     for _ in range(SHEAVE_STEPS):
         iterations += inner.iterations
         if np.max(np.abs(gap)) <= RESIDUAL_TOL * weight:
-            return x, p, SolverInfo(info.method, True, iterations,
-                                    info.seconds + time.perf_counter() - begin)
+            return x, p, SolverInfo(info.method, True, iterations, info.seconds + time.perf_counter() - begin)
         step = 1e-6 * totals
         jacobian = np.empty((len(totals), len(totals)))
         for k in range(len(totals)):
@@ -318,13 +351,17 @@ def _equalise(scene, build, topology, model, x, p, info):
         x, p, gap, inner = state(split, x)
     raise EquilibriumNotFound(
         f"rigging: the equalised slings' legs did not reach one tension within {SHEAVE_STEPS} steps "
-        f"(difference {np.max(np.abs(gap)):.3g} t); check the legs can reach their lugs")
+        f"(difference {np.max(np.abs(gap)):.3g} t); check the legs can reach their lugs"
+    )
 
 
 def _result(scene, build, x, residual, tensions, pulls, spans, info):
     rot = rotation_matrix(*np.degrees(x[3:6]))
-    world = {"lug": scene.lug_points() @ rot.T + x[:3], "tip": np.array(build.tips),
-             "free": x[6:].reshape(-1, 3)}
+    world = {
+        "lug": scene.lug_points() @ rot.T + x[:3],
+        "tip": np.array(build.tips),
+        "free": x[6:].reshape(-1, 3),
+    }
 
     def at(end):
         return world[end[0]][end[1]]
@@ -348,17 +385,22 @@ def _result(scene, build, x, residual, tensions, pulls, spans, info):
     for crane in scene.cranes:
         swl[crane.label] = crane.swl
     state = RiggingState(
-        legs=legs, sling_angles=angles, leg_lugs=leg_lugs,
+        legs=legs,
+        sling_angles=angles,
+        leg_lugs=leg_lugs,
         hook_positions={label: tuple(float(v) for v in world["free"][k]) for label, k in build.hooks.items()},
         spreader_compression=compression,
-        spreader_ends={label: tuple(tuple(float(v) for v in world["free"][k]) for k in ends)
-                       for label, ends in build.bars.items()},
+        spreader_ends={
+            label: tuple(tuple(float(v) for v in world["free"][k]) for k in ends)
+            for label, ends in build.bars.items()
+        },
         min_sling_angle=scene.rigging.min_sling_angle,
     )
     return Equilibrium(
         model="rigging",
-        pose=Pose(heel=math.degrees(x[3]), trim=math.degrees(x[4]), yaw=math.degrees(x[5]),
-                  lift_height=float(x[2])),
+        pose=Pose(
+            heel=math.degrees(x[3]), trim=math.degrees(x[4]), yaw=math.degrees(x[5]), lift_height=float(x[2])
+        ),
         tensions=hook_loads,
         weight=scene.body.weight,
         swl=swl,
@@ -391,5 +433,7 @@ def rigging_checks(scene, eq):
     if eq.rigging is None:
         return []
     limit = scene.rigging.min_sling_angle
-    return [Check.lower("sling_angle", key, angle, limit, "deg", note="leg angle from the horizontal")
-            for key, angle in eq.rigging.sling_angles.items()]
+    return [
+        Check.lower("sling_angle", key, angle, limit, "deg", note="leg angle from the horizontal")
+        for key, angle in eq.rigging.sling_angles.items()
+    ]

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import InvalidScene
+from liftplan.model.errors import InvalidScene
 
 #: Elastic modulus of a wire-rope sling on its nominal area, N/mm2 (0027/ND 5.6.13).
 SLING_MODULUS = 80_000.0
@@ -54,8 +54,9 @@ def _number(path, value, low=0.0, strict=True, unit=""):
         raise InvalidScene(f"{path} = {value!r}: expected a number") from None
     ok = number > low if strict else number >= low
     if not (math.isfinite(number) and ok):
-        raise InvalidScene(f"{path} = {value!r}: expected a finite number {'>' if strict else '>='} "
-                           f"{low:g}{unit}")
+        raise InvalidScene(
+            f"{path} = {value!r}: expected a finite number {'>' if strict else '>='} {low:g}{unit}"
+        )
     return number
 
 
@@ -187,8 +188,9 @@ class Sling:
                     )
         else:
             if len(legs) == 2 and all(leg.end is None for leg in legs):
-                legs = tuple(Leg(leg.lug, leg.length, leg.EA, leg.diameter, end=k + 1)
-                             for k, leg in enumerate(legs))
+                legs = tuple(
+                    Leg(leg.lug, leg.length, leg.EA, leg.diameter, end=k + 1) for k, leg in enumerate(legs)
+                )
             missing = [leg.lug for leg in legs if leg.end is None]
             if missing:
                 raise InvalidScene(
@@ -209,11 +211,13 @@ class Sling:
                 raise InvalidScene(
                     f"sling.equalised = true with {len(legs)} legs"
                     f"{' and a spreader bar' if self.spreader is not None else ''}; expected two "
-                    "legs and no spreader (one rope over a sheave at the hook)")
+                    "legs and no spreader (one rope over a sheave at the hook)"
+                )
             if legs[0].stiffness != legs[1].stiffness:
                 raise InvalidScene(
                     f"sling.equalised = true with legs of EA {legs[0].stiffness:g} t and "
-                    f"{legs[1].stiffness:g} t; expected one rope: the same EA (or diameter) on both")
+                    f"{legs[1].stiffness:g} t; expected one rope: the same EA (or diameter) on both"
+                )
 
     @property
     def rope_length(self):

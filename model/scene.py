@@ -15,8 +15,8 @@ from functools import cached_property
 
 import numpy as np
 
-from .errors import InvalidScene
-from .rigging_gear import RiggingLimits, Sling
+from liftplan.model.errors import InvalidScene
+from liftplan.model.rigging_gear import RiggingLimits, Sling
 
 MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined", "rigging")
 FRAMES = ("z-up", "choi")  # as liftplan.model.frames.FRAMES (not imported: it pulls casadi in)
@@ -106,11 +106,14 @@ def polyline(path, value, unit, lowest=None, minimum=1):
             raise InvalidScene(f"{path}[{k}] = {list(row)!r}: expected [x m, {unit}]")
         x, v = finite(f"{path}[{k}]", row[0]), finite(f"{path}[{k}]", row[1])
         if out and not x > out[-1][0]:
-            raise InvalidScene(f"{path}[{k}] = [{x:g}, {v:g}]: x {x:g} m is not greater than the previous "
-                               f"point's {out[-1][0]:g} m; {expected} strictly")
+            raise InvalidScene(
+                f"{path}[{k}] = [{x:g}, {v:g}]: x {x:g} m is not greater than the previous "
+                f"point's {out[-1][0]:g} m; {expected} strictly"
+            )
         if lowest == ">= 0" and v < 0.0:
             raise InvalidScene(
-                f"{path}[{k}] = [{x:g}, {v:g}]: {v:g} {unit} is negative; expected >= 0 {unit}")
+                f"{path}[{k}] = [{x:g}, {v:g}]: {v:g} {unit} is negative; expected >= 0 {unit}"
+            )
         if lowest == "> 0" and not v > 0.0:
             raise InvalidScene(f"{path}[{k}] = [{x:g}, {v:g}]: expected a value > 0 {unit}")
         out.append((x, v))
@@ -171,17 +174,21 @@ def _checked_curve(value, weight, cog_x):
     curve = polyline("body.weight_curve", value, "t/m", lowest=">= 0", minimum=2)
     area, moment = curve_totals(*zip(*curve))
     if not area > 0.0:
-        raise InvalidScene("body.weight_curve: carries no weight (every value 0 t/m); expected a "
-                           "curve whose integral is body.weight")
+        raise InvalidScene(
+            "body.weight_curve: carries no weight (every value 0 t/m); expected a "
+            "curve whose integral is body.weight"
+        )
     if abs(area - weight) > WEIGHT_CURVE_REL * weight:
         raise InvalidScene(
             f"body.weight_curve: integral {area:.6g} t differs from body.weight {weight:.6g} t by "
-            f"{100 * abs(area - weight) / weight:.2f} %; expected within {100 * WEIGHT_CURVE_REL:g} %")
+            f"{100 * abs(area - weight) / weight:.2f} %; expected within {100 * WEIGHT_CURVE_REL:g} %"
+        )
     centroid = moment / area
     if abs(centroid - cog_x) > WEIGHT_CURVE_CENTROID:
         raise InvalidScene(
             f"body.weight_curve: centroid x {centroid:.4f} m differs from body.cog x {cog_x:.4f} m by "
-            f"{abs(centroid - cog_x):.3g} m; expected within {WEIGHT_CURVE_CENTROID:g} m")
+            f"{abs(centroid - cog_x):.3g} m; expected within {WEIGHT_CURVE_CENTROID:g} m"
+        )
     return curve
 
 
@@ -246,8 +253,10 @@ class GirderStiffness:
 def _check_girder(scene):
     """A hull stiffness needs the weight curve, and its points and the lugs on the body."""
     if scene.body.weight_curve is None:
-        raise InvalidScene("hull.EI: given but no body.weight_curve; expected a weight curve (the "
-                           "flexible hull is loaded by its weight along x)")
+        raise InvalidScene(
+            "hull.EI: given but no body.weight_curve; expected a weight curve (the "
+            "flexible hull is loaded by its weight along x)"
+        )
     x, _ = scene.body.weight_curve_arrays
     lo, hi = float(x[0]), float(x[-1])
     slack = 1e-9 * (hi - lo)
@@ -256,13 +265,15 @@ def _check_girder(scene):
             if not lo - slack <= xk <= hi + slack:
                 raise InvalidScene(
                     f"hull.{name}[{k}] = [{xk:g}, {value:g}]: x {xk:g} m lies outside the body "
-                    f"(body.weight_curve from {lo:g} to {hi:g} m); expected stations on the body")
+                    f"(body.weight_curve from {lo:g} to {hi:g} m); expected stations on the body"
+                )
     for lug in scene.lugs:
         if not lo - slack <= lug.at[0] <= hi + slack:
             raise InvalidScene(
                 f"lugs[{lug.name}].at: x {lug.at[0]:g} m lies outside the hull girder "
                 f"(body.weight_curve from {lo:g} to {hi:g} m); expected lugs on the body when "
-                "hull.EI is given")
+                "hull.EI is given"
+            )
 
 
 @dataclass(frozen=True)
@@ -409,9 +420,7 @@ class Redundant:
     def __post_init__(self):
         t = finite(f"analysis.redundant[{self.lug}].tension", self.tension)
         if t < 0.0:
-            raise InvalidScene(
-                f"analysis.redundant[{self.lug}].tension = {self.tension!r}: expected >= 0 t"
-            )
+            raise InvalidScene(f"analysis.redundant[{self.lug}].tension = {self.tension!r}: expected >= 0 t")
         _set(self, "tension", t)
 
 
@@ -438,9 +447,7 @@ class Analysis:
 
     def __post_init__(self):
         if self.model is not None and self.model not in MODELS:
-            raise InvalidScene(
-                f"analysis.model = {self.model!r}: expected one of {', '.join(MODELS)}"
-            )
+            raise InvalidScene(f"analysis.model = {self.model!r}: expected one of {', '.join(MODELS)}")
         if self.hull not in HULL_MODELS:
             raise InvalidScene(f"analysis.hull = {self.hull!r}: expected one of {', '.join(HULL_MODELS)}")
         _set(self, "redundant", tuple(self.redundant))
@@ -513,8 +520,12 @@ class Breakout:
 
     def __post_init__(self):
         key = "ground.breakout"
-        soil = {"shear_strength": self.shear_strength, "area": self.area, "pull_time": self.pull_time,
-                "embedded_time": self.embedded_time}
+        soil = {
+            "shear_strength": self.shear_strength,
+            "area": self.area,
+            "pull_time": self.pull_time,
+            "embedded_time": self.embedded_time,
+        }
         given = [name for name, value in soil.items() if value is not None]
         if self.factor is not None:
             if given:
@@ -680,8 +691,10 @@ class Scene:
             if not isinstance(self.strength, Strength):
                 raise InvalidScene(f"strength = {self.strength!r}: expected a Strength")
             if self.body.weight_curve is None:
-                raise InvalidScene("strength: allowable envelopes given but no body.weight_curve; expected "
-                                   "a weight curve (shear force and bending moment need it)")
+                raise InvalidScene(
+                    "strength: allowable envelopes given but no body.weight_curve; expected "
+                    "a weight curve (shear force and bending moment need it)"
+                )
         lugs, cranes = tuple(self.lugs), tuple(self.cranes)
         if (self.water is None) != (self.hull is None):
             raise InvalidScene(
@@ -711,9 +724,7 @@ class Scene:
             for lug in crane.lugs:
                 key = "cranes.lug" if crane.sling is None else f"cranes[{crane.name}].sling.legs.lug"
                 if lug not in names:
-                    raise InvalidScene(
-                        f"{key} = {lug!r}: unknown lug, expected one of {name_list(names)}"
-                    )
+                    raise InvalidScene(f"{key} = {lug!r}: unknown lug, expected one of {name_list(names)}")
                 if lug in holder:
                     if crane.sling is None and holder[lug].sling is None:
                         raise InvalidScene(
@@ -743,8 +754,7 @@ class Scene:
         for red in self.analysis.redundant:
             if red.lug not in names:
                 raise InvalidScene(
-                    f"analysis.redundant.lug = {red.lug!r}: unknown lug, "
-                    f"expected one of {name_list(names)}"
+                    f"analysis.redundant.lug = {red.lug!r}: unknown lug, expected one of {name_list(names)}"
                 )
             if red.lug in held:
                 raise InvalidScene(
@@ -758,8 +768,10 @@ class Scene:
                 raise InvalidScene(f"girder = {self.girder!r}: expected a GirderStiffness")
             _check_girder(self)
         elif self.analysis.hull == "flexible":
-            raise InvalidScene('analysis.hull = "flexible": no hull.EI given; expected [hull] EI = '
-                               "[[x m, EI t m2], ...] for a flexible hull")
+            raise InvalidScene(
+                'analysis.hull = "flexible": no hull.EI given; expected [hull] EI = '
+                "[[x m, EI t m2], ...] for a flexible hull"
+            )
 
     # -- look-ups ---------------------------------------------------------------
     @cached_property
@@ -816,7 +828,8 @@ class Scene:
                 return crane
         known = [c.label for c in self.cranes]
         raise InvalidScene(
-            f"crane = {key!r}: unknown crane, expected a lug or crane name of {name_list(known)}")
+            f"crane = {key!r}: unknown crane, expected a lug or crane name of {name_list(known)}"
+        )
 
     @property
     def slings(self):
@@ -851,11 +864,13 @@ def _check_openings(scene):
         key = f"hull.compartments[{opening.compartment}].openings"
         tank = tanks.get(opening.compartment)
         if tank is None:
-            raise InvalidScene(f"{key}: no compartment {opening.compartment!r}; expected one of "
-                               f"{name_list(tanks) or 'none (no compartments)'}")
+            raise InvalidScene(
+                f"{key}: no compartment {opening.compartment!r}; expected one of "
+                f"{name_list(tanks) or 'none (no compartments)'}"
+            )
         if tank.contents != "water":
             raise InvalidScene(
-                f"{key}: the compartment holds {tank.contents!r}; expected contents = \"water\" (openings "
+                f'{key}: the compartment holds {tank.contents!r}; expected contents = "water" (openings '
                 "drain trapped water; an air compartment with an opening would flood)"
             )
         lower, upper = (np.asarray(v, dtype=float) for v in (tank.box["min"], tank.box["max"]))

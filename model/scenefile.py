@@ -20,11 +20,11 @@ from typing import Annotated, Literal, Union
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Strict, ValidationError
 
-from .errors import InvalidScene
-from .frames import choi_to_zup
-from .hull import Compartment, Hull
-from .rigging_gear import Leg, RiggingLimits, Sling, Spreader
-from .scene import (
+from liftplan.model.errors import InvalidScene
+from liftplan.model.frames import choi_to_zup
+from liftplan.model.hull import Compartment, Hull
+from liftplan.model.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.scene import (
     DISCHARGE,
     HULL_MODELS,
     MODELS,
@@ -78,7 +78,7 @@ class _Leg(Table):
     lug: Text
     length: Num
     EA: Num | None = None
-    diameter: Num | None = None   # mm
+    diameter: Num | None = None  # mm
     end: Literal[1, 2] | None = None
 
 
@@ -141,8 +141,8 @@ class _Box(Table):
 
 
 class _Opening(Table):
-    area: Num                      # m2; inf drains at once
-    at: Point                      # body, file frame
+    area: Num  # m2; inf drains at once
+    at: Point  # body, file frame
     discharge: Num = DISCHARGE
 
 
@@ -160,18 +160,18 @@ class _Hull(Table):
     steel_density: Num | None = None
     weight_in_water: Num | None = None
     compartments: list[_Compartment] = []
-    EI: list[Pair] | None = None       # [x m, t m2]: the hull girder's bending stiffness
-    GJ: list[Pair] | None = None       # [x m, t m2]: its torsional stiffness
+    EI: list[Pair] | None = None  # [x m, t m2]: the hull girder's bending stiffness
+    GJ: list[Pair] | None = None  # [x m, t m2]: its torsional stiffness
 
 
 class _Breakout(Table):
     factor: Num | None = None
-    shear_strength: Num | None = None    # kPa
-    area: Num | None = None              # m2
+    shear_strength: Num | None = None  # kPa
+    area: Num | None = None  # m2
     bearing_factor: Num = Breakout.bearing_factor
-    pull_time: Num | None = None         # h
-    embedded_time: Num | None = None     # h
-    clear: Num = Breakout.clear          # m
+    pull_time: Num | None = None  # h
+    embedded_time: Num | None = None  # h
+    clear: Num = Breakout.clear  # m
 
 
 class _Ground(Table):
@@ -186,7 +186,7 @@ class _Rigging(Table):
 
 class _Strength(Table):
     bending_moment: list[Pair] | None = None  # [x m, t m]
-    shear_force: list[Pair] | None = None     # [x m, t]
+    shear_force: list[Pair] | None = None  # [x m, t]
 
 
 class _SceneFile(Table):
@@ -203,6 +203,7 @@ class _SceneFile(Table):
     ground: _Ground | None = None
     rigging: _Rigging = _Rigging()
     strength: _Strength | None = None
+
 
 # Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).
 PLAN_TABLES = ("candidates", "plan", "crane", "rules")
@@ -317,12 +318,16 @@ def _to_hull(data, to_zup, base):
     if spec.box is None and spec.mesh is None and (spec.EI, spec.GJ) != (None, None) and data.water is None:
         return None  # a hull girder's stiffness alone, for a body in air
     if (spec.box is None) == (spec.mesh is None):
-        raise InvalidScene("hull: expected exactly one of box = {min, max} or mesh = \"file.stl\"")
-    options = dict(flooding=spec.flooding, steel_density=spec.steel_density,
-                   weight_in_water=spec.weight_in_water,
-                   compartments=tuple(
-                       Compartment(name=c.name, box=_zup_box(c.box, to_zup), contents=c.contents)
-                       for c in spec.compartments))
+        raise InvalidScene('hull: expected exactly one of box = {min, max} or mesh = "file.stl"')
+    options = dict(
+        flooding=spec.flooding,
+        steel_density=spec.steel_density,
+        weight_in_water=spec.weight_in_water,
+        compartments=tuple(
+            Compartment(name=c.name, box=_zup_box(c.box, to_zup), contents=c.contents)
+            for c in spec.compartments
+        ),
+    )
     if spec.box is not None:
         box = _zup_box(spec.box, to_zup)
         return Hull.box(box["min"], box["max"], **options)
@@ -351,8 +356,7 @@ def _to_scene(data, base):
     red = [] if red is None else [red] if isinstance(red, _Redundant) else red
     return Scene(
         name=data.name,
-        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog),
-                  weight_curve=data.body.weight_curve),
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog), weight_curve=data.body.weight_curve),
         lugs=tuple(lugs),
         cranes=tuple(cranes),
         attitude=Attitude(**data.attitude.model_dump()),
@@ -369,7 +373,9 @@ def _to_scene(data, base):
         strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
         openings=tuple(
             Opening(compartment=c.name, area=o.area, at=to_zup(o.at), discharge=o.discharge)
-            for c in (data.hull.compartments if data.hull is not None else ()) for o in c.openings),
+            for c in (data.hull.compartments if data.hull is not None else ())
+            for o in c.openings
+        ),
         girder=_to_girder(data.hull),
     )
 
@@ -379,8 +385,10 @@ def _to_girder(spec):
     if spec is None or (spec.EI is None and spec.GJ is None):
         return None
     if spec.EI is None:
-        raise InvalidScene("hull.GJ: given without hull.EI; expected EI = [[x m, t m2], ...] too "
-                           "(the flexible hull bends and twists)")
+        raise InvalidScene(
+            "hull.GJ: given without hull.EI; expected EI = [[x m, t m2], ...] too "
+            "(the flexible hull bends and twists)"
+        )
     return GirderStiffness(EI=spec.EI, GJ=spec.GJ)
 
 
@@ -408,8 +416,7 @@ def _to_crane(c, data, to_zup):
 
 
 def _to_sling(spec):
-    legs = tuple(Leg(lug=g.lug, length=g.length, EA=g.EA, diameter=g.diameter, end=g.end)
-                 for g in spec.legs)
+    legs = tuple(Leg(lug=g.lug, length=g.length, EA=g.EA, diameter=g.diameter, end=g.end) for g in spec.legs)
     spreader = None
     if spec.spreader is not None:
         bar = spec.spreader

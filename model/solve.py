@@ -25,14 +25,14 @@ import time
 import casadi as ca
 import numpy as np
 
-from .acceptance import RESIDUAL_TOL, judge
-from .errors import EquilibriumNotFound, InvalidScene
-from .inclined import solve_inclined
-from .results import Equilibrium, Pose, SolverInfo
-from .rigging import solve_rigging
-from .scene import MODELS, name_list
-from .statics import BLOCK, rope_model
-from .water import solve_hydrostatic
+from liftplan.model.acceptance import RESIDUAL_TOL, judge
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.inclined import solve_inclined
+from liftplan.model.results import Equilibrium, Pose, SolverInfo
+from liftplan.model.rigging import solve_rigging
+from liftplan.model.scene import MODELS, name_list
+from liftplan.model.statics import BLOCK, rope_model
+from liftplan.model.water import solve_hydrostatic
 
 
 def pick_model(scene):
@@ -96,17 +96,20 @@ def solve(scene, model=None, method="newton"):
         raise InvalidScene(
             f"cranes.sling given, but the {model} model hangs one rope per lug; expected model "
             "'rigging' (or no model: it is picked when a crane has a sling)"
-            if scene.hull is None else
-            "cranes.sling: slings on a hull in water are not modelled; expected one rope per lug"
+            if scene.hull is None
+            else "cranes.sling: slings on a hull in water are not modelled; expected one rope per lug"
         )
-    if model not in ("inclined", "rigging") and any(c.tip is not None for c in scene.cranes) \
-            and scene.hull is None:
+    if (
+        model not in ("inclined", "rigging")
+        and any(c.tip is not None for c in scene.cranes)
+        and scene.hull is None
+    ):
         raise InvalidScene(
             f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
             "'inclined' (or no model: it is picked when a tip is given)"
         )
     if scene.girder is not None and model == "hydrostatic":
-        from .strength.flexible_water import solve_hull_in_water
+        from liftplan.model.strength.flexible_water import solve_hull_in_water
 
         return solve_hull_in_water(scene, method=method)
     if scene.girder is not None and model != "elastic":
@@ -132,15 +135,17 @@ def solve(scene, model=None, method="newton"):
 # -- flexible hull ---------------------------------------------------------------------------
 def _rigid_hull(scene, model, method):
     """A scene with a hull stiffness on a model that holds the hull rigid: solved, and said so."""
-    from .strength.flexible import RigidHullNote
+    from liftplan.model.strength.flexible import RigidHullNote
 
     if scene.analysis.hull == "flexible":
         raise InvalidScene(
             f'analysis.hull = "flexible": the {model} model holds the hull rigid; expected model '
-            "'elastic' (vertical ropes in air) or 'hydrostatic' (in water) for a flexible hull")
+            "'elastic' (vertical ropes in air) or 'hydrostatic' (in water) for a flexible hull"
+        )
     eq = solve(dataclasses.replace(scene, girder=None), model=model, method=method)
-    note = RigidHullNote(f"the {model} model holds the hull rigid; hull.EI is used by the elastic "
-                         "and hydrostatic models only")
+    note = RigidHullNote(
+        f"the {model} model holds the hull rigid; hull.EI is used by the elastic and hydrostatic models only"
+    )
     return dataclasses.replace(eq, flexible_hull=note)
 
 
@@ -164,12 +169,19 @@ def solve_hull_on_ropes(scene, hull=None):
     EquilibriumNotFound
         Either solve was not accepted (residual, stability, upright), with the reason.
     """
-    from .acceptance import Verdict
-    from .strength.flexible import TENSION_CHANGE, RigidHullNote, flexible_state, hull_report, tension_change
+    from liftplan.model.acceptance import Verdict
+    from liftplan.model.strength.flexible import (
+        TENSION_CHANGE,
+        RigidHullNote,
+        flexible_state,
+        hull_report,
+        tension_change,
+    )
 
     hull = hull or scene.analysis.hull
-    rigid_scene = dataclasses.replace(scene, girder=None,
-                                      analysis=dataclasses.replace(scene.analysis, hull="auto"))
+    rigid_scene = dataclasses.replace(
+        scene, girder=None, analysis=dataclasses.replace(scene.analysis, hull="auto")
+    )
     rigid = solve_elastic(rigid_scene)
     if hull == "rigid":
         return dataclasses.replace(rigid, flexible_hull=RigidHullNote('analysis.hull = "rigid"'))
@@ -177,8 +189,12 @@ def solve_hull_on_ropes(scene, hull=None):
     x_rigid = np.array([rigid.pose.lift_height, math.radians(rigid.pose.heel), math.radians(rigid.pose.trim)])
     state = flexible_state(scene, pack_params(scene, "elastic"), x_rigid)
     seconds = time.perf_counter() - start
-    verdict = Verdict(max(_worst(scene, state.statics) / scene.body.weight, state.beam_residual),
-                      state.stable, math.degrees(state.x[1]), math.degrees(state.x[2]))
+    verdict = Verdict(
+        max(_worst(scene, state.statics) / scene.body.weight, state.beam_residual),
+        state.stable,
+        math.degrees(state.x[1]),
+        math.degrees(state.x[2]),
+    )
     if not verdict.ok:
         raise EquilibriumNotFound(f"elastic, flexible hull: no accepted equilibrium ({verdict.reason()})")
     rigid_t = np.array([rigid.tensions[name] for name in scene.lug_names])
@@ -191,9 +207,18 @@ def solve_hull_on_ropes(scene, hull=None):
     if scene.n - len(slack) < 3:
         raise EquilibriumNotFound(
             f"elastic, flexible hull: only {scene.n - len(slack)} rope(s) taut ({name_list(slack)} "
-            "slack): expected three or more to hold the body")
-    eq = _equilibrium(scene, "elastic", state.x, state.tensions, state.statics, "newton (flexible hull)",
-                      seconds, slack=slack)
+            "slack): expected three or more to hold the body"
+        )
+    eq = _equilibrium(
+        scene,
+        "elastic",
+        state.x,
+        state.tensions,
+        state.statics,
+        "newton (flexible hull)",
+        seconds,
+        slack=slack,
+    )
     return dataclasses.replace(eq, flexible_hull=report)
 
 
@@ -211,7 +236,7 @@ def _given_in_water(scene, model):
     statics close it as they close W at G in air. A ground contact carries nothing (the
     held pose is the lift-off instant; see :mod:`liftplan.model.water_loads`).
     """
-    from .water_loads import held_loads
+    from liftplan.model.water_loads import held_loads
 
     if scene.n < 3:
         raise InvalidScene(f"lugs: {scene.n} given; the {model} model expected three or more ropes")
@@ -227,8 +252,9 @@ def _given_in_water(scene, model):
     eq = solver(scene, body=body)
     seconds = eq.solver.seconds + time.perf_counter() - start
     method = "linear (constant buoyancy)" if loads.constant else "linear (clipped hull)"
-    return dataclasses.replace(eq, afloat=loads.afloat,
-                               solver=dataclasses.replace(eq.solver, method=method, seconds=seconds))
+    return dataclasses.replace(
+        eq, afloat=loads.afloat, solver=dataclasses.replace(eq.solver, method=method, seconds=seconds)
+    )
 
 
 # -- parameters -----------------------------------------------------------------------------
@@ -244,16 +270,18 @@ def pack_params(scene, model, body=None):
     boom = scene.crane_values("boom_height", model) if model != "rigid" else ones
     stiffness = scene.crane_values("EA", model) if model != "rigid" else ones
     length = scene.crane_values("rope_length", model) if model == "elastic" else ones
-    return np.concatenate([
-        [math.radians(scene.attitude.yaw)],
-        scene.lug_points().ravel(),
-        cog,
-        [weight],
-        boom,
-        length,
-        stiffness,
-        [scene.plan_diameter],
-    ])
+    return np.concatenate(
+        [
+            [math.radians(scene.attitude.yaw)],
+            scene.lug_points().ravel(),
+            cog,
+            [weight],
+            boom,
+            length,
+            stiffness,
+            [scene.plan_diameter],
+        ]
+    )
 
 
 def _given_x(scene):
@@ -496,10 +524,13 @@ def _energy_solve(scene, model, p):
                 f"alone moves a tension by ~{floor:.1e} t, above {RESIDUAL_TOL:g} W); expected "
                 "model 'paper-elastic' or 'rigid', the stiff-rope limit"
             )
-        hint = ("a CG high above soft ropes can have no stable upright equilibrium; expected "
-                "stiffer ropes, lugs further apart or a lower CG" if verdict.small and verdict.upright
-                else "check that the boom heights and rope lengths can hold the body with three "
-                "or more taut ropes")
+        hint = (
+            "a CG high above soft ropes can have no stable upright equilibrium; expected "
+            "stiffer ropes, lugs further apart or a lower CG"
+            if verdict.small and verdict.upright
+            else "check that the boom heights and rope lengths can hold the body with three "
+            "or more taut ropes"
+        )
         raise EquilibriumNotFound(
             f"elastic: no stable upright equilibrium found (energy minimisation: {status}; after "
             f"Newton: {verdict.reason()}); {hint}"

@@ -8,7 +8,7 @@ failed check and exits with its own code; ``--json`` carries them all as ``"chec
 
 from __future__ import annotations
 
-from .checks import Check
+from liftplan.model.checks import Check
 
 
 def equilibrium_checks(scene, eq):
@@ -30,18 +30,20 @@ def equilibrium_checks(scene, eq):
     for name, tension in eq.tensions.items():
         swl = eq.swl.get(name)
         if swl:
-            checks.append(Check.upper("swl", name, tension, swl, "t",
-                                      note=f"rope tension / crane SWL = {tension / swl:.0%}"))
+            checks.append(
+                Check.upper(
+                    "swl", name, tension, swl, "t", note=f"rope tension / crane SWL = {tension / swl:.0%}"
+                )
+            )
     for name, tension in eq.tensions.items():
-        checks.append(Check.lower("min_tension", name, tension, 0.0, "t",
-                                  note="a rope cannot push"))
+        checks.append(Check.lower("min_tension", name, tension, 0.0, "t", note="a rope cannot push"))
     if eq.tensions and scene.hull is None:
         # in water or on the ground a slack rope is a state (the water or the ground carries
         # the body), not a failure; in air the ropes alone must hold it
         slack = [name for name in eq.tensions if name in eq.slack]
         verb = "carries" if len(slack) == 1 else "carry"
-        note = (f"slack: {', '.join(slack)} {verb} nothing, the body hangs on the others"
-                if slack else "")
-        checks.append(Check.lower("taut", "ropes", len(eq.tensions) - len(slack), len(eq.tensions),
-                                  "-", note=note))
+        note = f"slack: {', '.join(slack)} {verb} nothing, the body hangs on the others" if slack else ""
+        checks.append(
+            Check.lower("taut", "ropes", len(eq.tensions) - len(slack), len(eq.tensions), "-", note=note)
+        )
     return checks

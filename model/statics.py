@@ -39,8 +39,8 @@ from functools import cache, cached_property
 import casadi as ca
 import numpy as np
 
-from .compiled import compile_cached
-from .frames import rotation
+from liftplan.model.compiled import compile_cached
+from liftplan.model.frames import rotation
 
 
 @dataclass(frozen=True)
@@ -172,8 +172,8 @@ def check_hinges(rows, heel, trim, yaw=0.0, names=None, shown=tuple):
         One line naming the row, the pair, its inclination and the box's attitude where it is
         steepest.
     """
-    from .errors import InvalidScene
-    from .frames import rotation_matrix
+    from liftplan.model.errors import InvalidScene
+    from liftplan.model.frames import rotation_matrix
 
     rows = np.asarray(rows, dtype=float).reshape(-1, 8)
     a, b = rows[:, 0:3], rows[:, 3:6]
@@ -186,8 +186,10 @@ def check_hinges(rows, heel, trim, yaw=0.0, names=None, shown=tuple):
     length = np.linalg.norm(b - a, axis=1)
     short = np.flatnonzero(~(length > 1e-9))
     if short.size:
-        raise InvalidScene(f"{where(short[0])} is one point: expected two lugs apart (the sling "
-                           "hinges about the line between them)")
+        raise InvalidScene(
+            f"{where(short[0])} is one point: expected two lugs apart (the sling "
+            "hinges about the line between them)"
+        )
     bad = np.flatnonzero(near_plumb(a, b, heel, trim))
     if not bad.size:
         return
@@ -204,7 +206,8 @@ def check_hinges(rows, heel, trim, yaw=0.0, names=None, shown=tuple):
         f"{np.degrees(np.arcsin(min(1.0, steep[k]))):.2f} deg at heel {grid[k][0] + 0.0:.2f}, trim "
         f"{grid[k][1] + 0.0:.2f} deg): within {PLUMB_MARGIN:g} deg of plumb the sling's hinge plane "
         f"flips; expected a pair less than {90.0 - PLUMB_MARGIN - tilt:.2f} deg from the "
-        "horizontal, or a smaller plan.tolerance")
+        "horizontal, or a smaller plan.tolerance"
+    )
 
 
 def hinged_points(points, hinges, rot, lift):
@@ -248,8 +251,12 @@ def hinged_points(points, hinges, rot, lift):
     offset = points - a - e_z * ca.repmat(drop.T, 3, 1)
     along = ca.sum1(offset * u0)
     height = ca.sum1(offset * n0)
-    hooks = (posed_a + e_z * ca.repmat(drop.T, 3, 1) + u * ca.repmat(along, 3, 1)
-             + normal * ca.repmat(height, 3, 1))
+    hooks = (
+        posed_a
+        + e_z * ca.repmat(drop.T, 3, 1)
+        + u * ca.repmat(along, 3, 1)
+        + normal * ca.repmat(height, 3, 1)
+    )
     centre = 0.5 * (posed_a + posed_b) + e_z * ca.repmat(drop.T, 3, 1)
     lever = ca.mtimes(hooks[0:2, :] - centre[0:2, :], bar)
     return hooks, ca.vertcat(0, lever)
@@ -359,7 +366,10 @@ class RopeModel:
         """(x, p) -> (A, b, lugs, cog): the statics A T = b at a given pose."""
         lugs, cog_w, a_mat, b_vec = self._pose
         return ca.Function(
-            "statics", [self._x, self._p], [a_mat, b_vec, lugs, cog_w], ["x", "p"],
+            "statics",
+            [self._x, self._p],
+            [a_mat, b_vec, lugs, cog_w],
+            ["x", "p"],
             ["A", "b", "lugs", "cog"],
         )
 
@@ -380,8 +390,11 @@ class RopeModel:
         coeff = ca.solve(normal, b_vec)
         t_paper = k * ca.mtimes(phi, coeff)
         return ca.Function(
-            "paper_elastic", [self._x, self._p], [t_paper, rope_len, ca.mtimes(a_mat, t_paper) - b_vec],
-            ["x", "p"], ["T", "l", "residual"],
+            "paper_elastic",
+            [self._x, self._p],
+            [t_paper, rope_len, ca.mtimes(a_mat, t_paper) - b_vec],
+            ["x", "p"],
+            ["T", "l", "residual"],
         )
 
     # -- held hoist: the boom heights set at level, the hooks then moved rigidly -------------
@@ -411,8 +424,11 @@ class RopeModel:
         """
         t_held, hook_shift = self._held
         return ca.Function(
-            "held", [self._x, self._p], [t_held, hook_shift, ca.jacobian(t_held, self._parts[4])],
-            ["x", "p"], ["T", "dH", "dT_dH"],
+            "held",
+            [self._x, self._p],
+            [t_held, hook_shift, ca.jacobian(t_held, self._parts[4])],
+            ["x", "p"],
+            ["T", "dH", "dT_dH"],
         )
 
     @cached_property
@@ -423,8 +439,7 @@ class RopeModel:
         ~1.5 s where :attr:`held`'s takes ~17 s (the Jacobian is n^2 outputs per column).
         """
         t_held, hook_shift = self._held
-        return ca.Function("held_tensions", [self._x, self._p], [t_held, hook_shift],
-                           ["x", "p"], ["T", "dH"])
+        return ca.Function("held_tensions", [self._x, self._p], [t_held, hook_shift], ["x", "p"], ["T", "dH"])
 
     # -- forward elastic model -------------------------------------------------------------
     @cached_property
@@ -449,8 +464,11 @@ class RopeModel:
         """(x, p) -> (T, stretch, residual [t]) of the forward model at a pose."""
         tension, stretch, residual, row_scale, _, _ = self._elastic
         return ca.Function(
-            "elastic_tensions", [self._x, self._p], [tension, stretch, residual * row_scale],
-            ["x", "p"], ["T", "stretch", "residual"],
+            "elastic_tensions",
+            [self._x, self._p],
+            [tension, stretch, residual * row_scale],
+            ["x", "p"],
+            ["T", "stretch", "residual"],
         )
 
     @cached_property
@@ -490,8 +508,13 @@ class RopeModel:
             "elastic_newton",
             "newton",
             {"x": self._x, "p": self._p, "g": self._residual},
-            {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
-             "show_eval_warnings": False},
+            {
+                "abstol": 1e-13,
+                "abstolStep": 1e-15,
+                "max_iter": 60,
+                "error_on_fail": False,
+                "show_eval_warnings": False,
+            },
         )
 
     def _newton_function(self, name, with_start):
@@ -525,8 +548,14 @@ class RopeModel:
             "elastic_energy",
             "ipopt",
             {"x": x, "p": p, "f": energy},
-            {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
-             "ipopt.sb": "yes", "ipopt.max_iter": 500, "show_eval_warnings": False},
+            {
+                "ipopt.print_level": 0,
+                "print_time": False,
+                "ipopt.tol": 1e-14,
+                "ipopt.sb": "yes",
+                "ipopt.max_iter": 500,
+                "show_eval_warnings": False,
+            },
         )
 
     @cached_property

@@ -27,12 +27,12 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from .afloat import buoyancy_weights
-from .errors import EquilibriumNotFound
-from .frames import rotation_matrix
-from .hydrostatics import triangle_function
-from .results import Afloat
-from .water import water_state
+from liftplan.model.afloat import buoyancy_weights
+from liftplan.model.errors import EquilibriumNotFound
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.hydrostatics import triangle_function
+from liftplan.model.results import Afloat
+from liftplan.model.water import water_state
 
 
 @dataclass(frozen=True)
@@ -163,5 +163,6 @@ def held_loads(scene):
         contact=world(rot @ np.asarray(scene.ground.contact) + lift) if scene.ground is not None else None,
         centre_of_trapped_water=world(trapped_world) if trapped_world is not None else None,
     )
-    return HeldLoads(afloat=afloat, net_weight=net, net_point=tuple(float(v) for v in point),
-                     constant=constant)
+    return HeldLoads(
+        afloat=afloat, net_weight=net, net_point=tuple(float(v) for v in point), constant=constant
+    )

@@ -69,14 +69,31 @@ class BreakoutCase:
     @property
     def checks(self):
         """Per crane the breakout hook load against the chart SWL; the lowest tension >= 0."""
-        out = [Check.upper("breakout_hook_load", crane, hook, swl, "t",
-                           note=f"held tension at breakout {t:.4g} t + rigging {r:.4g} t / chart SWL "
-                                "(static peak, no DAF)")
-               for crane, hook, swl, t, r in zip(self.cranes, self.hook_loads, self.swl,
-                                                 self.tensions, self.rigging)]
-        out.append(Check.lower("breakout_min_tension", "all ropes", float(self.tensions.min()), 0.0,
-                               "t", note="lowest held tension at breakout; below 0 a rope goes "
-                                         "slack and the held model no longer holds"))
+        out = [
+            Check.upper(
+                "breakout_hook_load",
+                crane,
+                hook,
+                swl,
+                "t",
+                note=f"held tension at breakout {t:.4g} t + rigging {r:.4g} t / chart SWL "
+                "(static peak, no DAF)",
+            )
+            for crane, hook, swl, t, r in zip(
+                self.cranes, self.hook_loads, self.swl, self.tensions, self.rigging
+            )
+        ]
+        out.append(
+            Check.lower(
+                "breakout_min_tension",
+                "all ropes",
+                float(self.tensions.min()),
+                0.0,
+                "t",
+                note="lowest held tension at breakout; below 0 a rope goes "
+                "slack and the held model no longer holds",
+            )
+        )
         return out
 
     @property
@@ -101,14 +118,27 @@ def breakout_case(problem, lugset, preload):
     """
     load = problem.breakout
     boom = lugset.boom_heights(np.asarray(preload, dtype=float))
-    params = pack(problem, lugset.points, np.asarray(load.point, dtype=float), boom,
-                  weight=load.total, rope_length=lugset.rope_length, EA=lugset.EA)
+    params = pack(
+        problem,
+        lugset.points,
+        np.asarray(load.point, dtype=float),
+        boom,
+        weight=load.total,
+        rope_length=lugset.rope_length,
+        EA=lugset.EA,
+    )
     level = np.array([[problem.lift_height, 0.0, 0.0]])
     tensions, shift, _ = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
     rigging = np.array([problem.rules.rigging_for(name) for name in lugset.crane_names], dtype=float)
-    return BreakoutCase(load=load, cranes=lugset.crane_names, lugs=lugset.names,
-                        tensions=tensions[0], hook_shift=shift[0], swl=np.asarray(lugset.swl, dtype=float),
-                        rigging=rigging)
+    return BreakoutCase(
+        load=load,
+        cranes=lugset.crane_names,
+        lugs=lugset.names,
+        tensions=tensions[0],
+        hook_shift=shift[0],
+        swl=np.asarray(lugset.swl, dtype=float),
+        rigging=rigging,
+    )
 
 
 def breakout_json(plan):
@@ -129,14 +159,31 @@ def breakout_json(plan):
     out["scene"] = plan.problem.breakout_scene.name
     out["tensions"] = dict(zip(plan.labels, case.tensions.tolist()))
     out["cranes"] = [
-        {"lug": c.label, "candidate": c.lug, "crane": c.crane, "tension": c.breakout,
-         "rigging": float(r), "hook_load": float(h), "swl": c.swl, "hook_shift": float(d),
-         "box_worst": max(c.worst, c.nominal), "static_input": c.static_input,
-         "governs": c.governs, "note": c.static_note}
-        for c, r, h, d in zip(design.cranes, case.rigging, case.hook_loads, case.hook_shift)]
+        {
+            "lug": c.label,
+            "candidate": c.lug,
+            "crane": c.crane,
+            "tension": c.breakout,
+            "rigging": float(r),
+            "hook_load": float(h),
+            "swl": c.swl,
+            "hook_shift": float(d),
+            "box_worst": max(c.worst, c.nominal),
+            "static_input": c.static_input,
+            "governs": c.governs,
+            "note": c.static_note,
+        }
+        for c, r, h, d in zip(design.cranes, case.rigging, case.hook_loads, case.hook_shift)
+    ]
     out["checks"] = [c.to_json() for c in case.checks]
     out["ok"] = case.ok
-    out["ranking"] = [{"lugs": list(d.breakout.lugs), "cranes": list(d.breakout.cranes),
-                       "tensions": d.breakout.tensions.tolist(), "ok": d.breakout.ok}
-                      for d in plan.ranked_design]
+    out["ranking"] = [
+        {
+            "lugs": list(d.breakout.lugs),
+            "cranes": list(d.breakout.cranes),
+            "tensions": d.breakout.tensions.tolist(),
+            "ok": d.breakout.ok,
+        }
+        for d in plan.ranked_design
+    ]
     return {"breakout": out}

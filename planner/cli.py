@@ -40,8 +40,8 @@ def _parser():
         prog="liftplan",
         description="Multi-crane lift planning for salvage and heavy-block rigging.",
         epilog="exit codes: 0 success, 1 no equilibrium / no feasible plan, 2 bad input, "
-               "3 internal error, 4 result printed but a check failed (FAIL lines), "
-               "130 interrupted (Ctrl-C), 141 output pipe closed early",
+        "3 internal error, 4 result printed but a check failed (FAIL lines), "
+        "130 interrupted (Ctrl-C), 141 output pipe closed early",
     )
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
     commands = parser.add_subparsers(dest="command", required=True)
@@ -54,48 +54,71 @@ def _parser():
         help="override the scene's [analysis] model",
     )
     solve_cmd.add_argument(
-        "--strict", action="store_true",
+        "--strict",
+        action="store_true",
         help=f"exit {CHECK_FAILED} when a check fails (default: a converged solve exits 0 and "
-             "flags failed checks with FAIL lines and in the JSON)")
+        "flags failed checks with FAIL lines and in the JSON)",
+    )
     solve_cmd.add_argument(
-        "--method", choices=["newton", "paper-newton"], default="newton",
+        "--method",
+        choices=["newton", "paper-newton"],
+        default="newton",
         help="stranded hull: casadi Newton (default) or the paper's J^T D J iteration",
     )
     solve_cmd.add_argument(
-        "--strength-figure", metavar="FILE",
+        "--strength-figure",
+        metavar="FILE",
         help="draw weight, buoyancy, lift forces, shear force and bending moment along the body "
-             "(needs [body] weight_curve), .png, .pdf or .svg")
+        "(needs [body] weight_curve), .png, .pdf or .svg",
+    )
     lift_cmd = commands.add_parser(
-        "lift", help="load curve of a lift off the seabed and through the waterline")
+        "lift", help="load curve of a lift off the seabed and through the waterline"
+    )
     lift_cmd.add_argument("scene", help="scene file with [hull], [water], cranes (and usually [ground])")
-    lift_cmd.add_argument("--to", type=float, metavar="M",
-                          help="last hoist in m (default: the hull 1 m clear of the water)")
+    lift_cmd.add_argument(
+        "--to", type=float, metavar="M", help="last hoist in m (default: the hull 1 m clear of the water)"
+    )
     lift_cmd.add_argument("--step", type=float, default=0.25, metavar="M", help="hoist step in m (0.25)")
-    lift_cmd.add_argument("--speed", type=float, metavar="M/MIN",
-                          help="hoist speed in m/min: the curve gets a time axis and compartments "
-                               "with openings drain in time (without it they are carried full)")
+    lift_cmd.add_argument(
+        "--speed",
+        type=float,
+        metavar="M/MIN",
+        help="hoist speed in m/min: the curve gets a time axis and compartments "
+        "with openings drain in time (without it they are carried full)",
+    )
     lift_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
-    lift_cmd.add_argument("--figure", metavar="FILE",
-                          help="where to save the figure, .png, .pdf or .svg (default: "
-                               "SCENE_load_curve.png in the current folder)")
+    lift_cmd.add_argument(
+        "--figure",
+        metavar="FILE",
+        help="where to save the figure, .png, .pdf or .svg (default: "
+        "SCENE_load_curve.png in the current folder)",
+    )
     plan_cmd = commands.add_parser("plan", help="choose lugs and boom heights for a lift")
     plan_cmd.add_argument("scene", help="planning scene file (TOML with [[candidates]], [plan])")
     plan_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
-    plan_cmd.add_argument("--report", metavar="DIR",
-                          help="write report.html (and report.pdf with WeasyPrint), "
-                               "plan_scene.toml and plan.json into DIR (created if missing)")
+    plan_cmd.add_argument(
+        "--report",
+        metavar="DIR",
+        help="write report.html (and report.pdf with WeasyPrint), "
+        "plan_scene.toml and plan.json into DIR (created if missing)",
+    )
     plan_cmd.add_argument("--top", type=int, metavar="K", help="rank the best K lug sets")
     batch_cmd = commands.add_parser(
-        "batch", help="run a batch study (many plans, or one plan checked many times) on Dask")
+        "batch", help="run a batch study (many plans, or one plan checked many times) on Dask"
+    )
     batch_cmd.add_argument("study", help="study file (TOML with [study], [sweep], [sample])")
-    batch_cmd.add_argument("--scheduler", metavar="ADDRESS",
-                           help="a running Dask scheduler, e.g. tcp://10.0.0.5:8786 "
-                                "(default: a local cluster)")
-    batch_cmd.add_argument("--workers", type=int, metavar="N",
-                           help="local cluster size (default: one per core)")
+    batch_cmd.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (default: a local cluster)",
+    )
+    batch_cmd.add_argument(
+        "--workers", type=int, metavar="N", help="local cluster size (default: one per core)"
+    )
     batch_cmd.add_argument("--output", metavar="CSV", help="the table to write (default: the study's)")
-    batch_cmd.add_argument("--restart", action="store_true",
-                           help="discard an interrupted run's rows instead of resuming it")
+    batch_cmd.add_argument(
+        "--restart", action="store_true", help="discard an interrupted run's rows instead of resuming it"
+    )
     batch_cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
@@ -113,14 +136,15 @@ def _verdict(checks, table, strict=True):
         for check in failed:
             print(check.line())
         if checks:
-            print(f"checks: {len(checks) - len(failed)} of {len(checks)} met"
-                  + (f", {len(failed)} FAILED" if failed else ""))
+            print(
+                f"checks: {len(checks) - len(failed)} of {len(checks)} met"
+                + (f", {len(failed)} FAILED" if failed else "")
+            )
     if failed:
         names = ", ".join(f"{c.name} {c.subject}" for c in failed[:5])
         more = f" and {len(failed) - 5} more" if len(failed) > 5 else ""
         code = CHECK_FAILED if strict else 0
-        print(f"liftplan: {len(failed)} check(s) failed: {names}{more} (exit {code})",
-              file=sys.stderr)
+        print(f"liftplan: {len(failed)} check(s) failed: {names}{more} (exit {code})", file=sys.stderr)
         return code
     return 0
 
@@ -140,9 +164,11 @@ def _solve(args):
         figure = output_file(args.strength_figure, "--strength-figure", FIGURE_TYPES)
     scene = load_scene(args.scene)
     if figure is not None and scene.body.weight_curve is None:
-        raise InvalidScene(f"--strength-figure {figure}: {args.scene} has no [body] weight_curve; "
-                           "expected a scene with a weight curve (the figure draws its shear force and "
-                           "bending moment)")
+        raise InvalidScene(
+            f"--strength-figure {figure}: {args.scene} has no [body] weight_curve; "
+            "expected a scene with a weight curve (the figure draws its shear force and "
+            "bending moment)"
+        )
     _warn(scene_warnings(scene))
     eq = solve(scene, model=args.model, method=args.method)
     _warn(equilibrium_warnings(scene, eq))
@@ -195,8 +221,10 @@ def _plan(args):
 
     problem = load_problem(args.scene)
     if abs(problem.yaw) > MAX_YAW:
-        raise InvalidScene(f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
-                           f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg")
+        raise InvalidScene(
+            f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
+            f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg"
+        )
     _warn(problem_warnings(problem))
     from liftplan.planner.plan import plan
     from liftplan.planner.search.branch import Interrupted
@@ -207,8 +235,10 @@ def _plan(args):
         if err.plan is None:  # nothing evaluated yet
             raise KeyboardInterrupt from None
         _print_plan(err.plan, args, interrupted=True)
-        print("liftplan: interrupted; the plan above is the best found so far, not the search's "
-              "answer", file=sys.stderr)
+        print(
+            "liftplan: interrupted; the plan above is the best found so far, not the search's answer",
+            file=sys.stderr,
+        )
         return INTERRUPTED
     unwritten = None
     if report is not None:
@@ -310,11 +340,19 @@ def _batch(args):
     if args.output is None:
         output_file(study.output, "study.output")
     try:
-        summary = run_study(study, scheduler=args.scheduler, workers=args.workers,
-                            restart=args.restart, progress=not args.no_progress, output=args.output)
+        summary = run_study(
+            study,
+            scheduler=args.scheduler,
+            workers=args.workers,
+            restart=args.restart,
+            progress=not args.no_progress,
+            output=args.output,
+        )
     except KeyboardInterrupt:
-        print("liftplan: interrupted; the finished cases are kept, run the same command to resume",
-              file=sys.stderr)
+        print(
+            "liftplan: interrupted; the finished cases are kept, run the same command to resume",
+            file=sys.stderr,
+        )
         return INTERRUPTED
     print(batch_table(study, summary))
 
@@ -369,8 +407,7 @@ def main(argv=None):
     except Exception as err:  # noqa: BLE001 - the command line never shows a traceback
         if args.debug:
             raise
-        print(f"liftplan: internal error: {type(err).__name__}: {err} (rerun with --debug)",
-              file=sys.stderr)
+        print(f"liftplan: internal error: {type(err).__name__}: {err} (rerun with --debug)", file=sys.stderr)
         return INTERNAL
 
 

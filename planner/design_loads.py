@@ -66,8 +66,10 @@ class PlanChain(DesignLoadChain):
         design = dict(self.inputs).get(crane.name)
         if design is None:
             return notes
-        mine = {"tilt": design.tilt_note_for(crane.tilt, self.tilt_note),
-                "cog": design.cog_note(self.cog_searched)}
+        mine = {
+            "tilt": design.tilt_note_for(crane.tilt, self.tilt_note),
+            "cog": design.cog_note(self.cog_searched),
+        }
         notes.update({name: note for name, note in mine.items() if note})
         return notes
 
@@ -165,8 +167,11 @@ class CraneDesign:
     @property
     def governs(self):
         """``"breakout"`` when the breakout tension is the static input, else ``"box"``."""
-        return "breakout" if self.breakout is not None and self.breakout > max(self.worst, self.nominal) \
+        return (
+            "breakout"
+            if self.breakout is not None and self.breakout > max(self.worst, self.nominal)
             else "box"
+        )
 
     @property
     def static_note(self):
@@ -187,8 +192,10 @@ class CraneDesign:
         box = max(self.worst, self.nominal)
         against = f"the worst in the box {box:.4g} t"  # a lower breakout: said by static_note
         if self.governs == "breakout":
-            against = (f"the breakout tension {self.breakout:.4g} t (breakout governs over the worst "
-                       f"in the box {box:.4g} t)")
+            against = (
+                f"the breakout tension {self.breakout:.4g} t (breakout governs over the worst "
+                f"in the box {box:.4g} t)"
+            )
         note = f"share at the rules' tilt {tilt_share:.4g} t against {against}"
         if tilt_share > self.static_input:
             note += ": the tilt governs"
@@ -201,9 +208,11 @@ class CraneDesign:
         if not searched or self.nominal <= 0.0 or self.governs != "breakout":
             return ""
         box = max(self.worst, self.nominal)
-        return (f"CoG envelope searched by the planner: in the worst in the box (worst / nominal = "
-                f"{box / self.nominal:.4f}); the breakout tension that governs is at the breakout "
-                "scene's load point, no CoG envelope on it")
+        return (
+            f"CoG envelope searched by the planner: in the worst in the box (worst / nominal = "
+            f"{box / self.nominal:.4f}); the breakout tension that governs is at the breakout "
+            "scene's load point, no CoG envelope on it"
+        )
 
     @property
     def skew(self):
@@ -229,8 +238,9 @@ class CraneDesign:
         if self.design is None:
             return float("nan")
         factor = {f.name: f.value for f in self.design.factors}
-        return ((self.design.static_hook_load - self.design.rigging_weight)
-                / (factor["weight_contingency"] * factor["cog"]))
+        return (self.design.static_hook_load - self.design.rigging_weight) / (
+            factor["weight_contingency"] * factor["cog"]
+        )
 
     @property
     def utilisation(self):
@@ -278,8 +288,17 @@ class DesignLoads:
         """Design hook load per crane, code margin per crane, lug design loads (with a capacity),
         and with a breakout case its hook load per crane and lowest tension."""
         if self.chain is None:
-            out = [Check("design_loads", "all cranes", float("nan"), float("nan"), "-", False,
-                         note=f"not computed: {self.missing}")]
+            out = [
+                Check(
+                    "design_loads",
+                    "all cranes",
+                    float("nan"),
+                    float("nan"),
+                    "-",
+                    False,
+                    note=f"not computed: {self.missing}",
+                )
+            ]
         else:
             out = list(self.chain.checks)
         return out + ([] if self.breakout is None else self.breakout.checks)
@@ -324,51 +343,76 @@ class DesignBuilder:
         cranes = []
         for k, label in enumerate(labels):
             case = at_tilt.get(names[k])
-            cranes.append(CraneDesign(
-                label=label, crane=names[k], lug=lugset.names[k],
-                radius=None if fleet[k].position is None else float(lugset.radius[k]),
-                swl=float(lugset.swl[k]), nominal=float(preload[k]),
-                worst=float(tensions[where[k], k]), worst_at=self.dense[where[k]],
-                tilt=case, skewed=float(skewed[k]),
-                breakout=None if breakout is None else float(breakout.tensions[k])))
+            cranes.append(
+                CraneDesign(
+                    label=label,
+                    crane=names[k],
+                    lug=lugset.names[k],
+                    radius=None if fleet[k].position is None else float(lugset.radius[k]),
+                    swl=float(lugset.swl[k]),
+                    nominal=float(preload[k]),
+                    worst=float(tensions[where[k], k]),
+                    worst_at=self.dense[where[k]],
+                    tilt=case,
+                    skewed=float(skewed[k]),
+                    breakout=None if breakout is None else float(breakout.tensions[k]),
+                )
+            )
         chain = None
         if missing is None:
             try:
                 chain = PlanChain(
-                    cranes=tuple(self._loads(c) for c in cranes), weight=problem.body.weight,
-                    rules=problem.rules, cog_searched=self.searched, tilt_note=tilt_note,
-                    inputs=tuple((c.crane, c) for c in cranes))
+                    cranes=tuple(self._loads(c) for c in cranes),
+                    weight=problem.body.weight,
+                    rules=problem.rules,
+                    cog_searched=self.searched,
+                    tilt_note=tilt_note,
+                    inputs=tuple((c.crane, c) for c in cranes),
+                )
                 results = chain.results
             except InvalidScene as err:
                 chain, missing = None, str(err)
             else:
                 cranes = [replace(c, design=r) for c, r in zip(cranes, results)]
-        return DesignLoads(cranes=tuple(cranes), tilt=tilt, tilt_note=tilt_note, chain=chain,
-                           missing=missing, breakout=breakout)
+        return DesignLoads(
+            cranes=tuple(cranes),
+            tilt=tilt,
+            tilt_note=tilt_note,
+            chain=chain,
+            missing=missing,
+            breakout=breakout,
+        )
 
     def _tilt(self, lugset, preload):
         """(tilt [deg], note, {crane: TiltCase}, missing reason or None)."""
         problem = self.problem
         names = lugset.crane_names
         geometry = TiltGeometry(
-            {n: tuple(p) for n, p in zip(names, lugset.points)}, problem.body.cog, problem.body.weight,
+            {n: tuple(p) for n, p in zip(names, lugset.points)},
+            problem.body.cog,
+            problem.body.weight,
             preload=dict(zip(names, preload.tolist())),
-            stiffness=dict(zip(names, lugset.stiffness.tolist())))
+            stiffness=dict(zip(names, lugset.stiffness.tolist())),
+        )
         design_tilt, elevation = problem.rules.design_tilt()
         try:
             if lugset.n > 2:  # per direction: the elevation difference over the spacing along it
                 tilts = [geometry.tilt_along(d, design_tilt, elevation) for d in range(0, 180, 5)]
                 tilt = max(tilts)
-                note = (f"{min(tilts):.2f} to {tilt:.2f} deg by direction: the worse of "
-                        f"{design_tilt:g} deg and a {elevation:g} m hook elevation difference over "
-                        "the hooks' spacing along each tilt")
+                note = (
+                    f"{min(tilts):.2f} to {tilt:.2f} deg by direction: the worse of "
+                    f"{design_tilt:g} deg and a {elevation:g} m hook elevation difference over "
+                    "the hooks' spacing along each tilt"
+                )
             else:
                 spacing = geometry.least_spacing()
                 tilt = governing_tilt(design_tilt, elevation, spacing)
                 from_elevation = float(np.degrees(np.arcsin(elevation / spacing)))
-                note = (f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m "
-                        f"hook elevation difference over the hook spacing {spacing:.2f} m "
-                        f"({from_elevation:.2f} deg)")
+                note = (
+                    f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m "
+                    f"hook elevation difference over the hook spacing {spacing:.2f} m "
+                    f"({from_elevation:.2f} deg)"
+                )
         except InvalidScene as err:
             return float("nan"), "", {}, str(err)
         try:
@@ -378,18 +422,27 @@ class DesignBuilder:
         cases = {}
         for name, load in worst.items():
             psi = np.radians(load.direction)
-            cases[name] = TiltCase(load=float(load.load), tilt=float(load.tilt),
-                                   axis=(float(np.cos(psi)), float(np.sin(psi)), 0.0),
-                                   cog_offset=tuple(load.cog_offset))
+            cases[name] = TiltCase(
+                load=float(load.load),
+                tilt=float(load.tilt),
+                axis=(float(np.cos(psi)), float(np.sin(psi)), 0.0),
+                cog_offset=tuple(load.cog_offset),
+            )
         return tilt, note, cases, None
 
     def _loads(self, crane):
         candidate = self.problem.candidates[self.problem.names.index(crane.lug)]
         static = crane.static_input  # the box worst, or the breakout tension where larger
         return CraneLoads(
-            name=crane.crane, nominal=crane.nominal, worst=static,
-            tilt=crane.tilt.load, swl=crane.swl, radius=crane.radius, skew=crane.skew,
-            lugs=(LugLoads(name=crane.lug, share=static, capacity=candidate.capacity),))
+            name=crane.crane,
+            nominal=crane.nominal,
+            worst=static,
+            tilt=crane.tilt.load,
+            swl=crane.swl,
+            radius=crane.radius,
+            skew=crane.skew,
+            lugs=(LugLoads(name=crane.lug, share=static, capacity=candidate.capacity),),
+        )
 
 
 def design_loads(problem, results, labels):

@@ -94,17 +94,22 @@ class LengthSearch:
 
     def to_json(self):
         return {
-            "classes": [{"cranes": list(names), "min": lo, "max": hi, "chosen": length}
-                        for names, (lo, hi), length in zip(self.classes, self.ranges, self.chosen)],
-            "trials": [{"lengths": list(t.lengths), "worst": t.value, "lugs": list(t.lugs),
-                        "reason": t.reason} for t in self.trials],
+            "classes": [
+                {"cranes": list(names), "min": lo, "max": hi, "chosen": length}
+                for names, (lo, hi), length in zip(self.classes, self.ranges, self.chosen)
+            ],
+            "trials": [
+                {"lengths": list(t.lengths), "worst": t.value, "lugs": list(t.lugs), "reason": t.reason}
+                for t in self.trials
+            ],
         }
 
 
 def varying_classes(problem):
     """Crane classes whose cranes have a length range, as tuples of fleet indices."""
-    return tuple(group for group in problem.crane_classes
-                 if problem.fleet[group[0]].rope_length_range is not None)
+    return tuple(
+        group for group in problem.crane_classes if problem.fleet[group[0]].rope_length_range is not None
+    )
 
 
 def with_lengths(problem, classes, lengths):
@@ -127,21 +132,21 @@ def with_lengths(problem, classes, lengths):
     fleet = list(problem.fleet)
     for group, length in zip(classes, lengths):
         for j in group:
-            fleet[j] = dataclasses.replace(fleet[j], rope_length=float(length),
-                                           rope_length_range=None, from_defaults=False)
+            fleet[j] = dataclasses.replace(
+                fleet[j], rope_length=float(length), rope_length_range=None, from_defaults=False
+            )
     crane = problem.crane
     if crane is not None and crane.rope_length_range is not None:
         low, high = crane.rope_length_range
         crane = dataclasses.replace(crane, rope_length=high, rope_length_range=None)
-    return dataclasses.replace(problem, fleet=tuple(fleet), crane=crane,
-                               objective=problem.objective)
+    return dataclasses.replace(problem, fleet=tuple(fleet), crane=crane, objective=problem.objective)
 
 
 def first_pass(ranges):
     """The first pass's lengths per class  [m] (see the module docstring)."""
     varying = sum(1 for lo, hi in ranges if hi > lo)
     steps = LENGTH_STEPS
-    while varying and steps > 2 and steps ** varying > MAX_GRID:
+    while varying and steps > 2 and steps**varying > MAX_GRID:
         steps -= 1
     return [np.linspace(lo, hi, steps) if hi > lo else np.array([lo]) for lo, hi in ranges]
 
@@ -186,8 +191,14 @@ def plan_lengths(problem, top=None):
             result = None
             trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
         else:
-            trials.append(LengthTrial(key, float(result.chosen.worst_value),
-                                      float(result.stats.lower_bound), tuple(result.chosen.lugs)))
+            trials.append(
+                LengthTrial(
+                    key,
+                    float(result.chosen.worst_value),
+                    float(result.stats.lower_bound),
+                    tuple(result.chosen.lugs),
+                )
+            )
         results[key] = result
         return result
 
@@ -217,15 +228,21 @@ def plan_lengths(problem, top=None):
         raise PlanInfeasible(
             f"rope lengths: no feasible plan at any of {len(trials)} length sets tried within "
             f"{_ranges_text(problem, classes, ranges)}; at the longest ({_lengths_text(longest.lengths)}): "
-            f"{longest.reason}")
+            f"{longest.reason}"
+        )
     search = LengthSearch(
-        classes=tuple(tuple(problem.fleet[j].name for j in g) for g in classes), ranges=ranges,
-        trials=tuple(trials), chosen=best)
+        classes=tuple(tuple(problem.fleet[j].name for j in g) for g in classes),
+        ranges=ranges,
+        trials=tuple(trials),
+        chosen=best,
+    )
     finished = [r for r in results.values() if r is not None]
     stats = dataclasses.replace(
-        chosen.stats, lower_bound=min(search.lower_bound, chosen.stats.lower_bound),
+        chosen.stats,
+        lower_bound=min(search.lower_bound, chosen.stats.lower_bound),
         evaluated=sum(r.stats.evaluated for r in finished),
-        seconds=time.perf_counter() - start)
+        seconds=time.perf_counter() - start,
+    )
     return dataclasses.replace(chosen, stats=stats, lengths=search)
 
 
@@ -240,5 +257,7 @@ def _lengths_text(lengths):
 
 
 def _ranges_text(problem, classes, ranges):
-    return "; ".join(f"{', '.join(problem.fleet[j].name for j in g)} {lo:g} to {hi:g} m"
-                     for g, (lo, hi) in zip(classes, ranges))
+    return "; ".join(
+        f"{', '.join(problem.fleet[j].name for j in g)} {lo:g} to {hi:g} m"
+        for g, (lo, hi) in zip(classes, ranges)
+    )

@@ -31,16 +31,29 @@ GUIDANCE_STEP = 5.0
 GUIDANCE_STEPS = 2
 
 #: How each file frame is named in the outputs.
-FRAMES = {"z-up": "z-up (x forward, y to port, z up)",
-          "choi": "choi, the papers' frame (x forward, y up, z to starboard)"}
+FRAMES = {
+    "z-up": "z-up (x forward, y to port, z up)",
+    "choi": "choi, the papers' frame (x forward, y up, z to starboard)",
+}
 
 #: One crane's loads against its chart (the README's ``p.capacity[0].utilisation``).
 CraneCapacity = CraneDesign
 
 
 #: The plan JSON keys CONTRACT.md fixes (every plan type writes them the same way).
-CONTRACT_KEYS = ("lugs", "boom_heights", "tensions", "spread", "worst_spread", "objective",
-                 "cranes", "radius", "swl", "utilisation", "worst_utilisation_spread")
+CONTRACT_KEYS = (
+    "lugs",
+    "boom_heights",
+    "tensions",
+    "spread",
+    "worst_spread",
+    "objective",
+    "cranes",
+    "radius",
+    "swl",
+    "utilisation",
+    "worst_utilisation_spread",
+)
 
 
 def contract_json(plan):
@@ -169,8 +182,7 @@ class Plan:
     @property
     def rope_lengths(self):
         """Planned label -> unstretched rope length l0 of the crane on that lug  [m]."""
-        return {label: self.problem.fleet[j].rope_length
-                for label, j in zip(self.labels, self.chosen.cranes)}
+        return {label: self.problem.fleet[j].rope_length for label, j in zip(self.labels, self.chosen.cranes)}
 
     @property
     def spread(self):
@@ -240,11 +252,17 @@ class Plan:
         Its ``elastic`` solve gives the plan's level tensions at the plan's lift height.
         """
         problem, chosen = self.problem, self.chosen
-        lugs = tuple(Lug(name=label, at=tuple(problem.points[i]))
-                     for label, i in zip(self.labels, chosen.indices))
+        lugs = tuple(
+            Lug(name=label, at=tuple(problem.points[i])) for label, i in zip(self.labels, chosen.indices)
+        )
         cranes = tuple(
-            Crane(lug=label, EA=problem.fleet[j].EA, boom_height=float(h),
-                  rope_length=problem.fleet[j].rope_length, swl=float(swl))
+            Crane(
+                lug=label,
+                EA=problem.fleet[j].EA,
+                boom_height=float(h),
+                rope_length=problem.fleet[j].rope_length,
+                swl=float(swl),
+            )
             for label, j, h, swl in zip(self.labels, chosen.cranes, chosen.boom_heights, chosen.swl)
         )
         return Scene(
@@ -274,9 +292,13 @@ class Plan:
 
     def scenario_json(self, scenario):
         """A scenario as JSON: heel, trim [deg], CG offset and CG position [m] in the file's frame."""
-        return {"heel": scenario.heel, "trim": scenario.trim,
-                "cog_offset": list(self.in_file_frame(scenario.cog_offset)),
-                "cog": list(self.cog_at(scenario)), "frame": self.frame}
+        return {
+            "heel": scenario.heel,
+            "trim": scenario.trim,
+            "cog_offset": list(self.in_file_frame(scenario.cog_offset)),
+            "cog": list(self.cog_at(scenario)),
+            "frame": self.frame,
+        }
 
     # -- checks to hand over ------------------------------------------------------------
     @cached_property
@@ -296,8 +318,7 @@ class Plan:
     def ranked_design(self):
         """The same design loads for every ranked set, best first (``ranked_design[0]`` is
         :attr:`design_loads`)."""
-        return [self.design_loads] + [self._design_builder.build(r, self.labels)
-                                      for r in self.ranking[1:]]
+        return [self.design_loads] + [self._design_builder.build(r, self.labels) for r in self.ranking[1:]]
 
     @property
     def capacity(self):
@@ -315,8 +336,16 @@ class Plan:
         tension in the box against min_tension.
         """
         out = list(self.design_loads.checks)
-        out.append(Check.lower("min_tension", "all ropes", self.chosen.tension_range[0],
-                               self.problem.min_tension, "t", note="lowest tension in the box"))
+        out.append(
+            Check.lower(
+                "min_tension",
+                "all ropes",
+                self.chosen.tension_range[0],
+                self.problem.min_tension,
+                "t",
+                note="lowest tension in the box",
+            )
+        )
         return out
 
     @cached_property
@@ -325,14 +354,15 @@ class Plan:
         delta = self.problem.hook_tolerance
         gain, preload = self._twist_gain, self.chosen.preload
         skewed = rope_skew(self.lugset, preload, delta)
-        out = [SkewLoad((label, ), float(t), float(ts))
-               for label, t, ts in zip(self.labels, preload, skewed)]
+        out = [SkewLoad((label,), float(t), float(ts)) for label, t, ts in zip(self.labels, preload, skewed)]
         for i, j in self.diagonals:
-            out.append(SkewLoad(
-                (self.labels[i], self.labels[j]),
-                float(preload[i] + preload[j]),
-                float(preload[i] + preload[j] + delta * np.abs(gain[i] + gain[j]).sum()),
-            ))
+            out.append(
+                SkewLoad(
+                    (self.labels[i], self.labels[j]),
+                    float(preload[i] + preload[j]),
+                    float(preload[i] + preload[j] + delta * np.abs(gain[i] + gain[j]).sum()),
+                )
+            )
         return out
 
     @cached_property
@@ -366,10 +396,17 @@ class Plan:
         for factor in factors:
             delta = self.lugset.hook_tolerance * factor
             _, low, high, spread, _ = robust(tensions, gain, self.lugset, delta)
-            out.append(CrewMargin(factor=float(factor), tolerance=delta,
-                                  worst_spread=float(spread.max()), rope_max=high.max(axis=0),
-                                  lowest=float(low.min()), limit=self.lugset.limit,
-                                  swl=self.lugset.swl))
+            out.append(
+                CrewMargin(
+                    factor=float(factor),
+                    tolerance=delta,
+                    worst_spread=float(spread.max()),
+                    rope_max=high.max(axis=0),
+                    lowest=float(low.min()),
+                    limit=self.lugset.limit,
+                    swl=self.lugset.swl,
+                )
+            )
         return out
 
     @cached_property
@@ -396,8 +433,7 @@ class Plan:
             return []
         plan = self.lugset.points[:, :2] - np.array(self.problem.body.cog[:2])
         order = np.argsort(np.arctan2(plan[:, 1], plan[:, 0]))
-        return [tuple(sorted((int(order[0]), int(order[2])))),
-                tuple(sorted((int(order[1]), int(order[3]))))]
+        return [tuple(sorted((int(order[0]), int(order[2])))), tuple(sorted((int(order[1]), int(order[3]))))]
 
     @cached_property
     def admissible(self):
@@ -416,8 +452,7 @@ class Plan:
         upper = np.asarray(self.chosen.swl, dtype=float)
         out = []
         for heel, trim in [(0.0, 0.0)] + [(h, t) for h in (-1, 1) for t in (-1, 1)]:
-            scenario = Scenario(heel * problem.heel_tolerance + 0.0,
-                                trim * problem.trim_tolerance + 0.0)
+            scenario = Scenario(heel * problem.heel_tolerance + 0.0, trim * problem.trim_tolerance + 0.0)
             a_mat, b_vec = self.lugset.statics_at(scenario)
             try:
                 out.append((scenario, lp.bounds(a_mat, b_vec, lower, upper)))
@@ -442,11 +477,15 @@ class Plan:
             slack_at = fine[np.any(self.tensions_at(heel_f, trim_f) < 0.0, axis=1)]
             for k in range(len(edges) - 1):
                 lo, hi = edges[k], edges[k + 1]
-                rows.append(GuidanceStep(
-                    angle=angle, start=float(lo), end=float(hi),
-                    change=dict(zip(self.labels, (tensions[k + 1] - tensions[k]).tolist())),
-                    within_model=not np.any((slack_at >= lo) & (slack_at <= hi)),
-                ))
+                rows.append(
+                    GuidanceStep(
+                        angle=angle,
+                        start=float(lo),
+                        end=float(hi),
+                        change=dict(zip(self.labels, (tensions[k + 1] - tensions[k]).tolist())),
+                        within_model=not np.any((slack_at >= lo) & (slack_at <= hi)),
+                    )
+                )
         return rows
 
     def spread_map(self, count=41, utilisation=False, largest=False):
@@ -487,53 +526,98 @@ class Plan:
         ``design_loads.cranes[].utilisation``. Coordinates are in the file's ``frame``.
         """
         design = self.design_loads
-        return contract_json(self) | {
-            "ranking": [self._ranking_entry(r, d) for r, d in zip(self.ranking, self.ranked_design)],
-            "frame": self.frame,
-            "worst_attitude": self.scenario_json(self.chosen.worst),
-            "bound": self.chosen.bound,
-            "capacity": [self._capacity_entry(c) for c in self.capacity],
-            "design_loads": design.to_json(),
-            "skew": [{"lugs": list(s.lugs), "nominal": s.nominal, "skewed": s.skewed,
-                      "factor": s.factor} for s in self.skew],
-            "guidance": [{"angle": g.angle, "from": g.start, "to": g.end, "change": g.change,
-                          "within_model": g.within_model} for g in self.guidance],
-            "hooks": {
-                "tolerance": dict(zip(self.labels, self.lugset.hook_tolerance.tolist())),
-                "accuracy_needed": (self.hook_accuracy_needed
-                                    if np.isfinite(self.hook_accuracy_needed) else None),
-                "twist_stiffness": self.twist_stiffness,
-                "per_cm": {a: dict(zip(self.labels, row.tolist()))
-                           for a, row in zip(self.labels, self.hook_sensitivity)},
-            },
-            "lower_bound": self.stats.lower_bound,
-            "gap": self.stats.gap,
-            "relative_gap": self.stats.relative_gap,
-            "search": {"sets": self.stats.sets, "rows": self.stats.rows, "stopped": self.stats.stopped,
-                       "method": self.stats.method,
-                       "out_of_reach": self.stats.out_of_reach,
-                       "screened_out": self.stats.screened_out,
-                       "evaluated": self.stats.evaluated, "pruned": self.stats.pruned,
-                       "infeasible": self.stats.infeasible, "seconds": self.stats.seconds},
-            "checks": [c.to_json() for c in self.checks],
-        } | ({} if self.lengths is None else {"rope_lengths": self.rope_lengths,
-                                             "rope_length_search": self.lengths.to_json()}) \
-          | breakout_json(self)
+        return (
+            contract_json(self)
+            | {
+                "ranking": [self._ranking_entry(r, d) for r, d in zip(self.ranking, self.ranked_design)],
+                "frame": self.frame,
+                "worst_attitude": self.scenario_json(self.chosen.worst),
+                "bound": self.chosen.bound,
+                "capacity": [self._capacity_entry(c) for c in self.capacity],
+                "design_loads": design.to_json(),
+                "skew": [
+                    {"lugs": list(s.lugs), "nominal": s.nominal, "skewed": s.skewed, "factor": s.factor}
+                    for s in self.skew
+                ],
+                "guidance": [
+                    {
+                        "angle": g.angle,
+                        "from": g.start,
+                        "to": g.end,
+                        "change": g.change,
+                        "within_model": g.within_model,
+                    }
+                    for g in self.guidance
+                ],
+                "hooks": {
+                    "tolerance": dict(zip(self.labels, self.lugset.hook_tolerance.tolist())),
+                    "accuracy_needed": (
+                        self.hook_accuracy_needed if np.isfinite(self.hook_accuracy_needed) else None
+                    ),
+                    "twist_stiffness": self.twist_stiffness,
+                    "per_cm": {
+                        a: dict(zip(self.labels, row.tolist()))
+                        for a, row in zip(self.labels, self.hook_sensitivity)
+                    },
+                },
+                "lower_bound": self.stats.lower_bound,
+                "gap": self.stats.gap,
+                "relative_gap": self.stats.relative_gap,
+                "search": {
+                    "sets": self.stats.sets,
+                    "rows": self.stats.rows,
+                    "stopped": self.stats.stopped,
+                    "method": self.stats.method,
+                    "out_of_reach": self.stats.out_of_reach,
+                    "screened_out": self.stats.screened_out,
+                    "evaluated": self.stats.evaluated,
+                    "pruned": self.stats.pruned,
+                    "infeasible": self.stats.infeasible,
+                    "seconds": self.stats.seconds,
+                },
+                "checks": [c.to_json() for c in self.checks],
+            }
+            | (
+                {}
+                if self.lengths is None
+                else {"rope_lengths": self.rope_lengths, "rope_length_search": self.lengths.to_json()}
+            )
+            | breakout_json(self)
+        )
 
     def _capacity_entry(self, c):
         tilt = None
         if c.tilt is not None:
-            tilt = {"load": c.tilt.load, "tilt": c.tilt.tilt, "axis": list(self.in_file_frame(c.tilt.axis)),
-                    "cog_offset": list(self.in_file_frame(c.tilt.cog_offset)),
-                    "cog": list(self.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))), "frame": self.frame}
-        ok = c.design is not None and c.design.check.ok and (
-            c.design.code_margin is None or c.design.code_margin.ok)
-        return {"lug": c.label, "candidate": c.lug, "crane": c.crane, "radius": c.radius, "swl": c.swl,
-                "nominal": c.nominal, "worst": c.worst, "worst_at": self.scenario_json(c.worst_at),
-                "tilt_share": c.tilt.load if c.tilt is not None else None, "tilt_at": tilt,
-                "skewed": c.skewed, "skew": c.skew,
-                "design_hook_load": c.design_hook_load if c.design is not None else None,
-                "utilisation": c.utilisation if c.design is not None else None, "ok": ok}
+            tilt = {
+                "load": c.tilt.load,
+                "tilt": c.tilt.tilt,
+                "axis": list(self.in_file_frame(c.tilt.axis)),
+                "cog_offset": list(self.in_file_frame(c.tilt.cog_offset)),
+                "cog": list(self.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))),
+                "frame": self.frame,
+            }
+        ok = (
+            c.design is not None
+            and c.design.check.ok
+            and (c.design.code_margin is None or c.design.code_margin.ok)
+        )
+        return {
+            "lug": c.label,
+            "candidate": c.lug,
+            "crane": c.crane,
+            "radius": c.radius,
+            "swl": c.swl,
+            "nominal": c.nominal,
+            "worst": c.worst,
+            "worst_at": self.scenario_json(c.worst_at),
+            "tilt_share": c.tilt.load if c.tilt is not None else None,
+            "tilt_at": tilt,
+            "skewed": c.skewed,
+            "skew": c.skew,
+            "design_hook_load": c.design_hook_load if c.design is not None else None,
+            "utilisation": c.utilisation if c.design is not None else None,
+            "ok": ok,
+        }
 
     def _ranking_entry(self, result, design):
         return {
@@ -555,9 +639,11 @@ class Plan:
 
 
 #: What each objective keeps small, in words.
-OBJECTIVE_TEXT = {"spread": "max - min tension (spread)",
-                  "utilisation": "max - min of T / SWL (utilisation spread)",
-                  "reserve": "the largest T / SWL (reserve: load left before the first crane's SWL)"}
+OBJECTIVE_TEXT = {
+    "spread": "max - min tension (spread)",
+    "utilisation": "max - min of T / SWL (utilisation spread)",
+    "reserve": "the largest T / SWL (reserve: load left before the first crane's SWL)",
+}
 
 
 def _twist_stiffness(problem, result):

@@ -158,8 +158,10 @@ class StrengthContext:
         body = problem.body
         self.loads = GirderLoads(body)
         strength = problem.strength
-        self.envelopes = (None if strength is None else strength.bending_moment,
-                          None if strength is None else strength.shear_force)
+        self.envelopes = (
+            None if strength is None else strength.bending_moment,
+            None if strength is None else strength.shear_force,
+        )
         self.control = problem.control
         self.points = problem.points
         self.offsets = problem.cog_envelope.offsets()
@@ -190,8 +192,9 @@ class StrengthContext:
             grid = box_attitudes(p, DENSE, DENSE)
             return [Scenario(float(h), float(t), tuple(o)) for o in self.offsets for h, t in grid]
         out = [Scenario(0.0, 0.0, tuple(o)) for o in self.offsets]
-        corners = {(h * p.heel_tolerance + 0.0, t * p.trim_tolerance + 0.0)
-                   for h in (-1, 1) for t in (-1, 1)} - {(0.0, 0.0)}
+        corners = {
+            (h * p.heel_tolerance + 0.0, t * p.trim_tolerance + 0.0) for h in (-1, 1) for t in (-1, 1)
+        } - {(0.0, 0.0)}
         return out + [Scenario(h, t) for h, t in sorted(corners)]
 
     def centre_floor(self):
@@ -205,7 +208,8 @@ class StrengthContext:
                     if tol <= 0.0:
                         raise PlanInfeasible(
                             f"force control: a CG offset of {abs(off):g} m tilts the body, but "
-                            f"plan.tolerance.{what} = 0; expected a tolerance > 0 deg")
+                            f"plan.tolerance.{what} = 0; expected a tolerance > 0 deg"
+                        )
                     h = max(h, abs(off) / math.tan(math.radians(tol)))
             need.append(p.body.cog[2] + dz + h)
         return max(need)
@@ -241,8 +245,13 @@ class SetEvaluator:
         self.count += 1
         indices = tuple(sorted(int(i) for i in indices))
         plan = self.context.points[list(indices), :2]
-        if np.linalg.matrix_rank(np.column_stack([np.ones(len(plan)), plan - plan.mean(axis=0)]),
-                                 tol=1e-9 * max(np.ptp(plan), 1.0)) < 3:
+        if (
+            np.linalg.matrix_rank(
+                np.column_stack([np.ones(len(plan)), plan - plan.mean(axis=0)]),
+                tol=1e-9 * max(np.ptp(plan), 1.0),
+            )
+            < 3
+        ):
             names = ", ".join(self.context.problem.names[i] for i in indices)
             raise PlanInfeasible(f"lugs {names}: on one line in plan; they cannot hold the body")
         if self.context.control == "force":
@@ -261,8 +270,7 @@ class SetEvaluator:
                 gp = g @ gains[k]
                 rows[key][0].append(gp / allow[:, None])
                 rows[key][1].append((g @ offsets[k] + h) / allow)
-                margin = (np.zeros(len(h)) if hook is None
-                          else np.abs(g @ hook[0][k]) @ hook[1] / allow)
+                margin = np.zeros(len(h)) if hook is None else np.abs(g @ hook[0][k]) @ hook[1] / allow
                 rows[key][2].append(margin)
         return tuple(tuple(np.concatenate(v) for v in rows[key]) for key in ("m", "q"))
 
@@ -288,11 +296,21 @@ class SetEvaluator:
 
     def _finish(self, indices, preload, boom, peaks, spread, worst_spread, weights, bound, states, trange):
         names = tuple(self.context.problem.names[i] for i in indices)
-        value = (weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * worst_spread)
-        return StrengthSet(indices=indices, names=names, preload=preload, boom_heights=boom,
-                           bending=peaks[0], shear=peaks[1], spread=float(np.ptp(preload)),
-                           worst_spread=float(worst_spread), value=float(value), bound=float(bound),
-                           states=tuple(states), tension_range=trange)
+        value = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * worst_spread
+        return StrengthSet(
+            indices=indices,
+            names=names,
+            preload=preload,
+            boom_heights=boom,
+            bending=peaks[0],
+            shear=peaks[1],
+            spread=float(np.ptp(preload)),
+            worst_spread=float(worst_spread),
+            value=float(value),
+            bound=float(bound),
+            states=tuple(states),
+            tension_range=trange,
+        )
 
     def _force(self, indices, weights):
         ctx, p = self.context, self.context.problem
@@ -303,15 +321,21 @@ class SetEvaluator:
         floor = ctx.centre_floor()
         centre = (points[:, 2] * 1.0, p.body.weight * floor)
         if points[:, 2].max() * p.body.weight < centre[1] - 1e-9:
-            raise PlanInfeasible("force control: every lug is too low above the CG for the body to "
-                                 "hang stable within the tolerance box")
+            raise PlanInfeasible(
+                "force control: every lug is too low above the CG for the body to "
+                "hang stable within the tolerance box"
+            )
         limit, share = ctx.limit[list(indices)], ctx.share[list(indices)]
-        tension_rows = (np.eye(n)[None], np.zeros((1, n)), np.zeros((1, n)),
-                        np.full((1, n), p.min_tension), limit[None])
+        tension_rows = (
+            np.eye(n)[None],
+            np.zeros((1, n)),
+            np.zeros((1, n)),
+            np.full((1, n), p.min_tension),
+            limit[None],
+        )
         prange = (np.full(n, p.min_tension), np.minimum(limit, share))
         sections = ctx.sections
-        up = force_attitude(points, np.full(n, p.body.weight / n), p.body.weight,
-                            p.body.cog, ctx.offsets)[0]
+        up = force_attitude(points, np.full(n, p.body.weight / n), p.body.weight, p.body.cog, ctx.offsets)[0]
         for _ in range(ROUNDS):
             states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
             eye = [np.eye(n)] * len(states)
@@ -329,12 +353,23 @@ class SetEvaluator:
             exact = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * result.spread
             if moved < 1e-12 and exact <= lp_value * (1 + CONVERGED) + 1e-12:
                 described = [self._describe(s) for s in states]
-                return self._finish(indices, result.preload, None, peaks, result.spread,
-                                    float(np.ptp(result.preload)), weights, lp_value, described,
-                                    (float(result.preload.min()), float(result.preload.max())))
+                return self._finish(
+                    indices,
+                    result.preload,
+                    None,
+                    peaks,
+                    result.spread,
+                    float(np.ptp(result.preload)),
+                    weights,
+                    lp_value,
+                    described,
+                    (float(result.preload.min()), float(result.preload.max())),
+                )
             sections = sections.add(np.repeat(xs, 2), np.tile([False, True], len(xs)))
-        raise SolverFailed(f"strength LP for {', '.join(p.names[i] for i in indices)}: the sections "
-                           f"and attitudes did not converge in {ROUNDS} rounds")
+        raise SolverFailed(
+            f"strength LP for {', '.join(p.names[i] for i in indices)}: the sections "
+            f"and attitudes did not converge in {ROUNDS} rounds"
+        )
 
     @staticmethod
     def _describe(state):
@@ -359,34 +394,56 @@ class SetEvaluator:
             states = [State(tuple(ctx.up(s.heel, s.trim)), s.cog_offset) for s in scenarios]
             hk = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) if hook else None
             rows_m, rows_q = self._rows(points, sections, states, gains, offsets, hk)
-            margin = (np.zeros((len(scenarios), n)) if hk is None
-                      else np.abs(hk[0]) @ hk[1])
-            tension_rows = (gains, offsets, margin, np.full((len(scenarios), n), p.min_tension),
-                            np.repeat(lugset.limit[None], len(scenarios), axis=0))
+            margin = np.zeros((len(scenarios), n)) if hk is None else np.abs(hk[0]) @ hk[1]
+            tension_rows = (
+                gains,
+                offsets,
+                margin,
+                np.full((len(scenarios), n), p.min_tension),
+                np.repeat(lugset.limit[None], len(scenarios), axis=0),
+            )
             lp = strength_lp(n, len(rows_m[1]), len(rows_q[1]), len(scenarios))
             result = lp.solve(weights, rows_m, rows_q, tension_rows, a0, b0, prange)
             lp_value = weights[0] * result.bending + weights[1] * result.shear + weights[2] * result.spread
             tensions = d_gain @ result.preload + d_offset
-            ratios = self._dense_ratios(points, sections, d_states, tensions,
-                                        (d_hook, lugset.hook_tolerance) if hook else None)
+            ratios = self._dense_ratios(
+                points, sections, d_states, tensions, (d_hook, lugset.hook_tolerance) if hook else None
+            )
             spread, trange = self._dense_spread(tensions, (d_hook, lugset.hook_tolerance) if hook else None)
             top = np.unique(np.argsort(-ratios[0])[:3].tolist() + np.argsort(-ratios[1])[:3].tolist())
-            peaks, xs = self._peaks(points, tensions[top], [d_states[k] for k in top],
-                                    (d_hook[top], lugset.hook_tolerance) if hook else None)
+            peaks, xs = self._peaks(
+                points,
+                tensions[top],
+                [d_states[k] for k in top],
+                (d_hook[top], lugset.hook_tolerance) if hook else None,
+            )
             peaks = [Peak(pk.ratio, pk.value, pk.x, int(top[pk.state])) for pk in peaks]
             exact = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * spread
             if exact <= lp_value * (1 + CONVERGED) + 1e-12:
-                described = [{"heel": s.heel, "trim": s.trim, "cog_offset": list(s.cog_offset)}
-                             for s in dense]
-                return self._finish(indices, result.preload, lugset.boom_heights(result.preload), peaks,
-                                    spread, spread, weights, lp_value, described, trange)
+                described = [
+                    {"heel": s.heel, "trim": s.trim, "cog_offset": list(s.cog_offset)} for s in dense
+                ]
+                return self._finish(
+                    indices,
+                    result.preload,
+                    lugset.boom_heights(result.preload),
+                    peaks,
+                    spread,
+                    spread,
+                    weights,
+                    lp_value,
+                    described,
+                    trange,
+                )
             worst = {pk.state for pk in peaks}
             if weights[2] > 0:
                 worst.add(int(np.argmax(np.ptp(tensions, axis=1))))
             scenarios = scenarios + [dense[k] for k in sorted(worst) if dense[k] not in scenarios]
             sections = sections.add(np.repeat(xs, 2), np.tile([False, True], len(xs)))
-        raise SolverFailed(f"strength LP for {', '.join(p.names[i] for i in indices)}: the states "
-                           f"and sections did not converge in {ROUNDS} rounds")
+        raise SolverFailed(
+            f"strength LP for {', '.join(p.names[i] for i in indices)}: the states "
+            f"and sections did not converge in {ROUNDS} rounds"
+        )
 
     def _dense_ratios(self, points, sections, states, tensions, hook):
         """Worst |M| / allowable and |Q| / allowable at the sections, per dense state, (2, k)."""
@@ -465,12 +522,19 @@ def _search_force(ctx, evaluator, weights, started, limit):
         # the equilibrium attitudes from the force centre of the last solution (exact when
         # every candidate is at one height: the centre's height is then that height)
         centre_z = ctx.points[:, 2] @ tensions / tensions.sum()
-        up, _ = force_attitude(np.column_stack([ctx.points[:, :2], np.full(count, centre_z)]),
-                               tensions, tensions.sum(), p.body.cog, ctx.offsets)
+        up, _ = force_attitude(
+            np.column_stack([ctx.points[:, :2], np.full(count, centre_z)]),
+            tensions,
+            tensions.sum(),
+            p.body.cog,
+            ctx.offsets,
+        )
         states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
         blocks = _mip_rows(ctx, states, sections)
-        stacked = (tuple(np.concatenate([b[0][j] for b in blocks]) for j in range(2)),
-                   tuple(np.concatenate([b[1][j] for b in blocks]) for j in range(2)))
+        stacked = (
+            tuple(np.concatenate([b[0][j] for b in blocks]) for j in range(2)),
+            tuple(np.concatenate([b[1][j] for b in blocks]) for j in range(2)),
+        )
         mip = CandidateMIP(count, n, len(stacked[0][1]), len(stacked[1][1]), 1, shared=True)
         remaining = None if limit is None else limit - (time.perf_counter() - started)
         result = mip.solve(weights, statics, [stacked], limits, centre, time_limit=remaining)
@@ -486,12 +550,21 @@ def _search_force(ctx, evaluator, weights, started, limit):
             break
         peaks = (current.bending.x, current.shear.x)
         sections = sections.add(np.repeat(peaks, 2), np.tile([False, True], 2))
-    stopped = "proved" if best.value <= bound * (1 + CONVERGED) + 1e-9 else (
-        "time_limit" if timed_out else "rounds")
-    return best, StrengthStats(method="MIP (HiGHS) over every candidate", lower_bound=min(bound, best.value),
-                               seconds=time.perf_counter() - started, rounds=rounds,
-                               evaluated=evaluator.count, stopped=stopped, certified=equal_height,
-                               best=best.value)
+    stopped = (
+        "proved"
+        if best.value <= bound * (1 + CONVERGED) + 1e-9
+        else ("time_limit" if timed_out else "rounds")
+    )
+    return best, StrengthStats(
+        method="MIP (HiGHS) over every candidate",
+        lower_bound=min(bound, best.value),
+        seconds=time.perf_counter() - started,
+        rounds=rounds,
+        evaluated=evaluator.count,
+        stopped=stopped,
+        certified=equal_height,
+        best=best.value,
+    )
 
 
 def _search_hoist(ctx, evaluator, weights, started, limit):
@@ -502,8 +575,9 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
     sections = ctx.sections
     statics = [_statics(ctx, s.heel, s.trim, s.cog_offset) for s in scen]
     # at level the tensions are T* itself: the code margin and the boom range hold exactly
-    level_high = np.minimum(np.minimum(ctx.limit, ctx.share),
-                            ctx.stiffness * (ctx.boom_range[1] - ctx.boom_zero))
+    level_high = np.minimum(
+        np.minimum(ctx.limit, ctx.share), ctx.stiffness * (ctx.boom_range[1] - ctx.boom_zero)
+    )
     limits = (np.full(count, p.min_tension), ctx.limit, np.maximum(level_high, 0.0))
     rows = _mip_rows(ctx, states, sections)
     mip = CandidateMIP(count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False)
@@ -538,9 +612,15 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
             break
     if best is None:
         raise PlanInfeasible("no lug set holds the body within the limits over the box")
-    return best, StrengthStats(method="MIP relaxation (HiGHS) + exact set LP, no-good cuts",
-                               lower_bound=min(bound, best.value), seconds=time.perf_counter() - started,
-                               rounds=rounds, evaluated=evaluator.count, stopped=stopped, best=best.value)
+    return best, StrengthStats(
+        method="MIP relaxation (HiGHS) + exact set LP, no-good cuts",
+        lower_bound=min(bound, best.value),
+        seconds=time.perf_counter() - started,
+        rounds=rounds,
+        evaluated=evaluator.count,
+        stopped=stopped,
+        best=best.value,
+    )
 
 
 # -- the plan ----------------------------------------------------------------------------------------
@@ -602,13 +682,31 @@ class StrengthPlan:
         """The strength envelopes at the worst state and the tension limits, as checks."""
         p, c = self.problem, self.chosen
         out = []
-        for name, peak, envelope, unit in (("bending_moment", c.bending, p.strength.bending_moment, "t m"),
-                                           ("shear_force", c.shear, p.strength.shear_force, "t")):
+        for name, peak, envelope, unit in (
+            ("bending_moment", c.bending, p.strength.bending_moment, "t m"),
+            ("shear_force", c.shear, p.strength.shear_force, "t"),
+        ):
             if envelope is not None:
-                out.append(Check.upper(name, f"x = {peak.x:.1f} m", peak.value, peak.value / peak.ratio,
-                                       unit, note="the worst over the states, exactly along the body"))
-        out.append(Check.lower("min_tension", "all lugs", c.tension_range[0], p.min_tension, "t",
-                               note="lowest tension over the states"))
+                out.append(
+                    Check.upper(
+                        name,
+                        f"x = {peak.x:.1f} m",
+                        peak.value,
+                        peak.value / peak.ratio,
+                        unit,
+                        note="the worst over the states, exactly along the body",
+                    )
+                )
+        out.append(
+            Check.lower(
+                "min_tension",
+                "all lugs",
+                c.tension_range[0],
+                p.min_tension,
+                "t",
+                note="lowest tension over the states",
+            )
+        )
         return out
 
     def in_file_frame(self, vector):
@@ -623,17 +721,30 @@ class StrengthPlan:
             state["cog_offset"] = list(self.in_file_frame(state["cog_offset"]))
             return {"value": pk.value, "ratio": pk.ratio, "x": pk.x, "state": state}
 
-        return {"lugs": dict(zip(self.labels, s.names)),
-                "tensions": dict(zip(self.labels, s.preload.tolist())),
-                "boom_heights": (None if s.boom_heights is None
-                                 else dict(zip(self.labels, s.boom_heights.tolist()))),
-                "max_bending_moment": peak(s.bending), "max_shear_force": peak(s.shear),
-                "spread": s.spread, "worst_spread": s.worst_spread, "objective_value": s.value,
-                "tension_range": list(s.tension_range),
-                "search": {"method": stats.method, "lower_bound": stats.lower_bound, "gap": stats.gap,
-                           "relative_gap": stats.relative_gap, "stopped": stats.stopped,
-                           "certified": stats.certified, "seconds": stats.seconds,
-                           "mip_solves": stats.rounds, "sets_evaluated": stats.evaluated}}
+        return {
+            "lugs": dict(zip(self.labels, s.names)),
+            "tensions": dict(zip(self.labels, s.preload.tolist())),
+            "boom_heights": (
+                None if s.boom_heights is None else dict(zip(self.labels, s.boom_heights.tolist()))
+            ),
+            "max_bending_moment": peak(s.bending),
+            "max_shear_force": peak(s.shear),
+            "spread": s.spread,
+            "worst_spread": s.worst_spread,
+            "objective_value": s.value,
+            "tension_range": list(s.tension_range),
+            "search": {
+                "method": stats.method,
+                "lower_bound": stats.lower_bound,
+                "gap": stats.gap,
+                "relative_gap": stats.relative_gap,
+                "stopped": stats.stopped,
+                "certified": stats.certified,
+                "seconds": stats.seconds,
+                "mip_solves": stats.rounds,
+                "sets_evaluated": stats.evaluated,
+            },
+        }
 
     def to_json(self):
         """``liftplan plan --json`` for a strength objective: the contract's keys (lugs,
@@ -641,13 +752,21 @@ class StrengthPlan:
         (its peaks) and ``spread_optimal`` (the same for the spread-optimal plan)."""
         c = self.chosen
         return {
-            "lugs": self.lugs, "boom_heights": self.boom_heights, "tensions": self.tensions,
-            "spread": self.spread, "worst_spread": self.worst_spread, "objective": self.objective,
+            "lugs": self.lugs,
+            "boom_heights": self.boom_heights,
+            "tensions": self.tensions,
+            "spread": self.spread,
+            "worst_spread": self.worst_spread,
+            "objective": self.objective,
             "control": self.control,
-            "strength_weights": {"bending": objective_weights(self.problem)[0],
-                                 "shear": objective_weights(self.problem)[1]},
-            "ranking": [], "frame": self.problem.frame,
-            "lower_bound": self.stats.lower_bound, "gap": self.stats.gap,
+            "strength_weights": {
+                "bending": objective_weights(self.problem)[0],
+                "shear": objective_weights(self.problem)[1],
+            },
+            "ranking": [],
+            "frame": self.problem.frame,
+            "lower_bound": self.stats.lower_bound,
+            "gap": self.stats.gap,
             "relative_gap": self.stats.relative_gap,
             "strength": self._set_json(c, self.stats),
             "spread_optimal": self._set_json(self.spread_plan, self.spread_stats),
@@ -673,10 +792,10 @@ def plan_strength(problem, top=None):
     partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
     # the spread plan's own peaks are reported in the same terms: evaluate it on the
     # strength weights with its tensions as found (its value under the strength objective)
-    return StrengthPlan(problem=problem, chosen=chosen, stats=stats, spread_plan=partner,
-                        spread_stats=partner_stats)
+    return StrengthPlan(
+        problem=problem, chosen=chosen, stats=stats, spread_plan=partner, spread_stats=partner_stats
+    )
 
 
 def is_strength_plan(result):
     return isinstance(result, StrengthPlan)
-

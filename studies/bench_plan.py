@@ -39,7 +39,8 @@ def forty_candidates(problem):
     stations = sorted({c.at[0] for c in problem.candidates})
     return tuple(
         Candidate(f"B{i + 1}-{j}", (x, -3.0 * j, 6.0), bulkhead=f"B{i + 1}")
-        for i, x in enumerate(stations) for j in range(5)
+        for i, x in enumerate(stations)
+        for j in range(5)
     )
 
 
@@ -115,8 +116,11 @@ def reach_rows(problem):
     """Every (set, permutation) of the fleet, and those with each crane within reach."""
     swl = problem.reach[1]
     n = problem.cranes
-    every = [(s, p) for s in itertools.combinations(range(len(problem.candidates)), n)
-             for p in itertools.permutations(range(n))]
+    every = [
+        (s, p)
+        for s in itertools.combinations(range(len(problem.candidates)), n)
+        for p in itertools.permutations(range(n))
+    ]
     return len(every), [(s, p) for s, p in every if not np.any(np.isnan(swl[list(s), list(p)]))]
 
 
@@ -162,8 +166,20 @@ def fleet_brute_force(problem):
             estimate = (time.perf_counter() - start) * len(rows) / done
             if estimate > FULL_BRUTE_FORCE_LIMIT:
                 seconds = time.perf_counter() - start
-                return FleetBruteForce(count, len(rows), done, feasible, collinear, error, best, best_row,
-                                       seconds, estimate, True)
+                return FleetBruteForce(
+                    count,
+                    len(rows),
+                    done,
+                    feasible,
+                    collinear,
+                    error,
+                    best,
+                    best_row,
+                    seconds,
+                    estimate,
+                    True,
+                )
     seconds = time.perf_counter() - start
-    return FleetBruteForce(count, len(rows), done, feasible, collinear, error, best, best_row, seconds,
-                           seconds, False)
+    return FleetBruteForce(
+        count, len(rows), done, feasible, collinear, error, best, best_row, seconds, seconds, False
+    )

@@ -104,8 +104,11 @@ def single_solve():
         residual, _ = numpy_residual(scene)
         start = FastCall(rope_model(scene.n).elastic_start)(pack_params(scene, "elastic"))[0]
         samples.append(median_time(lambda r=residual, s=start: root(r, s, method="hybr"), 5))
-    return {"liftplan_us": ours * 1e6, "moorpy_ms": moorpy * 1e3,
-            "scipy_hybr_us": statistics.median(samples) * 1e6}
+    return {
+        "liftplan_us": ours * 1e6,
+        "moorpy_ms": moorpy * 1e3,
+        "scipy_hybr_us": statistics.median(samples) * 1e6,
+    }
 
 
 def batched_attitudes():
@@ -147,8 +150,12 @@ def plans():
     ours = median_time(lambda: plan(tanker), 5)
     brute = median_time(lambda: brute_force(tanker), 1, warm=0)
     forty = median_time(lambda: plan(wide), 1)
-    return {"tanker_s": ours, "brute_force_s": brute, "forty_candidates_s": forty,
-            "forty_sets": math.comb(40, 4)}
+    return {
+        "tanker_s": ours,
+        "brute_force_s": brute,
+        "forty_candidates_s": forty,
+        "forty_sets": math.comb(40, 4),
+    }
 
 
 def fleet():
@@ -162,23 +169,40 @@ def fleet():
     # the same optimum: the same evaluation of the same rows, so the agreement asked is the
     # search's own (1 kg, in the objective's unit)
     tol = tolerance(problem) / (1.0 if problem.objective == "spread" else float(np.min(chosen.swl)))
-    if result.stats.stopped != "proved" or brute.best < chosen.worst_value - tol or (
-            not brute.sampled and brute.best > chosen.worst_value + tol):
-        raise RuntimeError(f"fleet: the plan ({chosen.worst_value!r}, {result.stats.stopped}) is not "
-                           f"brute force's optimum ({brute.best!r})")
+    if (
+        result.stats.stopped != "proved"
+        or brute.best < chosen.worst_value - tol
+        or (not brute.sampled and brute.best > chosen.worst_value + tol)
+    ):
+        raise RuntimeError(
+            f"fleet: the plan ({chosen.worst_value!r}, {result.stats.stopped}) is not "
+            f"brute force's optimum ({brute.best!r})"
+        )
     sets = math.comb(len(problem.candidates), problem.cranes)
-    return {"plan_s": ours, "objective": problem.objective, "sets": sets,
-            "assignments": math.factorial(problem.cranes), "rows": brute.rows,
-            "rows_in_reach": brute.in_reach, "planner_rows": result.stats.rows,
-            "planner_evaluated": result.stats.evaluated, "plan_best": chosen.worst_value,
-            "plan_lugs": list(chosen.lugs), "plan_cranes": list(chosen.crane_names),
-            "brute_force_s": brute.estimated_seconds, "brute_force_measured_s": brute.seconds,
-            "brute_force_evaluated": brute.evaluated, "brute_force_sampled": brute.sampled,
-            "brute_force_feasible": brute.feasible, "brute_force_collinear": brute.collinear,
-            "brute_force_collinear_error": brute.collinear_error, "brute_force_best": brute.best,
-            "brute_force_best_lugs": [problem.names[i] for i in brute.best_row[0]],
-            "brute_force_best_cranes": [problem.fleet[j].name for j in brute.best_row[1]],
-            "same_optimum": not brute.sampled}
+    return {
+        "plan_s": ours,
+        "objective": problem.objective,
+        "sets": sets,
+        "assignments": math.factorial(problem.cranes),
+        "rows": brute.rows,
+        "rows_in_reach": brute.in_reach,
+        "planner_rows": result.stats.rows,
+        "planner_evaluated": result.stats.evaluated,
+        "plan_best": chosen.worst_value,
+        "plan_lugs": list(chosen.lugs),
+        "plan_cranes": list(chosen.crane_names),
+        "brute_force_s": brute.estimated_seconds,
+        "brute_force_measured_s": brute.seconds,
+        "brute_force_evaluated": brute.evaluated,
+        "brute_force_sampled": brute.sampled,
+        "brute_force_feasible": brute.feasible,
+        "brute_force_collinear": brute.collinear,
+        "brute_force_collinear_error": brute.collinear_error,
+        "brute_force_best": brute.best,
+        "brute_force_best_lugs": [problem.names[i] for i in brute.best_row[0]],
+        "brute_force_best_cranes": [problem.fleet[j].name for j in brute.best_row[1]],
+        "same_optimum": not brute.sampled,
+    }
 
 
 def stranded():
@@ -203,8 +227,12 @@ def stranded():
 
     finder, p_dm = setup.model.grounded_root, ca.DM(params)
     root_only = median_time(lambda: finder(ca.DM.zeros(2), p_dm), 20)
-    return {"newton_ms": newton * 1e3, "paper_newton_ms": paper * 1e3, "scipy_hybr_ms": scipy_s * 1e3,
-            "newton_root_only_ms": root_only * 1e3}
+    return {
+        "newton_ms": newton * 1e3,
+        "paper_newton_ms": paper * 1e3,
+        "scipy_hybr_ms": scipy_s * 1e3,
+        "newton_root_only_ms": root_only * 1e3,
+    }
 
 
 def lift():
@@ -225,29 +253,53 @@ def batch_check():
     chosen = plan(problem).chosen
     rng = np.random.default_rng(5)
     m = 100_000
-    cases = CheckCases(problem.body.weight * rng.uniform(0.95, 1.05, m),
-                       np.array(problem.body.cog) + rng.uniform(-1, 1, (m, 3)) * [1.0, 0.5, 0.3],
-                       np.full(m, 2.0), np.full(m, 2.0), np.full(m, 20.0))
+    cases = CheckCases(
+        problem.body.weight * rng.uniform(0.95, 1.05, m),
+        np.array(problem.body.cog) + rng.uniform(-1, 1, (m, 3)) * [1.0, 0.5, 0.3],
+        np.full(m, 2.0),
+        np.full(m, 2.0),
+        np.full(m, 20.0),
+    )
     one_core = m / median_time(lambda: check_plan(problem, chosen.indices, chosen.preload, cases), 3)
     study = load_study(EXAMPLES / "tanker_check.toml")
     out = OUT / "tmp" / "tanker_check.csv"
     out.parent.mkdir(parents=True, exist_ok=True)
-    with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=":0",
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.ERROR
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         summary = run_study(study, client=client, restart=True, progress=False, output=out)
-    return {"in_process_per_s_per_core": one_core, "dask_cases": summary.ran,
-            "dask_seconds": summary.seconds, "dask_per_s_per_core": summary.rate_per_core,
-            "dask_cores": summary.cores}
+    return {
+        "in_process_per_s_per_core": one_core,
+        "dask_cases": summary.ran,
+        "dask_seconds": summary.seconds,
+        "dask_per_s_per_core": summary.rate_per_core,
+        "dask_cores": summary.cores,
+    }
 
 
-SECTIONS = {"single_solve": single_solve, "batched_attitudes": batched_attitudes, "plans": plans,
-            "fleet": fleet, "stranded": stranded, "lift": lift, "batch_check": batch_check}
+SECTIONS = {
+    "single_solve": single_solve,
+    "batched_attitudes": batched_attitudes,
+    "plans": plans,
+    "fleet": fleet,
+    "stranded": stranded,
+    "lift": lift,
+    "batch_check": batch_check,
+}
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--only", nargs="+", choices=list(SECTIONS), default=list(SECTIONS),
-                        help="sections to measure (the others are kept from the last run)")
+    parser.add_argument(
+        "--only",
+        nargs="+",
+        choices=list(SECTIONS),
+        default=list(SECTIONS),
+        help="sections to measure (the others are kept from the last run)",
+    )
     args = parser.parse_args()
     path = OUT / "benchmarks.json"
     results = json.loads(path.read_text()) if set(args.only) != set(SECTIONS) and path.exists() else {}
@@ -264,48 +316,82 @@ def main():
 
 def report(path):
     r = json.loads(path.read_text())
-    s, b, p, st, lf, bc = (r[k] for k in ("single_solve", "batched_attitudes", "plans", "stranded",
-                                          "lift", "batch_check"))
+    s, b, p, st, lf, bc = (
+        r[k] for k in ("single_solve", "batched_attitudes", "plans", "stranded", "lift", "batch_check")
+    )
     fl = r.get("fleet")
     rows = [
-        ("single elastic 4-rope solve, median", f"{s['liftplan_us']:.1f} us",
-         f"MoorPy {s['moorpy_ms']:.1f} ms ({s['moorpy_ms'] * 1e3 / s['liftplan_us']:.0f}x); "
-         f"scipy hybr {s['scipy_hybr_us']:.0f} us ({s['scipy_hybr_us'] / s['liftplan_us']:.1f}x)"),
-        ("batched attitude evaluations, one core", f"{b['liftplan_per_s'] / 1e6:.2f} M/s ({b['backend']})",
-         f"numpy stacked solve {b['numpy_per_s'] / 1e6:.2f} M/s "
-         f"({b['liftplan_per_s'] / b['numpy_per_s']:.1f}x)"),
-        ("tanker plan, 16 candidates, CG box", f"{p['tanker_s']:.2f} s",
-         f"brute force {p['brute_force_s']:.1f} s ({p['brute_force_s'] / p['tanker_s']:.0f}x)"),
+        (
+            "single elastic 4-rope solve, median",
+            f"{s['liftplan_us']:.1f} us",
+            f"MoorPy {s['moorpy_ms']:.1f} ms ({s['moorpy_ms'] * 1e3 / s['liftplan_us']:.0f}x); "
+            f"scipy hybr {s['scipy_hybr_us']:.0f} us ({s['scipy_hybr_us'] / s['liftplan_us']:.1f}x)",
+        ),
+        (
+            "batched attitude evaluations, one core",
+            f"{b['liftplan_per_s'] / 1e6:.2f} M/s ({b['backend']})",
+            f"numpy stacked solve {b['numpy_per_s'] / 1e6:.2f} M/s "
+            f"({b['liftplan_per_s'] / b['numpy_per_s']:.1f}x)",
+        ),
+        (
+            "tanker plan, 16 candidates, CG box",
+            f"{p['tanker_s']:.2f} s",
+            f"brute force {p['brute_force_s']:.1f} s ({p['brute_force_s'] / p['tanker_s']:.0f}x)",
+        ),
         (f"40-candidate plan ({p['forty_sets']:,} sets), CG box", f"{p['forty_candidates_s']:.1f} s", "-"),
     ]
     if fl is not None:
         brute = "brute force" + (" (sampled, extrapolated)" if fl["brute_force_sampled"] else "")
-        rows.append((
-            f"tanker, 4 unequal cranes, 16 candidates ({fl['sets']:,} sets x {fl['assignments']} "
-            f"assignments), objective {fl['objective']}",
-            f"{fl['plan_s']:.2f} s ({fl['planner_evaluated']} of {fl['planner_rows']:,} rows in reach "
-            "evaluated); goal 2 s",
-            f"{brute} over {fl['rows_in_reach']:,} (set, assignment) rows in reach of {fl['rows']:,}: "
-            f"{fl['brute_force_s']:.1f} s ({fl['brute_force_s'] / fl['plan_s']:.0f}x)"
-            + ("; same optimum" if fl["same_optimum"] else "")))
+        rows.append(
+            (
+                f"tanker, 4 unequal cranes, 16 candidates ({fl['sets']:,} sets x {fl['assignments']} "
+                f"assignments), objective {fl['objective']}",
+                f"{fl['plan_s']:.2f} s ({fl['planner_evaluated']} of {fl['planner_rows']:,} rows in reach "
+                "evaluated); goal 2 s",
+                f"{brute} over {fl['rows_in_reach']:,} (set, assignment) rows in reach of {fl['rows']:,}: "
+                f"{fl['brute_force_s']:.1f} s ({fl['brute_force_s'] / fl['plan_s']:.0f}x)"
+                + ("; same optimum" if fl["same_optimum"] else ""),
+            )
+        )
     rows += [
-        ("stranded barge solve (case 1), with result and checks", f"{st['newton_ms']:.2f} ms",
-         f"paper's iteration {st['paper_newton_ms']:.2f} ms "
-         f"({st['paper_newton_ms'] / st['newton_ms']:.1f}x)"),
-        ("stranded barge, root-finding alone", f"{st['newton_root_only_ms']:.2f} ms (casadi Newton)",
-         f"scipy hybr on the same residual {st['scipy_hybr_ms']:.2f} ms "
-         f"({st['scipy_hybr_ms'] / st['newton_root_only_ms']:.1f}x)"),
-        (f"lift load curve, sunken block ({lf['steps']} steps)", f"{lf['curve_s']:.2f} s "
-         f"({lf['per_step_ms']:.2f} ms/step)", "-"),
-        ("plan evaluations (batch check, 3x3 box), per core",
-         f"{bc['in_process_per_s_per_core']:,.0f} /s in process; "
-         f"{bc['dask_per_s_per_core']:,.0f} /s on {bc['dask_cores']} Dask workers", "goal 10 000 /s"),
+        (
+            "stranded barge solve (case 1), with result and checks",
+            f"{st['newton_ms']:.2f} ms",
+            f"paper's iteration {st['paper_newton_ms']:.2f} ms "
+            f"({st['paper_newton_ms'] / st['newton_ms']:.1f}x)",
+        ),
+        (
+            "stranded barge, root-finding alone",
+            f"{st['newton_root_only_ms']:.2f} ms (casadi Newton)",
+            f"scipy hybr on the same residual {st['scipy_hybr_ms']:.2f} ms "
+            f"({st['scipy_hybr_ms'] / st['newton_root_only_ms']:.1f}x)",
+        ),
+        (
+            f"lift load curve, sunken block ({lf['steps']} steps)",
+            f"{lf['curve_s']:.2f} s ({lf['per_step_ms']:.2f} ms/step)",
+            "-",
+        ),
+        (
+            "plan evaluations (batch check, 3x3 box), per core",
+            f"{bc['in_process_per_s_per_core']:,.0f} /s in process; "
+            f"{bc['dask_per_s_per_core']:,.0f} /s on {bc['dask_cores']} Dask workers",
+            "goal 10 000 /s",
+        ),
     ]
     loads = r.get("load_average", {})
-    quiet = " (one-minute load average at the start and end of each section: " + ", ".join(
-        f"{k} {v['start']:.2f} / {v['end']:.2f}" for k, v in loads.items()) + ")" if loads else ""
-    lines = [f"Measured on {r['machine']} by `python studies/benchmarks.py`{quiet}.", "",
-             "| figure | liftplan | peer in the same run (ratio) |", "|---|---|---|"]
+    quiet = (
+        " (one-minute load average at the start and end of each section: "
+        + ", ".join(f"{k} {v['start']:.2f} / {v['end']:.2f}" for k, v in loads.items())
+        + ")"
+        if loads
+        else ""
+    )
+    lines = [
+        f"Measured on {r['machine']} by `python studies/benchmarks.py`{quiet}.",
+        "",
+        "| figure | liftplan | peer in the same run (ratio) |",
+        "|---|---|---|",
+    ]
     lines += [f"| {a} | {b_} | {c} |" for a, b_, c in rows]
     text = "\n".join(lines) + "\n"
     (OUT / "benchmarks.md").write_text(text)

@@ -27,8 +27,9 @@ def scene_with(area):
     from liftplan.model.scenefile import loads_scene
 
     text = (ROOT / "examples" / "sunken_block_lift.toml").read_text()
-    text = text.replace('contents = "water"',
-                        f'contents = "water"\nopenings = [{{ area = {area}, at = [3.0, 0.0, 0.0] }}]')
+    text = text.replace(
+        'contents = "water"', f'contents = "water"\nopenings = [{{ area = {area}, at = [3.0, 0.0, 0.0] }}]'
+    )
     return loads_scene(text, base=ROOT / "examples")
 
 
@@ -37,13 +38,17 @@ def row(label, speed, curve):
     clear = curve.event("clear")
     k = list(curve.hoist).index(min(curve.hoist, key=lambda h: abs(h - clear.hoist))) if clear else -1
     tank = curve.drainage[0] if curve.drainage else None
-    return {"case": label, "speed_m_per_min": speed if speed is not None else "",
-            "peak_crane_load_t": peak, "peak_hoist_m": hoist,
-            "peak_time_s": curve.hoist_time(hoist) if speed else "",
-            "water_at_clear_t": float(curve.water_carried[k]),
-            "water_at_end_t": float(curve.water_carried[-1]),
-            "mass_error": tank.mass_error if tank else 0.0,
-            "failed_steps": len(curve.failed)}
+    return {
+        "case": label,
+        "speed_m_per_min": speed if speed is not None else "",
+        "peak_crane_load_t": peak,
+        "peak_hoist_m": hoist,
+        "peak_time_s": curve.hoist_time(hoist) if speed else "",
+        "water_at_clear_t": float(curve.water_carried[k]),
+        "water_at_end_t": float(curve.water_carried[-1]),
+        "mass_error": tank.mass_error if tank else 0.0,
+        "failed_steps": len(curve.failed),
+    }
 
 
 def compute():
@@ -51,8 +56,9 @@ def compute():
 
     rows = [row("never drains (area 0)", None, load_curve(scene_with(0.0), step=STEP))]
     for speed in SPEEDS:
-        rows.append(row(f"{AREA} m2 at {speed:g} m/min", speed, load_curve(scene_with(AREA), step=STEP,
-                                                                          speed=speed)))
+        rows.append(
+            row(f"{AREA} m2 at {speed:g} m/min", speed, load_curve(scene_with(AREA), step=STEP, speed=speed))
+        )
     rows.append(row("drains at once (area inf)", None, load_curve(scene_with("inf"), step=STEP)))
     OUT.mkdir(parents=True, exist_ok=True)
     with open(OUT / "draining.csv", "w", newline="") as f:
@@ -76,17 +82,31 @@ def draw():
     speed = [float(r["speed_m_per_min"]) for r in timed]
     fig = Figure(figsize=(8, 5), layout="constrained")
     ax = fig.subplots()
-    ax.plot(speed, [float(r["peak_crane_load_t"]) for r in timed], "o-", color="k",
-            label=f"peak crane load, {AREA} m2 hole (C_d 0.61)")
-    ax.plot(speed, [float(r["water_at_clear_t"]) + weight for r in timed], "s--", color="tab:purple",
-            ms=4, label="W + the water left when the block clears (B = 0 there)")
+    ax.plot(
+        speed,
+        [float(r["peak_crane_load_t"]) for r in timed],
+        "o-",
+        color="k",
+        label=f"peak crane load, {AREA} m2 hole (C_d 0.61)",
+    )
+    ax.plot(
+        speed,
+        [float(r["water_at_clear_t"]) + weight for r in timed],
+        "s--",
+        color="tab:purple",
+        ms=4,
+        label="W + the water left when the block clears (B = 0 there)",
+    )
     ax.axhline(never, color="tab:red", ls=":", label=f"never drains (area 0): {never:.1f} t")
     ax.axhline(instant, color="tab:blue", ls=":", label=f"drains at once (area inf): {instant:.1f} t")
     ax.set_xscale("log")
     ax.set_xlabel("hoist speed [m/min]")
     ax.set_ylabel("sum of rope tensions [t]")
-    ax.set_title("Sunken block, aft tank draining through a hole in its floor:\n"
-                 "peak crane load against hoist speed (lifted to 1 m clear of the water)", fontsize=10)
+    ax.set_title(
+        "Sunken block, aft tank draining through a hole in its floor:\n"
+        "peak crane load against hoist speed (lifted to 1 m clear of the water)",
+        fontsize=10,
+    )
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.savefig(OUT / "draining.png", dpi=120)

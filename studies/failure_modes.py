@@ -56,11 +56,19 @@ def constructed(scene):
     state = solve(scene, "paper-elastic")
     rot = rotation_matrix(state.pose.heel, state.pose.trim, state.pose.yaw)
     heights = (scene.lug_points() @ rot.T)[:, 2] + state.pose.lift_height
-    cranes = tuple(Crane(c.lug, EA=c.EA, boom_height=c.boom_height, swl=c.swl,
-                         rope_length=(c.boom_height - h) / (1.0 + t / c.EA))
-                   for c, h, t in zip(scene.cranes, heights, state.tensions.values()))
-    return dataclasses.replace(scene, cranes=cranes, attitude=Attitude(yaw=scene.attitude.yaw),
-                               analysis=Analysis("elastic"))
+    cranes = tuple(
+        Crane(
+            c.lug,
+            EA=c.EA,
+            boom_height=c.boom_height,
+            swl=c.swl,
+            rope_length=(c.boom_height - h) / (1.0 + t / c.EA),
+        )
+        for c, h, t in zip(scene.cranes, heights, state.tensions.values())
+    )
+    return dataclasses.replace(
+        scene, cranes=cranes, attitude=Attitude(yaw=scene.attitude.yaw), analysis=Analysis("elastic")
+    )
 
 
 # -- the independent check ---------------------------------------------------------------
@@ -73,8 +81,9 @@ def check(scene, eq):
     cog = rot @ np.array(scene.body.cog)
     t = np.array(list(eq.tensions.values()))
     w, scale = scene.body.weight, scene.plan_diameter
-    balance = max(abs(t.sum() - w), abs(t @ lugs[:, 0] - w * cog[0]) / scale,
-                  abs(t @ lugs[:, 1] - w * cog[1]) / scale)
+    balance = max(
+        abs(t.sum() - w), abs(t @ lugs[:, 0] - w * cog[0]) / scale, abs(t @ lugs[:, 1] - w * cog[1]) / scale
+    )
     if not np.isfinite(balance) or balance > 1e-6 * w:
         return f"out of balance by {balance:.2e} t"
     if t.min() < -1e-9 * w:
@@ -83,8 +92,12 @@ def check(scene, eq):
         return "upside down"
     if eq.model == "elastic":
         z = lugs[:, 2] + eq.pose.lift_height
-        expected = np.array([c.EA * max(c.boom_height - h - c.rope_length, 0.0) / c.rope_length
-                             for c, h in zip(scene.cranes, z)])
+        expected = np.array(
+            [
+                c.EA * max(c.boom_height - h - c.rope_length, 0.0) / c.rope_length
+                for c, h in zip(scene.cranes, z)
+            ]
+        )
         if np.max(np.abs(expected - t)) > 1e-6 * w:
             return "tensions do not match the rope stretch"
     return None
@@ -95,8 +108,11 @@ def outcome(run, scene_of_answer):
         eq = run()
     except LiftPlanError as err:
         text = str(err)
-        return {"outcome": "refused", "detail": f"{type(err).__name__}: {text[:150]}",
-                "one_line": "\n" not in text}
+        return {
+            "outcome": "refused",
+            "detail": f"{type(err).__name__}: {text[:150]}",
+            "one_line": "\n" not in text,
+        }
     except Exception as err:  # noqa: BLE001 - recorded as a crash
         return {"outcome": "crash", "detail": f"{type(err).__name__}: {str(err)[:150]}"}
     problem = check(scene_of_answer, eq)
@@ -105,16 +121,20 @@ def outcome(run, scene_of_answer):
     tensions = ", ".join(f"{v:.1f}" for v in eq.tensions.values())
     detail = f"heel {eq.pose.heel:+.2f}, trim {eq.pose.trim:+.2f} deg; T = {tensions} t"
     if eq.afloat is not None:
-        detail = (f"{eq.model}, state {eq.afloat.state}; heel {eq.pose.heel:+.2f}, trim "
-                  f"{eq.pose.trim:+.2f}; buoyancy {eq.afloat.buoyancy:.1f} t")
+        detail = (
+            f"{eq.model}, state {eq.afloat.state}; heel {eq.pose.heel:+.2f}, trim "
+            f"{eq.pose.trim:+.2f}; buoyancy {eq.afloat.buoyancy:.1f} t"
+        )
     return {"outcome": "ok", "detail": detail}
 
 
 def vertical_runs(scene):
     """(method, run, scene) for the three vertical-rope models."""
-    return [("rigid", lambda: solve(held(scene), "rigid"), scene),
-            ("paper-elastic", lambda: solve(scene, "paper-elastic"), scene),
-            ("elastic", lambda: solve(scene, "elastic"), scene)]
+    return [
+        ("rigid", lambda: solve(held(scene), "rigid"), scene),
+        ("paper-elastic", lambda: solve(scene, "paper-elastic"), scene),
+        ("elastic", lambda: solve(scene, "elastic"), scene),
+    ]
 
 
 def attitude_runs(scene, heel, trim=0.0):
@@ -131,6 +151,7 @@ def attitude_runs(scene, heel, trim=0.0):
 def _raise(err):
     def run():
         raise err
+
     return run
 
 
@@ -156,8 +177,10 @@ def cases():
         stiff = b
         for c in b.cranes:
             stiff = stiff.with_crane(c.lug, EA=k * c.rope_length)
-        add(f"stiff ropes, EA/l = {k:.0e} t/m",
-            lambda s=stiff: vertical_runs(s.with_body(cog=(2.0, 1.0, 2.5))))
+        add(
+            f"stiff ropes, EA/l = {k:.0e} t/m",
+            lambda s=stiff: vertical_runs(s.with_body(cog=(2.0, 1.0, 2.5))),
+        )
     for heel in (30.0, 60.0, 85.0, 90.0):
         add(f"heel {heel:g} deg", lambda h=heel: attitude_runs(b, h))
     add("heel 20, trim 20 deg", lambda: attitude_runs(b, 20.0, 20.0))
@@ -168,8 +191,11 @@ def cases():
     two = b
     for name in ("FS", "AS"):
         two = two.with_crane(name, boom_height=30.0)  # starboard hooks 10 m low: slack
-    add("starboard hooks lowered 10 m (the body heels until 4 ropes pull)",
-        lambda: [("elastic", lambda: solve(two, "elastic"), two)], ("elastic",))
+    add(
+        "starboard hooks lowered 10 m (the body heels until 4 ropes pull)",
+        lambda: [("elastic", lambda: solve(two, "elastic"), two)],
+        ("elastic",),
+    )
     out.update(water_cases())
     return out
 
@@ -182,23 +208,32 @@ def water_cases():
 
     out = {}
     box = Hull.box([-50, -15, -5], [50, 15, 5])
-    barge = Scene(body=Body(20000.0, (5.0, 0.0, 2.0)), ground=Ground((30.0, 0.0, -5.0)),
-                  water=Water(density=1.0273), hull=box)
+    barge = Scene(
+        body=Body(20000.0, (5.0, 0.0, 2.0)),
+        ground=Ground((30.0, 0.0, -5.0)),
+        water=Water(density=1.0273),
+        hull=box,
+    )
     setup = WaterSetup(barge)
     for offset in (0.0, 10.0, 20.0, 45.0):
         start = Start(setup.start.zo, rot(offset, offset / 4))
         out[f"stranded barge, start {offset:g} deg off"] = [
             (method, lambda m=method, s=start: solve_in_water(barge, method=m, setup=setup, start=s), barge)
-            for method in ("newton", "paper-newton")]
+            for method in ("newton", "paper-newton")
+        ]
     lift = load_scene(EXAMPLES / "sunken_block_lift.toml")
     free = dataclasses.replace(lift, ground=None)
-    for label, hoist in (("hanging fully submerged", 0.0), ("leaving the water", 17.0),
-                         ("clear of the water", 30.0)):
+    for label, hoist in (
+        ("hanging fully submerged", 0.0),
+        ("leaving the water", 17.0),
+        ("clear of the water", 30.0),
+    ):
         scene = free
         for c in free.cranes:
             scene = scene.with_crane(c.lug, boom_height=c.boom_height + hoist)
         out[f"flooded block {label} (hoist +{hoist:g} m)"] = [
-            ("hydrostatic", lambda s=scene: solve(s), scene)]
+            ("hydrostatic", lambda s=scene: solve(s), scene)
+        ]
     return out
 
 
@@ -215,14 +250,18 @@ def stiff_limit():
         # conditioning: a tension moves k dz for a height error dz, and the heights carry
         # float64 rounding eps |H|: the attainable tension accuracy is ~ k |H| eps
         boom = max(c.boom_height for c in scene.cranes)
-        row = {"stiffness": float(k), "sensitivity": float(k * boom / scene.body.weight),
-               "rounding_floor": float(k * boom * np.finfo(float).eps),
-               "tolerance": 1e-9 * scene.body.weight}
+        row = {
+            "stiffness": float(k),
+            "sensitivity": float(k * boom / scene.body.weight),
+            "rounding_floor": float(k * boom * np.finfo(float).eps),
+            "tolerance": 1e-9 * scene.body.weight,
+        }
         try:
             eq = solve(scene, "elastic")
             t = np.array(list(eq.tensions.values()))
-            row.update(outcome="ok", distance=float(np.max(np.abs(t - limit))),
-                       heel=eq.pose.heel, trim=eq.pose.trim)
+            row.update(
+                outcome="ok", distance=float(np.max(np.abs(t - limit))), heel=eq.pose.heel, trim=eq.pose.trim
+            )
         except LiftPlanError as err:
             row.update(outcome="refused", detail=str(err)[:150])
         rows.append(row)
@@ -250,13 +289,17 @@ def report(path):
     for r in data["cases"]:
         counts[r["outcome"]] = counts.get(r["outcome"], 0) + 1
     lines += ["", "outcomes: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())), ""]
-    lines += ["Stiff-rope limit (symmetric block, CG (2, 1, 2.5)): elastic tensions against the "
-              "rigid compatible limit " + ", ".join(f"{v:.3f}" for v in data["stiff_limit"]["limit"])
-              + " t. Sensitivity: k H / W, the relative tension change per relative height "
-              "change; rounding floor: k H eps, the tension accuracy float64 heights allow, "
-              "against the 1e-9 W tolerance.", "",
-              "| EA/l [t/m] | outcome | max dT to the limit [t] | k H / W | rounding floor [t] |",
-              "|---|---|---|---|---|"]
+    lines += [
+        "Stiff-rope limit (symmetric block, CG (2, 1, 2.5)): elastic tensions against the "
+        "rigid compatible limit "
+        + ", ".join(f"{v:.3f}" for v in data["stiff_limit"]["limit"])
+        + " t. Sensitivity: k H / W, the relative tension change per relative height "
+        "change; rounding floor: k H eps, the tension accuracy float64 heights allow, "
+        "against the 1e-9 W tolerance.",
+        "",
+        "| EA/l [t/m] | outcome | max dT to the limit [t] | k H / W | rounding floor [t] |",
+        "|---|---|---|---|---|",
+    ]
     for r in data["stiff_limit"]["rows"]:
         head = f"| {r['stiffness']:.1e} | {r['outcome']} | "
         tail = f" | {r['sensitivity']:.1e} | {r['rounding_floor']:.1e} |"
@@ -279,16 +322,16 @@ def draw(limit, path):
     k = np.array([r["stiffness"] for r in ok])
     ax.loglog(k, [max(r["distance"], 1e-16) for r in ok], "o-", label="max |T - T_rigid| [t]")
     every = np.array([r["stiffness"] for r in limit["rows"]])
-    ax.loglog(every, [r["rounding_floor"] for r in limit["rows"]], "s-",
-              label="rounding floor k H eps [t]")
+    ax.loglog(every, [r["rounding_floor"] for r in limit["rows"]], "s-", label="rounding floor k H eps [t]")
     ax.axhline(limit["rows"][0]["tolerance"], color="k", ls=":", label="tolerance 1e-9 W")
     for r in refused:
         ax.axvline(r["stiffness"], color="r", alpha=0.3)
     if refused:
         ax.axvline(refused[0]["stiffness"], color="r", alpha=0.3, label="refused (tolerance unreachable)")
     ax.set_xlabel("rope stiffness EA / l  [t/m]")
-    ax.set_title("Elastic model tends to the rigid one as EA/l grows (symmetric block, CG off centre)",
-                 fontsize=9)
+    ax.set_title(
+        "Elastic model tends to the rigid one as EA/l grows (symmetric block, CG off centre)", fontsize=9
+    )
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

@@ -40,10 +40,20 @@ def curves(ctx, plan_set):
 
 
 def summary(s):
-    return {"lugs": list(s.names), "x": None, "forces": s.preload.tolist(),
-            "peak_M": s.bending.value, "peak_M_ratio": s.bending.ratio, "peak_M_x": s.bending.x,
-            "peak_Q": s.shear.value, "peak_Q_ratio": s.shear.ratio, "peak_Q_x": s.shear.x,
-            "spread": s.spread, "lowest": s.tension_range[0], "highest": s.tension_range[1]}
+    return {
+        "lugs": list(s.names),
+        "x": None,
+        "forces": s.preload.tolist(),
+        "peak_M": s.bending.value,
+        "peak_M_ratio": s.bending.ratio,
+        "peak_M_x": s.bending.x,
+        "peak_Q": s.shear.value,
+        "peak_Q_ratio": s.shear.ratio,
+        "peak_Q_x": s.shear.x,
+        "spread": s.spread,
+        "lowest": s.tension_range[0],
+        "highest": s.tension_range[1],
+    }
 
 
 def run():
@@ -68,21 +78,36 @@ def run():
     started = time.perf_counter()
     spread, spread_stats = search_strength(problem, SPREAD_WEIGHTS, ctx, time_limit=30.0)
     spread_seconds = time.perf_counter() - started
-    data = {"problem": str(EXAMPLE.name), "weight": problem.body.weight,
-            "weight_curve": [list(p) for p in problem.body.weight_curve],
-            "allowable_M": [list(p) for p in problem.strength.bending_moment],
-            "allowable_Q": [list(p) for p in problem.strength.shear_force]}
+    data = {
+        "problem": str(EXAMPLE.name),
+        "weight": problem.body.weight,
+        "weight_curve": [list(p) for p in problem.body.weight_curve],
+        "allowable_M": [list(p) for p in problem.strength.bending_moment],
+        "allowable_Q": [list(p) for p in problem.strength.shear_force],
+    }
     for name, s in (("experience", experience), ("strength", strength), ("spread", spread)):
         data[name] = summary(s)
         data[name]["x"] = problem.points[list(s.indices)][:, 0].tolist()
         data[name]["y"] = problem.points[list(s.indices)][:, 1].tolist()
         xs, states = curves(ctx, s)
         data[name]["curves"] = {"x": xs, "states": states}
-    data["search"] = {"seconds": seconds, "lower_bound": stats.lower_bound, "best": stats.best,
-                      "gap": stats.gap, "relative_gap": stats.relative_gap, "stopped": stats.stopped,
-                      "mip_solves": stats.rounds, "method": stats.method, "certified": stats.certified}
-    data["spread_search"] = {"seconds": spread_seconds, "lower_bound": spread_stats.lower_bound,
-                             "gap": spread_stats.gap, "stopped": spread_stats.stopped}
+    data["search"] = {
+        "seconds": seconds,
+        "lower_bound": stats.lower_bound,
+        "best": stats.best,
+        "gap": stats.gap,
+        "relative_gap": stats.relative_gap,
+        "stopped": stats.stopped,
+        "mip_solves": stats.rounds,
+        "method": stats.method,
+        "certified": stats.certified,
+    }
+    data["spread_search"] = {
+        "seconds": spread_seconds,
+        "lower_bound": spread_stats.lower_bound,
+        "gap": spread_stats.gap,
+        "stopped": spread_stats.stopped,
+    }
     OUT.mkdir(exist_ok=True)
     (OUT / "ferry_strength.json").write_text(json.dumps(data))
     return data
@@ -90,17 +115,24 @@ def run():
 
 def table(data):
     e, s, o = data["experience"], data["strength"], data["spread"]
-    rows = [("peak |M| [t m]", "peak_M", ".0f"), ("peak |M| / allowable", "peak_M_ratio", ".3f"),
-            ("peak |Q| [t]", "peak_Q", ".0f"), ("peak |Q| / allowable", "peak_Q_ratio", ".3f"),
-            ("force spread [t]", "spread", ".1f"), ("lowest force [t]", "lowest", ".1f"),
-            ("highest force [t]", "highest", ".1f")]
+    rows = [
+        ("peak |M| [t m]", "peak_M", ".0f"),
+        ("peak |M| / allowable", "peak_M_ratio", ".3f"),
+        ("peak |Q| [t]", "peak_Q", ".0f"),
+        ("peak |Q| / allowable", "peak_Q_ratio", ".3f"),
+        ("force spread [t]", "spread", ".1f"),
+        ("lowest force [t]", "lowest", ".1f"),
+        ("highest force [t]", "highest", ".1f"),
+    ]
     lines = [f"{'':24s}{'experience':>12s}{'strength':>12s}{'spread-opt':>12s}{'change':>9s}"]
     for name, key, fmt in rows:
         change = "" if key not in ("peak_M", "peak_Q") else f"{100 * (s[key] / e[key] - 1):+.1f} %"
         lines.append(f"{name:24s}{e[key]:>12{fmt}}{s[key]:>12{fmt}}{o[key]:>12{fmt}}{change:>9s}")
     g = data["search"]
-    lines.append(f"strength search: {g['seconds']:.1f} s, gap {g['gap']:.2g} ({g['stopped']}, "
-                 f"{g['mip_solves']} MIP solves)")
+    lines.append(
+        f"strength search: {g['seconds']:.1f} s, gap {g['gap']:.2g} ({g['stopped']}, "
+        f"{g['mip_solves']} MIP solves)"
+    )
     return "\n".join(lines)
 
 
@@ -110,12 +142,15 @@ def figure(data):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True,
-                             gridspec_kw={"height_ratios": [1.1, 1, 1, 1.1]})
+    fig, axes = plt.subplots(
+        4, 1, figsize=(9, 11), sharex=True, gridspec_kw={"height_ratios": [1.1, 1, 1, 1.1]}
+    )
     wc = np.array(data["weight_curve"])
-    styles = {"experience": ("tab:red", "experience: 12 even stations a side, even forces"),
-              "strength": ("tab:blue", "strength-optimal (bending)"),
-              "spread": ("tab:green", "spread-optimal")}
+    styles = {
+        "experience": ("tab:red", "experience: 12 even stations a side, even forces"),
+        "strength": ("tab:blue", "strength-optimal (bending)"),
+        "spread": ("tab:green", "spread-optimal"),
+    }
     # at each station six bars side by side: the three plans, each starboard (hatched) then
     # port (solid), so no bar hides another
     stations = np.unique(np.round(np.concatenate([data[n]["x"] for n in styles]), 6))
@@ -125,9 +160,16 @@ def figure(data):
         x, y, f = (np.array(d[key]) for key in ("x", "y", "forces"))
         for j, (side, hatch) in enumerate(((y < 0, "////"), (y > 0, None))):
             shift = (2 * k + j - 2.5) * width
-            axes[0].bar(x[side] + shift, f[side], width=width, color=color if hatch is None else "white",
-                        edgecolor=color, hatch=hatch, lw=0.6,
-                        label=f"{label}, {'starboard' if hatch else 'port'}")
+            axes[0].bar(
+                x[side] + shift,
+                f[side],
+                width=width,
+                color=color if hatch is None else "white",
+                edgecolor=color,
+                hatch=hatch,
+                lw=0.6,
+                label=f"{label}, {'starboard' if hatch else 'port'}",
+            )
     axes[0].set_ylabel("force per point [t]")
     axes[0].legend(fontsize=6.5, loc="upper left", ncols=3, frameon=False)
     top = max(max(data[n]["forces"]) for n in styles)
@@ -152,18 +194,24 @@ def figure(data):
         ax.plot(env[:, 0], env[:, 1] / scale, "k--", lw=0.8, label="allowable")
         ax.plot(env[:, 0], -env[:, 1] / scale, "k--", lw=0.8)
         ax.axhline(0, color="0.5", lw=0.5)
-    axes[0].set_title("forces at the 16 frame stations: each plan's starboard (hatched) and port "
-                      "(solid) bars side by side; weight per length in grey", fontsize=8)
+    axes[0].set_title(
+        "forces at the 16 frame stations: each plan's starboard (hatched) and port "
+        "(solid) bars side by side; weight per length in grey",
+        fontsize=8,
+    )
     axes[1].set_ylabel("bending moment [1000 t m]")
     axes[2].set_ylabel("shear force [t]")
     axes[3].set_ylabel("worst |M| / allowable")
     axes[3].set_xlabel("x from the stern [m]")
     for ax in axes[1:]:
         ax.legend(fontsize=7)
-    axes[1].set_title("shaded: the range over the CG envelope's states (each at its equilibrium tilt)",
-                      fontsize=8)
-    fig.suptitle("146 m ro-ro ferry on 24 of 32 strand-jack points: experience plan against the "
-                 "strength-optimal plan", fontsize=10)
+    axes[1].set_title(
+        "shaded: the range over the CG envelope's states (each at its equilibrium tilt)", fontsize=8
+    )
+    fig.suptitle(
+        "146 m ro-ro ferry on 24 of 32 strand-jack points: experience plan against the strength-optimal plan",
+        fontsize=10,
+    )
     fig.tight_layout()
     fig.savefig(OUT / "ferry_strength.png", dpi=120)
 

@@ -78,18 +78,28 @@ def fleets():
     def at(x, z):  # the example's positions are in the papers' frame (x, y up, z to starboard)
         return tuple(choi_to_zup((x, 0.0, z))[:2])
 
-    diagonal = dataclasses.replace(tanker, name="1500 GT tanker, big cranes on a diagonal", fleet=(
-        big_a,
-        dataclasses.replace(big_b, position=at(60.0, 37.0)),
-        dataclasses.replace(small_c, position=at(60.0, -25.0)),
-        dataclasses.replace(small_d, position=at(20.0, 37.0)),
-    ))
+    diagonal = dataclasses.replace(
+        tanker,
+        name="1500 GT tanker, big cranes on a diagonal",
+        fleet=(
+            big_a,
+            dataclasses.replace(big_b, position=at(60.0, 37.0)),
+            dataclasses.replace(small_c, position=at(60.0, -25.0)),
+            dataclasses.replace(small_d, position=at(20.0, 37.0)),
+        ),
+    )
     return {
-        "tanker_fleet": (tanker, "examples/tanker_fleet.toml: both sheerlegs off the port side "
-                                 "(x = 20, 60 m), both smaller cranes off starboard"),
-        "diagonal_fleet": (diagonal, "the same hull, candidates, charts and rules; sheerleg A port "
-                                     "quarter, sheerleg B starboard bow, crane C port bow, crane D "
-                                     "starboard quarter: the big cranes on one diagonal"),
+        "tanker_fleet": (
+            tanker,
+            "examples/tanker_fleet.toml: both sheerlegs off the port side "
+            "(x = 20, 60 m), both smaller cranes off starboard",
+        ),
+        "diagonal_fleet": (
+            diagonal,
+            "the same hull, candidates, charts and rules; sheerleg A port "
+            "quarter, sheerleg B starboard bow, crane C port bow, crane D "
+            "starboard quarter: the big cranes on one diagonal",
+        ),
     }
 
 
@@ -116,8 +126,9 @@ class SharesHeld:
         key = round(float(weight), 9)
         if key not in self._cache:
             heavier = _with_weight(self.problem, weight)
-            scaled = dataclasses.replace(self.chosen,
-                                         preload=self.chosen.preload * weight / self.problem.body.weight)
+            scaled = dataclasses.replace(
+                self.chosen, preload=self.chosen.preload * weight / self.problem.body.weight
+            )
             loads = design_loads(heavier, [scaled], self.labels)[0]
             in_box = np.array([c.worst / c.swl for c in loads.cranes])
             design = np.array([c.utilisation for c in loads.cranes])
@@ -153,8 +164,11 @@ def plan_entry(problem, objective):
     worst = {c.label: c.worst / c.swl for c in capacity}
     highest = max(design, key=design.get)
     return result, {
-        "lugs": result.lugs, "cranes": result.cranes,
-        "radius": result.radius, "swl": result.swl, "tensions": result.tensions,
+        "lugs": result.lugs,
+        "cranes": result.cranes,
+        "radius": result.radius,
+        "swl": result.swl,
+        "tensions": result.tensions,
         "utilisation": result.utilisation,
         "worst_over_swl": worst,
         "design_hook_load": {c.label: c.design_hook_load for c in capacity},
@@ -194,8 +208,9 @@ def shares_held(problem, result):
         "in_box_reaches_swl_at": in_box_at,
         "design_reaches_swl_at": design_at,
         "first_in_box_at_swl": None if first is None else {"crane": first[1], "weight": first[0]},
-        "first_failed_check": None if check_fails is None else {
-            "weight": check_fails, "checks": held.at(check_fails + BISECT_T)[2]},
+        "first_failed_check": None
+        if check_fails is None
+        else {"weight": check_fails, "checks": held.at(check_fails + BISECT_T)[2]},
         "design_ok_at_planned_weight": not held.at(w0)[2],
         "design_over_swl_at_planned_weight": [n for n, v in zip(names, held.at(w0)[1]) if v > 1.0],
     }
@@ -230,8 +245,13 @@ def replanned_limit(problem, objective):
         else:
             low, last = middle, found
     last = last or attempt(low)
-    return {"weight": low, "infeasible_at": high, "lugs": last.lugs, "cranes": last.cranes,
-            "reason": str(failure)}
+    return {
+        "weight": low,
+        "infeasible_at": high,
+        "lugs": last.lugs,
+        "cranes": last.cranes,
+        "reason": str(failure),
+    }
 
 
 def study():
@@ -244,12 +264,23 @@ def study():
             entry["replanned"] = replanned_limit(problem, objective)
             plans[objective] = entry
         data["fleets"][key] = {
-            "name": problem.name, "where": where, "weight": problem.body.weight, "frame": problem.frame,
-            "cog": list(problem.body.cog), "rules": dataclasses.asdict(problem.rules),
+            "name": problem.name,
+            "where": where,
+            "weight": problem.body.weight,
+            "frame": problem.frame,
+            "cog": list(problem.body.cog),
+            "rules": dataclasses.asdict(problem.rules),
             "candidates": {c.name: p for c, p in zip(problem.candidates, problem.plan_points.tolist())},
             "outline": [list(p) for p in problem.outline],
-            "fleet": [{"name": c.name, "position": list(c.position), "reach": c.reach,
-                       "load_chart": [list(p) for p in c.load_chart]} for c in problem.fleet],
+            "fleet": [
+                {
+                    "name": c.name,
+                    "position": list(c.position),
+                    "reach": c.reach,
+                    "load_chart": [list(p) for p in c.load_chart],
+                }
+                for c in problem.fleet
+            ],
             "plans": plans,
         }
     return data
@@ -272,16 +303,28 @@ def _plan_view(ax, key, f, color):
     for crane in f["fleet"]:
         cx, cy = crane["position"][0], flip * crane["position"][1]
         ax.scatter([cx], [cy], marker="s", s=50, color=color[crane["name"]], zorder=4)
-        ax.annotate(crane["name"], (cx, cy), fontsize=8, color=color[crane["name"]], ha="center",
-                    xytext=(0, -12 if cy > 0 else 7), textcoords="offset points")
+        ax.annotate(
+            crane["name"],
+            (cx, cy),
+            fontsize=8,
+            color=color[crane["name"]],
+            ha="center",
+            xytext=(0, -12 if cy > 0 else 7),
+            textcoords="offset points",
+        )
         ax.add_patch(Circle((cx, cy), crane["reach"], fill=False, ec=color[crane["name"]], ls=":", lw=0.6))
     for objective, entry in f["plans"].items():
         ls, marker = STYLES[objective]
         for label, lug in entry["lugs"].items():
             crane = next(c for c in f["fleet"] if c["name"] == entry["cranes"][label])
             x, y = points[lug][0], flip * points[lug][1]
-            ax.plot([crane["position"][0], x], [flip * crane["position"][1], y], ls=ls, lw=1.3,
-                    color=color[crane["name"]])
+            ax.plot(
+                [crane["position"][0], x],
+                [flip * crane["position"][1], y],
+                ls=ls,
+                lw=1.3,
+                color=color[crane["name"]],
+            )
             ax.scatter([x], [y], marker=marker, s=40, facecolor="none", edgecolor="k", zorder=3)
         ax.plot([], [], color="k", ls=ls, marker=marker, mfc="none", label=f"objective = {objective}")
     cgx, cgy, _ = f["cog"]  # z-up
@@ -307,25 +350,60 @@ def _bars(ax, f, color):
         by_crane = {entry["cranes"][label]: label for label in entry["lugs"]}
         x = np.arange(len(names)) + (k - 0.5) * width
         in_box = [entry["worst_over_swl"][by_crane[n]] for n in names]
-        ax.bar(x, in_box, width, color=[color[n] for n in names], alpha=0.35 if k else 0.8, edgecolor="k",
-               hatch="//" if k else None, label=f"{objective}: worst in the box / SWL (bar)")
-        ax.scatter(x, [entry["utilisation"][by_crane[n]] for n in names], marker="_", s=250, color="k",
-                   zorder=3, label="level T* / SWL" if k == 0 else None)
+        ax.bar(
+            x,
+            in_box,
+            width,
+            color=[color[n] for n in names],
+            alpha=0.35 if k else 0.8,
+            edgecolor="k",
+            hatch="//" if k else None,
+            label=f"{objective}: worst in the box / SWL (bar)",
+        )
+        ax.scatter(
+            x,
+            [entry["utilisation"][by_crane[n]] for n in names],
+            marker="_",
+            s=250,
+            color="k",
+            zorder=3,
+            label="level T* / SWL" if k == 0 else None,
+        )
         design = [entry["design_utilisation"][by_crane[n]] for n in names]
-        ax.scatter(x, design, marker="v", s=30, color="k", zorder=3,
-                   label="design hook load / SWL (rules' chain)" if k == 0 else None)
+        ax.scatter(
+            x,
+            design,
+            marker="v",
+            s=30,
+            color="k",
+            zorder=3,
+            label="design hook load / SWL (rules' chain)" if k == 0 else None,
+        )
         for xi, v, d in zip(x, in_box, design):
-            ax.annotate(f"{v:.2f}", (xi, v), fontsize=6.5, ha="center", va="top", xytext=(0, -2),
-                        textcoords="offset points")
-            ax.annotate(f"{d:.2f}", (xi, d), fontsize=6.5, ha="center", xytext=(0, 4),
-                        textcoords="offset points")
+            ax.annotate(
+                f"{v:.2f}",
+                (xi, v),
+                fontsize=6.5,
+                ha="center",
+                va="top",
+                xytext=(0, -2),
+                textcoords="offset points",
+            )
+            ax.annotate(
+                f"{d:.2f}", (xi, d), fontsize=6.5, ha="center", xytext=(0, 4), textcoords="offset points"
+            )
     ax.axhline(1.0, color="k", lw=0.8)
     ax.set_xticks(np.arange(len(names)), names, fontsize=8)
     ax.set_ylabel("load / chart SWL at the crane's radius [-]")
     ax.set_ylim(0, 1.3)
-    ax.set_title("\n".join(f"{o}: worst tension spread {e['worst_spread']:.0f} t, worst utilisation "
-                           f"spread {e['worst_utilisation_spread']:.3f}" for o, e in f["plans"].items()),
-                 fontsize=8)
+    ax.set_title(
+        "\n".join(
+            f"{o}: worst tension spread {e['worst_spread']:.0f} t, worst utilisation "
+            f"spread {e['worst_utilisation_spread']:.3f}"
+            for o, e in f["plans"].items()
+        ),
+        fontsize=8,
+    )
     ax.legend(fontsize=6.5, loc="upper left", ncol=2)
     ax.grid(True, axis="y", lw=0.3)
 
@@ -356,11 +434,17 @@ def _sweep(ax, f, color, which):
         ax.plot([], [], color="k", ls=ls, marker=marker, mfc="0.6", label=text)
     ax.axhline(1.0, color="k", lw=0.8)
     ax.set_xlabel("body weight [t] (each crane keeps its planned share)")
-    what = "worst tension in the tolerance box / SWL" if which == "in_box" else \
-        "design hook load / SWL (rules' chain)"
+    what = (
+        "worst tension in the tolerance box / SWL"
+        if which == "in_box"
+        else "design hook load / SWL (rules' chain)"
+    )
     ax.set_ylabel(f"{what} [-]")
-    ax.set_title(f"weight grows, shares held: {what}\nper crane (colour); solid: spread plan, "
-                 "dashed: utilisation plan", fontsize=8)
+    ax.set_title(
+        f"weight grows, shares held: {what}\nper crane (colour); solid: spread plan, "
+        "dashed: utilisation plan",
+        fontsize=8,
+    )
     ax.legend(fontsize=6.5, loc="lower right")
     ax.grid(True, lw=0.3)
 
@@ -370,8 +454,9 @@ def draw(data, path):
 
     fleets_data = data["fleets"]
     fig = Figure(figsize=(24, 5.6 * len(fleets_data)), layout="constrained")
-    axes = fig.subplots(len(fleets_data), 4, gridspec_kw={"width_ratios": [1.3, 1.0, 1.0, 1.0]},
-                        squeeze=False)
+    axes = fig.subplots(
+        len(fleets_data), 4, gridspec_kw={"width_ratios": [1.3, 1.0, 1.0, 1.0]}, squeeze=False
+    )
     for row, (key, f) in zip(axes, fleets_data.items()):
         color = {c["name"]: COLORS[j % len(COLORS)] for j, c in enumerate(f["fleet"])}
         _plan_view(row[0], key, f, color)
@@ -388,14 +473,20 @@ def _summary(data):
             held, re_plan = e["shares_held"], e["replanned"]
             r3 = lambda d: [round(v, 3) for v in d.values()]  # noqa: E731
             print(f"  {objective}: " + ", ".join(f"{e['lugs'][k]} {e['cranes'][k]}" for k in e["lugs"]))
-            print(f"    T* {[round(v, 1) for v in e['tensions'].values()]} t, T*/SWL {r3(e['utilisation'])}, "
-                  f"worst/SWL {r3(e['worst_over_swl'])}, design/SWL {r3(e['design_utilisation'])}")
-            print(f"    worst spread {e['worst_spread']:.1f} t, worst utilisation spread "
-                  f"{e['worst_utilisation_spread']:.3f}, highest design/SWL "
-                  f"{e['max_design_utilisation']:.3f} ({e['max_design_crane']}), failed checks "
-                  f"{e['failed_checks']}")
-            print(f"    shares held: first in box at SWL {held['first_in_box_at_swl']}; design at SWL "
-                  f"{held['design_reaches_swl_at']}; first failed check {held['first_failed_check']}")
+            print(
+                f"    T* {[round(v, 1) for v in e['tensions'].values()]} t, T*/SWL {r3(e['utilisation'])}, "
+                f"worst/SWL {r3(e['worst_over_swl'])}, design/SWL {r3(e['design_utilisation'])}"
+            )
+            print(
+                f"    worst spread {e['worst_spread']:.1f} t, worst utilisation spread "
+                f"{e['worst_utilisation_spread']:.3f}, highest design/SWL "
+                f"{e['max_design_utilisation']:.3f} ({e['max_design_crane']}), failed checks "
+                f"{e['failed_checks']}"
+            )
+            print(
+                f"    shares held: first in box at SWL {held['first_in_box_at_swl']}; design at SWL "
+                f"{held['design_reaches_swl_at']}; first failed check {held['first_failed_check']}"
+            )
             print(f"    re-planned limit {re_plan['weight']} t ({re_plan.get('reason', '')[:160]})")
 
 

@@ -42,14 +42,17 @@ def scene(ei):
     from liftplan.model.scenefile import loads_scene
 
     text = (EXAMPLES / "stranded_barge.toml").read_text()
-    text = text.replace("cog = [5.0, 0.0, 2.0]",
-                        "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]")
+    text = text.replace(
+        "cog = [5.0, 0.0, 2.0]", "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]"
+    )
     text = text.replace("[ground]", f"EI = [[-50.0, {ei!r}]]\n\n[ground]")
     text = text.replace("contact = [30.0, -2.0, -5.0]", "contact = [-45.0, 0.0, -5.0]")
     text += '\n[analysis]\nhull = "flexible"\n'
     for k, (x, y) in enumerate(((40.0, 10.0), (48.0, 10.0), (48.0, -10.0), (40.0, -10.0))):
-        text += (f'\n[[lugs]]\nname = "B{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "B{k + 1}"\n'
-                 "boom_height = 40.0\nrope_length = 35.0\nEA = 50000.0\nswl = 2000.0\n")
+        text += (
+            f'\n[[lugs]]\nname = "B{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "B{k + 1}"\n'
+            "boom_height = 40.0\nrope_length = 35.0\nEA = 50000.0\nswl = 2000.0\n"
+        )
     return loads_scene(text, base=EXAMPLES)
 
 
@@ -67,24 +70,38 @@ def run():
         girder = hull_girder(sc, eq)
         rigid_t = np.array(list(flex.rigid_tensions.values()))
         flex_t = np.array(list(flex.flexible_tensions.values()))
-        rows.append({
-            "scale": s, "EI": EI * s, "seconds": seconds,
-            "rigid_tensions": rigid_t.tolist(), "flexible_tensions": flex_t.tolist(),
-            "rigid_crane_load": float(rigid_t.sum()), "flexible_crane_load": float(flex_t.sum()),
-            "rigid_ground_reaction": flex.rigid_ground_reaction,
-            "flexible_ground_reaction": flex.flexible_ground_reaction,
-            "max_change": flex.max_change, "max_change_of": flex.max_change_rope,
-            "max_deflection": flex.max_deflection.signed, "max_moment": girder.max_moment.signed,
-            "max_moment_x": girder.max_moment.x, "closure": list(girder.closure),
-        })
+        rows.append(
+            {
+                "scale": s,
+                "EI": EI * s,
+                "seconds": seconds,
+                "rigid_tensions": rigid_t.tolist(),
+                "flexible_tensions": flex_t.tolist(),
+                "rigid_crane_load": float(rigid_t.sum()),
+                "flexible_crane_load": float(flex_t.sum()),
+                "rigid_ground_reaction": flex.rigid_ground_reaction,
+                "flexible_ground_reaction": flex.flexible_ground_reaction,
+                "max_change": flex.max_change,
+                "max_change_of": flex.max_change_rope,
+                "max_deflection": flex.max_deflection.signed,
+                "max_moment": girder.max_moment.signed,
+                "max_moment_x": girder.max_moment.x,
+                "closure": list(girder.closure),
+            }
+        )
         if s == 1.0:
             rigid_scene = dataclasses.replace(sc, analysis=dataclasses.replace(sc.analysis, hull="rigid"))
             rigid = solve(rigid_scene)
             rigid_girder = hull_girder(rigid_scene, rigid)
-            curves = {"x": girder.stations.tolist(), "flexible_moment": girder.moment.tolist(),
-                      "rigid_x": rigid_girder.stations.tolist(), "rigid_moment": rigid_girder.moment.tolist(),
-                      "deflection_x": flex.x.tolist(), "deflection": flex.deflection.tolist(),
-                      "rigid_max_moment": rigid_girder.max_moment.signed}
+            curves = {
+                "x": girder.stations.tolist(),
+                "flexible_moment": girder.moment.tolist(),
+                "rigid_x": rigid_girder.stations.tolist(),
+                "rigid_moment": rigid_girder.moment.tolist(),
+                "deflection_x": flex.x.tolist(),
+                "deflection": flex.deflection.tolist(),
+                "rigid_max_moment": rigid_girder.max_moment.signed,
+            }
     return {"EI": EI, "rows": rows, "curves": curves, "gauge": gauge_rows()}
 
 
@@ -110,15 +127,21 @@ def gauge_rows():
         chord, stern = out["chord"], out["stern"]
         ratio = chord[2] / 100.0  # the barge's length
         weight = sc.body.weight
-        rows.append({
-            "scale": s, "EI": EI * s, "deflection_over_length": ratio,
-            "chord_ground_reaction": chord[0], "stern_ground_reaction": stern[0],
-            "chord_crane_load": chord[1], "stern_crane_load": stern[1],
-            "ground_reaction_change": (stern[0] - chord[0]) / chord[0],
-            "crane_load_change": (stern[1] - chord[1]) / chord[1],
-            "ground_per_deflection": abs(stern[0] - chord[0]) / (weight * ratio),
-            "crane_per_deflection": abs(stern[1] - chord[1]) / (weight * ratio),
-        })
+        rows.append(
+            {
+                "scale": s,
+                "EI": EI * s,
+                "deflection_over_length": ratio,
+                "chord_ground_reaction": chord[0],
+                "stern_ground_reaction": stern[0],
+                "chord_crane_load": chord[1],
+                "stern_crane_load": stern[1],
+                "ground_reaction_change": (stern[0] - chord[0]) / chord[0],
+                "crane_load_change": (stern[1] - chord[1]) / chord[1],
+                "ground_per_deflection": abs(stern[0] - chord[0]) / (weight * ratio),
+                "crane_per_deflection": abs(stern[1] - chord[1]) / (weight * ratio),
+            }
+        )
     return rows
 
 
@@ -161,19 +184,25 @@ if __name__ == "__main__":
     (OUT / "flexible_ground.json").write_text(json.dumps(data, indent=1))
     draw(data)
     for r in data["rows"]:
-        print(f"EI x {r['scale']:<5g} R {r['flexible_ground_reaction']:9.2f} "
-              f"(rigid {r['rigid_ground_reaction']:.2f}) "
-              f"cranes {r['flexible_crane_load']:8.2f} (rigid {r['rigid_crane_load']:.2f}) "
-              f"max change {100 * r['max_change']:.3g} % ({r['max_change_of']}) "
-              f"defl {1000 * r['max_deflection']:+.1f} mm  M {r['max_moment']:.0f} t m "
-              f"at {r['max_moment_x']:.1f} "
-              f"[{r['seconds']:.2f} s]")
+        print(
+            f"EI x {r['scale']:<5g} R {r['flexible_ground_reaction']:9.2f} "
+            f"(rigid {r['rigid_ground_reaction']:.2f}) "
+            f"cranes {r['flexible_crane_load']:8.2f} (rigid {r['rigid_crane_load']:.2f}) "
+            f"max change {100 * r['max_change']:.3g} % ({r['max_change_of']}) "
+            f"defl {1000 * r['max_deflection']:+.1f} mm  M {r['max_moment']:.0f} t m "
+            f"at {r['max_moment_x']:.1f} "
+            f"[{r['seconds']:.2f} s]"
+        )
     print("rigid max M", data["curves"]["rigid_max_moment"])
     print("gauge: stern-end vs chord (what solve uses), from the rigid pose")
-    print(f"{'EI x':>6} {'defl/L':>8} {'R chord':>9} {'R stern':>9} {'dR':>8} {'dR/(W d/L)':>10} "
-          f"{'cranes chord':>12} {'dC':>8} {'dC/(W d/L)':>10}")
+    print(
+        f"{'EI x':>6} {'defl/L':>8} {'R chord':>9} {'R stern':>9} {'dR':>8} {'dR/(W d/L)':>10} "
+        f"{'cranes chord':>12} {'dC':>8} {'dC/(W d/L)':>10}"
+    )
     for g in data["gauge"]:
-        print(f"{g['scale']:>6g} {g['deflection_over_length']:8.2e} {g['chord_ground_reaction']:9.2f} "
-              f"{g['stern_ground_reaction']:9.2f} {100 * g['ground_reaction_change']:+7.3f}% "
-              f"{g['ground_per_deflection']:10.3f} {g['chord_crane_load']:12.2f} "
-              f"{100 * g['crane_load_change']:+7.3f}% {g['crane_per_deflection']:10.3f}")
+        print(
+            f"{g['scale']:>6g} {g['deflection_over_length']:8.2e} {g['chord_ground_reaction']:9.2f} "
+            f"{g['stern_ground_reaction']:9.2f} {100 * g['ground_reaction_change']:+7.3f}% "
+            f"{g['ground_per_deflection']:10.3f} {g['chord_crane_load']:12.2f} "
+            f"{100 * g['crane_load_change']:+7.3f}% {g['crane_per_deflection']:10.3f}"
+        )

@@ -40,9 +40,9 @@ from liftplan.model.solve import solve_hull_on_ropes
 HERE = Path(__file__).parent
 OUT = HERE / "out"
 EXAMPLE = HERE.parent / "examples" / "tanker_flexible.toml"
-EI, GJ = 5.3e7, 5.2e7          # t m2, the example's assumption (s = 1)
-HOOK_TOLERANCE = 0.02          # m, examples/tanker_plan.toml
-STEP = 1e-3                    # m, central-difference hook step
+EI, GJ = 5.3e7, 5.2e7  # t m2, the example's assumption (s = 1)
+HOOK_TOLERANCE = 0.02  # m, examples/tanker_plan.toml
+STEP = 1e-3  # m, central-difference hook step
 SCALES = 10.0 ** np.arange(-3.0, 4.01, 0.5)
 
 
@@ -66,8 +66,11 @@ def both(scene):
     """(flexible, rigid) tensions in lug order  [t]."""
     eq = solve_hull_on_ropes(scene, hull="flexible")
     names = scene.lug_names
-    return (np.array([eq.tensions[n] for n in names]),
-            np.array([eq.flexible_hull.rigid_tensions[n] for n in names]), eq)
+    return (
+        np.array([eq.tensions[n] for n in names]),
+        np.array([eq.flexible_hull.rigid_tensions[n] for n in names]),
+        eq,
+    )
 
 
 def measure(scene):
@@ -86,8 +89,9 @@ def measure(scene):
         row[f"tensions_{hull}"] = out[hull].tolist()
         row[f"skewed_{hull}"] = skewed.tolist()
         row[f"skew_factor_{hull}"] = float(np.max(skewed / out[hull]))
-    row["skewed_change"] = float(np.max(np.abs(np.array(row["skewed_flexible"]) - row["skewed_rigid"])
-                                        / np.array(row["skewed_rigid"])))
+    row["skewed_change"] = float(
+        np.max(np.abs(np.array(row["skewed_flexible"]) - row["skewed_rigid"]) / np.array(row["skewed_rigid"]))
+    )
     row["max_deflection_mm"] = 1000 * eq.flexible_hull.max_deflection.signed
     return row, eq
 
@@ -146,8 +150,14 @@ def draw(data):
         change = np.array([r["tension_change"] for r in rows])
         skewed = np.array([r["skewed_change"] for r in rows])
         ax_t.loglog(s, np.maximum(change, 1e-12), "o-", color=c, label=f"{name}: level hooks")
-        ax_t.loglog(s, skewed, "s--", color=c, mfc="none",
-                    label=f"{name}: skew load (hooks +-{100 * data['hook_tolerance']:.0f} cm)")
+        ax_t.loglog(
+            s,
+            skewed,
+            "s--",
+            color=c,
+            mfc="none",
+            label=f"{name}: skew load (hooks +-{100 * data['hook_tolerance']:.0f} cm)",
+        )
         ax_s.semilogx(s, [r["skew_factor_flexible"] for r in rows], "o-", color=c, label=f"{name}: flexible")
         ax_s.axhline(rows[0]["skew_factor_rigid"], color=c, ls=":", label=f"{name}: rigid hull")
         d = layout["deflection"]
@@ -184,8 +194,10 @@ if __name__ == "__main__":
     draw(result)
     for name, layout in result["layouts"].items():
         a = layout["at_assumed"]
-        print(f"{name}: at the assumed EI/GJ: tension change {a['tension_change']:.3%}, skew factor "
-              f"{a['skew_factor_flexible']:.4f} flexible vs {a['skew_factor_rigid']:.4f} rigid, skewed loads "
-              f"change {a['skewed_change']:.3%}, deflection {a['max_deflection_mm']:+.1f} mm; "
-              f"rigid within 1 % from s = {layout['scale_within_1pct_tensions']:.3g} (tensions), "
-              f"{layout['scale_within_1pct_skewed']:.3g} (skew loads)")
+        print(
+            f"{name}: at the assumed EI/GJ: tension change {a['tension_change']:.3%}, skew factor "
+            f"{a['skew_factor_flexible']:.4f} flexible vs {a['skew_factor_rigid']:.4f} rigid, skewed loads "
+            f"change {a['skewed_change']:.3%}, deflection {a['max_deflection_mm']:+.1f} mm; "
+            f"rigid within 1 % from s = {layout['scale_within_1pct_tensions']:.3g} (tensions), "
+            f"{layout['scale_within_1pct_skewed']:.3g} (skew loads)"
+        )

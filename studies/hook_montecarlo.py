@@ -35,10 +35,14 @@ def variants(study):
     spec = study.montecarlo
     return [
         ("uniform +-0.02 m (the plan's)", study),
-        ("normal, sd 0.02 m", dataclasses.replace(
-            study, montecarlo=dataclasses.replace(spec, distribution="normal"))),
-        ("uniform +-0.05 m", dataclasses.replace(
-            study, montecarlo=dataclasses.replace(spec, tolerance=0.05))),
+        (
+            "normal, sd 0.02 m",
+            dataclasses.replace(study, montecarlo=dataclasses.replace(spec, distribution="normal")),
+        ),
+        (
+            "uniform +-0.05 m",
+            dataclasses.replace(study, montecarlo=dataclasses.replace(spec, tolerance=0.05)),
+        ),
     ]
 
 
@@ -56,14 +60,19 @@ def summarise(path, plan):
         return float(np.mean([r[key] == "1" for r in ok]))
 
     return {
-        "draws": len(rows), "failed": len(rows) - len(ok),
+        "draws": len(rows),
+        "failed": len(rows) - len(ok),
         "status": {s: sum(r["status"] == s for r in rows) for s in ("ok", "unsafe", "failed")},
-        "spread_p50": float(np.percentile(spread, 50)), "spread_p95": float(np.percentile(spread, 95)),
-        "spread_max": float(spread.max()), "heel_max": float(heel.max()), "trim_max": float(trim.max()),
+        "spread_p50": float(np.percentile(spread, 50)),
+        "spread_p95": float(np.percentile(spread, 95)),
+        "spread_max": float(spread.max()),
+        "heel_max": float(heel.max()),
+        "trim_max": float(trim.max()),
         "p_above_plan_worst": share("above_plan_worst"),
         "p_above_design_tension": share("above_design_tension"),  # like for like (static)
         "p_above_design_load": share("above_design_load"),  # lenient: DAF, contingency on top
-        "p_above_swl": share("above_swl"), "p_slack": float(np.mean([r["slack"] != "0" for r in ok])),
+        "p_above_swl": share("above_swl"),
+        "p_slack": float(np.mean([r["slack"] != "0" for r in ok])),
         "histogram": counts.tolist(),
     }
 
@@ -76,20 +85,32 @@ def run():
 
     study = load_study(STUDY)
     base = plan(study.problem({}))
-    out = {"plan": {"lugs": base.lugs, "worst_spread": base.worst_spread, "spread": base.spread,
-                    "design_loads": [c.design_hook_load for c in base.capacity],
-                    "swl": base.chosen.swl.tolist()},
-           "bins": BINS.tolist(), "studies": []}
+    out = {
+        "plan": {
+            "lugs": base.lugs,
+            "worst_spread": base.worst_spread,
+            "spread": base.spread,
+            "design_loads": [c.design_hook_load for c in base.capacity],
+            "swl": base.chosen.swl.tolist(),
+        },
+        "bins": BINS.tolist(),
+        "studies": [],
+    }
     with tempfile.TemporaryDirectory() as folder:
         for label, variant in variants(study):
             path = Path(folder) / "draws.csv"
             start = time.perf_counter()
             summary = run_study(variant, workers=2, progress=False, output=path)
             wall = time.perf_counter() - start
-            entry = {"label": label, "distribution": variant.montecarlo.distribution,
-                     "tolerance": variant.montecarlo.tolerance, "seed": variant.montecarlo.seed,
-                     "batch_seconds": summary.seconds, "batch_wall_seconds": wall,
-                     "cores": summary.cores}
+            entry = {
+                "label": label,
+                "distribution": variant.montecarlo.distribution,
+                "tolerance": variant.montecarlo.tolerance,
+                "seed": variant.montecarlo.seed,
+                "batch_seconds": summary.seconds,
+                "batch_wall_seconds": wall,
+                "cores": summary.cores,
+            }
             entry.update(summarise(path, base))
             out["studies"].append(entry)
             print(label, {k: v for k, v in entry.items() if k != "histogram"})
@@ -118,21 +139,37 @@ def draw(data):
     fig, ax = plt.subplots(figsize=(8.0, 4.2), layout="constrained")
     for entry, colour in zip(data["studies"], ("tab:blue", "tab:orange", "tab:red")):
         density = np.array(entry["histogram"]) / (entry["draws"] * width)
-        ax.step(centres, density, where="mid", color=colour,
-                label=f"{entry['label']}: p95 {entry['spread_p95']:.0f} t, max "
-                      f"{entry['spread_max']:.0f} t, P(> plan) {100 * entry['p_above_plan_worst']:.1f} %")
+        ax.step(
+            centres,
+            density,
+            where="mid",
+            color=colour,
+            label=f"{entry['label']}: p95 {entry['spread_p95']:.0f} t, max "
+            f"{entry['spread_max']:.0f} t, P(> plan) {100 * entry['p_above_plan_worst']:.1f} %",
+        )
     worst = data["plan"]["worst_spread"]
     ax.axvline(worst, color="k", linestyle="--")
-    ax.text(worst + 2, ax.get_ylim()[1] * 0.92,
-            f"plan's worst spread {worst:.1f} t\n(box, CG, +-0.02 m hooks)",
-            va="top", fontsize=8)
+    ax.text(
+        worst + 2,
+        ax.get_ylim()[1] * 0.92,
+        f"plan's worst spread {worst:.1f} t\n(box, CG, +-0.02 m hooks)",
+        va="top",
+        fontsize=8,
+    )
     ax.axvline(data["plan"]["spread"], color="grey", linestyle=":")
-    ax.text(data["plan"]["spread"] - 2, ax.get_ylim()[1] * 0.6, "level\nspread", fontsize=8,
-            color="grey", ha="right")
+    ax.text(
+        data["plan"]["spread"] - 2,
+        ax.get_ylim()[1] * 0.6,
+        "level\nspread",
+        fontsize=8,
+        color="grey",
+        ha="right",
+    )
     ax.set_xlabel("spread max - min tension at the elastic equilibrium [t]")
     ax.set_ylabel("share of draws per t [1/t]")
-    ax.set_title("Tanker plan (tanker_plan.toml) under independent hook-height errors, "
-                 "100 000 draws each", fontsize=10)
+    ax.set_title(
+        "Tanker plan (tanker_plan.toml) under independent hook-height errors, 100 000 draws each", fontsize=10
+    )
     ax.set_xlim(bins[0], bins[-1])
     ax.legend(fontsize=8, loc="upper right", bbox_to_anchor=(1.0, 0.8))
     fig.savefig(OUT / "hook_montecarlo.png", dpi=110)

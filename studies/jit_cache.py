@@ -94,8 +94,7 @@ def fresh(root, name):
 
 
 def summary(values):
-    return {"median": statistics.median(values), "min": min(values), "max": max(values),
-            "runs": len(values)}
+    return {"median": statistics.median(values), "min": min(values), "max": max(values), "runs": len(values)}
 
 
 def leftovers(workspace):
@@ -107,7 +106,9 @@ def measure(root):
     python = [sys.executable, "-c"]
     liftplan = shutil.which("liftplan")
     plan_cmd = ([liftplan] if liftplan else [sys.executable, "-m", "liftplan.planner.cli"]) + [
-        "plan", str(EXAMPLES / "tanker_plan.toml")]
+        "plan",
+        str(EXAMPLES / "tanker_plan.toml"),
+    ]
     build, plan, backends, left = {}, {}, {}, {}
 
     def build_times(mode, code, cc=None, cold=False):
@@ -146,8 +147,11 @@ def measure(root):
         plan[mode] = summary(times[mode])
         left[f"plan_{mode}"] = leftovers(workspace)
     cache = [p for p in (spaces["warm"] / "cache").rglob("*") if p.is_file()]
-    held = {"files": len(cache), "bytes": sum(p.stat().st_size for p in cache),
-            "libraries": sorted(p.name for p in cache if p.suffix == ".so")}
+    held = {
+        "files": len(cache),
+        "bytes": sum(p.stat().st_size for p in cache),
+        "libraries": sorted(p.name for p in cache if p.suffix == ".so"),
+    }
     return {
         "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
         "casadi": ca.__version__,
@@ -175,9 +179,11 @@ def main():
     OUT.parent.mkdir(exist_ok=True)
     OUT.write_text(json.dumps(result, indent=2) + "\n")
     b, p = result["build_seconds"], result["plan_cli_seconds"]
-    print(f"build of the 4-rope batched maps (median of {REPEAT} processes): cold cache "
-          f"{b['cold']['median']:.3f} s, warm {b['warm']['median']:.3f} s, casadi's JIT every "
-          f"process {b['casadi_jit']['median']:.3f} s, VM {b['vm']['median']:.3f} s")
+    print(
+        f"build of the 4-rope batched maps (median of {REPEAT} processes): cold cache "
+        f"{b['cold']['median']:.3f} s, warm {b['warm']['median']:.3f} s, casadi's JIT every "
+        f"process {b['casadi_jit']['median']:.3f} s, VM {b['vm']['median']:.3f} s"
+    )
     print(f"{result['command']}: cold cache {p['cold']['median']:.2f} s, warm {p['warm']['median']:.2f} s")
     print(f"files left in temp/working folders: {result['files_left_in_temp_and_working_folder']}")
     print(f"wrote {OUT}")

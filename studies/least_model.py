@@ -58,8 +58,15 @@ def main():
     full = median_time(lambda: solve_in_water(scene, setup=setup))
     a, b = solve_elastic(rope_scene), solve_in_water(scene, setup=setup)
     diff = float(np.max(np.abs(np.subtract(list(a.tensions.values()), list(b.tensions.values())))))
-    rows.append({"case": "fully submerged: constant buoyancy vs clipped hull", "least_s": simple,
-                 "full_s": full, "speedup": full / simple, "max_tension_difference_t": diff})
+    rows.append(
+        {
+            "case": "fully submerged: constant buoyancy vs clipped hull",
+            "least_s": simple,
+            "full_s": full,
+            "speedup": full / simple,
+            "max_tension_difference_t": diff,
+        }
+    )
     # 2. no water vs water far below
     high = hanging(60.0)
     low = dataclasses.replace(high, water=Water(density=1.025, level=-1000.0))
@@ -67,14 +74,25 @@ def main():
     trapped = setup_low.trapped
     body = high.body
     cog = (body.weight * np.array(body.cog) + trapped * np.array([3.0, 0.0, 1.0])) / (body.weight + trapped)
-    dry = dataclasses.replace(high, water=None, hull=None,
-                              body=dataclasses.replace(body, weight=body.weight + trapped, cog=tuple(cog)))
+    dry = dataclasses.replace(
+        high,
+        water=None,
+        hull=None,
+        body=dataclasses.replace(body, weight=body.weight + trapped, cog=tuple(cog)),
+    )
     simple = median_time(lambda: solve_elastic(dry))
     full = median_time(lambda: solve_in_water(low, setup=setup_low))
     a, b = solve_elastic(dry), solve_in_water(low, setup=setup_low)
     diff = float(np.max(np.abs(np.subtract(list(a.tensions.values()), list(b.tensions.values())))))
-    rows.append({"case": "no water vs clipped hull clear of the water", "least_s": simple, "full_s": full,
-                 "speedup": full / simple, "max_tension_difference_t": diff})
+    rows.append(
+        {
+            "case": "no water vs clipped hull clear of the water",
+            "least_s": simple,
+            "full_s": full,
+            "speedup": full / simple,
+            "max_tension_difference_t": diff,
+        }
+    )
     # 3. vertical (3 DOF) vs inclined (6 DOF) with tips above the lugs at the answer
     block = load_scene(EXAMPLES / "symmetric_block.toml").with_body(cog=(1.5, -0.8, 2.5))
     vertical = solve_elastic(block)
@@ -85,15 +103,31 @@ def main():
     inclined = dataclasses.replace(block, cranes=cranes).with_analysis(model=None)
     simple = median_time(lambda: solve_elastic(block))
     full = median_time(lambda: solve_inclined(inclined))
-    diff = float(np.max(np.abs(np.subtract(list(vertical.tensions.values()),
-                                           list(solve_inclined(inclined).tensions.values())))))
-    rows.append({"case": "tips above the lugs: 3-DOF vertical vs 6-DOF inclined", "least_s": simple,
-                 "full_s": full, "speedup": full / simple, "max_tension_difference_t": diff})
+    diff = float(
+        np.max(
+            np.abs(
+                np.subtract(
+                    list(vertical.tensions.values()), list(solve_inclined(inclined).tensions.values())
+                )
+            )
+        )
+    )
+    rows.append(
+        {
+            "case": "tips above the lugs: 3-DOF vertical vs 6-DOF inclined",
+            "least_s": simple,
+            "full_s": full,
+            "speedup": full / simple,
+            "max_tension_difference_t": diff,
+        }
+    )
     (HERE / "out").mkdir(exist_ok=True)
     (HERE / "out" / "least_model.json").write_text(json.dumps(rows, indent=1))
     for r in rows:
-        print(f"{r['case']}: least {1e6 * r['least_s']:.0f} us, full {1e6 * r['full_s']:.0f} us, "
-              f"{r['speedup']:.1f}x faster, max |dT| {r['max_tension_difference_t']:.1e} t")
+        print(
+            f"{r['case']}: least {1e6 * r['least_s']:.0f} us, full {1e6 * r['full_s']:.0f} us, "
+            f"{r['speedup']:.1f}x faster, max |dT| {r['max_tension_difference_t']:.1e} t"
+        )
 
 
 if __name__ == "__main__":

@@ -129,13 +129,27 @@ def worker_batch(n, stage):
     heel = np.linspace(-2.0, 2.0, 4 * BLOCK)
     trim = np.linspace(1.0, -1.0, 4 * BLOCK)
     per_attitude = median_time(lambda: paper_elastic_tensions(scene, heel, trim), least=3) / heel.size
-    print(json.dumps({"stage": stage, "seconds": seconds, "backend": model.batch_backend,
-                      "per_attitude_s": per_attitude}))
+    print(
+        json.dumps(
+            {
+                "stage": stage,
+                "seconds": seconds,
+                "backend": model.batch_backend,
+                "per_attitude_s": per_attitude,
+            }
+        )
+    )
 
 
 def run_worker(*args, env=None):
-    out = subprocess.run([sys.executable, __file__, "--worker", *map(str, args)], capture_output=True,
-                         text=True, timeout=600, env=env, check=True)
+    out = subprocess.run(
+        [sys.executable, __file__, "--worker", *map(str, args)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=env,
+        check=True,
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -159,8 +173,10 @@ def peers(model, scene):
 
         eq = solve(scene, model)
         pose = eq.pose
-        return [("scipy root", lambda: numpy_elastic(scene)[1], 0.5),
-                ("MoorPy", lambda: moorpy_solve(scene, pose.heel, pose.trim, pose.lift_height)[0], 2.0)]
+        return [
+            ("scipy root", lambda: numpy_elastic(scene)[1], 0.5),
+            ("MoorPy", lambda: moorpy_solve(scene, pose.heel, pose.trim, pose.lift_height)[0], 2.0),
+        ]
     if model == "paper-elastic":
         return [("numpy lstsq", lambda: numpy_paper_elastic(scene), 0.5)]
     return [("numpy lstsq", lambda: numpy_rigid(scene), 0.5)]
@@ -177,21 +193,42 @@ def measure(log):
             build = build_time(model, n)
             solve(scene, model)
             per = median_time(lambda scene=scene, model=model: solve(scene, model))
-            rows.append({"model": model, "n": n, "method": "liftplan", "per_solve_s": per,
-                         "first_cold_s": cold, "first_build_s": build, "max_error_over_W": 0.0,
-                         "solver": eq.solver.method, "residual_t": eq.residual})
+            rows.append(
+                {
+                    "model": model,
+                    "n": n,
+                    "method": "liftplan",
+                    "per_solve_s": per,
+                    "first_cold_s": cold,
+                    "first_build_s": build,
+                    "max_error_over_W": 0.0,
+                    "solver": eq.solver.method,
+                    "residual_t": eq.residual,
+                }
+            )
             ours = tensions(eq, scene)
             for name, call, budget in peers(model, scene):
                 theirs = call()
                 error = float(np.max(np.abs(ours - theirs)) / scene.body.weight)
-                rows.append({"model": model, "n": n, "method": name,
-                             "per_solve_s": median_time(call, budget=budget, least=3),
-                             "max_error_over_W": error})
-            print(f"{model:>13} n={n:>2}: per solve {1e3 * per:.3f} ms, first cold {cold:.3f} s, "
-                  f"build {1e3 * build:.1f} ms; peers " + ", ".join(
-                      f"{r['method']} {1e3 * r['per_solve_s']:.2f} ms (err {r['max_error_over_W']:.1e} W)"
-                      for r in rows if r["model"] == model and r["n"] == n and r["method"] != "liftplan"),
-                  flush=True)
+                rows.append(
+                    {
+                        "model": model,
+                        "n": n,
+                        "method": name,
+                        "per_solve_s": median_time(call, budget=budget, least=3),
+                        "max_error_over_W": error,
+                    }
+                )
+            print(
+                f"{model:>13} n={n:>2}: per solve {1e3 * per:.3f} ms, first cold {cold:.3f} s, "
+                f"build {1e3 * build:.1f} ms; peers "
+                + ", ".join(
+                    f"{r['method']} {1e3 * r['per_solve_s']:.2f} ms (err {r['max_error_over_W']:.1e} W)"
+                    for r in rows
+                    if r["model"] == model and r["n"] == n and r["method"] != "liftplan"
+                ),
+                flush=True,
+            )
     return rows
 
 
@@ -204,13 +241,24 @@ def measure_batch(log):
             compiled = run_worker("batch", n, "compile", env=env)
             loaded = run_worker("batch", n, "load", env=env)
         for name in BATCH_MAPS:
-            rows.append({"n": n, "map": name, "backend": compiled["backend"],
-                         "compile_s": compiled["seconds"][name], "load_s": loaded["seconds"][name]})
-            print(f"batched {name} n={n:>2}: compile {compiled['seconds'][name]:.2f} s, "
-                  f"load {loaded['seconds'][name]:.3f} s ({compiled['backend']})", flush=True)
+            rows.append(
+                {
+                    "n": n,
+                    "map": name,
+                    "backend": compiled["backend"],
+                    "compile_s": compiled["seconds"][name],
+                    "load_s": loaded["seconds"][name],
+                }
+            )
+            print(
+                f"batched {name} n={n:>2}: compile {compiled['seconds'][name]:.2f} s, "
+                f"load {loaded['seconds'][name]:.3f} s ({compiled['backend']})",
+                flush=True,
+            )
         rows[-len(BATCH_MAPS)]["per_attitude_s"] = loaded["per_attitude_s"]
-        print(f"paper_elastic_tensions n={n:>2}: {1e9 * loaded['per_attitude_s']:.0f} ns/attitude",
-              flush=True)
+        print(
+            f"paper_elastic_tensions n={n:>2}: {1e9 * loaded['per_attitude_s']:.0f} ns/attitude", flush=True
+        )
     return rows
 
 
@@ -229,28 +277,66 @@ def draw(data):
     fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5), constrained_layout=True)
     for model in MODELS:
         mine = [r for r in rows if r["model"] == model and r["method"] == "liftplan"]
-        left.plot([r["n"] for r in mine], [1e3 * r["per_solve_s"] for r in mine], "-o",
-                  color=COLOURS[model], label=f"{model}: liftplan")
+        left.plot(
+            [r["n"] for r in mine],
+            [1e3 * r["per_solve_s"] for r in mine],
+            "-o",
+            color=COLOURS[model],
+            label=f"{model}: liftplan",
+        )
         names = dict.fromkeys(r["method"] for r in rows if r["model"] == model)
         for name in [name for name in names if name != "liftplan"]:
             theirs = [r for r in rows if r["model"] == model and r["method"] == name]
             line, marker = PEER_STYLE[name]
-            left.plot([r["n"] for r in theirs], [1e3 * r["per_solve_s"] for r in theirs], line,
-                      marker=marker, color=COLOURS[model], alpha=0.7, label=f"{model}: {name}")
-        right.plot([r["n"] for r in mine], [1e3 * r["first_cold_s"] for r in mine], "-o",
-                   color=COLOURS[model], label=f"{model}: first call, fresh process")
-        right.plot([r["n"] for r in mine], [1e3 * r["first_build_s"] for r in mine], "--o",
-                   color=COLOURS[model], alpha=0.7, label=f"{model}: building this n's functions")
-    for name, colour, label in (("paper_elastic_block", "tab:red", "paper-elastic map"),
-                                ("held_columns", "tab:purple", "held map with dT/dH"),
-                                ("held_tensions_columns", "tab:brown", "held map, tensions only")):
+            left.plot(
+                [r["n"] for r in theirs],
+                [1e3 * r["per_solve_s"] for r in theirs],
+                line,
+                marker=marker,
+                color=COLOURS[model],
+                alpha=0.7,
+                label=f"{model}: {name}",
+            )
+        right.plot(
+            [r["n"] for r in mine],
+            [1e3 * r["first_cold_s"] for r in mine],
+            "-o",
+            color=COLOURS[model],
+            label=f"{model}: first call, fresh process",
+        )
+        right.plot(
+            [r["n"] for r in mine],
+            [1e3 * r["first_build_s"] for r in mine],
+            "--o",
+            color=COLOURS[model],
+            alpha=0.7,
+            label=f"{model}: building this n's functions",
+        )
+    for name, colour, label in (
+        ("paper_elastic_block", "tab:red", "paper-elastic map"),
+        ("held_columns", "tab:purple", "held map with dT/dH"),
+        ("held_tensions_columns", "tab:brown", "held map, tensions only"),
+    ):
         batch = [r for r in data["batch"] if r["map"] == name]
-        right.plot([r["n"] for r in batch], [1e3 * r["compile_s"] for r in batch], "-D", color=colour,
-                   label=f"batched {label}: C compile (empty cache)")
-        right.plot([r["n"] for r in batch], [1e3 * r["load_s"] for r in batch], "--D", color=colour,
-                   alpha=0.7, label=f"batched {label}: load from the cache")
-    for ax, title in ((left, "per solve (median of repeats)"),
-                      (right, "first call: construction and compile")):
+        right.plot(
+            [r["n"] for r in batch],
+            [1e3 * r["compile_s"] for r in batch],
+            "-D",
+            color=colour,
+            label=f"batched {label}: C compile (empty cache)",
+        )
+        right.plot(
+            [r["n"] for r in batch],
+            [1e3 * r["load_s"] for r in batch],
+            "--D",
+            color=colour,
+            alpha=0.7,
+            label=f"batched {label}: load from the cache",
+        )
+    for ax, title in (
+        (left, "per solve (median of repeats)"),
+        (right, "first call: construction and compile"),
+    ):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xticks(COUNTS, [str(n) for n in COUNTS])
@@ -263,8 +349,10 @@ def draw(data):
         ax.set_ylim(low, high * 30)  # room above the curves for the legend
         ax.legend(fontsize=7, loc="upper left")
     load = max(entry["load_1min"] for entry in data["load"])
-    fig.suptitle(f"liftplan solve with many ropes (154 m hull), one process on {data['machine']}; "
-                 f"1-min load average at most {load:.2f} while timing")
+    fig.suptitle(
+        f"liftplan solve with many ropes (154 m hull), one process on {data['machine']}; "
+        f"1-min load average at most {load:.2f} while timing"
+    )
     fig.savefig(OUT / "many_points.png", dpi=110)
     plt.close(fig)
 
@@ -287,8 +375,13 @@ def main():
         rows = measure(log)
         batch = measure_batch(log)
         OUT.mkdir(exist_ok=True)
-        data = {"machine": f"{platform.machine()}, {os.cpu_count()} cores", "counts": COUNTS,
-                "rows": rows, "batch": batch, "load": log}
+        data = {
+            "machine": f"{platform.machine()}, {os.cpu_count()} cores",
+            "counts": COUNTS,
+            "rows": rows,
+            "batch": batch,
+            "load": log,
+        }
         path.write_text(json.dumps(data, indent=1))
     draw(json.loads(path.read_text()))
 

@@ -33,8 +33,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "studies" / "out"
-EXAMPLES = {26: ROOT / "examples" / "hull154_26_points.toml",
-            64: ROOT / "examples" / "hull154_64_points.toml"}
+EXAMPLES = {
+    26: ROOT / "examples" / "hull154_26_points.toml",
+    64: ROOT / "examples" / "hull154_64_points.toml",
+}
 MODELS = ["elastic", "paper-elastic", "rigid"]
 PROCESSES = 5
 
@@ -54,20 +56,39 @@ def worker(path, model):
         start = time.perf_counter()
         solve(scene, model)
         times.append(time.perf_counter() - start)
-    print(json.dumps({"load_s": loaded, "first_solve_s": first, "warm_s": statistics.median(times),
-                      "warm_calls": len(times), "residual_t": eq.residual, "n": scene.n}))
+    print(
+        json.dumps(
+            {
+                "load_s": loaded,
+                "first_solve_s": first,
+                "warm_s": statistics.median(times),
+                "warm_calls": len(times),
+                "residual_t": eq.residual,
+                "n": scene.n,
+            }
+        )
+    )
 
 
 def in_process(path, model):
-    out = subprocess.run([sys.executable, __file__, "--worker", str(path), model], check=True,
-                         capture_output=True, text=True, timeout=300)
+    out = subprocess.run(
+        [sys.executable, __file__, "--worker", str(path), model],
+        check=True,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def command(path, model):
     start = time.perf_counter()
-    subprocess.run(["liftplan", "solve", str(path), "--model", model, "--json"], check=True,
-                   capture_output=True, timeout=300)
+    subprocess.run(
+        ["liftplan", "solve", str(path), "--model", model, "--json"],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
     return time.perf_counter() - start
 
 
@@ -76,23 +97,33 @@ def measure():
     for n, path in EXAMPLES.items():
         for model in MODELS:
             runs = [in_process(path, model) for _ in range(PROCESSES)]
-            row = {"n": n, "model": model, "example": path.name,
-                   "command_s": statistics.median(command(path, model) for _ in range(PROCESSES)),
-                   **{key: statistics.median(r[key] for r in runs)
-                      for key in ("load_s", "first_solve_s", "warm_s")},
-                   "residual_t": max(r["residual_t"] for r in runs)}
+            row = {
+                "n": n,
+                "model": model,
+                "example": path.name,
+                "command_s": statistics.median(command(path, model) for _ in range(PROCESSES)),
+                **{
+                    key: statistics.median(r[key] for r in runs)
+                    for key in ("load_s", "first_solve_s", "warm_s")
+                },
+                "residual_t": max(r["residual_t"] for r in runs),
+            }
             rows.append(row)
             print(f"n={n} {model}: done", file=sys.stderr, flush=True)
     return rows
 
 
 def table(rows):
-    lines = ["| ropes | model | `liftplan solve` (process) | import + read | first solve (model build) "
-             "| solve, built |",
-             "|---|---|---|---|---|---|"]
+    lines = [
+        "| ropes | model | `liftplan solve` (process) | import + read | first solve (model build) "
+        "| solve, built |",
+        "|---|---|---|---|---|---|",
+    ]
     for r in rows:
-        lines.append(f"| {r['n']} | {r['model']} | {r['command_s']:.2f} s | {r['load_s']:.2f} s | "
-                     f"{1e3 * r['first_solve_s']:.1f} ms | {1e3 * r['warm_s']:.3f} ms |")
+        lines.append(
+            f"| {r['n']} | {r['model']} | {r['command_s']:.2f} s | {r['load_s']:.2f} s | "
+            f"{1e3 * r['first_solve_s']:.1f} ms | {1e3 * r['warm_s']:.3f} ms |"
+        )
     return "\n".join(lines)
 
 
@@ -102,12 +133,18 @@ def main():
         return
     rows = measure()
     OUT.mkdir(parents=True, exist_ok=True)
-    data = {"machine": f"{os.cpu_count()} cores, shared with other work (upper figures)",
-            "load_1min_after": os.getloadavg()[0], "processes": PROCESSES, "rows": rows}
+    data = {
+        "machine": f"{os.cpu_count()} cores, shared with other work (upper figures)",
+        "load_1min_after": os.getloadavg()[0],
+        "processes": PROCESSES,
+        "rows": rows,
+    }
     (OUT / "many_ropes_timing.json").write_text(json.dumps(data, indent=1))
     print(table(rows))
-    print(f"(median of {PROCESSES} processes each; 1-min load average at the end "
-          f"{data['load_1min_after']:.2f} on {data['machine']})")
+    print(
+        f"(median of {PROCESSES} processes each; 1-min load average at the end "
+        f"{data['load_1min_after']:.2f} on {data['machine']})"
+    )
 
 
 if __name__ == "__main__":

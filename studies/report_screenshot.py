@@ -27,8 +27,12 @@ DPI = 60  # a page is 496 x 702 px: every table and label can be read on screen
 
 def pages(pdf, out):
     """Every page of ``pdf`` as out/page-N.png; the paths in page order."""
-    subprocess.run(["pdftoppm", "-png", "-r", str(DPI), str(pdf), str(out / "page")], check=True,
-                   capture_output=True, timeout=120)
+    subprocess.run(
+        ["pdftoppm", "-png", "-r", str(DPI), str(pdf), str(out / "page")],
+        check=True,
+        capture_output=True,
+        timeout=120,
+    )
     return sorted(out.glob("page-*.png"), key=lambda p: int(p.stem.split("-")[-1]))
 
 
@@ -48,19 +52,34 @@ def contact_sheet(images, path, columns=4):
 def chromium(html_path, shot):
     with tempfile.TemporaryDirectory() as profile:
         subprocess.run(
-            ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-             "--no-first-run", "--disable-background-networking", "--disable-component-update",
-             "--disable-sync", f"--user-data-dir={profile}", "--hide-scrollbars",
-             "--window-size=900,3600", f"--screenshot={shot}", html_path.as_uri()],
-            check=True, capture_output=True, timeout=120,
+            [
+                "chromium",
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-quic",
+                "--no-first-run",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                f"--user-data-dir={profile}",
+                "--hide-scrollbars",
+                "--window-size=900,3600",
+                f"--screenshot={shot}",
+                html_path.as_uri(),
+            ],
+            check=True,
+            capture_output=True,
+            timeout=120,
         )
 
 
 def main():
     out = HERE / "out"
     for name in EXAMPLES:
-        files = write_report(plan(load_problem(HERE.parent / "examples" / f"{name}.toml")),
-                             out / f"{name}_report")
+        files = write_report(
+            plan(load_problem(HERE.parent / "examples" / f"{name}.toml")), out / f"{name}_report"
+        )
         if files.pdf is None:
             print(f"{name}: no PDF (pip install -e '.[pdf]'); wrote {files.html}")
         elif shutil.which("pdftoppm") is None:

@@ -31,10 +31,16 @@ def run():
     classes = ((0, 1, 2, 3),)
     trials = []
     for t in chosen.lengths.trials:
-        cause = ("" if t.value is not None else "boom range" if "boom-height range" in t.reason
-                 else "rope limits")
-        entry = {"length": t.lengths[0], "worst_spread": t.value, "lugs": list(t.lugs),
-                 "cause": cause, "reason": t.reason}
+        cause = (
+            "" if t.value is not None else "boom range" if "boom-height range" in t.reason else "rope limits"
+        )
+        entry = {
+            "length": t.lengths[0],
+            "worst_spread": t.value,
+            "lugs": list(t.lugs),
+            "cause": cause,
+            "reason": t.reason,
+        }
         if t.value is not None:
             at = plan(with_lengths(problem, classes, t.lengths))
             entry["twist_stiffness"] = at.twist_stiffness
@@ -49,17 +55,29 @@ def run():
         fixed_feasible = False
     held = Plan(problem=fixed, ranking=[today.chosen], stats=today.stats).crew_margin((1.0,))[0]
     data = {
-        "chosen": {"lugs": chosen.lugs, "rope_lengths": chosen.rope_lengths,
-                   "worst_spread": chosen.worst_spread, "twist_stiffness": chosen.twist_stiffness,
-                   "boom_heights": chosen.boom_heights, "lower_bound": chosen.stats.lower_bound,
-                   "seconds": chosen.stats.seconds, "trials": len(trials)},
+        "chosen": {
+            "lugs": chosen.lugs,
+            "rope_lengths": chosen.rope_lengths,
+            "worst_spread": chosen.worst_spread,
+            "twist_stiffness": chosen.twist_stiffness,
+            "boom_heights": chosen.boom_heights,
+            "lower_bound": chosen.stats.lower_bound,
+            "seconds": chosen.stats.seconds,
+            "trials": len(trials),
+        },
         "today_30m_at_0.05_feasible": fixed_feasible,
-        "today_plan": {"lugs": today.lugs, "worst_spread_at_0.02": today.worst_spread,
-                       "twist_stiffness": today.twist_stiffness,
-                       "held_at_0.05": {"worst_spread": held.worst_spread,
-                                        "rope_max": held.rope_max.tolist(),
-                                        "limit": held.limit.tolist(), "lowest": held.lowest,
-                                        "within_limits": held.within_limits}},
+        "today_plan": {
+            "lugs": today.lugs,
+            "worst_spread_at_0.02": today.worst_spread,
+            "twist_stiffness": today.twist_stiffness,
+            "held_at_0.05": {
+                "worst_spread": held.worst_spread,
+                "rope_max": held.rope_max.tolist(),
+                "limit": held.limit.tolist(),
+                "lowest": held.lowest,
+                "within_limits": held.within_limits,
+            },
+        },
         "trials": trials,
         "machine": "2 cores shared with other work",
     }
@@ -78,20 +96,43 @@ def draw(data):
     good = [t for t in trials if t["worst_spread"] is not None]
     bad = [t for t in trials if t["worst_spread"] is None]
     fig, ax = plt.subplots(figsize=(7.5, 4.0), layout="constrained")
-    ax.plot([t["length"] for t in good], [t["worst_spread"] for t in good], "o-", color="tab:blue",
-            label="exact plan at that length (+-0.05 m hooks)")
+    ax.plot(
+        [t["length"] for t in good],
+        [t["worst_spread"] for t in good],
+        "o-",
+        color="tab:blue",
+        label="exact plan at that length (+-0.05 m hooks)",
+    )
     held = data["today_plan"]["held_at_0.05"]
     top = max(held["worst_spread"], *(t["worst_spread"] for t in good)) * 1.1
     for k, t in enumerate(bad):
         ax.plot(t["length"], top, "x", color="tab:red", markersize=9)
-        ax.annotate(f"no plan:\n{t['cause']}", (t["length"], top), textcoords="offset points",
-                    xytext=(0, -24 - 18 * (k % 2)), ha="center", fontsize=7, color="tab:red")
+        ax.annotate(
+            f"no plan:\n{t['cause']}",
+            (t["length"], top),
+            textcoords="offset points",
+            xytext=(0, -24 - 18 * (k % 2)),
+            ha="center",
+            fontsize=7,
+            color="tab:red",
+        )
     best = data["chosen"]
     length = best["rope_lengths"]["L1"]
-    ax.plot(length, best["worst_spread"], "*", color="tab:green", markersize=14,
-            label=f"chosen: {length:g} m, worst {best['worst_spread']:.1f} t")
-    ax.plot(30.0, held["worst_spread"], "s", color="k",
-            label=f"today's 30 m plan held at +-0.05 m: {held['worst_spread']:.1f} t, over its limits")
+    ax.plot(
+        length,
+        best["worst_spread"],
+        "*",
+        color="tab:green",
+        markersize=14,
+        label=f"chosen: {length:g} m, worst {best['worst_spread']:.1f} t",
+    )
+    ax.plot(
+        30.0,
+        held["worst_spread"],
+        "s",
+        color="k",
+        label=f"today's 30 m plan held at +-0.05 m: {held['worst_spread']:.1f} t, over its limits",
+    )
     ax.set_xlabel("rope length l0 (every crane) [m]")
     ax.set_ylabel("worst spread over box, CG, hooks [t]")
     ax.set_ylim(0, top * 1.12)

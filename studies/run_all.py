@@ -14,11 +14,29 @@ from pathlib import Path
 
 HERE = Path(__file__).parent
 #: In order: stranded_methods feeds speed_accuracy's hydrostatics panel.
-STUDIES = ["table3", "stranded_methods", "least_model", "speed_accuracy", "failure_modes",
-           "fleet_objectives", "many_points", "strength_timing", "vlcc_fitted", "flexible_hull",
-           "flexible_ground", "draining", "tilt_per_direction", "rope_lengths", "hook_montecarlo",
-           "ferry_strength",
-           "planner_scale", "many_ropes_timing", "benchmarks", "jit_cache", "report_screenshot"]
+STUDIES = [
+    "table3",
+    "stranded_methods",
+    "least_model",
+    "speed_accuracy",
+    "failure_modes",
+    "fleet_objectives",
+    "many_points",
+    "strength_timing",
+    "vlcc_fitted",
+    "flexible_hull",
+    "flexible_ground",
+    "draining",
+    "tilt_per_direction",
+    "rope_lengths",
+    "hook_montecarlo",
+    "ferry_strength",
+    "planner_scale",
+    "many_ropes_timing",
+    "benchmarks",
+    "jit_cache",
+    "report_screenshot",
+]
 
 
 def main():
@@ -31,8 +49,10 @@ def main():
             continue
         start = time.perf_counter()
         result = subprocess.run([sys.executable, str(HERE / f"{name}.py")], stdout=subprocess.DEVNULL)
-        print(f"{name}: {'ok' if result.returncode == 0 else 'FAILED'} "
-              f"({time.perf_counter() - start:.0f} s)", file=sys.stderr)
+        print(
+            f"{name}: {'ok' if result.returncode == 0 else 'FAILED'} ({time.perf_counter() - start:.0f} s)",
+            file=sys.stderr,
+        )
         if result.returncode:
             failed.append(name)
     sys.exit(1 if failed else 0)

@@ -52,8 +52,7 @@ from moorpy_peer import moorpy_solve  # noqa: E402
 
 SCENES = 60
 MOORPY_SCENES = 12
-METHODS = ["linear", "casadi Newton", "IPOPT energy", "IPOPT + Newton", "scipy hybr", "scipy lm",
-           "MoorPy"]
+METHODS = ["linear", "casadi Newton", "IPOPT energy", "IPOPT + Newton", "scipy hybr", "scipy lm", "MoorPy"]
 
 
 # -- scenes ----------------------------------------------------------------------------------
@@ -64,14 +63,16 @@ def random_scene(rng):
     angles = np.sort(rng.uniform(0, 2 * np.pi, n))
     angles += np.linspace(0, 2 * np.pi, n, endpoint=False) - angles  # spread, then jitter
     angles += rng.uniform(-0.3, 0.3, n) * np.pi / n
-    lugs = [Lug(f"L{i + 1}", (a * math.cos(t), b * math.sin(t), rng.uniform(0, 3)))
-            for i, t in enumerate(angles)]
+    lugs = [
+        Lug(f"L{i + 1}", (a * math.cos(t), b * math.sin(t), rng.uniform(0, 3))) for i, t in enumerate(angles)
+    ]
     weight = rng.uniform(500, 5000)
     cog = (rng.uniform(-0.3, 0.3) * a, rng.uniform(-0.3, 0.3) * b, rng.uniform(0, 6))
     stiff = bool(rng.integers(0, 2))
     ea = rng.uniform(5e4, 2e5, n) if stiff else rng.uniform(1e3, 5e3, n)
-    cranes = [Crane(lug.name, EA=float(e), boom_height=float(rng.uniform(40, 60)))
-              for lug, e in zip(lugs, ea)]
+    cranes = [
+        Crane(lug.name, EA=float(e), boom_height=float(rng.uniform(40, 60))) for lug, e in zip(lugs, ea)
+    ]
     attitude = Attitude(heel=rng.uniform(-20, 20), trim=rng.uniform(-20, 20))
     scene = Scene(Body(weight, cog), tuple(lugs), tuple(cranes), attitude)
     try:
@@ -83,11 +84,13 @@ def random_scene(rng):
         return None
     rot = _rotation(state.pose.heel, state.pose.trim)
     heights = (scene.lug_points() @ rot.T)[:, 2] + state.pose.lift_height
-    cranes = tuple(Crane(c.lug, EA=c.EA, boom_height=c.boom_height,
-                         rope_length=(c.boom_height - h) / (1.0 + t / c.EA))
-                   for c, h, t in zip(scene.cranes, heights, tensions))
-    forward = Scene(scene.body, scene.lugs, cranes, Attitude(), Analysis("elastic"),
-                    name="stiff" if stiff else "soft")
+    cranes = tuple(
+        Crane(c.lug, EA=c.EA, boom_height=c.boom_height, rope_length=(c.boom_height - h) / (1.0 + t / c.EA))
+        for c, h, t in zip(scene.cranes, heights, tensions)
+    )
+    forward = Scene(
+        scene.body, scene.lugs, cranes, Attitude(), Analysis("elastic"), name="stiff" if stiff else "soft"
+    )
     return forward, state
 
 
@@ -130,8 +133,11 @@ def mp_reference(scene, x0, digits=40):
         t = tensions(lift, heel, trim)
         pts = [world(p, heel, trim, lift) for p in lugs]
         c = world(cog, heel, trim, lift)
-        return [sum(t) - weight, sum(ti * p[0] for ti, p in zip(t, pts)) - weight * c[0],
-                sum(ti * p[1] for ti, p in zip(t, pts)) - weight * c[1]]
+        return [
+            sum(t) - weight,
+            sum(ti * p[0] for ti, p in zip(t, pts)) - weight * c[0],
+            sum(ti * p[1] for ti, p in zip(t, pts)) - weight * c[1],
+        ]
 
     x = mp.findroot(equations, [mp.mpf(v) for v in x0], tol=mp.mpf(10) ** (-2 * digits + 10))
     return np.array([float(v) for v in tensions(*x)])
@@ -154,8 +160,16 @@ def numpy_residual(scene):
 
     def residual(x):
         t, lugs, c = tensions(x)
-        return np.array([t.sum() - weight, (t @ lugs[:, 0] - weight * c[0]) / scale,
-                         (t @ lugs[:, 1] - weight * c[1]) / scale]) / weight
+        return (
+            np.array(
+                [
+                    t.sum() - weight,
+                    (t @ lugs[:, 0] - weight * c[0]) / scale,
+                    (t @ lugs[:, 1] - weight * c[1]) / scale,
+                ]
+            )
+            / weight
+        )
 
     return residual, lambda x: tensions(x)[0]
 
@@ -196,6 +210,7 @@ def methods(scene, state, index):
             if not out.success:
                 raise RuntimeError(out.message)
             return tensions(out.x)
+
         return run
 
     def moorpy():
@@ -236,13 +251,22 @@ def measure():
                 tensions, seconds = timed(fn, repeat)
                 error, status, reason = float(np.max(np.abs(tensions - reference)) / weight), "ok", ""
             except Exception as err:  # noqa: BLE001 - a failing method (or peer) is a result
-
                 seconds, error, status = math.nan, math.nan, "failed"
                 reason = f"{type(err).__name__}: {err}"[:120]
-            rows.append({"scene": index, "n": scene.n, "ropes": scene.name,
-                         "heel": round(state.pose.heel, 3), "trim": round(state.pose.trim, 3),
-                         "method": name, "status": status, "seconds": seconds, "error": error,
-                         "reason": reason})
+            rows.append(
+                {
+                    "scene": index,
+                    "n": scene.n,
+                    "ropes": scene.name,
+                    "heel": round(state.pose.heel, 3),
+                    "trim": round(state.pose.trim, 3),
+                    "method": name,
+                    "status": status,
+                    "seconds": seconds,
+                    "error": error,
+                    "reason": reason,
+                }
+            )
     return rows, dropped
 
 
@@ -254,10 +278,13 @@ def summarise(rows):
         ok = [r for r in mine if r["status"] == "ok"]
         errors = [float(r["error"]) for r in ok]
         times = [float(r["seconds"]) for r in ok]
-        out[name] = {"scenes": len(mine), "converged": len(ok),
-                     "median_us": 1e6 * statistics.median(times) if times else math.nan,
-                     "median_error": statistics.median(errors) if errors else math.nan,
-                     "worst_error": max(errors) if errors else math.nan}
+        out[name] = {
+            "scenes": len(mine),
+            "converged": len(ok),
+            "median_us": 1e6 * statistics.median(times) if times else math.nan,
+            "median_error": statistics.median(errors) if errors else math.nan,
+            "worst_error": max(errors) if errors else math.nan,
+        }
     return out
 
 
@@ -266,9 +293,12 @@ def pareto(summary):
     usable = {k: v for k, v in summary.items() if v["converged"] == v["scenes"] and v["scenes"]}
     front = []
     for name, s in usable.items():
-        beaten = any(o["median_us"] <= s["median_us"] and o["worst_error"] <= s["worst_error"]
-                     and (o["median_us"], o["worst_error"]) != (s["median_us"], s["worst_error"])
-                     for o in usable.values())
+        beaten = any(
+            o["median_us"] <= s["median_us"]
+            and o["worst_error"] <= s["worst_error"]
+            and (o["median_us"], o["worst_error"]) != (s["median_us"], s["worst_error"])
+            for o in usable.values()
+        )
         if not beaten:
             front.append(name)
     return sorted(front, key=lambda k: usable[k]["median_us"])
@@ -286,10 +316,16 @@ def stranded_points():
     if not path.exists():
         return []
     rows = json.loads(path.read_text())
-    reference = {r["case"]: r["ground_reaction"] for r in rows
-                 if r["method"] == "newton" and r["success"] and r["start"] == rows[0]["start"]}
-    return [(r["method"], r["seconds"], abs(r["ground_reaction"] - reference[r["case"]]))
-            for r in rows if r["success"] and r["case"] in reference]
+    reference = {
+        r["case"]: r["ground_reaction"]
+        for r in rows
+        if r["method"] == "newton" and r["success"] and r["start"] == rows[0]["start"]
+    }
+    return [
+        (r["method"], r["seconds"], abs(r["ground_reaction"] - reference[r["case"]]))
+        for r in rows
+        if r["success"] and r["case"] in reference
+    ]
 
 
 def draw(rows, summary, front, path):
@@ -302,14 +338,23 @@ def draw(rows, summary, front, path):
     points = stranded_points()
     for colour, method in zip(("C1", "C4", "C5"), sorted({p[0] for p in points})):
         mine = [p for p in points if p[0] == method]
-        hydro.scatter([p[1] for p in mine], [max(p[2], 1e-9) for p in mine], s=25, alpha=0.7,
-                      color=colour, label=f"{method} ({len(mine)} runs)")
+        hydro.scatter(
+            [p[1] for p in mine],
+            [max(p[2], 1e-9) for p in mine],
+            s=25,
+            alpha=0.7,
+            color=colour,
+            label=f"{method} ({len(mine)} runs)",
+        )
     hydro.set_xscale("log")
     hydro.set_yscale("log")
     hydro.set_xlabel("time per solve [s]")
     hydro.set_ylabel("|F_R - F_R,ref|  [t]  (exact: drawn at 1e-9)")
-    hydro.set_title("Stranded barge (W 15 000-20 000 t), 4 cases x 4 starts:\n"
-                    "casadi Newton vs the paper's J^T D J iteration", fontsize=9)
+    hydro.set_title(
+        "Stranded barge (W 15 000-20 000 t), 4 cases x 4 starts:\n"
+        "casadi Newton vs the paper's J^T D J iteration",
+        fontsize=9,
+    )
     hydro.grid(True, which="both", alpha=0.3)
     hydro.legend(fontsize=7)
     floor = 1e-17  # an exact answer (error 0) is drawn at this floor
@@ -322,9 +367,15 @@ def draw(rows, summary, front, path):
         e = np.maximum([float(r["error"]) for r in ok], floor)
         ax.scatter(t, e, s=10, alpha=0.35, color=colour)
         s = summary[name]
-        ax.scatter(s["median_us"] * 1e-6, max(s["worst_error"], floor), s=90, marker="D",
-                   color=colour, edgecolor="k",
-                   label=f"{name} ({s['converged']}/{s['scenes']} converged)")
+        ax.scatter(
+            s["median_us"] * 1e-6,
+            max(s["worst_error"], floor),
+            s=90,
+            marker="D",
+            color=colour,
+            edgecolor="k",
+            label=f"{name} ({s['converged']}/{s['scenes']} converged)",
+        )
     xs = [summary[k]["median_us"] * 1e-6 for k in front]
     ys = [max(summary[k]["worst_error"], floor) for k in front]
     ax.step(xs, ys, where="post", color="k", lw=1.2, ls="--", label="Pareto front (median time, worst error)")
@@ -332,10 +383,12 @@ def draw(rows, summary, front, path):
     ax.set_yscale("log")
     ax.set_xlabel("time per solve [s]")
     ax.set_ylabel("max |T - T_ref| / W  [-]")
-    ax.set_title(f"Forward elastic solve, {summary['linear']['scenes']} random scenes "
-                 "(4-8 ropes, heel/trim to 20 deg)\n"
-                 "dots: each scene; diamonds: median time, worst error; ref: 40-digit mpmath",
-                 fontsize=9)
+    ax.set_title(
+        f"Forward elastic solve, {summary['linear']['scenes']} random scenes "
+        "(4-8 ropes, heel/trim to 20 deg)\n"
+        "dots: each scene; diamonds: median time, worst error; ref: 40-digit mpmath",
+        fontsize=9,
+    )
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="center right")
     fig.tight_layout()
@@ -348,12 +401,16 @@ def report(csv_path):
     summary = summarise(rows)
     front = pareto(summary)
     draw(rows, summary, front, OUT / "speed_accuracy.png")
-    lines = ["| method | converged | median time [us] | median error | worst error | on the front |",
-             "|---|---|---|---|---|---|"]
+    lines = [
+        "| method | converged | median time [us] | median error | worst error | on the front |",
+        "|---|---|---|---|---|---|",
+    ]
     for name, s in summary.items():
-        lines.append(f"| {name} | {s['converged']}/{s['scenes']} | {s['median_us']:.1f} | "
-                     f"{s['median_error']:.1e} | {s['worst_error']:.1e} | "
-                     f"{'yes' if name in front else ''} |")
+        lines.append(
+            f"| {name} | {s['converged']}/{s['scenes']} | {s['median_us']:.1f} | "
+            f"{s['median_error']:.1e} | {s['worst_error']:.1e} | "
+            f"{'yes' if name in front else ''} |"
+        )
     text = "\n".join(lines) + "\n"
     (OUT / "speed_accuracy.md").write_text(text)
     print(text)

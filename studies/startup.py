@@ -30,8 +30,7 @@ GOAL = 0.6
 COMMANDS = {
     "liftplan --help": ["--help"],
     "liftplan solve examples/tanker_upright.toml": ["solve", "examples/tanker_upright.toml"],
-    "liftplan solve examples/tanker_upright.toml --json": ["solve", "examples/tanker_upright.toml",
-                                                           "--json"],
+    "liftplan solve examples/tanker_upright.toml --json": ["solve", "examples/tanker_upright.toml", "--json"],
     "liftplan plan examples/tanker_plan.toml": ["plan", "examples/tanker_plan.toml"],
 }
 
@@ -52,8 +51,12 @@ def wall(argv, runs=RUNS):
 
 def slowest_imports(args, count=8):
     """The ``count`` largest cumulative imports of a command, from ``-X importtime``  [s]."""
-    out = subprocess.run([sys.executable, "-X", "importtime", "-m", "liftplan.planner.cli", *args],
-                         cwd=ROOT, capture_output=True, text=True)
+    out = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "liftplan.planner.cli", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     rows = []
     for line in out.stderr.splitlines():
         match = re.match(r"import time:\s+\d+ \|\s+(\d+) \|( *)(\S+)", line)
@@ -75,8 +78,9 @@ def main():
     shim_path = Path(os.environ.get("PYENV_ROOT", "~/.pyenv")).expanduser() / "shims" / "liftplan"
     shim = None
     if shim_path.exists() and os.path.realpath(shim_path) != os.path.realpath(command):
-        shim = {name: wall([str(shim_path), *args])[0] for name, args in COMMANDS.items()
-                if args[0] != "plan"}
+        shim = {
+            name: wall([str(shim_path), *args])[0] for name, args in COMMANDS.items() if args[0] != "plan"
+        }
     data = {
         "command": command,
         "runs": RUNS,
@@ -86,8 +90,9 @@ def main():
         "commands": results,
         "python_floor": {"median": floor, "runs": floor_runs},
         "through_pyenv_shim": shim,
-        "solve_imports": [{"module": m, "seconds": s}
-                          for m, s in slowest_imports(["solve", "examples/tanker_upright.toml"])],
+        "solve_imports": [
+            {"module": m, "seconds": s} for m, s in slowest_imports(["solve", "examples/tanker_upright.toml"])
+        ],
     }
     (HERE / "out").mkdir(exist_ok=True)
     (HERE / "out" / "startup.json").write_text(json.dumps(data, indent=1) + "\n")

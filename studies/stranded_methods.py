@@ -32,8 +32,11 @@ CASES = {
     "case 1 (30, 0, -5)": dict(body=Body(20000.0, (5.0, 0.0, 2.0)), ground=Ground((30.0, 0.0, -5.0))),
     "case 2 (30, -2, -5)": dict(body=Body(20000.0, (5.0, 0.0, 2.0)), ground=Ground((30.0, -2.0, -5.0))),
     "off-centre (30, -10, -5)": dict(body=Body(20000.0, (5.0, 0.0, 2.0)), ground=Ground((30.0, -10.0, -5.0))),
-    "on its side (heel 90)": dict(body=Body(15000.0, (5.0, -10.0, 0.0)), ground=Ground((30.0, -15.0, 0.0)),
-                                  attitude=Attitude(heel=90.0, lift_height=-12.0)),
+    "on its side (heel 90)": dict(
+        body=Body(15000.0, (5.0, -10.0, 0.0)),
+        ground=Ground((30.0, -15.0, 0.0)),
+        attitude=Attitude(heel=90.0, lift_height=-12.0),
+    ),
 }
 STARTS = [(0.0, 0.0), (5.0, 2.0), (-10.0, -3.0), (20.0, 5.0)]  # (heel, trim) offsets, deg
 
@@ -51,7 +54,8 @@ def run(scene, setup, method, start, paper_tol=None, repeat=5):
         "success": True,
         "iterations": eq.solver.iterations,
         "seconds": statistics.median(times[1:]),
-        "heel": eq.pose.heel, "trim": eq.pose.trim,
+        "heel": eq.pose.heel,
+        "trim": eq.pose.trim,
         "ground_reaction": eq.afloat.ground_reaction,
     }
 
@@ -70,8 +74,10 @@ def main():
                 rows.append({"case": name, "start": [a.heel + dh, a.trim + dt], "method": label, **result})
     OUT.mkdir(exist_ok=True)
     (OUT / "stranded_methods.json").write_text(json.dumps(rows, indent=1))
-    lines = ["| case | start heel, trim [deg] | method | converged | iterations | time [ms] "
-             "| heel, trim [deg] |", "|---|---|---|---|---|---|---|"]
+    lines = [
+        "| case | start heel, trim [deg] | method | converged | iterations | time [ms] | heel, trim [deg] |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
         if r["success"]:
             tail = f"yes | {r['iterations']} | {1e3 * r['seconds']:.2f} | {r['heel']:.3f}, {r['trim']:.3f}"

@@ -60,10 +60,12 @@ def main():
         time.sleep(10)
     load = os.getloadavg()[0]
     cases = {
-        "tanker in air, paper-elastic": _resampled(load_scene(ROOT / "examples/tanker_strength.toml"),
-                                                   0.0, 82.05),
+        "tanker in air, paper-elastic": _resampled(
+            load_scene(ROOT / "examples/tanker_strength.toml"), 0.0, 82.05
+        ),
         "stranded barge, box hull in water, grounded": _resampled(
-            load_scene(ROOT / "examples/stranded_barge.toml"), -50.0, 50.0),
+            load_scene(ROOT / "examples/stranded_barge.toml"), -50.0, 50.0
+        ),
     }
     out = {"repeats": REPEATS, "load_average": load, "cases": {}}
     for name, scene in cases.items():
@@ -71,8 +73,10 @@ def main():
         g = hull_girder(scene, eq)
         seconds = _median_seconds(scene, eq)
         out["cases"][name] = {
-            "segments": len(scene.body.weight_curve) - 1, "median_ms": 1e3 * seconds,
-            "stations": len(g.stations), "max_bending_moment": g.max_moment.value,
+            "segments": len(scene.body.weight_curve) - 1,
+            "median_ms": 1e3 * seconds,
+            "stations": len(g.stations),
+            "max_bending_moment": g.max_moment.value,
         }
         print(f"{name}: {len(scene.body.weight_curve) - 1} segments, median {1e3 * seconds:.3f} ms")
     OUT.parent.mkdir(parents=True, exist_ok=True)

@@ -28,16 +28,34 @@ ROWS = (10.0, 5.0, 0.0, -5.0)  # phi of the row [deg]
 STEPS = ((10.0, 5.0), (5.0, 0.0), (0.0, -5.0), (-5.0, -10.0))  # column steps [deg]
 
 # Published Table 3 [t]: PUBLISHED[row][column] = (dT1, dT2, dT3, dT4)
-PUBLISHED = np.array([
-    [[-14.16, -9.89, 15.58, 8.47], [-14.27, -9.34, 14.94, 8.66],
-     [-14.46, -8.87, 14.48, 8.86], [-14.76, -8.49, 14.18, 9.07]],
-    [[-14.19, -9.24, 14.93, 8.50], [-14.35, -8.80, 14.41, 8.75],
-     [-14.62, -8.45, 14.05, 9.02], [-15.00, -8.16, 13.85, 9.31]],
-    [[-14.40, -8.76, 14.45, 8.71], [-14.63, -8.44, 14.05, 9.02],
-     [-14.96, -8.20, 13.80, 9.36], [-15.41, -8.02, 13.71, 9.72]],
-    [[-14.79, -8.46, 14.15, 9.10], [-15.08, -8.26, 13.87, 9.47],
-     [-15.47, -8.13, 13.73, 9.87], [-16.00, -8.06, 13.75, 10.31]],
-])
+PUBLISHED = np.array(
+    [
+        [
+            [-14.16, -9.89, 15.58, 8.47],
+            [-14.27, -9.34, 14.94, 8.66],
+            [-14.46, -8.87, 14.48, 8.86],
+            [-14.76, -8.49, 14.18, 9.07],
+        ],
+        [
+            [-14.19, -9.24, 14.93, 8.50],
+            [-14.35, -8.80, 14.41, 8.75],
+            [-14.62, -8.45, 14.05, 9.02],
+            [-15.00, -8.16, 13.85, 9.31],
+        ],
+        [
+            [-14.40, -8.76, 14.45, 8.71],
+            [-14.63, -8.44, 14.05, 9.02],
+            [-14.96, -8.20, 13.80, 9.36],
+            [-15.41, -8.02, 13.71, 9.72],
+        ],
+        [
+            [-14.79, -8.46, 14.15, 9.10],
+            [-15.08, -8.26, 13.87, 9.47],
+            [-15.47, -8.13, 13.73, 9.87],
+            [-16.00, -8.06, 13.75, 10.31],
+        ],
+    ]
+)
 
 
 def long_rope_tanker():
@@ -94,11 +112,20 @@ def main():
         for i, row in enumerate(ROWS):
             for j, (a, b) in enumerate(STEPS):
                 for k, lug in enumerate(scene.lug_names):
-                    writer.writerow([row, f"{a:g}->{b:g}", lug, PUBLISHED[i, j, k],
-                                     round(ours[i, j, k], 4),
-                                     round(ours[i, j, k] - PUBLISHED[i, j, k], 4)])
-    print(f"\nchosen reading: worst residual {np.abs(ours - PUBLISHED).max():.2f} t, "
-          f"rms {np.sqrt(np.mean((ours - PUBLISHED) ** 2)):.2f} t  -> {out.relative_to(HERE.parent)}")
+                    writer.writerow(
+                        [
+                            row,
+                            f"{a:g}->{b:g}",
+                            lug,
+                            PUBLISHED[i, j, k],
+                            round(ours[i, j, k], 4),
+                            round(ours[i, j, k] - PUBLISHED[i, j, k], 4),
+                        ]
+                    )
+    print(
+        f"\nchosen reading: worst residual {np.abs(ours - PUBLISHED).max():.2f} t, "
+        f"rms {np.sqrt(np.mean((ours - PUBLISHED) ** 2)):.2f} t  -> {out.relative_to(HERE.parent)}"
+    )
     print("published rows sum to zero within", f"{np.abs(PUBLISHED.sum(axis=2)).max():.2f} t")
 
 

@@ -41,8 +41,9 @@ def three_supports(x1, springs, ei, q, x0, x2):
 
     def mismatch(m1):
         d = reactions(m1) / np.asarray(springs, dtype=float)
-        return (2 * m1 * (l1 + l2) + q * (l1**3 + l2**3) / 4
-                - 6 * ei * ((d[1] - d[0]) / l1 + (d[1] - d[2]) / l2))
+        return (
+            2 * m1 * (l1 + l2) + q * (l1**3 + l2**3) / 4 - 6 * ei * ((d[1] - d[0]) / l1 + (d[1] - d[2]) / l2)
+        )
 
     f0 = mismatch(0.0)
     m1 = -f0 / (mismatch(1.0) - f0)

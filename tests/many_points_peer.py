@@ -62,10 +62,21 @@ def hull_scene(per_side, seed=None):
             name = f"{side}{k + 1:02d}"
             dz = draw(0.3)
             lugs.append(Lug(name, (float(x), y, LUG_Z + dz)))
-            cranes.append(Crane(lug=name, EA=EA + draw(0.1 * EA), boom_height=BOOM + draw(0.01),
-                                rope_length=LENGTH - dz + draw(0.03), swl=SWL))
-    return Scene(body=Body(WEIGHT, COG), lugs=tuple(lugs), cranes=tuple(cranes),
-                 name=f"154 m hull, {2 * per_side} lifting points")
+            cranes.append(
+                Crane(
+                    lug=name,
+                    EA=EA + draw(0.1 * EA),
+                    boom_height=BOOM + draw(0.01),
+                    rope_length=LENGTH - dz + draw(0.03),
+                    swl=SWL,
+                )
+            )
+    return Scene(
+        body=Body(WEIGHT, COG),
+        lugs=tuple(lugs),
+        cranes=tuple(cranes),
+        name=f"154 m hull, {2 * per_side} lifting points",
+    )
 
 
 def free_three(scene):
@@ -97,10 +108,14 @@ def _arrays(scene):
     lugs = np.array([lug.at for lug in scene.lugs])
     cranes = {c.lug: c for c in scene.cranes}
     ordered = [cranes[name] for name in scene.lug_names]
-    return (lugs, np.array(scene.body.cog), scene.body.weight,
-            np.array([c.boom_height or 0.0 for c in ordered]),
-            np.array([c.rope_length or 0.0 for c in ordered]),
-            np.array([c.EA or 0.0 for c in ordered]))
+    return (
+        lugs,
+        np.array(scene.body.cog),
+        scene.body.weight,
+        np.array([c.boom_height or 0.0 for c in ordered]),
+        np.array([c.rope_length or 0.0 for c in ordered]),
+        np.array([c.EA or 0.0 for c in ordered]),
+    )
 
 
 def _statics(lugs_world, cog_world, weight):
@@ -133,8 +148,12 @@ def numpy_elastic(scene):
     # start: level, all taut, the lift that carries W
     k = stiffness / length
     lift = (np.sum(k * (boom - lugs[:, 2] - length)) - weight) / np.sum(k)
-    result = root(lambda x: state(x)[1], np.array([lift, 0.0, 0.0]), method="hybr",
-                  options={"xtol": 1e-15, "maxfev": 2000})
+    result = root(
+        lambda x: state(x)[1],
+        np.array([lift, 0.0, 0.0]),
+        method="hybr",
+        options={"xtol": 1e-15, "maxfev": 2000},
+    )
     tension, residual = state(result.x)
     if not result.success and np.max(np.abs(residual)) > 1e-12:
         raise RuntimeError(f"scipy root did not converge: {result.message}")

@@ -32,17 +32,21 @@ def moorpy_solve(scene, heel, trim, lift, start_offset=(0.05, 0.002, -0.002)):
 
     rot = rotation_matrix(heel, trim)
     yaw = math.atan2(rot[1, 0], rot[0, 0])
-    turn = np.array([[math.cos(yaw), math.sin(yaw), 0.0], [-math.sin(yaw), math.cos(yaw), 0.0],
-                     [0.0, 0.0, 1.0]])
+    turn = np.array(
+        [[math.cos(yaw), math.sin(yaw), 0.0], [-math.sin(yaw), math.cos(yaw), 0.0], [0.0, 0.0, 1.0]]
+    )
     rot = turn @ rot  # Ry(pitch) Rx(roll)
     roll, pitch = math.atan2(rot[2, 1], rot[2, 2]), -math.asin(rot[2, 0])
     lugs = scene.lug_points()
     world = lugs @ rot.T + np.array([0.0, 0.0, lift])
     system = mp.System(depth=1000.0, rho=0.0, g=G)
     body = system.addBody(
-        0, np.array([0.0, 0.0, lift + start_offset[0], roll + start_offset[1],
-                     pitch + start_offset[2], 0.0]),
-        m=scene.body.weight / G, v=0.0, rCG=np.array(scene.body.cog), DOFs=[2, 3, 4],
+        0,
+        np.array([0.0, 0.0, lift + start_offset[0], roll + start_offset[1], pitch + start_offset[2], 0.0]),
+        m=scene.body.weight / G,
+        v=0.0,
+        rCG=np.array(scene.body.cog),
+        DOFs=[2, 3, 4],
     )
     for i, crane in enumerate(scene.cranes):
         add_rope(system, i, crane, lugs[i], [world[i, 0], world[i, 1], crane.boom_height])
@@ -58,8 +62,17 @@ def add_rope(system, i, crane, lug_point, tip_point):
     """A weightless straight rope from a fixed tip (world) to a lug on body 1 (body frame)."""
     tip = system.addPoint(1, np.asarray(tip_point, dtype=float))
     lug = system.addPoint(1, np.asarray(lug_point, dtype=float), body=1)
-    rope = dict(name=f"rope{i}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=crane.EA,
-                material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
+    rope = dict(
+        name=f"rope{i}",
+        d_vol=0.01,
+        w=ROPE_WEIGHT,
+        m=ROPE_WEIGHT / G,
+        EA=crane.EA,
+        material="wire",
+        d_nom=0.01,
+        MBL=1e9,
+        cost=0.0,
+    )
     system.addLine(crane.rope_length, rope, pointA=lug.number, pointB=tip.number)
 
 
@@ -85,8 +98,14 @@ def moorpy_solve_6dof(scene, tips, start):
 
     lugs = scene.lug_points()
     system = mp.System(depth=1000.0, rho=0.0, g=G)
-    body = system.addBody(0, np.asarray(start, dtype=float), m=scene.body.weight / G, v=0.0,
-                          rCG=np.array(scene.body.cog), DOFs=[0, 1, 2, 3, 4, 5])
+    body = system.addBody(
+        0,
+        np.asarray(start, dtype=float),
+        m=scene.body.weight / G,
+        v=0.0,
+        rCG=np.array(scene.body.cog),
+        DOFs=[0, 1, 2, 3, 4, 5],
+    )
     for i, crane in enumerate(scene.cranes):
         add_rope(system, i, crane, lugs[i], tips[i])
     system.initialize()
@@ -119,8 +138,14 @@ def moorpy_solve_rigging(scene, tips, hooks, start):
 
     lugs = dict(zip(scene.lug_names, scene.lug_points()))
     system = mp.System(depth=1000.0, rho=0.0, g=G)
-    body = system.addBody(0, np.asarray(start, dtype=float), m=scene.body.weight / G, v=0.0,
-                          rCG=np.array(scene.body.cog), DOFs=[0, 1, 2, 3, 4, 5])
+    body = system.addBody(
+        0,
+        np.asarray(start, dtype=float),
+        m=scene.body.weight / G,
+        v=0.0,
+        rCG=np.array(scene.body.cog),
+        DOFs=[0, 1, 2, 3, 4, 5],
+    )
     points, lines = {}, {}
     for crane in scene.cranes:
         tip = system.addPoint(1, np.asarray(tips[crane.name], dtype=float))
@@ -141,8 +166,17 @@ def moorpy_solve_rigging(scene, tips, hooks, start):
 
 def _line(system, length, ea, point_a, point_b):
     """A weightless straight line from point_a to point_b; returns the MoorPy line."""
-    kind = dict(name=f"line{len(system.lineList)}", d_vol=0.01, w=ROPE_WEIGHT, m=ROPE_WEIGHT / G, EA=ea,
-                material="wire", d_nom=0.01, MBL=1e9, cost=0.0)
+    kind = dict(
+        name=f"line{len(system.lineList)}",
+        d_vol=0.01,
+        w=ROPE_WEIGHT,
+        m=ROPE_WEIGHT / G,
+        EA=ea,
+        material="wire",
+        d_nom=0.01,
+        MBL=1e9,
+        cost=0.0,
+    )
     system.addLine(length, kind, pointA=point_a.number, pointB=point_b.number)
     return system.lineList[-1]
 

@@ -64,9 +64,16 @@ def client():
     """A local Dask cluster of two single-threaded worker processes."""
     from dask.distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=":0", silence_logs=logging.ERROR) as cluster, \
-            Client(cluster) as dask_client:
+    with (
+        LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",
+            silence_logs=logging.ERROR,
+        ) as cluster,
+        Client(cluster) as dask_client,
+    ):
         yield dask_client
 
 
@@ -94,8 +101,7 @@ def test_check_study_on_two_workers(tmp_path, client):
     rows = read_table(tmp_path / "check_study.csv")
     assert len(rows) == 200 and [int(r["case"]) for r in rows] == list(range(200))
     heavy = [r for r in rows if r["body.weight"] == "1700.0"]
-    assert heavy and all(r["status"] == "unsafe" and "over the SWL 400 t" in r["reason"]
-                         for r in heavy)
+    assert heavy and all(r["status"] == "unsafe" and "over the SWL 400 t" in r["reason"] for r in heavy)
     light = [r for r in rows if r["body.weight"] == "904.0"]
     assert all(r["status"] == "ok" and r["reason"] == "" for r in light)
     assert sum(summary.counts.values()) == 200
@@ -128,16 +134,21 @@ def test_journal_of_another_study_is_refused(tmp_path):
     assert journal.exists()  # nothing discarded without --restart
 
 
-@pytest.mark.parametrize("text, match", [
-    (PLAN_STUDY.replace('"plan.cranes"', '"plan.cranse"'), "cranse"),
-    (PLAN_STUDY.replace("[4, 3]", "[4, 3, 65]"),
-     r"sweep.'plan.cranes'\[2\] = 65: no case can use it.*3 to 64"),
-    (CHECK_STUDY.replace('"body.weight"', '"plan.cranes"'), "a check study keeps the plan's lugs"),
-    (PLAN_STUDY.replace("tanker_plan.toml", "missing.toml"), "no such planning file"),
-    (CHECK_STUDY.replace("count = 50", "count = 0"), "sample.count"),
-    (CHECK_STUDY.replace("cog = [1.0, 0.3, 0.5]", "cog = [1.0, -0.3, 0.5]"), "half-widths"),
-    (PLAN_STUDY + '\ncandidates = ["aft"]\n', "sweep.candidates = 'aft'"),
-])
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        (PLAN_STUDY.replace('"plan.cranes"', '"plan.cranse"'), "cranse"),
+        (
+            PLAN_STUDY.replace("[4, 3]", "[4, 3, 65]"),
+            r"sweep.'plan.cranes'\[2\] = 65: no case can use it.*3 to 64",
+        ),
+        (CHECK_STUDY.replace('"body.weight"', '"plan.cranes"'), "a check study keeps the plan's lugs"),
+        (PLAN_STUDY.replace("tanker_plan.toml", "missing.toml"), "no such planning file"),
+        (CHECK_STUDY.replace("count = 50", "count = 0"), "sample.count"),
+        (CHECK_STUDY.replace("cog = [1.0, 0.3, 0.5]", "cog = [1.0, -0.3, 0.5]"), "half-widths"),
+        (PLAN_STUDY + '\ncandidates = ["aft"]\n', "sweep.candidates = 'aft'"),
+    ],
+)
 def test_bad_study_files_are_one_line_errors(tmp_path, text, match):
     with pytest.raises(InvalidScene, match=match) as err:
         load_study(study_file(tmp_path, text))
@@ -163,23 +174,30 @@ def tanker_plan():
 
 def cases(problem, weight, cog_offset, tolerance=2.0, min_tension=20.0):
     m = len(weight)
-    return CheckCases(np.asarray(weight, float), np.array(problem.body.cog) + np.asarray(cog_offset),
-                      np.full(m, tolerance), np.full(m, tolerance), np.full(m, min_tension))
+    return CheckCases(
+        np.asarray(weight, float),
+        np.array(problem.body.cog) + np.asarray(cog_offset),
+        np.full(m, tolerance),
+        np.full(m, tolerance),
+        np.full(m, min_tension),
+    )
 
 
 def test_check_equals_the_plans_held_tensions(tanker_plan):
     problem, chosen = tanker_plan.problem, tanker_plan.chosen
     offset = (0.5, 0.3, -0.2)
-    result = check_plan(problem, chosen.indices, chosen.preload,
-                        cases(problem, [problem.body.weight], [offset]), grid=21)
+    result = check_plan(
+        problem, chosen.indices, chosen.preload, cases(problem, [problem.body.weight], [offset]), grid=21
+    )
     heel, trim = np.meshgrid(np.linspace(-2, 2, 21), np.linspace(-2, 2, 21), indexing="ij")
     tensions = tanker_plan.tensions_at(heel.ravel(), trim.ravel(), cog_offset=offset)
     assert result.worst_spread[0] == pytest.approx(np.ptp(tensions, axis=1).max(), rel=1e-12)
     assert result.max_tension[0] == pytest.approx(tensions.max(), rel=1e-12)
     # a heavier body: the planner's own model with that weight, same boom heights
     heavy = dataclasses.replace(problem, body=Body(weight=1000.0, cog=problem.body.cog))
-    result = check_plan(problem, chosen.indices, chosen.preload,
-                        cases(problem, [1000.0], [(0, 0, 0)]), grid=3)
+    result = check_plan(
+        problem, chosen.indices, chosen.preload, cases(problem, [1000.0], [(0, 0, 0)]), grid=3
+    )
     box = [Scenario(h, t) for h in (-2, 0, 2) for t in (-2, 0, 2)]
     expected = LugSet(heavy, chosen.indices).tensions(chosen.preload, box)
     assert result.min_tension[0] == pytest.approx(expected.min(), rel=1e-12)
@@ -188,10 +206,17 @@ def test_check_equals_the_plans_held_tensions(tanker_plan):
 
 def test_check_reports_slack_and_limits_not_numbers(tanker_plan):
     problem, chosen = tanker_plan.problem, tanker_plan.chosen
-    result = check_plan(problem, chosen.indices, chosen.preload,
-                        cases(problem, [904.0, 904.0, 1700.0, 904.0],
-                              [(0, 5.9, 20.0), (0, 0, 0), (0, 0, 0), (60.0, 0, 0)],
-                              min_tension=[20.0, 225.0, 20.0, 20.0]))
+    result = check_plan(
+        problem,
+        chosen.indices,
+        chosen.preload,
+        cases(
+            problem,
+            [904.0, 904.0, 1700.0, 904.0],
+            [(0, 5.9, 20.0), (0, 0, 0), (0, 0, 0), (60.0, 0, 0)],
+            min_tension=[20.0, 225.0, 20.0, 20.0],
+        ),
+    )
     assert result.status == ["failed", "unsafe", "unsafe", "invalid"]
     # a CG 0.1 m inside the edge of the lugs and 16.5 m above them: a rope goes slack in the box
     assert "slack" in result.reason[0] and np.isnan(result.worst_spread[0])

@@ -86,8 +86,9 @@ contents = "water"
 """
 
 
-def box_scene(breakout="", openings=None, lift_height=-12.0, tank=True, contents="water", ground=True,
-              slack=-0.02):
+def box_scene(
+    breakout="", openings=None, lift_height=-12.0, tank=True, contents="water", ground=True, slack=-0.02
+):
     """The box, lying on the seabed 12 m down (top 8 m under water), ropes taut."""
     comp = ""
     if tank:
@@ -104,6 +105,7 @@ def steel_buoyancy(scene):
 
 
 # -- breakout --------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("factor", [0.5, 1.0])
 def test_breakout_peak_equals_the_factor_closed_form(factor):
@@ -124,15 +126,21 @@ def test_breakout_peak_equals_the_factor_closed_form(factor):
     assert inside.any() and np.allclose(curve.crane_load[inside], expected, rtol=0, atol=1e-9 * 300)
     assert np.allclose(curve.soil[inside], factor * submerged, rtol=1e-12)
     # forces balance at every hoist, the soil's pull included
-    balance = curve.crane_load + curve.buoyancy + curve.ground_reaction - (
-        curve.weight + curve.water_carried + curve.soil)
+    balance = (
+        curve.crane_load
+        + curve.buoyancy
+        + curve.ground_reaction
+        - (curve.weight + curve.water_carried + curve.soil)
+    )
     assert np.max(np.abs(balance)) <= 1e-9 * scene.body.weight
 
 
 def test_breakout_peak_equals_the_soil_closed_form():
     su, nc, pull, embedded = 4.0, 6.2, 2.0, 200.0
-    text = (f"breakout = {{ shear_strength = {su}, bearing_factor = {nc}, pull_time = {pull}, "
-            f"embedded_time = {embedded} }}")
+    text = (
+        f"breakout = {{ shear_strength = {su}, bearing_factor = {nc}, pull_time = {pull}, "
+        f"embedded_time = {embedded} }}"
+    )
     scene = box_scene(breakout=text, tank=False)
     force = 1.5 * (pull / embedded) ** -0.07 * nc * su / G * 20.0 * 8.0  # underside 20 m x 8 m
     expected = scene.body.weight - steel_buoyancy(scene) + force
@@ -141,7 +149,7 @@ def test_breakout_peak_equals_the_soil_closed_form():
     assert abs(load.total - expected) <= 1e-9 * scene.body.weight
     curve = load_curve(scene, stop=1.0, step=0.1)
     assert abs(curve.peak_crane_load[0] - expected) <= 1e-9 * scene.body.weight
-    assert curve.breakout.time_factor == pytest.approx(1.5 * 0.01 ** -0.07, rel=1e-12)
+    assert curve.breakout.time_factor == pytest.approx(1.5 * 0.01**-0.07, rel=1e-12)
 
 
 ZERO_SOIL = "breakout = { shear_strength = 0.0, pull_time = 1.0, embedded_time = 10.0 }"
@@ -170,10 +178,15 @@ def test_breakout_load_point_is_on_the_line_of_the_forces():
 
 # -- draining --------------------------------------------------------------------------------
 
+
 def clear_scene(openings, discharge=0.61):
     """The box hanging 1 m clear of the water, the tank full, an opening in its floor."""
-    return box_scene(openings=f"{{ area = {openings}, at = [0.0, 0.0, 0.0], discharge = {discharge} }}",
-                     lift_height=1.0, ground=False, slack=-0.1)
+    return box_scene(
+        openings=f"{{ area = {openings}, at = [0.0, 0.0, 0.0], discharge = {discharge} }}",
+        lift_height=1.0,
+        ground=False,
+        slack=-0.1,
+    )
 
 
 def test_box_tank_drains_in_torricellis_time():
@@ -234,14 +247,26 @@ def test_finite_openings_lie_between_the_limits():
 
 # -- time axis and JSON ----------------------------------------------------------------------
 
+
 def test_time_axis_and_json_keys():
-    scene = box_scene(breakout="breakout = { factor = 1.0 }",
-                      openings="{ area = 0.05, at = [0.0, 0.0, 0.0] }")
+    scene = box_scene(
+        breakout="breakout = { factor = 1.0 }", openings="{ area = 0.05, at = [0.0, 0.0, 0.0] }"
+    )
     curve = load_curve(scene, stop=2.0, step=0.5, speed=3.0)
     assert np.allclose(curve.time, curve.hoist * 20.0, rtol=1e-15)  # 3 m/min: 20 s per m
     out = json.loads(json.dumps(curve.to_json()))
-    for key in ("name", "lugs", "weight", "trapped_water", "water_density", "max_load", "lift_off",
-                "events", "curve", "failed"):
+    for key in (
+        "name",
+        "lugs",
+        "weight",
+        "trapped_water",
+        "water_density",
+        "max_load",
+        "lift_off",
+        "events",
+        "curve",
+        "failed",
+    ):
         assert key in out  # the keys of before stay
     assert {"hoist", "time", "crane_load", "soil_force", "water_in_compartments"} <= set(out["curve"][0])
     events = {e["event"]: e for e in out["events"]}
@@ -252,24 +277,37 @@ def test_time_axis_and_json_keys():
 
 # -- bad input -------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("breakout, openings, message", [
-    ("breakout = { factor = -0.5 }", None, "ground.breakout.factor = -0.5: expected a number >= 0"),
-    ("breakout = { factor = 1.0, shear_strength = 3.0 }", None, "not both"),
-    ("breakout = { shear_strength = 3.0, pull_time = 1.0 }", None, "embedded_time: missing"),
-    ("breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1e6 }", None,
-     "outside 0.001 to 10"),
-    ("breakout = { shear_strength = -1.0, pull_time = 1.0, embedded_time = 1.0 }", None, "kPa >= 0"),
-    ("breakout = { factor = 1.0, clear = -0.1 }", None, "clear = -0.1: expected m >= 0"),
-    ("breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1.0, bearing_factor = 0.0 }",
-     None, "bearing_factor = 0.0: expected a number > 0"),
-    ("", "{ area = -0.1, at = [0.0, 0.0, 0.0] }", "openings.area = -0.1: expected m2 >= 0"),
-    ("", "{ area = nan, at = [0.0, 0.0, 0.0] }", "openings.area = nan"),
-    ("", "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 0.0 }",
-     "discharge = 0.0: expected a coefficient in (0, 1]"),
-    ("", "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 1.2 }", "in (0, 1]"),
-    ("", "{ area = 0.1, at = [5.0, 0.0, 0.0] }", "outside the compartment's box"),
-    ("", "{ area = 0.1 }", "openings[0].at: missing"),
-])
+
+@pytest.mark.parametrize(
+    "breakout, openings, message",
+    [
+        ("breakout = { factor = -0.5 }", None, "ground.breakout.factor = -0.5: expected a number >= 0"),
+        ("breakout = { factor = 1.0, shear_strength = 3.0 }", None, "not both"),
+        ("breakout = { shear_strength = 3.0, pull_time = 1.0 }", None, "embedded_time: missing"),
+        (
+            "breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1e6 }",
+            None,
+            "outside 0.001 to 10",
+        ),
+        ("breakout = { shear_strength = -1.0, pull_time = 1.0, embedded_time = 1.0 }", None, "kPa >= 0"),
+        ("breakout = { factor = 1.0, clear = -0.1 }", None, "clear = -0.1: expected m >= 0"),
+        (
+            "breakout = { shear_strength = 3.0, pull_time = 1.0, embedded_time = 1.0, bearing_factor = 0.0 }",
+            None,
+            "bearing_factor = 0.0: expected a number > 0",
+        ),
+        ("", "{ area = -0.1, at = [0.0, 0.0, 0.0] }", "openings.area = -0.1: expected m2 >= 0"),
+        ("", "{ area = nan, at = [0.0, 0.0, 0.0] }", "openings.area = nan"),
+        (
+            "",
+            "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 0.0 }",
+            "discharge = 0.0: expected a coefficient in (0, 1]",
+        ),
+        ("", "{ area = 0.1, at = [0.0, 0.0, 0.0], discharge = 1.2 }", "in (0, 1]"),
+        ("", "{ area = 0.1, at = [5.0, 0.0, 0.0] }", "outside the compartment's box"),
+        ("", "{ area = 0.1 }", "openings[0].at: missing"),
+    ],
+)
 def test_bad_values_are_one_line_errors(breakout, openings, message):
     with pytest.raises(InvalidScene) as err:
         box_scene(breakout=breakout, openings=openings)
@@ -291,13 +329,32 @@ def test_lift_command_speed_json_and_bad_speed(tmp_path, capsys):
     from liftplan.planner.cli import main
 
     path = tmp_path / "box.toml"
-    text = BOX.format(compartments=TANK.format(openings="openings = [{ area = 0.05, at = [0.0, 0.0, 0.0] }]"),
-                      ground="[ground]\ncontact = [0.0, 0.0, 0.0]\nbreakout = { factor = 1.0 }",
-                      lift_height=-12.0, rope=30.0 + 12.0 - 4.0 - 0.02)
+    text = BOX.format(
+        compartments=TANK.format(openings="openings = [{ area = 0.05, at = [0.0, 0.0, 0.0] }]"),
+        ground="[ground]\ncontact = [0.0, 0.0, 0.0]\nbreakout = { factor = 1.0 }",
+        lift_height=-12.0,
+        rope=30.0 + 12.0 - 4.0 - 0.02,
+    )
     path.write_text(text)
     figure = tmp_path / "curve.png"
-    assert main(["lift", str(path), "--to", "1", "--step", "0.5", "--speed", "2", "--json",
-                 "--figure", str(figure)]) == 0
+    assert (
+        main(
+            [
+                "lift",
+                str(path),
+                "--to",
+                "1",
+                "--step",
+                "0.5",
+                "--speed",
+                "2",
+                "--json",
+                "--figure",
+                str(figure),
+            ]
+        )
+        == 0
+    )
     out = json.loads(capsys.readouterr().out)
     assert "time" in out["curve"][0] and out["speed"] == 2.0 and figure.stat().st_size > 0
     assert any(e["event"] == "breakout" and "time" in e for e in out["events"])

@@ -71,8 +71,10 @@ def _held_scene(problem, result, case):
     return Scene(
         body=Body(weight=case.load.total, cog=case.load.point),
         lugs=tuple(Lug(name=label, at=tuple(p)) for label, p in zip(labels, lugset.points)),
-        cranes=tuple(Crane(lug=label, EA=float(ea), boom_height=float(h), rope_length=float(l0))
-                     for label, ea, h, l0 in zip(labels, lugset.EA, boom, lugset.rope_length)),
+        cranes=tuple(
+            Crane(lug=label, EA=float(ea), boom_height=float(h), rope_length=float(l0))
+            for label, ea, h, l0 in zip(labels, lugset.EA, boom, lugset.rope_length)
+        ),
         attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
         analysis=Analysis(model="elastic"),
     ), lugset
@@ -92,9 +94,10 @@ def test_breakout_tensions_equal_the_elastic_solve_for_every_ranked_set(block):
         # independent of both: the statics at level (yaw 0) and the held compatibility
         t, (x, y) = case.tensions, lugset.points[:, :2].T
         total, point = case.load.total, np.asarray(case.load.point)
-        assert_allclose([t.sum(), t @ x, t @ y], total * np.array([1.0, point[0], point[1]]),
-                        rtol=1e-12, atol=1e-9)
-        stretch = (t - result.preload) / lugset.stiffness     # each hook's motion [m]
+        assert_allclose(
+            [t.sum(), t @ x, t @ y], total * np.array([1.0, point[0], point[1]]), rtol=1e-12, atol=1e-9
+        )
+        stretch = (t - result.preload) / lugset.stiffness  # each hook's motion [m]
         basis = np.column_stack([np.ones(lugset.n), x, y])
         coeff = np.linalg.lstsq(basis, stretch, rcond=None)[0]
         assert_allclose(basis @ coeff, stretch, rtol=0, atol=1e-12)  # a rigid pattern: twist held
@@ -127,7 +130,8 @@ def test_chain_static_input_is_the_larger_with_which_governs(block):
         factor = {f.name: f.value for f in r.factors}
         static = max(c.static_input, c.tilt.load)
         assert r.static_hook_load == pytest.approx(
-            static * factor["weight_contingency"] * factor["cog"] + r.rigging_weight, rel=1e-12)
+            static * factor["weight_contingency"] * factor["cog"] + r.rigging_weight, rel=1e-12
+        )
         assert c.governs in c.static_note
     assert governs == {"breakout", "box"}  # the example has both: aft cranes by the breakout
     assert by_label["L1"].governs == "breakout"
@@ -169,8 +173,18 @@ def test_example_runs_and_json_carries_the_breakout(block):
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     br = data["breakout"]
-    for key in ("total", "weight", "weight_factor", "point", "breakout", "frame", "tensions",
-                "cranes", "checks", "ranking"):
+    for key in (
+        "total",
+        "weight",
+        "weight_factor",
+        "point",
+        "breakout",
+        "frame",
+        "tensions",
+        "cranes",
+        "checks",
+        "ranking",
+    ):
         assert key in br
     assert list(br["tensions"]) == list(data["lugs"])
     assert_allclose(list(br["tensions"].values()), block.design_loads.breakout.tensions, atol=1e-9)
@@ -212,21 +226,35 @@ def test_the_breakout_point_is_in_the_planning_files_frame(tmp_path, block):
     assert b["frame"] == "choi"
 
 
-@pytest.mark.parametrize(("edit", "fragment"), [
-    (lambda plan_text, scene: (plan_text.replace(SCENE_KEY, 'breakout_scene = "nowhere.toml"'), scene),
-     "plan.breakout_scene = 'nowhere.toml':"),
-    (lambda plan_text, scene: (plan_text, scene.replace("[ground]", "[unused]")),
-     "unknown key"),
-    (lambda plan_text, scene: (plan_text, re.sub(r"\[ground\]\n(.+\n)*", "", scene)),
-     "has no [ground]"),
-    (lambda plan_text, scene: (plan_text, scene.replace("weight = 600.0", "weight = 650.0")),
-     "the scene's body (weight 650 t, cog (30, 0.3, 2.5) m) is not the plan's (weight 600 t"),
-    (lambda plan_text, scene: (plan_text, scene.replace(  # the fore tank's air floats the block
-        "min = [55.0, -6.0, 0.0], max = [60.0, 6.0, 2.0]", "min = [6.0, -6.0, 0.0], max = [60.0, 6.0, 6.0]")),
-     "plan.breakout_scene: "),
-    (lambda plan_text, scene: (plan_text.replace("breakout_scene", "breakout_scene = 3\n#"), scene),
-     "plan.breakout_scene = 3: input should be a valid string"),
-])
+@pytest.mark.parametrize(
+    ("edit", "fragment"),
+    [
+        (
+            lambda plan_text, scene: (plan_text.replace(SCENE_KEY, 'breakout_scene = "nowhere.toml"'), scene),
+            "plan.breakout_scene = 'nowhere.toml':",
+        ),
+        (lambda plan_text, scene: (plan_text, scene.replace("[ground]", "[unused]")), "unknown key"),
+        (lambda plan_text, scene: (plan_text, re.sub(r"\[ground\]\n(.+\n)*", "", scene)), "has no [ground]"),
+        (
+            lambda plan_text, scene: (plan_text, scene.replace("weight = 600.0", "weight = 650.0")),
+            "the scene's body (weight 650 t, cog (30, 0.3, 2.5) m) is not the plan's (weight 600 t",
+        ),
+        (
+            lambda plan_text, scene: (
+                plan_text,
+                scene.replace(  # the fore tank's air floats the block
+                    "min = [55.0, -6.0, 0.0], max = [60.0, 6.0, 2.0]",
+                    "min = [6.0, -6.0, 0.0], max = [60.0, 6.0, 6.0]",
+                ),
+            ),
+            "plan.breakout_scene: ",
+        ),
+        (
+            lambda plan_text, scene: (plan_text.replace("breakout_scene", "breakout_scene = 3\n#"), scene),
+            "plan.breakout_scene = 3: input should be a valid string",
+        ),
+    ],
+)
 def test_bad_breakout_scene_is_one_line(tmp_path, edit, fragment):
     plan_text, scene = edit(PLAN.read_text(), SCENE.read_text())
     (tmp_path / "sunken_block_breakout.toml").write_text(scene)

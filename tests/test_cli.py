@@ -11,7 +11,9 @@ from helpers import EXAMPLES
 def run(*args):
     return subprocess.run(
         [sys.executable, "-m", "liftplan.planner.cli", *args],
-        capture_output=True, text=True, timeout=120,
+        capture_output=True,
+        text=True,
+        timeout=120,
     )
 
 
@@ -21,7 +23,8 @@ def test_solve_json_tanker():
     data = json.loads(out.stdout)
     assert data["model"] == "paper-elastic" and data["converged"] is True
     assert data["tensions"] == pytest.approx(
-        {"T1": 272.11, "T2": 179.89, "T3": 179.89, "T4": 272.11}, abs=0.005)
+        {"T1": 272.11, "T2": 179.89, "T3": 179.89, "T4": 272.11}, abs=0.005
+    )
     assert data["heel"] == 0.0 and data["trim"] == 0.0
 
 
@@ -36,7 +39,7 @@ def test_solve_table_has_units_and_every_lug():
     ("content", "code", "fragment"),
     [
         ("[body\nweight = 1", 2, "TOML syntax error"),
-        ('[body]\nweight = 3.0\ncog = [0, 0, 0]\n', 2, "lugs: 0 given"),
+        ("[body]\nweight = 3.0\ncog = [0, 0, 0]\n", 2, "lugs: 0 given"),
         (None, 2, "no such scene file"),
     ],
 )
@@ -55,7 +58,8 @@ def test_no_equilibrium_exits_1(tmp_path):
     """Heeled 60 deg with T4 held: a rope would need compression."""
     text = (EXAMPLES / "tanker_upright.toml").read_text()
     text = text.replace("heel = 0.0", "heel = 60.0").replace(
-        'model = "paper-elastic"', 'model = "rigid"\nredundant = { lug = "T4", tension = 272.0 }')
+        'model = "paper-elastic"', 'model = "rigid"\nredundant = { lug = "T4", tension = 272.0 }'
+    )
     path = tmp_path / "scene.toml"
     path.write_text(text)
     out = run("solve", str(path), "--json")

@@ -61,8 +61,9 @@ def process(tmp_path, code=BUILD, args=None):
         (tmp_path / name).mkdir(exist_ok=True)
     env = dict(os.environ, LIFTPLAN_CACHE=str(tmp_path / "cache"), TMPDIR=str(tmp_path / "tmp"))
     command = args if args is not None else [sys.executable, "-c", code]
-    return subprocess.Popen(command, cwd=tmp_path / "work", env=env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    return subprocess.Popen(
+        command, cwd=tmp_path / "work", env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    )
 
 
 def finish(proc):
@@ -84,8 +85,18 @@ def probe_inputs(n, count, seed):
     rng = np.random.default_rng(seed)
     angles = np.linspace(0, 2 * np.pi, n, endpoint=False) + rng.uniform(-0.2, 0.2, n)
     lugs = np.stack([10 * np.cos(angles), 6 * np.sin(angles), rng.uniform(-1, 1, n)])
-    p = np.concatenate([[0.1], lugs.ravel(order="F"), [0.5, -0.3, 2.0], [800.0],
-                        rng.uniform(38, 42, n), np.full(n, 30.0), rng.uniform(2e4, 8e4, n), [20.0]])
+    p = np.concatenate(
+        [
+            [0.1],
+            lugs.ravel(order="F"),
+            [0.5, -0.3, 2.0],
+            [800.0],
+            rng.uniform(38, 42, n),
+            np.full(n, 30.0),
+            rng.uniform(2e4, 8e4, n),
+            [20.0],
+        ]
+    )
     x = np.stack([np.full(count, 1.0), rng.uniform(-0.05, 0.05, count), rng.uniform(-0.05, 0.05, count)])
     return x, p
 
@@ -168,10 +179,12 @@ def test_a_corrupt_cache_entry_is_rebuilt(tmp_path, logged_cc, damage):
         library.write_bytes(whole[: len(whole) // 2])
         checksum.write_text(hashlib.sha256(whole).hexdigest())
     else:  # the checksum matches: the load itself or the probe must refuse these
-        content = {"garbage": b"\x7fELF not really a library" * 100, "empty": b"",
-                   "no checksum": b"",
-                   "other function": compile_cached(column_function(n=4), tmp_path / "other")
-                   .library.read_bytes()}[damage]
+        content = {
+            "garbage": b"\x7fELF not really a library" * 100,
+            "empty": b"",
+            "no checksum": b"",
+            "other function": compile_cached(column_function(n=4), tmp_path / "other").library.read_bytes(),
+        }[damage]
         library.write_bytes(content)
         if damage != "no checksum":
             checksum.write_text(hashlib.sha256(content).hexdigest())

@@ -56,19 +56,29 @@ TILT = 5.0
 # Radii, plan distance slew centre -> lug (z-up): C (20, -37) -> (12.2, -12); B (60, 25) ->
 # (28.55, 0); A (20, 25) -> (53.25, 0); D (60, -37) -> (53.25, -12); SWL linear in the chart
 # (sheerlegs 525 t at 40 m, 375 t at 50 m; cranes 450 t at 25 m, 330 t at 32 m).
-RADIUS = {"Crane C": math.hypot(7.8, 25.0), "Sheerleg B": math.hypot(31.45, 25.0),
-          "Sheerleg A": math.hypot(33.25, 25.0), "Crane D": math.hypot(6.75, 25.0)}
-SWL = {"Crane C": 450.0 - 120.0 * (RADIUS["Crane C"] - 25.0) / 7.0,
-       "Sheerleg B": 525.0 - 150.0 * (RADIUS["Sheerleg B"] - 40.0) / 10.0,
-       "Sheerleg A": 525.0 - 150.0 * (RADIUS["Sheerleg A"] - 40.0) / 10.0,
-       "Crane D": 450.0 - 120.0 * (RADIUS["Crane D"] - 25.0) / 7.0}
+RADIUS = {
+    "Crane C": math.hypot(7.8, 25.0),
+    "Sheerleg B": math.hypot(31.45, 25.0),
+    "Sheerleg A": math.hypot(33.25, 25.0),
+    "Crane D": math.hypot(6.75, 25.0),
+}
+SWL = {
+    "Crane C": 450.0 - 120.0 * (RADIUS["Crane C"] - 25.0) / 7.0,
+    "Sheerleg B": 525.0 - 150.0 * (RADIUS["Sheerleg B"] - 40.0) / 10.0,
+    "Sheerleg A": 525.0 - 150.0 * (RADIUS["Sheerleg A"] - 40.0) / 10.0,
+    "Crane D": 450.0 - 120.0 * (RADIUS["Crane D"] - 25.0) / 7.0,
+}
 # The planner's static loads (t) and computed skew factors, as it prints them (the held-preload
 # model with unequal stiffness is tested against the elastic solve in test_planner.py; here they
 # are the chain's inputs): level T*, worst in the box (hook errors included), at the tilt, skew.
 # The worst includes every hook within +-0.02 m (the plan's hook_tolerance), so the chain's
 # skew factor is 1 (the computed skew is in the worst already).
-STATIC = {"Crane C": (236.70, 282.66, 262.38, 1.0), "Sheerleg B": (243.08, 312.64, 279.05, 1.0),
-          "Sheerleg A": (208.92, 270.95, 234.27, 1.0), "Crane D": (215.30, 269.61, 252.67, 1.0)}
+STATIC = {
+    "Crane C": (236.70, 282.66, 262.38, 1.0),
+    "Sheerleg B": (243.08, 312.64, 279.05, 1.0),
+    "Sheerleg A": (208.92, 270.95, 234.27, 1.0),
+    "Crane D": (215.30, 269.61, 252.67, 1.0),
+}
 # printed to 2 decimals (0.005 t), skew to 4 (5e-5): through x 1.05 x 1.18 x 1.1 the hand
 # design loads carry 0.005 x 1.36 + 5e-5 x 272.6 x 1.16 = 0.023 t of that rounding at most
 PRINTED = dict(rtol=0.0, atol=0.025)
@@ -79,7 +89,11 @@ EXACT = dict(rtol=1e-9, atol=1e-9)
 def test_fleet_radii_and_chart_swl_by_hand(fleet_plan):
     got = _by_crane(fleet_plan)
     assert {c.crane: c.lug for c in got.values()} == {
-        "Crane C": "BH2-S", "Sheerleg B": "BH4-P", "Sheerleg A": "BH6-P", "Crane D": "BH6-S"}
+        "Crane C": "BH2-S",
+        "Sheerleg B": "BH4-P",
+        "Sheerleg A": "BH6-P",
+        "Crane D": "BH6-S",
+    }
     for name in RADIUS:
         assert_allclose(got[name].radius, RADIUS[name], **EXACT)
         assert_allclose(got[name].swl, SWL[name], **EXACT)
@@ -111,8 +125,12 @@ def _three_hook_tilt_share(weight, lugs, cog, tilt, elevation):
         values = [share(psi, sign) for psi in grid]
         k = int(np.argmax(values))
         lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-        found = minimize_scalar(lambda psi, sign=sign: -share(psi, sign), bounds=(lo, hi), method="bounded",
-                                options={"xatol": 1e-12})
+        found = minimize_scalar(
+            lambda psi, sign=sign: -share(psi, sign),
+            bounds=(lo, hi),
+            method="bounded",
+            options={"xatol": 1e-12},
+        )
         best = max(best, values[k], -found.fun)
     return best
 
@@ -150,8 +168,9 @@ swl = 700.0
     # the rules' tilt per direction: about the horizontal axis at psi the body tilts by the
     # worse of 3 deg (one vessel) and asin(1 m / s(psi)), s the hooks' extent along the tilt;
     # T3 is W x (the CG's plan distance from the turned P1-P2 line) / (P3's), CG 0.5 m forward.
-    tilt_share = _three_hook_tilt_share(W, [(16.2, 0.0, 6.0), (16.2, -12.0, 6.0), (65.6, -6.0, 6.0)],
-                                        (35.86 + 0.5, -6.0, 2.5), 3.0, 1.0)
+    tilt_share = _three_hook_tilt_share(
+        W, [(16.2, 0.0, 6.0), (16.2, -12.0, 6.0), (65.6, -6.0, 6.0)], (35.86 + 0.5, -6.0, 2.5), 3.0, 1.0
+    )
     assert_allclose(p3.tilt.load, tilt_share, rtol=1e-8)  # both maximise over psi to ~1e-9 deg
     assert_allclose(p3.skew, 1.0, rtol=0, atol=1e-9)  # three ropes: determinate, no skew
     daf = 1.20  # Table 5-1 offshore (the default), 949.2 t design weight
@@ -187,10 +206,16 @@ def test_fleet_checks_and_exit_code(tmp_path):
     assert data["checks"] and all(c["ok"] for c in data["checks"])
     # the 800 t / 400 t classes of the first draft of this example: by the rules' limits no
     # set and assignment can lift her; the reason counts the causes
-    weak = FLEET.read_text(encoding="utf-8").replace(
-        "[[20.0, 1000.0], [30.0, 750.0], [40.0, 525.0], [50.0, 375.0]]",
-        "[[20.0, 800.0], [30.0, 600.0], [40.0, 420.0], [50.0, 300.0]]").replace(
-        "[[15.0, 600.0], [25.0, 450.0], [32.0, 330.0]]", "[[15.0, 400.0], [25.0, 300.0], [32.0, 220.0]]")
+    weak = (
+        FLEET.read_text(encoding="utf-8")
+        .replace(
+            "[[20.0, 1000.0], [30.0, 750.0], [40.0, 525.0], [50.0, 375.0]]",
+            "[[20.0, 800.0], [30.0, 600.0], [40.0, 420.0], [50.0, 300.0]]",
+        )
+        .replace(
+            "[[15.0, 600.0], [25.0, 450.0], [32.0, 330.0]]", "[[15.0, 400.0], [25.0, 300.0], [32.0, 220.0]]"
+        )
+    )
     path = tmp_path / "weak.toml"
     path.write_text(weak, encoding="utf-8")
     out = run("plan", str(path))
@@ -239,7 +264,8 @@ def test_worst_cases_carry_their_cg_position_in_the_file_frame(fleet_plan):
         # the held tensions there plus the hook errors' worst (+-hook_tolerance per hook)
         lugset = fleet_plan.lugset
         tensions, gain = lugset.tensions_and_gain(
-            fleet_plan.chosen.preload, [Scenario(at["heel"], at["trim"], tuple(offset))])
+            fleet_plan.chosen.preload, [Scenario(at["heel"], at["trim"], tuple(offset))]
+        )
         value = tensions[0] + np.abs(gain[0]) @ lugset.hook_tolerance
         assert_allclose(value[fleet_plan.labels.index(row["lug"])], row["worst"], rtol=1e-12)
         assert_allclose(at["cog"], cog + np.array(at["cog_offset"]), atol=1e-12)
@@ -254,20 +280,30 @@ def test_worst_cases_carry_their_cg_position_in_the_file_frame(fleet_plan):
 # -- [rules] in files ------------------------------------------------------------------------------
 def test_rules_are_read_from_the_planning_file():
     rules = load_problem(FLEET).rules
-    assert rules == Rules(location="inshore", separate_vessels=True, weight_contingency=1.05,
-                          rigging_weight=RIGGING, yaw_factor=1.05, consequence_factor=1.30,
-                          lateral_fraction=0.05, chart_includes_dynamics=False)
+    assert rules == Rules(
+        location="inshore",
+        separate_vessels=True,
+        weight_contingency=1.05,
+        rigging_weight=RIGGING,
+        yaw_factor=1.05,
+        consequence_factor=1.30,
+        lateral_fraction=0.05,
+        chart_includes_dynamics=False,
+    )
     assert load_problem(EXAMPLES / "tanker_plan.toml").rules == Rules()  # no [rules]: defaults
 
 
-@pytest.mark.parametrize(("rules", "message"), [
-    ("daf = 0.9", "rules.daf = 0.9: expected a finite factor >= 1"),
-    ('rigging_weight = { "Sheerleg Z" = 5.0 }', "rules.rigging_weight.Sheerleg Z: no such crane"),
-    ("locaton = \"inshore\"", "rules.locaton"),
-])
+@pytest.mark.parametrize(
+    ("rules", "message"),
+    [
+        ("daf = 0.9", "rules.daf = 0.9: expected a finite factor >= 1"),
+        ('rigging_weight = { "Sheerleg Z" = 5.0 }', "rules.rigging_weight.Sheerleg Z: no such crane"),
+        ('locaton = "inshore"', "rules.locaton"),
+    ],
+)
 def test_bad_rules_are_one_line_errors(rules, message):
     text = FLEET.read_text(encoding="utf-8")
-    head = text[:text.index("\n[rules]")]
+    head = text[: text.index("\n[rules]")]
     with pytest.raises(InvalidScene, match=message.replace(".", r"\.")) as err:
         loads_problem(head + "[rules]\n" + rules + "\n")
     assert "\n" not in str(err.value)
@@ -283,10 +319,12 @@ def test_a_plain_scene_with_rules_is_refused():
 # -- lug capacity and the missing CoG factor -----------------------------------------------------
 def test_lug_capacity_gives_a_lug_design_load_check(fleet_plan):
     problem = fleet_plan.problem
-    candidates = tuple(dataclasses.replace(c, capacity=350.0) if c.name == "BH4-P" else c
-                       for c in problem.candidates)
+    candidates = tuple(
+        dataclasses.replace(c, capacity=350.0) if c.name == "BH4-P" else c for c in problem.candidates
+    )
     design = DesignBuilder(dataclasses.replace(problem, candidates=candidates)).build(
-        fleet_plan.chosen, fleet_plan.labels)
+        fleet_plan.chosen, fleet_plan.labels
+    )
     checks = [c for c in design.checks if c.name == "lug_design_load"]
     assert [c.subject for c in checks] == ["BH4-P"]
     crane = design.crane("L2")
@@ -303,8 +341,7 @@ def test_no_cog_envelope_needs_a_cog_factor(fleet_plan):
     [check] = design.checks
     assert not check.ok and check.name == "design_loads"
     rules = dataclasses.replace(bare.rules, cog_factor=1.03)
-    design = DesignBuilder(dataclasses.replace(bare, rules=rules)).build(fleet_plan.chosen,
-                                                                         fleet_plan.labels)
+    design = DesignBuilder(dataclasses.replace(bare, rules=rules)).build(fleet_plan.chosen, fleet_plan.labels)
     factor = {f.name: f.value for f in design.crane("L1").design.factors}
     assert factor["cog"] == 1.03
 

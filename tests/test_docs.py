@@ -45,6 +45,7 @@ REQUIRED = object()
 
 # -- the schemas -----------------------------------------------------------------------------
 
+
 def _branches(annotation):
     """The alternatives of a type, with Annotated and None removed."""
     if typing.get_origin(annotation) is typing.Annotated:
@@ -106,6 +107,7 @@ def choices(annotation):
 
 # -- the doc ---------------------------------------------------------------------------------
 
+
 def doc_sections():
     """{section: (text, {key path: (line number, {column: cell})})} of the doc."""
     lines = DOC.read_text(encoding="utf-8").splitlines()
@@ -148,16 +150,20 @@ def test_every_file_kind_has_a_section(doc):
 def test_every_schema_key_is_documented(doc, section):
     keys = schema_keys(SECTIONS[section][0])
     missing = sorted(set(keys) - set(doc[section][1]))
-    assert not missing, (f"keys read by the {section.lower()} reader but missing from "
-                         f"docs/scene-files.md '## {section}': {', '.join(missing)}")
+    assert not missing, (
+        f"keys read by the {section.lower()} reader but missing from "
+        f"docs/scene-files.md '## {section}': {', '.join(missing)}"
+    )
 
 
 @pytest.mark.parametrize("section", SECTIONS)
 def test_every_documented_key_exists(doc, section):
     keys = schema_keys(SECTIONS[section][0])
     unknown = sorted(set(doc[section][1]) - set(keys))
-    assert not unknown, (f"docs/scene-files.md '## {section}' documents keys that the reader "
-                         f"does not accept: {', '.join(unknown)}")
+    assert not unknown, (
+        f"docs/scene-files.md '## {section}' documents keys that the reader "
+        f"does not accept: {', '.join(unknown)}"
+    )
 
 
 def _toml_value(literal):
@@ -169,8 +175,11 @@ def _toml_value(literal):
 
 def _same(doc_value, value):
     if isinstance(value, tuple | list):
-        return isinstance(doc_value, list) and len(doc_value) == len(value) and all(
-            _same(d, v) for d, v in zip(doc_value, value))
+        return (
+            isinstance(doc_value, list)
+            and len(doc_value) == len(value)
+            and all(_same(d, v) for d, v in zip(doc_value, value))
+        )
     if isinstance(value, bool) or isinstance(doc_value, bool):
         return doc_value is value
     return doc_value == value
@@ -191,7 +200,8 @@ def test_defaults_match_the_schema(doc, section):
                 says = "requires" if value is REQUIRED else "does not require"
                 wrong.append(f"line {line} `{key}`: the schema {says} it, the doc says {cell!r}")
         elif isinstance(value, bool | int | float | str | tuple | list) and not (
-                isinstance(value, tuple | list) and any(isinstance(v, BaseModel) for v in value)):
+            isinstance(value, tuple | list) and any(isinstance(v, BaseModel) for v in value)
+        ):
             shown = re.findall(r"`([^`]+)`", cell)
             if not any(_same(_toml_value(s), value) for s in shown):
                 wrong.append(f"line {line} `{key}`: default {value!r}, doc says {cell!r}")
@@ -230,8 +240,13 @@ def test_the_sections_example_files_are_valid(doc, section):
 def test_the_walk_sees_nested_tables_and_arrays():
     # guards the walker itself: a table, an array of tables and a table inside an array
     scene = schema_keys(_SceneFile)
-    assert {"body.weight", "lugs[].name", "hull.compartments[].box.min",
-            "analysis.redundant.lug", "ground.contact"} <= set(scene)
+    assert {
+        "body.weight",
+        "lugs[].name",
+        "hull.compartments[].box.min",
+        "analysis.redundant.lug",
+        "ground.contact",
+    } <= set(scene)
     plan = schema_keys(_PlanFile)
     assert {"plan.tolerance.heel", "candidates[].at", "crane.boom_height.min"} <= set(plan)
     assert {"study.problem", "sweep", "sample.count"} <= set(schema_keys(_StudyFile))

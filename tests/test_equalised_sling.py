@@ -24,21 +24,34 @@ from liftplan.planner.cli import main
 A, B, W = 6.0, 4.0, 200.0
 COG = (0.8, 0.6, 0.0)
 LEG_EA = 20000.0
-LUGS = (Lug("F-P", (A, B, 0.0)), Lug("F-S", (A, -B, 0.0)), Lug("A-P", (-A, B, 0.0)),
-        Lug("A-S", (-A, -B, 0.0)))
+LUGS = (
+    Lug("F-P", (A, B, 0.0)),
+    Lug("F-S", (A, -B, 0.0)),
+    Lug("A-P", (-A, B, 0.0)),
+    Lug("A-S", (-A, -B, 0.0)),
+)
 # aft ropes as long as the forward hoist plus the legs' height, so the body hangs near level
 AFT = 20.0 + np.sqrt(9.0**2 - B**2)
 
 
 def scene(equalised, split=(9.0, 9.0), fwd_boom=40.0, aft_boom=40.0):
-    sling = Sling(legs=(Leg("F-P", split[0], EA=LEG_EA), Leg("F-S", split[1], EA=LEG_EA)),
-                  equalised=equalised)
-    cranes = (Crane(lug=None, name="FWD", boom_height=fwd_boom, rope_length=20.0, EA=40000.0,
-                    swl=300.0, sling=sling),
-              Crane(lug="A-P", boom_height=aft_boom, rope_length=AFT, EA=40000.0, swl=300.0),
-              Crane(lug="A-S", boom_height=40.0, rope_length=AFT, EA=40000.0, swl=300.0))
-    return Scene(body=Body(weight=W, cog=COG), lugs=LUGS, cranes=cranes,
-                 attitude=Attitude(lift_height=5.0), analysis=Analysis(model="rigging"))
+    sling = Sling(
+        legs=(Leg("F-P", split[0], EA=LEG_EA), Leg("F-S", split[1], EA=LEG_EA)), equalised=equalised
+    )
+    cranes = (
+        Crane(
+            lug=None, name="FWD", boom_height=fwd_boom, rope_length=20.0, EA=40000.0, swl=300.0, sling=sling
+        ),
+        Crane(lug="A-P", boom_height=aft_boom, rope_length=AFT, EA=40000.0, swl=300.0),
+        Crane(lug="A-S", boom_height=40.0, rope_length=AFT, EA=40000.0, swl=300.0),
+    )
+    return Scene(
+        body=Body(weight=W, cog=COG),
+        lugs=LUGS,
+        cranes=cranes,
+        attitude=Attitude(lift_height=5.0),
+        analysis=Analysis(model="rigging"),
+    )
 
 
 def three_supports():
@@ -60,8 +73,7 @@ def test_equalised_legs_carry_one_tension_and_keep_the_rope_length():
         # one rope: the spans hook-lug add up to the rope's 18 m stretched by T / EA
         rot = rotation_matrix(eq.pose.heel, eq.pose.trim, eq.pose.yaw)
         hook = np.array(eq.rigging.hook_positions["FWD"])
-        spans = [np.linalg.norm(hook - (np.array(eq.position) + rot @ np.array(lug.at)))
-                 for lug in LUGS[:2]]
+        spans = [np.linalg.norm(hook - (np.array(eq.position) + rot @ np.array(lug.at))) for lug in LUGS[:2]]
         tension = legs["FWD/F-P"]
         assert sum(spans) == pytest.approx(18.0 * (1.0 + tension / LEG_EA), abs=1e-9)
 
@@ -147,26 +159,39 @@ def test_solve_reports_the_equalised_legs(tmp_path, capsys):
     legs = data["legs"]
     assert legs["FWD/F-P"] == pytest.approx(legs["FWD/F-S"], abs=1e-9 * W)
     expected = loads(solve(scene(True)))
-    np.testing.assert_allclose([data["tensions"][k] for k in ("FWD", "A-P", "A-S")], expected,
-                               rtol=0, atol=1e-7 * W)
+    np.testing.assert_allclose(
+        [data["tensions"][k] for k in ("FWD", "A-P", "A-S")], expected, rtol=0, atol=1e-7 * W
+    )
     # three legs cannot be one rope over one sheave: a one-line refusal, exit 2
-    bad = SCENE.replace('{ lug = "F-S", length = 8.95, EA = 20000.0 } ]',
-                        '{ lug = "F-S", length = 8.95, EA = 20000.0 }, '
-                        '{ lug = "A-P", length = 9.0, EA = 20000.0 } ]')
-    path.write_text(bad.replace('[[cranes]]\nlug = "A-P"\nboom_height = 40.0\nrope_length = '
-                                '28.06225774829855\nEA = 40000.0\nswl = 300.0\n', ''),
-                    encoding="utf-8")
+    bad = SCENE.replace(
+        '{ lug = "F-S", length = 8.95, EA = 20000.0 } ]',
+        '{ lug = "F-S", length = 8.95, EA = 20000.0 }, { lug = "A-P", length = 9.0, EA = 20000.0 } ]',
+    )
+    path.write_text(
+        bad.replace(
+            '[[cranes]]\nlug = "A-P"\nboom_height = 40.0\nrope_length = '
+            "28.06225774829855\nEA = 40000.0\nswl = 300.0\n",
+            "",
+        ),
+        encoding="utf-8",
+    )
     assert main(["solve", str(path), "--json"]) == 2
     err = capsys.readouterr().err.strip()
     assert "equalised = true with 3 legs" in err and "\n" not in err
 
 
-@pytest.mark.parametrize(("legs", "equalised", "match"), [
-    ((Leg("F-P", 9.0, EA=LEG_EA), Leg("F-S", 9.0, EA=30000.0)), True, "the same EA"),
-    ((Leg("F-P", 9.0, EA=LEG_EA), Leg("F-S", 9.0, EA=LEG_EA), Leg("A-P", 9.0, EA=LEG_EA)), True,
-     "with 3 legs"),
-    ((Leg("F-P", 9.0, EA=LEG_EA), Leg("F-S", 9.0, EA=LEG_EA)), 1, "expected true or false"),
-])
+@pytest.mark.parametrize(
+    ("legs", "equalised", "match"),
+    [
+        ((Leg("F-P", 9.0, EA=LEG_EA), Leg("F-S", 9.0, EA=30000.0)), True, "the same EA"),
+        (
+            (Leg("F-P", 9.0, EA=LEG_EA), Leg("F-S", 9.0, EA=LEG_EA), Leg("A-P", 9.0, EA=LEG_EA)),
+            True,
+            "with 3 legs",
+        ),
+        ((Leg("F-P", 9.0, EA=LEG_EA), Leg("F-S", 9.0, EA=LEG_EA)), 1, "expected true or false"),
+    ],
+)
 def test_equalised_needs_one_rope(legs, equalised, match):
     with pytest.raises(InvalidScene, match=match) as err:
         Sling(legs=legs, equalised=equalised)

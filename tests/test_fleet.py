@@ -25,8 +25,15 @@ from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 #: Seven deck points of the tanker (papers' frame, as in test_planner).
-POINTS = [(4.2, 6, 0), (16.2, 6, 12), (28.55, 6, 0), (40.9, 6, 12), (53.25, 6, 6),
-          (65.6, 6, 0), (73.6, 6, 12)]
+POINTS = [
+    (4.2, 6, 0),
+    (16.2, 6, 12),
+    (28.55, 6, 0),
+    (40.9, 6, 12),
+    (53.25, 6, 6),
+    (65.6, 6, 0),
+    (73.6, 6, 12),
+]
 
 
 def fleet(count):
@@ -38,9 +45,10 @@ def fleet(count):
         ("Small fwd", (60.0, 22.0), ((15.0, 420.0), (30.0, 260.0), (40.0, 180.0)), 40000.0, 30.0),
         ("Mid", (38.0, 30.0), ((20.0, 500.0), (40.0, 300.0), (48.0, 240.0)), 60000.0, 35.0),
     ]
-    return tuple(FleetCrane(name=n, position=p, load_chart=c, EA=ea, rope_length=l0,
-                            boom_min=30.0, boom_max=70.0)
-                 for n, p, c, ea, l0 in specs[:count])
+    return tuple(
+        FleetCrane(name=n, position=p, load_chart=c, EA=ea, rope_length=l0, boom_min=30.0, boom_max=70.0)
+        for n, p, c, ea, l0 in specs[:count]
+    )
 
 
 def fleet_problem(count, objective="utilisation", **changes):
@@ -100,15 +108,19 @@ def linprog_minimax(lugset, scenarios):
     bounds = list(zip(low, high)) + [(None, None)] * (2 * m + 1)
     cost = np.zeros(size)
     cost[-1] = 1.0
-    result = linprog(cost, A_ub=np.array(rows), b_ub=rhs, A_eq=a_eq, b_eq=b_level,
-                     bounds=bounds, method="highs")
+    result = linprog(
+        cost, A_ub=np.array(rows), b_ub=rhs, A_eq=a_eq, b_eq=b_level, bounds=bounds, method="highs"
+    )
     return result.fun if result.status == 0 else None
 
 
 def brute_force(problem, grid=7):
     """Every set and EVERY permutation of the cranes on it (no reach pruning, no symmetry)."""
-    scenarios = [Scenario(h, t, tuple(o)) for o in problem.cog_envelope.offsets()
-                 for h, t in box_attitudes(problem, grid, grid)]
+    scenarios = [
+        Scenario(h, t, tuple(o))
+        for o in problem.cog_envelope.offsets()
+        for h, t in box_attitudes(problem, grid, grid)
+    ]
     swl = problem.reach[1]
     best = {}
     for indices in itertools.combinations(range(len(problem.candidates)), problem.cranes):
@@ -174,8 +186,9 @@ def test_unreachable_fleet_names_the_crane():
 
 
 def test_over_chart_fleet_is_infeasible():
-    weak = tuple(dataclasses.replace(c, load_chart=tuple((r, s / 4) for r, s in c.load_chart))
-                 for c in fleet(4))
+    weak = tuple(
+        dataclasses.replace(c, load_chart=tuple((r, s / 4) for r, s in c.load_chart)) for c in fleet(4)
+    )
     with pytest.raises(PlanInfeasible, match="more than the crane SWL|exceeds the crane SWL"):
         plan(fleet_problem(4, fleet=weak))
 
@@ -183,18 +196,24 @@ def test_over_chart_fleet_is_infeasible():
 def test_crane_that_reaches_no_candidate():
     cranes = list(fleet(3))
     cranes[2] = dataclasses.replace(cranes[2], position=(200.0, 0.0))
-    with pytest.raises(InvalidScene, match=r"cranes\[Small aft\]: reaches no candidate .*nearest "
-                                           r"candidate C6 at radius 1[23]\d\.\d\d m"):
+    with pytest.raises(
+        InvalidScene,
+        match=r"cranes\[Small aft\]: reaches no candidate .*nearest "
+        r"candidate C6 at radius 1[23]\d\.\d\d m",
+    ):
         fleet_problem(3, fleet=tuple(cranes))
 
 
-@pytest.mark.parametrize("change, message", [
-    ({"load_chart": ((20.0, 700.0), (20.0, 600.0))}, "radii .* expected strictly increasing"),
-    ({"load_chart": ((20.0, 700.0), (30.0, 0.0))}, "SWL 0 t at radius 30 m: expected > 0"),
-    ({"load_chart": (), "swl": None}, "expected exactly one of load_chart"),
-    ({"swl": 300.0}, "expected exactly one of load_chart"),
-    ({"EA": -1.0}, r"cranes\[Big aft\]\.EA = -1.0"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"load_chart": ((20.0, 700.0), (20.0, 600.0))}, "radii .* expected strictly increasing"),
+        ({"load_chart": ((20.0, 700.0), (30.0, 0.0))}, "SWL 0 t at radius 30 m: expected > 0"),
+        ({"load_chart": (), "swl": None}, "expected exactly one of load_chart"),
+        ({"swl": 300.0}, "expected exactly one of load_chart"),
+        ({"EA": -1.0}, r"cranes\[Big aft\]\.EA = -1.0"),
+    ],
+)
 def test_bad_crane_data(change, message):
     with pytest.raises(InvalidScene, match=message):
         dataclasses.replace(fleet(1)[0], **change)
@@ -263,21 +282,37 @@ def crane_table(name, extra=""):
 def test_file_objective_defaults():
     equal = loads_problem(BASE + "".join(crane_table(n) for n in "PQRS"))
     assert equal.cranes == 4 and equal.objective == "spread"
-    unequal = loads_problem(BASE + "".join(crane_table(n) for n in "PQR")
-                            + crane_table("S").replace("400.0", "300.0"))
+    unequal = loads_problem(
+        BASE + "".join(crane_table(n) for n in "PQR") + crane_table("S").replace("400.0", "300.0")
+    )
     assert unequal.objective == "utilisation"
 
 
-@pytest.mark.parametrize("text, message", [
-    (BASE + "cranes = 3\n" + "".join(crane_table(n) for n in "PQRS"), "plan.cranes = 3: 4"),
-    (BASE + "".join(crane_table(n) for n in "PQRS").replace("swl = 400.0", "", 1),
-     r"cranes\[P\]: no load_chart or swl"),
-    (BASE + "".join(crane_table(n) for n in "PQRS").replace(
-        "swl = 400.0", "load_chart = [[10.0, 400.0]]\nswl = 400.0", 1), "both load_chart and swl"),
-    (BASE + "".join(crane_table(n) for n in "PQRS").replace(
-        "swl = 400.0", "load_chart = [[10.0, 400.0]]", 1), r"cranes\[P\]\.position: missing"),
-    (BASE + "objective = \"evenness\"\n" + "".join(crane_table(n) for n in "PQRS"), "objective"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (BASE + "cranes = 3\n" + "".join(crane_table(n) for n in "PQRS"), "plan.cranes = 3: 4"),
+        (
+            BASE + "".join(crane_table(n) for n in "PQRS").replace("swl = 400.0", "", 1),
+            r"cranes\[P\]: no load_chart or swl",
+        ),
+        (
+            BASE
+            + "".join(crane_table(n) for n in "PQRS").replace(
+                "swl = 400.0", "load_chart = [[10.0, 400.0]]\nswl = 400.0", 1
+            ),
+            "both load_chart and swl",
+        ),
+        (
+            BASE
+            + "".join(crane_table(n) for n in "PQRS").replace(
+                "swl = 400.0", "load_chart = [[10.0, 400.0]]", 1
+            ),
+            r"cranes\[P\]\.position: missing",
+        ),
+        (BASE + 'objective = "evenness"\n' + "".join(crane_table(n) for n in "PQRS"), "objective"),
+    ],
+)
 def test_file_errors(text, message):
     with pytest.raises(InvalidScene, match=message):
         loads_problem(text)

@@ -37,8 +37,9 @@ Q = W / L
 L0 = 30.0
 
 
-def dry_scene(stations, contact_x, ei, ea=5e5, stretch=0.0, curve=None, hull="flexible", cog_x=None,
-              weight=W):
+def dry_scene(
+    stations, contact_x, ei, ea=5e5, stretch=0.0, curve=None, hull="flexible", cog_x=None, weight=W
+):
     """A box hull (x 0..80 m) resting on a ground point at ``contact_x`` on its keel and hung at
     port/starboard lug pairs at ``stations`` (z = 0), water far below.
 
@@ -50,8 +51,10 @@ def dry_scene(stations, contact_x, ei, ea=5e5, stretch=0.0, curve=None, hull="fl
     for k, (x, stiffness) in enumerate(zip(stations, ea)):
         for side, y in (("P", 5.0), ("S", -5.0)):
             lugs.append(f'[[lugs]]\nname = "S{k}{side}"\nat = [{x!r}, {y!r}, 0.0]\n')
-            cranes.append(f'[[cranes]]\nlug = "S{k}{side}"\nboom_height = {L0 + stretch!r}\n'
-                          f'rope_length = {L0!r}\nEA = {stiffness!r}\n')
+            cranes.append(
+                f'[[cranes]]\nlug = "S{k}{side}"\nboom_height = {L0 + stretch!r}\n'
+                f"rope_length = {L0!r}\nEA = {stiffness!r}\n"
+            )
     text = f"""
 name = "dry flexible"
 [body]
@@ -79,6 +82,7 @@ def station_loads(eq, count):
 
 
 # -- closed forms -------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("ei", [2e5, 2e6, 2e7])
 def test_ground_at_midship_ropes_at_both_ends_by_closed_form(ei):
@@ -115,12 +119,15 @@ def three_supports(x1, springs, ei, x0, x2, q=Q):
     return helpers.three_supports(x1, springs, ei, q, x0, x2)
 
 
-@pytest.mark.parametrize("where, ea, ei", [
-    ("aft", [5e5, 5e5], 2e6),
-    ("aft", [3e5, 8e5], 5e5),
-    ("middle", [4e5, 6e5], 2e6),
-    ("middle", [5e5, 5e5], 2e7),
-])
+@pytest.mark.parametrize(
+    "where, ea, ei",
+    [
+        ("aft", [5e5, 5e5], 2e6),
+        ("aft", [3e5, 8e5], 5e5),
+        ("middle", [4e5, 6e5], 2e6),
+        ("middle", [5e5, 5e5], 2e7),
+    ],
+)
 def test_three_moment_equation_with_the_ground_as_one_support(where, ea, ei):
     """The ground contact as the rigid support of the three-moment equation: at the aft end
     with stations amidships and forward, or amidships between stations at both ends, the
@@ -148,6 +155,7 @@ def test_three_moment_equation_with_the_ground_as_one_support(where, ea, ei):
 
 # -- an independent frame solver ----------------------------------------------------------------
 
+
 def pynite_grounded(nodes, curve, springs, contact_x, ei):
     """PyNite's frame analysis of the beam: members between ``nodes``, the weight curve as linear
     loads (-Y), a vertical spring K at each station node and a pinned vertical support (the
@@ -160,8 +168,14 @@ def pynite_grounded(nodes, curve, springs, contact_x, ei):
     names = []
     for k, x in enumerate(nodes):
         names.append(model.add_node(f"N{k}", float(x), 0.0, 0.0))
-        model.def_support(names[-1], support_DX=k == 0, support_DY=bool(abs(x - contact_x) < 1e-9),
-                          support_DZ=True, support_RX=True, support_RY=True)
+        model.def_support(
+            names[-1],
+            support_DX=k == 0,
+            support_DY=bool(abs(x - contact_x) < 1e-9),
+            support_DZ=True,
+            support_RX=True,
+            support_RY=True,
+        )
     cx, cw = (np.array(v, dtype=float) for v in zip(*curve))
     for k in range(len(nodes) - 1):
         member = model.add_member(f"M{k}", names[k], names[k + 1], "steel", "girder")
@@ -171,8 +185,10 @@ def pynite_grounded(nodes, curve, springs, contact_x, ei):
         model.def_support_spring(names[list(nodes).index(x)], "DY", stiffness)
     model.analyze_linear(check_statics=False)
     contact = names[int(np.argmin(np.abs(np.asarray(nodes) - contact_x)))]
-    return ({x: model.nodes[n].DY["Combo 1"] for x, n in zip(nodes, names)},
-            model.nodes[contact].RxnFY["Combo 1"])
+    return (
+        {x: model.nodes[n].DY["Combo 1"] for x, n in zip(nodes, names)},
+        model.nodes[contact].RxnFY["Combo 1"],
+    )
 
 
 def test_agrees_with_pynite_on_a_grounded_hull_to_1e_6():
@@ -207,12 +223,14 @@ def test_agrees_with_pynite_on_a_grounded_hull_to_1e_6():
 
 # -- in water: the stranded barge -------------------------------------------------------------
 
+
 def barge(ei, hull="flexible", ropes=""):
     """The stranded-ship paper's box barge, case 2 (contact (30, -2, -5), heel 3.2 deg), with a
     weight curve carrying W at G's x (140 -> 260 t/m) and EI."""
     text = (EXAMPLES / "stranded_barge.toml").read_text()
-    text = text.replace("cog = [5.0, 0.0, 2.0]",
-                        "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]")
+    text = text.replace(
+        "cog = [5.0, 0.0, 2.0]", "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]"
+    )
     text = text.replace("[ground]", f"EI = [[-50.0, {ei!r}], [50.0, {ei!r}]]\n\n[ground]")
     text += f'\n[analysis]\nhull = "{hull}"\n' + ropes
     return loads_scene(text, base=EXAMPLES)
@@ -232,7 +250,7 @@ def test_stranded_barge_tends_to_the_rigid_grounded_model_as_ei_grows():
     slope = np.polyfit(np.log10(eis), np.log10(change), 1)[0]
     assert slope == pytest.approx(-1.0, abs=0.02)
     assert change[-1] < 1e-7
-    assert rigid_reaction == pytest.approx(3752.1, abs=0.05)   # the paper's case 2 (3 752 t)
+    assert rigid_reaction == pytest.approx(3752.1, abs=0.05)  # the paper's case 2 (3 752 t)
 
 
 def test_grounded_strength_curves_close_at_both_ends():
@@ -247,8 +265,9 @@ def test_grounded_strength_curves_close_at_both_ends():
     assert abs(shear) < 1e-9 * scene.body.weight
     assert abs(moment) < 1e-9 * scene.body.weight * 100.0
     assert [p.name for p in girder.point_loads] == ["ground"]
-    assert_allclose(girder.point_loads[0].normal, eq.afloat.ground_reaction * girder.normal_factor,
-                    rtol=1e-12)
+    assert_allclose(
+        girder.point_loads[0].normal, eq.afloat.ground_reaction * girder.normal_factor, rtol=1e-12
+    )
     # and the rigid hull's buoyancy would not close with the flexible reaction
     assert girder.buoyancy is eq.flexible_hull.buoyancy[0]
 
@@ -260,7 +279,8 @@ def test_lifting_the_bow_of_the_stranded_barge_with_ropes():
     ropes = "".join(
         f'\n[[lugs]]\nname = "B{k}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "B{k}"\n'
         f"boom_height = 40.0\nrope_length = 35.0\nEA = 50000.0\nswl = 2000.0\n"
-        for k, (x, y) in enumerate(((40.0, 10.0), (48.0, 10.0), (48.0, -10.0), (40.0, -10.0))))
+        for k, (x, y) in enumerate(((40.0, 10.0), (48.0, 10.0), (48.0, -10.0), (40.0, -10.0)))
+    )
     base = barge(1.0, ropes=ropes)
     scene = dataclasses.replace(base, ground=dataclasses.replace(base.ground, contact=(-30.0, 0.0, -5.0)))
     moved = []
@@ -277,6 +297,7 @@ def test_lifting_the_bow_of_the_stranded_barge_with_ropes():
 
 
 # -- the least-model rule, the combinations held rigid, the command line ----------------------
+
 
 def test_auto_keeps_the_rigid_grounded_hull_within_one_percent_and_says_so():
     stiff, soft = solve(barge(7e10, hull="auto")), solve(barge(7e6, hull="auto"))
@@ -299,8 +320,9 @@ def test_combinations_held_rigid_are_said_or_refused_in_one_line():
 
 def test_hull_past_the_weight_curve_is_refused():
     text = (EXAMPLES / "stranded_barge.toml").read_text()
-    text = text.replace("cog = [5.0, 0.0, 2.0]",
-                        "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-40.0, 156.25], [40.0, 343.75]]")
+    text = text.replace(
+        "cog = [5.0, 0.0, 2.0]", "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-40.0, 156.25], [40.0, 343.75]]"
+    )
     text = text.replace("[ground]", "EI = [[-40.0, 7e8]]\n\n[ground]")
     scene = loads_scene(text + '\n[analysis]\nhull = "flexible"\n', base=EXAMPLES)
     with pytest.raises(InvalidScene, match=r"hull: x from -50 to 50 m reaches past body.weight_curve"):
@@ -310,8 +332,9 @@ def test_hull_past_the_weight_curve_is_refused():
 def test_cli_json_and_console_say_which_hull_and_the_ground_reaction(capsys, tmp_path):
     path = tmp_path / "barge.toml"
     text = (EXAMPLES / "stranded_barge.toml").read_text()
-    text = text.replace("cog = [5.0, 0.0, 2.0]",
-                        "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]")
+    text = text.replace(
+        "cog = [5.0, 0.0, 2.0]", "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]"
+    )
     text = text.replace("[ground]", "EI = [[-50.0, 2e7]]\n\n[ground]")
     path.write_text(text)
     assert main(["solve", str(path), "--json"]) == 0
@@ -332,11 +355,15 @@ def test_hanging_in_water_with_trapped_water_closes_and_tends_to_rigid():
     close to 1e-9 W and W L with the trapped water per length, and at a stiff hull the tensions
     are the rigid hull's to 1e-6."""
     text = (EXAMPLES / "sunken_block_lift.toml").read_text()
-    text = text.replace("cog = [30.0, 0.3, 2.5]",
-                        "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]")
+    text = text.replace(
+        "cog = [30.0, 0.3, 2.5]", "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]"
+    )
     text = text.replace("boom_height = 30.0", "boom_height = 31.0")
-    text = text.replace('[[hull.compartments]]\nname = "fore tank"',
-                        'EI = [[0.0, EIVAL]]\n\n[[hull.compartments]]\nname = "fore tank"', 1)
+    text = text.replace(
+        '[[hull.compartments]]\nname = "fore tank"',
+        'EI = [[0.0, EIVAL]]\n\n[[hull.compartments]]\nname = "fore tank"',
+        1,
+    )
     text += '\n[analysis]\nhull = "flexible"\n'
     for ei, tol in ((1e6, None), (1e12, 1e-6)):
         scene = loads_scene(text.replace("EIVAL", repr(ei)), base=EXAMPLES)

@@ -57,8 +57,11 @@ def stations_scene(stations, ei, ea=5e4, gj=None, curve=None, hull="flexible", w
             lugs.append(Lug(f"S{k}{side}", (x, y, 2.0)))
             cranes.append(Crane(lug=f"S{k}{side}", EA=stiffness, boom_height=40.0, rope_length=L0))
     return Scene(
-        body=Body(weight, (cog_x, 0.0, 2.0), weight_curve=curve), lugs=tuple(lugs), cranes=tuple(cranes),
-        attitude=Attitude(lift_height=5.0), analysis=Analysis(model="elastic", hull=hull),
+        body=Body(weight, (cog_x, 0.0, 2.0), weight_curve=curve),
+        lugs=tuple(lugs),
+        cranes=tuple(cranes),
+        attitude=Attitude(lift_height=5.0),
+        analysis=Analysis(model="elastic", hull=hull),
         girder=GirderStiffness(EI=((0.0, ei),), GJ=None if gj is None else ((0.0, gj),)),
     )
 
@@ -74,6 +77,7 @@ def three_supports(x1, springs, ei, q=Q, x0=-L / 2, x2=L / 2):
 
 
 # -- closed forms -------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("ei", [1e5, 1e6, 3e7])
 def test_uniform_beam_on_two_supports_deflects_as_the_closed_form(ei):
@@ -105,12 +109,15 @@ def test_uniform_beam_on_three_rigid_supports():
     assert_allclose(station_loads(eq, 3), exact, rtol=1e-8)
 
 
-@pytest.mark.parametrize("x1, ea, ei", [
-    (0.0, [5e4, 5e4, 5e4], 1e6),
-    (10.0, [2e4, 8e4, 3e4], 1e6),
-    (-15.0, [1e5, 2e4, 6e4], 3e5),
-    (5.0, [5e4, 5e4, 5e4], 5e7),
-])
+@pytest.mark.parametrize(
+    "x1, ea, ei",
+    [
+        (0.0, [5e4, 5e4, 5e4], 1e6),
+        (10.0, [2e4, 8e4, 3e4], 1e6),
+        (-15.0, [1e5, 2e4, 6e4], 3e5),
+        (5.0, [5e4, 5e4, 5e4], 5e7),
+    ],
+)
 def test_three_elastic_supports_by_the_three_moment_equation(x1, ea, ei):
     """Stations at both ends and at x1, each on its own rope stiffness: the station loads equal
     the three-moment equation with spring settlements (:func:`three_supports`).
@@ -150,11 +157,11 @@ def test_twist_between_two_stations_by_closed_form(gj):
     assert abs(twisted.pose.heel) < 1e-9 and abs(twisted.pose.trim) < 1e-9
     twist = twisted.flexible_hull.twist - base.flexible_hull.twist
     phi = -(k * eps * b / 4) / (k * b**2 / 2 + torsion)
-    assert_allclose(np.interp([-a, a], twisted.flexible_hull.x, twist), np.degrees([phi, -phi]),
-                    rtol=1e-8)
+    assert_allclose(np.interp([-a, a], twisted.flexible_hull.x, twist), np.degrees([phi, -phi]), rtol=1e-8)
 
 
 # -- the rigid limit ------------------------------------------------------------------------------
+
 
 def tanker_six_lugs(ei, hull="flexible"):
     """The tanker of examples/tanker_flexible.toml with a third pair of lugs amidships."""
@@ -212,14 +219,17 @@ def test_tapered_stiffness_converges_with_the_elements():
     from liftplan.model.strength.flexible import flexible_state
 
     x0 = [solve(scene).pose.lift_height, 0.0, 0.0]
-    tensions = [flexible_state(scene, pack_params(scene, "elastic"), x0, elements=e).tensions
-                for e in (10, 20, 40, 80)]
+    tensions = [
+        flexible_state(scene, pack_params(scene, "elastic"), x0, elements=e).tensions
+        for e in (10, 20, 40, 80)
+    ]
     steps = [np.max(np.abs(b - a)) for a, b in zip(tensions[:-1], tensions[1:])]
     assert steps[1] < steps[0] / 3 and steps[2] < steps[1] / 3
     assert steps[2] < 1e-3 * W
 
 
 # -- an independent frame solver ----------------------------------------------------------------
+
 
 def pynite_beam(nodes, curve, springs, ei):
     """PyNite (3D frame FEM, exact cubic members) on the same beam: members between ``nodes``
@@ -281,6 +291,7 @@ def test_agrees_with_pynite_to_1e_6():
 
 # -- strength from the flexible solution, and the least-model rule -------------------------------
 
+
 def test_strength_block_comes_from_the_flexible_tensions_and_closes():
     scene = tanker_six_lugs(2e6)
     eq = solve(scene)
@@ -288,8 +299,11 @@ def test_strength_block_comes_from_the_flexible_tensions_and_closes():
     girder = hull_girder(scene, eq)
     rope = {p.name: p.normal for p in girder.point_loads}
     # the girder's point loads are the flexible tensions' normal components (T cos(trim))
-    assert_allclose([rope[f"rope {n}"] for n in scene.lug_names],
-                    girder.normal_factor * np.array(list(eq.tensions.values())), rtol=1e-12)
+    assert_allclose(
+        [rope[f"rope {n}"] for n in scene.lug_names],
+        girder.normal_factor * np.array(list(eq.tensions.values())),
+        rtol=1e-12,
+    )
     shear, moment = girder.closure
     span = 82.05
     assert abs(shear) < 1e-9 * scene.body.weight and abs(moment) < 1e-9 * scene.body.weight * span
@@ -302,8 +316,9 @@ def test_auto_keeps_the_rigid_hull_within_one_percent_and_says_so():
         eq = solve(scene)
         rigid = solve_hull_on_ropes(scene, hull="rigid")
         flexible = solve_hull_on_ropes(scene, hull="flexible")
-        change = max(abs(flexible.tensions[n] - rigid.tensions[n]) / rigid.tensions[n]
-                     for n in scene.lug_names)
+        change = max(
+            abs(flexible.tensions[n] - rigid.tensions[n]) / rigid.tensions[n] for n in scene.lug_names
+        )
         assert eq.flexible_hull.used == expected
         assert (change > 0.01) == (expected == "flexible")
         assert eq.flexible_hull.max_change == pytest.approx(change, rel=1e-9)
@@ -333,15 +348,19 @@ def test_other_models_hold_the_hull_rigid_and_say_so():
 
 # -- bad input ---------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("edit, message", [
-    ("EI = [[0.0, 0.0]]", r"hull.EI\[0\] = \[0, 0\]: expected a value > 0 t m2"),
-    ("EI = [[0.0, -5e7]]", r"hull.EI\[0\] = \[0, -5e\+07\]: expected a value > 0 t m2"),
-    ("EI = [[10.0, 5e7], [5.0, 5e7]]", r"hull.EI\[1\] = \[5, 5e\+07\]: x 5 m is not greater"),
-    ("EI = [[0.0, 5e7], [90.0, 5e7]]", r"hull.EI\[1\] = \[90, 5e\+07\]: x 90 m lies outside the body"),
-    ("EI = [[0.0, 5e7]]\nGJ = [[-3.0, 1e7]]", r"hull.GJ\[0\] = \[-3, 1e\+07\]: x -3 m lies outside"),
-    ("GJ = [[0.0, 5e7]]", r"hull.GJ: given without hull.EI"),
-    ('EI = "stiff"', r"hull.EI = 'stiff'"),
-])
+
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        ("EI = [[0.0, 0.0]]", r"hull.EI\[0\] = \[0, 0\]: expected a value > 0 t m2"),
+        ("EI = [[0.0, -5e7]]", r"hull.EI\[0\] = \[0, -5e\+07\]: expected a value > 0 t m2"),
+        ("EI = [[10.0, 5e7], [5.0, 5e7]]", r"hull.EI\[1\] = \[5, 5e\+07\]: x 5 m is not greater"),
+        ("EI = [[0.0, 5e7], [90.0, 5e7]]", r"hull.EI\[1\] = \[90, 5e\+07\]: x 90 m lies outside the body"),
+        ("EI = [[0.0, 5e7]]\nGJ = [[-3.0, 1e7]]", r"hull.GJ\[0\] = \[-3, 1e\+07\]: x -3 m lies outside"),
+        ("GJ = [[0.0, 5e7]]", r"hull.GJ: given without hull.EI"),
+        ('EI = "stiff"', r"hull.EI = 'stiff'"),
+    ],
+)
 def test_bad_stiffness_is_one_line(edit, message):
     text = FLEXIBLE.read_text()
     start = text.index("[hull]")
@@ -358,17 +377,18 @@ def test_lug_off_the_body_and_missing_weight_curve_are_refused():
         loads_scene(text.replace("at = [65.6, 6.0, 12.0]", "at = [85.0, 6.0, 12.0]"), base=EXAMPLES)
     start = text.index("weight_curve")
     end = text.index("]\n\n", start)
-    text = text[:start] + text[end + 2:]
+    text = text[:start] + text[end + 2 :]
     start = text.index("[strength]")
     end = text.index("\n\n", start)
     with pytest.raises(InvalidScene, match=r"hull.EI: given but no body.weight_curve"):
-        loads_scene(text[:start] + text[end + 2:], base=EXAMPLES)
+        loads_scene(text[:start] + text[end + 2 :], base=EXAMPLES)
     with pytest.raises(InvalidScene, match=r'analysis.hull = "flexible": no hull.EI given'):
         bare = stations_scene([-40.0, 40.0], 1e6)
         Scene(body=bare.body, lugs=bare.lugs, cranes=bare.cranes, analysis=Analysis(hull="flexible"))
 
 
 # -- command line ---------------------------------------------------------------------------------
+
 
 def test_cli_json_reports_the_hull_the_deflection_and_the_strength(capsys, tmp_path):
     path = tmp_path / "six.toml"

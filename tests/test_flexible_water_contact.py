@@ -23,8 +23,9 @@ SIZE = 100.0
 
 
 def barge(lift_height, ei=7e7, hull="flexible"):
-    return loads_scene(_BARGE_TEXT.replace("LIFT", repr(lift_height)).replace("EIVAL", repr(ei))
-                       .replace("HULL", hull))
+    return loads_scene(
+        _BARGE_TEXT.replace("LIFT", repr(lift_height)).replace("EIVAL", repr(ei)).replace("HULL", hull)
+    )
 
 
 _BARGE_TEXT = """
@@ -60,9 +61,9 @@ def contact_height(eq):
 
 
 def test_bending_hull_rests_on_the_ground_it_would_sink_into():
-    scene = barge(-1.50)          # ground at -6.50 m
+    scene = barge(-1.50)  # ground at -6.50 m
     rigid = solve(barge(-1.50, hull="rigid"))
-    assert rigid.afloat.state == "afloat"          # the rigid keel floats 10 mm above
+    assert rigid.afloat.state == "afloat"  # the rigid keel floats 10 mm above
     assert contact_height(rigid) == pytest.approx(-20000.0 / (1.0273 * 3000.0), abs=1e-6)
     eq = solve(scene)
     ground = -6.50
@@ -79,7 +80,7 @@ def test_bending_hull_rests_on_the_ground_it_would_sink_into():
 
 
 def test_ground_far_below_leaves_the_flexible_hull_afloat():
-    eq = solve(barge(-3.0))        # ground at -8.0 m: 1.5 m of water under the keel
+    eq = solve(barge(-3.0))  # ground at -8.0 m: 1.5 m of water under the keel
     assert eq.afloat.state == "afloat" and eq.afloat.ground_reaction == 0.0
     assert contact_height(eq) > -8.0
 
@@ -100,11 +101,15 @@ def test_flooded_hull_hanging_submerged_immerses_its_whole_envelope():
     from helpers import EXAMPLES
 
     text = (EXAMPLES / "sunken_block_lift.toml").read_text()
-    text = text.replace("cog = [30.0, 0.3, 2.5]",
-                        "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]")
+    text = text.replace(
+        "cog = [30.0, 0.3, 2.5]", "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]"
+    )
     text = text.replace("boom_height = 30.0", "boom_height = 31.0")
-    text = text.replace('[[hull.compartments]]\nname = "fore tank"',
-                        'EI = [[0.0, 1e6]]\n\n[[hull.compartments]]\nname = "fore tank"', 1)
+    text = text.replace(
+        '[[hull.compartments]]\nname = "fore tank"',
+        'EI = [[0.0, 1e6]]\n\n[[hull.compartments]]\nname = "fore tank"',
+        1,
+    )
     text += '\n[analysis]\nhull = "flexible"\n'
     scene = loads_scene(text, base=EXAMPLES)
     eq = solve(scene)
@@ -212,15 +217,18 @@ def test_state_is_classified_from_the_deflected_hull_not_its_chord():
 
     text = _CLEAR_TEXT
     for k, (x, y) in enumerate(((-45.0, 10.0), (45.0, 10.0), (45.0, -10.0), (-45.0, -10.0))):
-        text += (f'\n[[lugs]]\nname = "L{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "L{k + 1}"\n'
-                 "boom_height = 30.07\nrope_length = 20.0\nEA = 500000.0\nswl = 2000.0\n")
+        text += (
+            f'\n[[lugs]]\nname = "L{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "L{k + 1}"\n'
+            "boom_height = 30.07\nrope_length = 20.0\nEA = 500000.0\nswl = 2000.0\n"
+        )
     eq = solve(loads_scene(text))
     pose = eq.pose
     scene = loads_scene(text)
-    chord_bottom, _ = hull_heights(scene.hull, rotation_matrix(pose.heel, pose.trim, pose.yaw),
-                                   pose.lift_height)
+    chord_bottom, _ = hull_heights(
+        scene.hull, rotation_matrix(pose.heel, pose.trim, pose.yaw), pose.lift_height
+    )
     sag = eq.flexible_hull.max_deflection.signed
-    assert chord_bottom > 0.05 and sag < -0.15          # the chord clear, the sagging keel not
+    assert chord_bottom > 0.05 and sag < -0.15  # the chord clear, the sagging keel not
     assert eq.afloat.buoyancy > 100.0
     assert eq.afloat.state == "piercing the surface"
     # the rigid hull at the same hooks hangs clear

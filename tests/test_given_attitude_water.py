@@ -28,12 +28,20 @@ TOL = 1e-9
 def flooded_block(hook, lugs=THREE):
     """A flooded 60 x 12 x 6 m block, CG off the centre line, an air tank amidships and a
     tank of trapped water to port-aft of it, on ropes of equal length: it hangs tilted."""
-    hull = Hull.box([0, -6, 0], [60, 6, 6], flooding="flooded", steel_density=7.85, compartments=(
-        Compartment("air", {"min": [28, -6, 0], "max": [34, 6, 2]}, "air"),
-        Compartment("trapped", {"min": [20, -6, 0], "max": [26, 0, 3]}, "water"),
-    ))
+    hull = Hull.box(
+        [0, -6, 0],
+        [60, 6, 6],
+        flooding="flooded",
+        steel_density=7.85,
+        compartments=(
+            Compartment("air", {"min": [28, -6, 0], "max": [34, 6, 2]}, "air"),
+            Compartment("trapped", {"min": [20, -6, 0], "max": [26, 0, 3]}, "water"),
+        ),
+    )
     return Scene(
-        body=Body(600.0, (31.0, 0.6, 2.5)), water=Water(RHO, 0.0), hull=hull,
+        body=Body(600.0, (31.0, 0.6, 2.5)),
+        water=Water(RHO, 0.0),
+        hull=hull,
         attitude=Attitude(lift_height=hook - 50.0),
         lugs=tuple(Lug(name, at) for name, at in lugs),
         cranes=tuple(Crane(name, EA=50000.0, boom_height=hook, rope_length=44.0) for name, _ in lugs),
@@ -44,7 +52,9 @@ def intact_box(hook):
     """An intact 10 x 4 x 2 m box of 60 t, CG well off centre, half out of the water."""
     lugs = (("A", (-4.0, 1.5, 1.0)), ("B", (4.0, 1.0, 1.0)), ("C", (0.0, -1.5, 1.0)))
     return Scene(
-        body=Body(60.0, (1.5, 0.5, 0.2)), water=Water(RHO, 0.0), hull=Hull.box([-5, -2, -1], [5, 2, 1]),
+        body=Body(60.0, (1.5, 0.5, 0.2)),
+        water=Water(RHO, 0.0),
+        hull=Hull.box([-5, -2, -1], [5, 2, 1]),
         attitude=Attitude(lift_height=hook - 11.0),
         lugs=tuple(Lug(name, at) for name, at in lugs),
         cranes=tuple(Crane(name, EA=800.0, boom_height=hook, rope_length=10.0) for name, _ in lugs),
@@ -55,7 +65,8 @@ def held_at(scene, eq, **analysis):
     """The scene held at the forward answer's attitude and lift height."""
     p = eq.pose
     return dataclasses.replace(
-        scene, attitude=Attitude(heel=p.heel, trim=p.trim, yaw=p.yaw, lift_height=p.lift_height),
+        scene,
+        attitude=Attitude(heel=p.heel, trim=p.trim, yaw=p.yaw, lift_height=p.lift_height),
         analysis=Analysis(**analysis) if analysis else scene.analysis,
     )
 
@@ -74,12 +85,15 @@ def same_water(given, forward, weight):
             assert_allclose(getattr(a, key), getattr(b, key), rtol=0, atol=1e-9 * 60.0)
 
 
-@pytest.mark.parametrize("hook, state, method", [
-    (30.0, "hanging submerged", "linear (constant buoyancy)"),
-    (46.0, "piercing the surface", "linear (clipped hull)"),
-    (47.5, "piercing the surface", "linear (clipped hull)"),  # the surface cuts the trapped tank
-    (49.0, "piercing the surface", "linear (clipped hull)"),  # and the air tank
-])
+@pytest.mark.parametrize(
+    "hook, state, method",
+    [
+        (30.0, "hanging submerged", "linear (constant buoyancy)"),
+        (46.0, "piercing the surface", "linear (clipped hull)"),
+        (47.5, "piercing the surface", "linear (clipped hull)"),  # the surface cuts the trapped tank
+        (49.0, "piercing the surface", "linear (clipped hull)"),  # and the air tank
+    ],
+)
 @pytest.mark.parametrize("model", ["rigid", "paper-elastic"])
 def test_three_ropes_equal_the_forward_model(hook, state, method, model):
     """Three ropes are statically determinate: at the forward answer's pose both models give
@@ -107,8 +121,9 @@ def test_intact_hull_piercing_the_surface(hook, model):
     assert forward.afloat.state == "piercing the surface"
     assert abs(forward.pose.heel) > 1.0 and abs(forward.pose.trim) > 1.0
     given = solve(held_at(scene, forward), model)
-    assert_allclose(list(given.tensions.values()), list(forward.tensions.values()), rtol=0,
-                    atol=TOL * scene.body.weight)
+    assert_allclose(
+        list(given.tensions.values()), list(forward.tensions.values()), rtol=0, atol=TOL * scene.body.weight
+    )
     same_water(given, forward, scene.body.weight)
 
 
@@ -118,11 +133,11 @@ def test_four_ropes_rigid_holding_one_forward_tension(hook):
     to 1e-9 W."""
     scene = flooded_block(hook, FOUR)
     forward = solve(scene)
-    held = held_at(scene, forward, model="rigid",
-                   redundant=(Redundant("A", forward.tensions["A"]),))
+    held = held_at(scene, forward, model="rigid", redundant=(Redundant("A", forward.tensions["A"]),))
     given = solve(held)
-    assert_allclose(list(given.tensions.values()), list(forward.tensions.values()), rtol=0,
-                    atol=TOL * scene.body.weight)
+    assert_allclose(
+        list(given.tensions.values()), list(forward.tensions.values()), rtol=0, atol=TOL * scene.body.weight
+    )
 
 
 @pytest.mark.parametrize("hook", [30.0, 48.0])
@@ -162,8 +177,9 @@ def test_ground_contact_carries_nothing():
     assert with_ground.tensions == without.tensions
     assert_allclose(with_ground.afloat.contact, (30.0, 0.0, -20.0), rtol=0, atol=1e-12)
     # rigid with one held tension, and the balance W + trapped - B = sum T
-    rigid = solve(dataclasses.replace(scene, analysis=Analysis(
-        model="rigid", redundant=(Redundant("L1", 120.0),))))
+    rigid = solve(
+        dataclasses.replace(scene, analysis=Analysis(model="rigid", redundant=(Redundant("L1", 120.0),)))
+    )
     a = rigid.afloat
     assert_allclose(sum(rigid.tensions.values()), a.crane_load(rigid.weight), rtol=0, atol=TOL * 600.0)
     assert rigid.tensions["L1"] == 120.0

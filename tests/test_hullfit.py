@@ -18,11 +18,31 @@ from liftplan.model.scene import Body, Ground, Scene, Water
 from liftplan.model.water import WaterSetup, _root, _rotation
 
 VLCC = Particulars(
-    length=300.0, beam=54.0, draft=15.0, depth=25.0, volume=218356.0, lcb=7.4, vcb=-7.2,
-    waterplane_area=16017.0, lcf=0.28, i_t=4026532.0, i_l=105830806.0,
+    length=300.0,
+    beam=54.0,
+    draft=15.0,
+    depth=25.0,
+    volume=218356.0,
+    lcb=7.4,
+    vcb=-7.2,
+    waterplane_area=16017.0,
+    lcf=0.28,
+    i_t=4026532.0,
+    i_l=105830806.0,
 )
-SHIP = HullForm(beam=32.0, draft=11.0, depth=18.0, aft=-95.0, fwd=100.0, run=45.0, entrance=35.0,
-                run_power=2.5, entrance_power=3.0, bilge=2.5, cutup=20.0)
+SHIP = HullForm(
+    beam=32.0,
+    draft=11.0,
+    depth=18.0,
+    aft=-95.0,
+    fwd=100.0,
+    run=45.0,
+    entrance=35.0,
+    run_power=2.5,
+    entrance_power=3.0,
+    bilge=2.5,
+    cutup=20.0,
+)
 
 
 @pytest.fixture(scope="module")
@@ -32,13 +52,25 @@ def vlcc():
 
 def liftplan_particulars(triangles):
     hs = MeshHydrostatics(triangles).at(np.eye(3), 0.0)
-    return {"volume": hs.volume, "lcb": hs.centre[0], "vcb": hs.centre[2],
-            "waterplane_area": hs.waterplane_area, "lcf": hs.flotation[0], "i_t": hs.inertia[0],
-            "i_l": hs.inertia[1]}
+    return {
+        "volume": hs.volume,
+        "lcb": hs.centre[0],
+        "vcb": hs.centre[2],
+        "waterplane_area": hs.waterplane_area,
+        "lcf": hs.flotation[0],
+        "i_t": hs.inertia[0],
+        "i_l": hs.inertia[1],
+    }
 
 
-@pytest.mark.parametrize("form", [SHIP, HullForm.box(100.0, 30.0, 5.0, 10.0),
-                                  HullForm(beam=20, draft=6, depth=9, aft=-40, fwd=40, entrance=20, bilge=6)])
+@pytest.mark.parametrize(
+    "form",
+    [
+        SHIP,
+        HullForm.box(100.0, 30.0, 5.0, 10.0),
+        HullForm(beam=20, draft=6, depth=9, aft=-40, fwd=40, entrance=20, bilge=6),
+    ],
+)
 def test_mesh_is_closed_and_consistently_wound(form, tmp_path):
     """Closed, consistently wound, outward (positive volume), and read back by [hull] mesh
     from binary and ASCII STL with the same volume."""
@@ -60,9 +92,15 @@ def test_box_limit_equals_the_closed_forms():
     mesh encloses L B D."""
     length, beam, draft, depth = 120.0, 24.0, 7.0, 12.0
     form = HullForm.box(length, beam, draft, depth)
-    closed = {"volume": length * beam * draft, "lcb": 0.0, "vcb": -draft / 2,
-              "waterplane_area": length * beam, "lcf": 0.0,
-              "i_t": length * beam**3 / 12, "i_l": beam * length**3 / 12}
+    closed = {
+        "volume": length * beam * draft,
+        "lcb": 0.0,
+        "vcb": -draft / 2,
+        "waterplane_area": length * beam,
+        "lcf": 0.0,
+        "i_t": length * beam**3 / 12,
+        "i_l": beam * length**3 / 12,
+    }
     own = particulars(form)
     lp = liftplan_particulars(hull_triangles(form))
     for name, value in closed.items():
@@ -116,8 +154,12 @@ def test_vlcc_case_1_against_the_paper(vlcc):
     paper's trim (0.8 bow up) and 2 % of its F_R (72 120 t), and unstable in heel, so solve
     refuses it with the reason."""
     hull = Hull(vlcc.triangles())
-    scene = Scene(body=Body(320000.0, (20.0, 0.0, 5.0)), water=Water(1.0273, 0.0), hull=hull,
-                  ground=Ground(contact=(90.0, 0.0, -15.0)))
+    scene = Scene(
+        body=Body(320000.0, (20.0, 0.0, 5.0)),
+        water=Water(1.0273, 0.0),
+        hull=hull,
+        ground=Ground(contact=(90.0, 0.0, -15.0)),
+    )
     setup = WaterSetup(scene)
     p = setup.params(np.eye(3))
     tilts, _ = _root(setup.model.grounded_root, [0.0, 0.0], p)
@@ -133,24 +175,31 @@ def test_vlcc_case_1_against_the_paper(vlcc):
         solve(scene)
 
 
-@pytest.mark.parametrize("make, match", [
-    (lambda: HullForm(beam=-1, draft=5, depth=10, aft=-5, fwd=5), "hull form beam = -1"),
-    (lambda: HullForm(beam=10, draft=5, depth=4, aft=-5, fwd=5), "hull form depth = 4 m: expected more"),
-    (lambda: HullForm(beam=10, draft=5, depth=8, aft=5, fwd=-5), "hull form fwd = -5 m"),
-    (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, bilge=6), "hull form bilge = 6 m"),
-    (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, run=6, entrance=6), "run \\+ entrance"),
-    (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, run_power=0.5), "run_power = 0.5"),
-    (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, run=4, cutup=7), "hull form cutup = 7"),
-    (lambda: HullForm(beam="wide", draft=5, depth=8, aft=-5, fwd=5), "hull form beam = 'wide'"),
-    (lambda: Particulars(volume=math.nan), "particulars.volume = nan"),
-    (lambda: fitted_hull(Particulars(beam=54, draft=15, depth=25, volume=1e5)),
-     "particulars.length: missing"),
-    (lambda: fitted_hull(Particulars(length=10, beam=2, draft=1, depth=2, volume=30)),
-     "volume = 30 m3: more"),
-    (lambda: fitted_hull(VLCC, weights={"lcb": -1}), "weights\\['lcb'\\] = -1"),
-    (lambda: fitted_hull(VLCC, weights={"gm": 1}), "weights\\['gm'\\]: not a given particular"),
-    (lambda: fitted_hull({"length": 300}), "expected Particulars"),
-])
+@pytest.mark.parametrize(
+    "make, match",
+    [
+        (lambda: HullForm(beam=-1, draft=5, depth=10, aft=-5, fwd=5), "hull form beam = -1"),
+        (lambda: HullForm(beam=10, draft=5, depth=4, aft=-5, fwd=5), "hull form depth = 4 m: expected more"),
+        (lambda: HullForm(beam=10, draft=5, depth=8, aft=5, fwd=-5), "hull form fwd = -5 m"),
+        (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, bilge=6), "hull form bilge = 6 m"),
+        (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, run=6, entrance=6), "run \\+ entrance"),
+        (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, run_power=0.5), "run_power = 0.5"),
+        (lambda: HullForm(beam=10, draft=5, depth=8, aft=-5, fwd=5, run=4, cutup=7), "hull form cutup = 7"),
+        (lambda: HullForm(beam="wide", draft=5, depth=8, aft=-5, fwd=5), "hull form beam = 'wide'"),
+        (lambda: Particulars(volume=math.nan), "particulars.volume = nan"),
+        (
+            lambda: fitted_hull(Particulars(beam=54, draft=15, depth=25, volume=1e5)),
+            "particulars.length: missing",
+        ),
+        (
+            lambda: fitted_hull(Particulars(length=10, beam=2, draft=1, depth=2, volume=30)),
+            "volume = 30 m3: more",
+        ),
+        (lambda: fitted_hull(VLCC, weights={"lcb": -1}), "weights\\['lcb'\\] = -1"),
+        (lambda: fitted_hull(VLCC, weights={"gm": 1}), "weights\\['gm'\\]: not a given particular"),
+        (lambda: fitted_hull({"length": 300}), "expected Particulars"),
+    ],
+)
 def test_bad_input_is_one_line(make, match):
     with pytest.raises(InvalidScene, match=match) as err:
         make()

@@ -60,8 +60,9 @@ def test_trimmed_box_waterplane_centre():
     assert_allclose(hs.volume, L * B * D / 2, rtol=1e-12)
 
 
-@pytest.mark.parametrize("zo, volume", [(-D, L * B * D), (-D / 2, L * B * D), (D / 2, 0.0),
-                                        (D, 0.0), (0.0, L * B * D / 2)])
+@pytest.mark.parametrize(
+    "zo, volume", [(-D, L * B * D), (-D / 2, L * B * D), (D / 2, 0.0), (D, 0.0), (0.0, L * B * D / 2)]
+)
 def test_submerged_touching_and_clear(zo, volume):
     """Fully submerged (deck at or below the surface), just touching from above, clear."""
     hs = MeshHydrostatics(BOX.triangles).at(np.eye(3), zo)

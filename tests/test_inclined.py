@@ -27,8 +27,9 @@ def test_tips_above_the_lugs_equal_vertical_model(block):
     eq = solve(with_tips(scene, tips))
     assert eq.model == "inclined"
     assert_allclose(list(eq.tensions.values()), list(vertical.tensions.values()), rtol=1e-9)
-    assert_allclose((eq.pose.heel, eq.pose.trim, eq.pose.lift_height),
-                    (pose.heel, pose.trim, pose.lift_height), atol=1e-9)
+    assert_allclose(
+        (eq.pose.heel, eq.pose.trim, eq.pose.lift_height), (pose.heel, pose.trim, pose.lift_height), atol=1e-9
+    )
     assert max(f.horizontal for f in eq.rope_forces.values()) < 1e-6
 
 

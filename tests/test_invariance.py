@@ -34,7 +34,9 @@ def mirrored(scene):
     cog = scene.body.cog
     att = scene.attitude
     return dataclasses.replace(
-        scene, lugs=lugs, body=Body(scene.body.weight, (cog[0], -cog[1], cog[2])),
+        scene,
+        lugs=lugs,
+        body=Body(scene.body.weight, (cog[0], -cog[1], cog[2])),
         attitude=dataclasses.replace(att, heel=-att.heel),
     )
 
@@ -72,7 +74,9 @@ def test_translate_body_frame(uneven, model):
     cog = tuple(np.array(scene.body.cog) - shift)
     rz = (rotation_matrix(att.heel, att.trim, att.yaw) @ shift)[2]
     moved = dataclasses.replace(
-        scene, lugs=lugs, body=Body(scene.body.weight, cog),
+        scene,
+        lugs=lugs,
+        body=Body(scene.body.weight, cog),
         attitude=dataclasses.replace(att, lift_height=att.lift_height + rz),
     )
     a, b = solve(scene), solve(moved)
@@ -90,18 +94,18 @@ def test_other_frame_same_tensions(uneven, model):
         )
         cranes = "\n".join(
             f'[[cranes]]\nlug = "{c.lug}"\nboom_height = {c.boom_height!r}\n'
-            f"rope_length = {c.rope_length!r}\nEA = {c.EA!r}" for c in scene.cranes
+            f"rope_length = {c.rope_length!r}\nEA = {c.EA!r}"
+            for c in scene.cranes
         )
         red = "".join(
-            f'\nredundant = {{ lug = "{r.lug}", tension = {r.tension!r} }}'
-            for r in scene.analysis.redundant
+            f'\nredundant = {{ lug = "{r.lug}", tension = {r.tension!r} }}' for r in scene.analysis.redundant
         )
         att = scene.attitude
         return (
             f'frame = "{frame}"\n[body]\nweight = {scene.body.weight!r}\n'
             f"cog = [{', '.join(map(repr, point(scene.body.cog)))}]\n{pts}\n{cranes}\n"
             f"[attitude]\nheel = {att.heel!r}\ntrim = {att.trim!r}\n"
-            f"lift_height = {att.lift_height!r}\n[analysis]\nmodel = \"{model}\"{red}\n"
+            f'lift_height = {att.lift_height!r}\n[analysis]\nmodel = "{model}"{red}\n'
         )
 
     zup = solve(loads_scene(text("z-up", lambda p: p)))

@@ -55,9 +55,22 @@ def test_load_curve_balances_and_phases(curve):
 def test_lift_cli_writes_figure_and_json(tmp_path):
     figure = tmp_path / "curve.png"
     out = subprocess.run(
-        [sys.executable, "-m", "liftplan.planner.cli", "lift", str(EXAMPLES / "sunken_block_lift.toml"),
-         "--step", "1", "--json", "--figure", str(figure)],
-        capture_output=True, text=True, check=True)
+        [
+            sys.executable,
+            "-m",
+            "liftplan.planner.cli",
+            "lift",
+            str(EXAMPLES / "sunken_block_lift.toml"),
+            "--step",
+            "1",
+            "--json",
+            "--figure",
+            str(figure),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     data = json.loads(out.stdout)
     assert data["max_load"]["lug"] in data["lugs"] and data["lift_off"] is not None
     assert [e["event"] for e in data["events"]] == ["lift-off", "surface", "clear"]
@@ -83,8 +96,11 @@ def test_least_model_submerged_equals_clipped():
     full = solve_in_water(scene)
     assert least.model == "submerged" and full.model == "hydrostatic"
     assert_allclose(list(least.tensions.values()), list(full.tensions.values()), rtol=1e-9, atol=1e-8)
-    assert_allclose((least.pose.heel, least.pose.trim, least.pose.lift_height),
-                    (full.pose.heel, full.pose.trim, full.pose.lift_height), atol=1e-9)
+    assert_allclose(
+        (least.pose.heel, least.pose.trim, least.pose.lift_height),
+        (full.pose.heel, full.pose.trim, full.pose.lift_height),
+        atol=1e-9,
+    )
     assert least.afloat.buoyancy == pytest.approx(full.afloat.buoyancy, rel=1e-12)
 
 

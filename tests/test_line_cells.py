@@ -41,8 +41,9 @@ def hull():
 def small(hull):
     """5 lugs among 12 stations on the 154 m hull's two lines (792 sets), 2 000 t hung."""
     keep = [c for c in hull.candidates if int(c.name[1:]) in STATIONS]
-    return dataclasses.replace(hull, candidates=tuple(keep), cranes=5,
-                               body=dataclasses.replace(hull.body, weight=2000.0))
+    return dataclasses.replace(
+        hull, candidates=tuple(keep), cranes=5, body=dataclasses.replace(hull.body, weight=2000.0)
+    )
 
 
 @pytest.fixture(scope="module")
@@ -62,8 +63,9 @@ def test_plane_lp_is_the_held_model(hull, objective):
     evaluator = SetEvaluator(problem)
     plane = PlaneLP(problem, evaluator.dense)
     rng = np.random.default_rng(3)
-    sets = line_starts(problem)[:2] + [tuple(sorted(rng.choice(80, 26, replace=False).tolist()))
-                                       for _ in range(2)]
+    sets = line_starts(problem)[:2] + [
+        tuple(sorted(rng.choice(80, 26, replace=False).tolist())) for _ in range(2)
+    ]
     for indices in sets:
         exact = evaluator.evaluate(indices).worst_value
         assert plane.value(indices) == pytest.approx(exact, rel=1e-7)

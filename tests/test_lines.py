@@ -36,8 +36,11 @@ def test_line_totals_are_the_statics_of_every_set():
     takes them to carry, at every scenario (the held model's tensions, any preload)."""
     tanker = dataclasses.replace(load_problem(EXAMPLES / "tanker_plan.toml"), hook_tolerance=0.0)
     lines = two_lines(tanker)
-    scenarios = [Scenario(h, t, tuple(o)) for o in tanker.cog_envelope.offsets()[:3]
-                 for h, t in box_attitudes(tanker, 3, 3)]
+    scenarios = [
+        Scenario(h, t, tuple(o))
+        for o in tanker.cog_envelope.offsets()[:3]
+        for h, t in box_attitudes(tanker, 3, 3)
+    ]
     rng = np.random.default_rng(5)
     for _ in range(5):
         indices = np.sort(rng.choice(len(tanker.candidates), 4, replace=False))
@@ -62,8 +65,11 @@ def test_count_bound_never_above_any_sets_optimum():
     is at most the proved optimum for 4 to 6 cranes."""
     problem = tanker_with(16, 4)
     lines = two_lines(problem)
-    scenarios = [Scenario(h, t, tuple(o)) for o in problem.cog_envelope.offsets()
-                 for h, t in box_attitudes(problem, 5, 5)]
+    scenarios = [
+        Scenario(h, t, tuple(o))
+        for o in problem.cog_envelope.offsets()
+        for h, t in box_attitudes(problem, 5, 5)
+    ]
     coarse = count_bounds(problem, lines, scenarios)
     dense = count_bounds(problem, lines, SetEvaluator(problem).dense)
     ranking, _ = search(problem, 40)
@@ -95,8 +101,11 @@ def test_lines_one_above_the_other_bound_nothing():
     from liftplan.planner.problem.definition import Candidate
 
     hull = load_problem(EXAMPLES / "hull154_plan.toml")
-    row = tuple(Candidate(f"{tier}{k}", (x, 0.0, z)) for k, x in enumerate(np.linspace(-60, 60, 8))
-                for tier, z in (("U", 16.0), ("L", 4.0)))
+    row = tuple(
+        Candidate(f"{tier}{k}", (x, 0.0, z))
+        for k, x in enumerate(np.linspace(-60, 60, 8))
+        for tier, z in (("U", 16.0), ("L", 4.0))
+    )
     problem = dataclasses.replace(hull, candidates=row, cranes=4, fleet=())
     lines = two_lines(problem)
     assert lines is not None and list(lines.counts) == [8, 8]

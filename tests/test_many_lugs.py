@@ -25,25 +25,37 @@ def corner_lp(problem, indices):
     """The preload LP (cvxpy + Clarabel) over the dual's scenarios: box corners and level,
     every CG vertex, with the hook errors exact; None when it is infeasible."""
     x, offsets = screening_scenarios(problem, corners=True)
-    scenarios = [Scenario(float(np.degrees(h)), float(np.degrees(t)), tuple(map(float, o)))
-                 for (_, h, t), o in zip(x, offsets)]
+    scenarios = [
+        Scenario(float(np.degrees(h)), float(np.degrees(t)), tuple(map(float, o)))
+        for (_, h, t), o in zip(x, offsets)
+    ]
     lugset = LugSet(problem, indices)
     gains, q = lugset.affine(scenarios)
-    hook = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) \
-        if lugset.hook_uncertain else None
+    hook = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) if lugset.hook_uncertain else None
     count = len(scenarios)
     lp = PreloadMinimax(lugset.n, count, problem.objective)
     try:
-        result = lp.solve(gains, q, *lugset.level_statics, lugset.preload_range(),
-                          (np.full((count, lugset.n), problem.min_tension),
-                           np.tile(lugset.limit, (count, 1))), scale=lugset.scale, hook=hook)
+        result = lp.solve(
+            gains,
+            q,
+            *lugset.level_statics,
+            lugset.preload_range(),
+            (np.full((count, lugset.n), problem.min_tension), np.tile(lugset.limit, (count, 1))),
+            scale=lugset.scale,
+            hook=hook,
+        )
     except PlanInfeasible:
         return None
     return result.worst_spread
 
 
-CASES = [(5, 0.0, "spread"), (6, 0.0, "spread"), (5, 0.02, "spread"), (5, 0.0, "reserve"),
-         (6, 0.02, "spread")]
+CASES = [
+    (5, 0.0, "spread"),
+    (6, 0.0, "spread"),
+    (5, 0.02, "spread"),
+    (5, 0.0, "reserve"),
+    (6, 0.02, "spread"),
+]
 
 
 @pytest.mark.parametrize("cranes, hook, objective", CASES)
@@ -51,8 +63,7 @@ def test_dual_bound_is_a_lower_bound_and_nearly_the_lp(tanker, cranes, hook, obj
     """Weak duality: whatever the optimiser did, the bound never exceeds the LP it bounds
     (Clarabel's tolerance, 1e-6 W); without hook errors it is within 0.5 % of it (a fixed
     count of Newton steps per tau: measured at most 0.16 % on these sets; ten steps close it)."""
-    problem = dataclasses.replace(tanker, cranes=cranes, hook_tolerance=hook, fleet=(),
-                                  objective=objective)
+    problem = dataclasses.replace(tanker, cranes=cranes, hook_tolerance=hook, fleet=(), objective=objective)
     sets = all_sets(problem)
     rng = np.random.default_rng(7)
     pick = sets[rng.choice(len(sets), 24, replace=False)]

@@ -67,8 +67,12 @@ def test_example_is_the_26_point_builder():
 
 @pytest.mark.parametrize("model", ["elastic", "paper-elastic", "rigid"])
 def test_example_on_the_command_line(model):
-    out = subprocess.run([sys.executable, "-m", "liftplan.planner.cli", "solve", str(EXAMPLE),
-                          "--model", model, "--json"], capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-m", "liftplan.planner.cli", "solve", str(EXAMPLE), "--model", model, "--json"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert data["model"] == model and data["converged"] is True and len(data["tensions"]) == 26
@@ -78,8 +82,9 @@ def test_example_on_the_command_line(model):
 
 
 # -- accuracy against independent peers ---------------------------------------------------
-@pytest.mark.parametrize(("per_side", "seed"), [(13, None), (13, 1), (32, 2)],
-                         ids=["26 even", "26 uneven", "64 uneven"])
+@pytest.mark.parametrize(
+    ("per_side", "seed"), [(13, None), (13, 1), (32, 2)], ids=["26 even", "26 uneven", "64 uneven"]
+)
 def test_elastic_against_scipy(per_side, seed):
     scene = hull_scene(per_side, seed)
     eq = solve(scene, model="elastic")
@@ -185,8 +190,9 @@ def prepared(scene, model):
 def test_reorder_26(hull26, model):
     scene = prepared(hull26.with_attitude(heel=0.7, trim=-0.4), model)
     order = np.random.default_rng(3).permutation(scene.n)
-    shuffled = dataclasses.replace(scene, lugs=tuple(scene.lugs[i] for i in order),
-                                   cranes=tuple(reversed(scene.cranes)))
+    shuffled = dataclasses.replace(
+        scene, lugs=tuple(scene.lugs[i] for i in order), cranes=tuple(reversed(scene.cranes))
+    )
     a, b = solve(scene), solve(shuffled)
     assert list(b.tensions) == [scene.lugs[i].name for i in order]
     assert_allclose([b.tensions[k] for k in a.tensions], list(a.tensions.values()), rtol=1e-9)
@@ -206,8 +212,10 @@ def test_mirror_26(hull26, model):
         cranes=tuple(dataclasses.replace(c, lug=swap[c.lug]) for c in scene.cranes),
         body=Body(scene.body.weight, (cog[0], -cog[1], cog[2])),
         attitude=dataclasses.replace(scene.attitude, heel=-scene.attitude.heel),
-        analysis=dataclasses.replace(scene.analysis, redundant=tuple(
-            Redundant(swap[r.lug], r.tension) for r in scene.analysis.redundant)),
+        analysis=dataclasses.replace(
+            scene.analysis,
+            redundant=tuple(Redundant(swap[r.lug], r.tension) for r in scene.analysis.redundant),
+        ),
     )
     a, b = solve(scene), solve(mirrored)
     assert_allclose([b.tensions[swap[k]] for k in a.tensions], list(a.tensions.values()), rtol=1e-9)
@@ -268,8 +276,9 @@ def test_rope_rows_example():
     high = max(eq.tensions, key=eq.tensions.get)
     low = min(eq.tensions, key=eq.tensions.get)
     assert (high, low) == ("P01", "S13")  # CG aft and to port
-    assert lines[0].startswith(f"26 ropes, W = 9000.00 t: tension max {eq.tensions['P01']:.2f} t at "
-                               "P01 (x -66.00 m, port)")
+    assert lines[0].startswith(
+        f"26 ropes, W = 9000.00 t: tension max {eq.tensions['P01']:.2f} t at P01 (x -66.00 m, port)"
+    )
     assert f"min {eq.tensions['S13']:.2f} t at S13 (x 66.00 m, starboard)" in lines[0]
     assert lines[1].startswith(f"utilisation max {100 * eq.tensions['P01'] / 900:.1f} % at P01")
     assert lines[2] == "slack: none"
@@ -292,9 +301,15 @@ def test_rope_rows_64_flags_and_centre_line(hull64):
     two lugs of one side at one station take two lines."""
     extra = (Lug("C1", (0.0, 0.0, 16.0)), Lug("P07b", (hull64.lugs[6].at[0], 9.0, 16.0)))
     cranes = tuple(dataclasses.replace(hull64.cranes[0], lug=lug.name, rope_length=109.7) for lug in extra)
-    scene = dataclasses.replace(
-        hull64, lugs=hull64.lugs + extra, cranes=hull64.cranes + cranes,
-    ).with_crane("S10", rope_length=110.5).with_crane("P20", swl=100.0)
+    scene = (
+        dataclasses.replace(
+            hull64,
+            lugs=hull64.lugs + extra,
+            cranes=hull64.cranes + cranes,
+        )
+        .with_crane("S10", rope_length=110.5)
+        .with_crane("P20", swl=100.0)
+    )
     eq = solve(scene)
     assert eq.slack == ("S10",) and eq.utilisation["P20"] > 1.0
     lines = rope_rows(scene, eq)

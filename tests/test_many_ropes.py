@@ -29,8 +29,12 @@ MODELS = ["elastic", "paper-elastic", "rigid"]
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "liftplan.planner.cli", *map(str, args)],
-                          capture_output=True, text=True, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "liftplan.planner.cli", *map(str, args)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
 
 
 # -- 64 ropes through solve ------------------------------------------------------------------
@@ -49,8 +53,14 @@ def test_64_point_example_on_the_command_line(model):
     lines = console.stdout.splitlines()
     # one line per station (32), port beside starboard, not 64 rows
     assert any("port" in line and "starboard" in line for line in lines)
-    rows = [line for line in lines if line.split()[:1] and line.split()[1:2]
-            and line.split()[1].startswith("P") and line.split()[1][1:].isdigit()]
+    rows = [
+        line
+        for line in lines
+        if line.split()[:1]
+        and line.split()[1:2]
+        and line.split()[1].startswith("P")
+        and line.split()[1][1:].isdigit()
+    ]
     assert len(rows) == 32 and all(f"S{k:02d}" in row for k, row in enumerate(rows, start=1))
     assert max(len(line) for line in lines) <= 160
 
@@ -63,8 +73,10 @@ def test_64_elastic_equals_paper_elastic_at_its_own_pose():
     scene = load_scene(SCENE64)
     elastic = solve(scene)
     pose = elastic.pose
-    paper = solve(scene.with_attitude(heel=pose.heel, trim=pose.trim, lift_height=pose.lift_height),
-                  model="paper-elastic")
+    paper = solve(
+        scene.with_attitude(heel=pose.heel, trim=pose.trim, lift_height=pose.lift_height),
+        model="paper-elastic",
+    )
     ours, theirs = (np.array([eq.tensions[n] for n in scene.lug_names]) for eq in (elastic, paper))
     assert_allclose(ours, theirs, atol=1e-5 * scene.body.weight)
     assert elastic.residual <= 1e-9 * scene.body.weight
@@ -117,8 +129,16 @@ def checked26(tmp_path_factory):
     folder = tmp_path_factory.mktemp("check26")
     shutil.copy(EXAMPLES / "hull154_26_given.toml", folder)
     (folder / "study.toml").write_text(CHECK_STUDY, encoding="utf-8")
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0",
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=1,
+            threads_per_worker=1,
+            processes=False,
+            dashboard_address=":0",
+            silence_logs=logging.ERROR,
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         summary = run_study(load_study(folder / "study.toml"), client=client, progress=False)
     with open(folder / "check26.csv", newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
@@ -143,8 +163,9 @@ def held_by_direct_solve(base, weight, cog, heel, trim):
     base_t = k * (free - scene.attitude.lift_height - world[:, 2])
     basis = np.column_stack([np.ones(len(names)), lugs[:, 0], lugs[:, 1]])  # dh = basis @ (a, b, c)
     statics = np.vstack([np.ones(len(names)), world[:, 0], world[:, 1]])
-    coef = np.linalg.solve(statics @ (k[:, None] * basis),
-                           weight * np.array([1.0, g[0], g[1]]) - statics @ base_t)
+    coef = np.linalg.solve(
+        statics @ (k[:, None] * basis), weight * np.array([1.0, g[0], g[1]]) - statics @ base_t
+    )
     dh = basis @ coef
     moved = scene.with_body(weight=weight, cog=tuple(cog))
     for name, shift in zip(names, dh):
@@ -184,14 +205,19 @@ def test_batch_check_26_reason_names_rope_and_lug(checked26):
     _, _, base = checked26
     problem, chosen = base.problem, base.chosen
     cog = np.array(problem.body.cog)
-    result = check_plan(problem, chosen.indices, chosen.preload,
-                        CheckCases(np.array([9000.0]), cog[None, :], np.array([1.0]),
-                                   np.array([0.5]), np.array([300.0])))
+    result = check_plan(
+        problem,
+        chosen.indices,
+        chosen.preload,
+        CheckCases(np.array([9000.0]), cog[None, :], np.array([1.0]), np.array([0.5]), np.array([300.0])),
+    )
     assert result.status == ["unsafe"]
     label = result.reason[0].split()[1]
     lug = base.lugs[label]
-    assert result.reason[0].startswith(f"rope {label} ({lug}) ") and "below min_tension 300 t" in \
-        result.reason[0]
+    assert (
+        result.reason[0].startswith(f"rope {label} ({lug}) ")
+        and "below min_tension 300 t" in result.reason[0]
+    )
 
 
 # -- the report at 26 and 64 ropes ------------------------------------------------------------
@@ -226,11 +252,14 @@ def labels_overlap(fig):
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
     renderer = canvas.get_renderer()
-    boxes = [(t.get_text(), t.get_window_extent(renderer)) for ax in fig.axes for t in ax.texts
-             if t.get_visible() and t.get_text()]
+    boxes = [
+        (t.get_text(), t.get_window_extent(renderer))
+        for ax in fig.axes
+        for t in ax.texts
+        if t.get_visible() and t.get_text()
+    ]
     assert len(boxes) >= 4, "the figure names nothing: the overlap test would be empty"
-    return [(a, b) for i, (a, box) in enumerate(boxes) for b, other in boxes[i + 1:]
-            if box.overlaps(other)]
+    return [(a, b) for i, (a, box) in enumerate(boxes) for b, other in boxes[i + 1 :] if box.overlaps(other)]
 
 
 def needs_pdf():

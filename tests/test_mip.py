@@ -51,8 +51,11 @@ def test_tension_model_is_the_held_model():
     """The MIP's per-candidate form gives the held-preload tensions of the casadi model
     exactly (any set, any preload): the set enters only through which columns are summed."""
     problem = load_problem(EXAMPLES / "tanker_plan.toml")
-    scenarios = [Scenario(h, t, tuple(o)) for o in problem.cog_envelope.offsets()[:3]
-                 for h, t in box_attitudes(problem, 3, 3)]
+    scenarios = [
+        Scenario(h, t, tuple(o))
+        for o in problem.cog_envelope.offsets()[:3]
+        for h, t in box_attitudes(problem, 3, 3)
+    ]
     data = poses(problem, scenarios)
     rng = np.random.default_rng(3)
     for indices in [(0, 3, 11, 14), (1, 4, 6, 9, 12), (0, 2, 5, 7, 10, 15)]:
@@ -146,8 +149,11 @@ def test_gap_target_and_an_independent_dense_check():
     assert stats.lower_bound <= best + 1e-6 * problem.body.weight
     chosen = result.chosen
     lugset = LugSet(problem, chosen.indices, chosen.cranes)
-    grid = [Scenario(h, t, tuple(o)) for o in problem.cog_envelope.offsets()
-            for h, t in box_attitudes(problem, 33, 33)]  # 33: not the search's 21 nor 9
+    grid = [
+        Scenario(h, t, tuple(o))
+        for o in problem.cog_envelope.offsets()
+        for h, t in box_attitudes(problem, 33, 33)
+    ]  # 33: not the search's 21 nor 9
     tensions = lugset.tensions(chosen.preload, grid)
     assert np.ptp(tensions, axis=1).max() <= chosen.worst_spread + 1e-6 * problem.body.weight
     assert stats.lower_bound <= chosen.worst_spread
@@ -191,8 +197,10 @@ def test_hook_tolerance_fits_the_same_formulation(monkeypatch):
         return ranking, dataclasses.replace(stats, lower_bound=0.0)
 
     monkeypatch.setattr(lug_mip, "_incumbent", unproved)
-    for problem in (small_problem(4, hook_tolerance=0.02),
-                    dataclasses.replace(fleet_problem(4, "utilisation"), hook_tolerance=0.02)):
+    for problem in (
+        small_problem(4, hook_tolerance=0.02),
+        dataclasses.replace(fleet_problem(4, "utilisation"), hook_tolerance=0.02),
+    ):
         exact, _ = search(dataclasses.replace(problem, search="exact"), 1)
         ranking, stats = search(mip(problem), 1)
         assert ranking[0].worst_value == pytest.approx(exact[0].worst_value, rel=1e-6)

@@ -43,11 +43,14 @@ def test_draws_are_reproducible_and_larger_errors_exceed_the_plan(tanker_plan):
     assert not np.all(normal.inside)  # a normal draw leaves the box now and then
 
 
-@pytest.mark.parametrize(("kwargs", "message"), [
-    ({"draws": 0}, "draws = 0: expected an integer >= 1"),
-    ({"distribution": "gauss"}, "expected uniform or normal"),
-    ({"tolerance": -0.1}, "expected finite hook tolerances >= 0 m"),
-])
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"draws": 0}, "draws = 0: expected an integer >= 1"),
+        ({"distribution": "gauss"}, "expected uniform or normal"),
+        ({"tolerance": -0.1}, "expected finite hook tolerances >= 0 m"),
+    ],
+)
 def test_bad_input(tanker_plan, kwargs, message):
     with pytest.raises(InvalidScene, match=message):
         hook_monte_carlo(tanker_plan, **kwargs)
@@ -85,9 +88,16 @@ def client():
 
     from dask.distributed import Client, LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=":0", silence_logs=logging.ERROR) as cluster, \
-            Client(cluster) as dask_client:
+    with (
+        LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",
+            silence_logs=logging.ERROR,
+        ) as cluster,
+        Client(cluster) as dask_client,
+    ):
         yield dask_client
 
 
@@ -129,8 +139,9 @@ def test_montecarlo_study_is_seeded_reproducible_and_within_the_plan(tmp_path, c
 def test_montecarlo_study_per_crane_tolerance_and_normal(tmp_path, client, tanker_plan):
     from liftplan.planner.batch.run import run_study
 
-    text = MC_STUDY.replace("seed = 5", 'seed = 5\ndistribution = "normal"\ntolerance = 0.1\n'
-                            'tolerances = { "crane 2" = 0.0 }')
+    text = MC_STUDY.replace(
+        "seed = 5", 'seed = 5\ndistribution = "normal"\ntolerance = 0.1\ntolerances = { "crane 2" = 0.0 }'
+    )
     study = _study(tmp_path, text)
     run_study(study, client=client, progress=False)
     rows = _table(tmp_path / "mc.csv")
@@ -145,16 +156,21 @@ def test_montecarlo_study_per_crane_tolerance_and_normal(tmp_path, client, tanke
     assert unsafe and all("over the SWL" in r["reason"] or "slack" in r["reason"] for r in unsafe)
 
 
-@pytest.mark.parametrize(("text", "match"), [
-    (MC_STUDY.replace("draws = 2000", "draws = 0"), "montecarlo.draws"),
-    (MC_STUDY.replace("seed = 5", 'seed = 5\ndistribution = "gauss"'), "montecarlo.distribution"),
-    (MC_STUDY.replace("seed = 5", "seed = 5\ntolerance = -0.1"), "montecarlo.tolerance = -0.1"),
-    (MC_STUDY.replace("seed = 5", 'seed = 5\ntolerances = { "crane 9" = 0.1 }'),
-     "montecarlo.tolerances.crane 9: no such crane"),
-    (MC_STUDY.replace("seed = 5", "seed = 5\ntolerance = 0.0"), "every hook's tolerance is 0"),
-    (MC_STUDY + '\n[sweep]\n"body.weight" = [900.0]\n', "sweep: given with study.kind = 'montecarlo'"),
-    (MC_STUDY.replace('kind = "montecarlo"', 'kind = "check"'), "montecarlo: given with study.kind"),
-])
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        (MC_STUDY.replace("draws = 2000", "draws = 0"), "montecarlo.draws"),
+        (MC_STUDY.replace("seed = 5", 'seed = 5\ndistribution = "gauss"'), "montecarlo.distribution"),
+        (MC_STUDY.replace("seed = 5", "seed = 5\ntolerance = -0.1"), "montecarlo.tolerance = -0.1"),
+        (
+            MC_STUDY.replace("seed = 5", 'seed = 5\ntolerances = { "crane 9" = 0.1 }'),
+            "montecarlo.tolerances.crane 9: no such crane",
+        ),
+        (MC_STUDY.replace("seed = 5", "seed = 5\ntolerance = 0.0"), "every hook's tolerance is 0"),
+        (MC_STUDY + '\n[sweep]\n"body.weight" = [900.0]\n', "sweep: given with study.kind = 'montecarlo'"),
+        (MC_STUDY.replace('kind = "montecarlo"', 'kind = "check"'), "montecarlo: given with study.kind"),
+    ],
+)
 def test_bad_montecarlo_studies_are_one_line_errors(tmp_path, text, match):
     with pytest.raises(InvalidScene, match=match) as err:
         _study(tmp_path, text)

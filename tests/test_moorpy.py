@@ -13,9 +13,14 @@ from liftplan.model import rotation_matrix, solve
 CASES = {  # name: (change to the symmetric block, lugs expected slack)
     "level, even": (lambda s: s, ()),
     "twist on one diagonal": (lambda s: s.with_crane("FP", boom_height=40.2), ()),
-    "off-centre CG, uneven hoist": (lambda s: s.with_body(cog=(1.5, -0.8, 2.5))
-                                    .with_crane("FS", boom_height=40.1)
-                                    .with_crane("AS", boom_height=39.93), ()),
+    "off-centre CG, uneven hoist": (
+        lambda s: (
+            s.with_body(cog=(1.5, -0.8, 2.5))
+            .with_crane("FS", boom_height=40.1)
+            .with_crane("AS", boom_height=39.93)
+        ),
+        (),
+    ),
     "soft rope": (lambda s: s.with_crane("AP", EA=20000.0).with_crane("FS", boom_height=39.9), ()),
     "one rope slack": (lambda s: s.with_crane("FP", boom_height=39.0), ("FP",)),
 }

@@ -59,7 +59,8 @@ def test_written_scene_keeps_the_file_frame_names_and_cranes(report_dir):
         # choi -> z-up -> choi is a sign flip and a swap: exact
         assert lug["at"] == at[lug["name"]]
     assert [(c["name"], c["lug"]) for c in scene["cranes"]] == [
-        (data["cranes"][label], name) for label, name in data["lugs"].items()]
+        (data["cranes"][label], name) for label, name in data["lugs"].items()
+    ]
     assert "# crane 1 (planned lug L1)" in text
 
 
@@ -100,7 +101,7 @@ def test_report_embeds_figures_and_every_table_has_units(report_dir):
     parsed.feed(page)
     assert len(parsed.images) == 3
     assert all(src.startswith("data:image/png;base64,") for src in parsed.images)
-    assert "src=\"http" not in page and "<link" not in page  # self-contained
+    assert 'src="http' not in page and "<link" not in page  # self-contained
     assert len(parsed.tables) >= 7
     for headers, labels in zip(parsed.tables, parsed.row_labels):
         if not headers:
@@ -110,18 +111,35 @@ def test_report_embeds_figures_and_every_table_has_units(report_dir):
         has_unit_column = "unit" in headers
         with_units = [h for h in headers if re.search(r"\[[^\]]+\]", h)]
         labelled = [r for r in labels if re.search(r"\[[^\]]+\]", r)]
-        assert (has_unit_column or len(with_units) >= len(headers) - 3
-                or (headers[0] == "quantity" and len(labelled) >= len(labels) - 1)), headers
+        assert (
+            has_unit_column
+            or len(with_units) >= len(headers) - 3
+            or (headers[0] == "quantity" and len(labelled) >= len(labels) - 1)
+        ), headers
     page = html.unescape(page)
-    for text in ("Assumptions", "Operator guidance", "Skew loads", "Design loads per crane",
-                 "Where each crane's worst static load occurs", "Design-load factors"):
+    for text in (
+        "Assumptions",
+        "Operator guidance",
+        "Skew loads",
+        "Design loads per crane",
+        "Where each crane's worst static load occurs",
+        "Design-load factors",
+    ):
         assert text in page
     # the frame is named once, at the top, and the coordinates follow it
     assert page.count("All coordinates are in the planning file's frame") == 1
     assert page.index("All coordinates are in") < page.index("<caption")  # before any data table
     # the client-facing part first, the engineering appendix (bounds, search) last
-    sections = [page.index(f">{h}<") for h in ("1 Recommendation", "3 Checks to hand over",
-                                                "4 Figures", "5 Alternatives", "Engineering appendix")]
+    sections = [
+        page.index(f">{h}<")
+        for h in (
+            "1 Recommendation",
+            "3 Checks to hand over",
+            "4 Figures",
+            "5 Alternatives",
+            "Engineering appendix",
+        )
+    ]
     assert sections == sorted(sections)
     appendix = sections[-1]
     for jargon in ("lower bound from the optimisation", "Search<", "Admissible tensions"):
@@ -142,11 +160,25 @@ def test_report_renders_in_headless_chromium(report_dir, tmp_path):
     out, _ = report_dir
     shot = tmp_path / "report.png"
     result = subprocess.run(
-        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-         "--no-first-run", "--disable-background-networking", "--disable-component-update",
-         "--disable-sync", f"--user-data-dir={tmp_path / 'profile'}", "--hide-scrollbars",
-         "--window-size=1200,1600", f"--screenshot={shot}", (out / "report.html").as_uri()],
-        capture_output=True, text=True, timeout=120,
+        [
+            "chromium",
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={tmp_path / 'profile'}",
+            "--hide-scrollbars",
+            "--window-size=1200,1600",
+            f"--screenshot={shot}",
+            (out / "report.html").as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
     )
     assert result.returncode == 0, result.stderr[-500:]
     data = shot.read_bytes()
@@ -163,16 +195,14 @@ def test_report_renders_in_headless_chromium(report_dir, tmp_path):
 )
 def test_infeasible_plan_exits_non_zero_with_one_line(tmp_path, change, fragment):
     text = open(TANKER, encoding="utf-8").read()
-    replacement = {"swl = 400.0": "swl = 150.0",
-                   "heel = 2.0, trim = 2.0": "heel = 80.0, trim = 2.0"}[change]
+    replacement = {"swl = 400.0": "swl = 150.0", "heel = 2.0, trim = 2.0": "heel = 80.0, trim = 2.0"}[change]
     scene = tmp_path / "scene.toml"
     scene.write_text(text.replace(change, replacement), encoding="utf-8")
     result = run("plan", str(scene), "--json")
     assert result.returncode == 1
     assert result.stdout == ""
     # a unit-slip warning may come first (an 80 deg box); the failure itself is one line
-    lines = [line for line in result.stderr.strip().splitlines()
-             if not line.startswith("liftplan: warning:")]
+    lines = [line for line in result.stderr.strip().splitlines() if not line.startswith("liftplan: warning:")]
     assert len(lines) == 1 and "no feasible plan" in lines[0] and fragment in lines[0]
 
 

@@ -35,8 +35,15 @@ def tanker_plan(tanker_problem):
 
 def small_problem(cranes, **changes):
     """Seven deck points of the tanker (papers' frame), a CG box: 35 sets of 4."""
-    at = [(4.2, 6, 0), (16.2, 6, 12), (28.55, 6, 0), (40.9, 6, 12), (53.25, 6, 6),
-          (65.6, 6, 0), (73.6, 6, 12)]
+    at = [
+        (4.2, 6, 0),
+        (16.2, 6, 12),
+        (28.55, 6, 0),
+        (40.9, 6, 12),
+        (53.25, 6, 6),
+        (65.6, 6, 0),
+        (73.6, 6, 12),
+    ]
     problem = PlanProblem(
         body=Body(904.0, choi_to_zup((35.86, 2.5, 6.0))),
         candidates=tuple(Candidate(f"C{i}", choi_to_zup(p)) for i, p in enumerate(at)),
@@ -54,8 +61,11 @@ def small_problem(cranes, **changes):
 
 def brute_force(problem, grid=9):
     """Every set, the preload LP on a dense grid of scenarios, solved by scipy's HiGHS."""
-    scenarios = [Scenario(h, t, tuple(o)) for o in problem.cog_envelope.offsets()
-                 for h, t in box_attitudes(problem, grid, grid)]
+    scenarios = [
+        Scenario(h, t, tuple(o))
+        for o in problem.cog_envelope.offsets()
+        for h, t in box_attitudes(problem, grid, grid)
+    ]
     best = {}
     for indices in itertools.combinations(range(len(problem.candidates)), problem.cranes):
         value = linprog_minimax(LugSet(problem, indices), scenarios)
@@ -94,8 +104,9 @@ def linprog_minimax(lugset, scenarios):
     bounds = [(lo, hi) for lo, hi in zip(low, high)] + [(None, None)] * (2 * m + 1)
     cost = np.zeros(size)
     cost[-1] = 1.0
-    result = linprog(cost, A_ub=np.array(rows), b_ub=rhs, A_eq=a_eq, b_eq=b_level,
-                     bounds=bounds, method="highs")
+    result = linprog(
+        cost, A_ub=np.array(rows), b_ub=rhs, A_eq=a_eq, b_eq=b_level, bounds=bounds, method="highs"
+    )
     return result.fun if result.status == 0 else None
 
 
@@ -136,13 +147,17 @@ def test_screening_bound_never_exceeds_the_evaluated_worst(cranes, dual):
 def test_preload_lp_agrees_with_scipy(tanker_problem):
     # 450 t cranes: the papers' lugs carry 272 t at level, within SWL / 1.5 (the code margin)
     tanker_problem = dataclasses.replace(
-        tanker_problem, crane=dataclasses.replace(tanker_problem.crane, swl=450.0))
+        tanker_problem, crane=dataclasses.replace(tanker_problem.crane, swl=450.0)
+    )
     lugset = LugSet(tanker_problem, [4, 5, 12, 13])  # the papers' four lugs
     scenarios = [Scenario(h, t) for h, t in box_attitudes(tanker_problem, 5, 5)]
     gains, offsets = lugset.affine(scenarios)
     m, n = gains.shape[:2]
     result = PreloadMinimax(n, 30).solve(
-        gains, offsets, *lugset.level_statics, lugset.preload_range(),
+        gains,
+        offsets,
+        *lugset.level_statics,
+        lugset.preload_range(),
         (np.full((m, n), tanker_problem.min_tension), np.tile(lugset.limit, (m, 1))),
     )
     reference = linprog_minimax(lugset, scenarios)
@@ -219,11 +234,16 @@ def test_skew_factor_of_a_square_block():
     half = 10.0
     problem = PlanProblem(
         body=Body(400.0, (0.0, 0.0, 0.0)),
-        candidates=tuple(Candidate(f"C{i}", (sx * half, sy * half, 2.0))
-                         for i, (sx, sy) in enumerate([(1, 1), (-1, 1), (-1, -1), (1, -1)])),
+        candidates=tuple(
+            Candidate(f"C{i}", (sx * half, sy * half, 2.0))
+            for i, (sx, sy) in enumerate([(1, 1), (-1, 1), (-1, -1), (1, -1)])
+        ),
         cranes=4,
         crane=CraneSpec(EA=20000.0, rope_length=40.0, swl=300.0),
-        heel_tolerance=0.0, trim_tolerance=0.0, hook_tolerance=0.01, lift_height=2.0,
+        heel_tolerance=0.0,
+        trim_tolerance=0.0,
+        hook_tolerance=0.01,
+        lift_height=2.0,
     )
     result = plan(problem)
     k = 20000.0 / 40.0

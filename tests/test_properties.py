@@ -33,8 +33,9 @@ def residual(scene, eq):
     t = np.array(list(eq.tensions.values()))
     w = scene.body.weight
     scale = scene.plan_diameter
-    return max(abs(t.sum() - w), abs(t @ lugs[:, 0] - w * cog[0]) / scale,
-               abs(t @ lugs[:, 1] - w * cog[1]) / scale)
+    return max(
+        abs(t.sum() - w), abs(t @ lugs[:, 0] - w * cog[0]) / scale, abs(t @ lugs[:, 1] - w * cog[1]) / scale
+    )
 
 
 @st.composite
@@ -50,8 +51,10 @@ def scenes(draw, max_angle=20.0, spread=False):
         angles = np.sort(draw(st.lists(st.floats(0, 2 * math.pi), min_size=n, max_size=n)))
     radii = draw(st.lists(st.floats(5, 30), min_size=n, max_size=n))
     heights = draw(st.lists(st.floats(0, 8), min_size=n, max_size=n))
-    lugs = [Lug(f"L{i}", (r * math.cos(a), r * math.sin(a), h))
-            for i, (a, r, h) in enumerate(zip(angles, radii, heights))]
+    lugs = [
+        Lug(f"L{i}", (r * math.cos(a), r * math.sin(a), h))
+        for i, (a, r, h) in enumerate(zip(angles, radii, heights))
+    ]
     # CG a convex combination of the lugs' plan positions: inside the support polygon
     mix = np.array(draw(st.lists(st.floats(0.2, 1.0), min_size=n, max_size=n)))
     mix /= mix.sum()
@@ -59,11 +62,20 @@ def scenes(draw, max_angle=20.0, spread=False):
     cog = (float(plan[0]), float(plan[1]), draw(st.floats(-3, 3)))
     weight = draw(st.floats(10, 5000))
     ea = draw(st.floats(1e3, 1e5)) if spread else None
-    cranes = [Crane(lug.name, EA=ea * draw(st.floats(1, 10)) if spread else draw(st.floats(1e3, 1e6)),
-                    boom_height=draw(st.floats(40, 60))) for lug in lugs]
-    attitude = Attitude(heel=draw(st.floats(-max_angle, max_angle)),
-                        trim=draw(st.floats(-max_angle, max_angle)),
-                        yaw=draw(st.floats(-30, 30)), lift_height=draw(st.floats(0, 5)))
+    cranes = [
+        Crane(
+            lug.name,
+            EA=ea * draw(st.floats(1, 10)) if spread else draw(st.floats(1e3, 1e6)),
+            boom_height=draw(st.floats(40, 60)),
+        )
+        for lug in lugs
+    ]
+    attitude = Attitude(
+        heel=draw(st.floats(-max_angle, max_angle)),
+        trim=draw(st.floats(-max_angle, max_angle)),
+        yaw=draw(st.floats(-30, 30)),
+        lift_height=draw(st.floats(0, 5)),
+    )
     try:
         return Scene(Body(weight, cog), tuple(lugs), tuple(cranes), attitude)
     except InvalidScene:  # nearly collinear draws
@@ -105,12 +117,10 @@ def constructed(scene):
     rot = rotation_matrix(state.pose.heel, state.pose.trim, state.pose.yaw)
     heights = (scene.lug_points() @ rot.T)[:, 2] + state.pose.lift_height
     cranes = tuple(
-        Crane(c.lug, EA=c.EA, boom_height=c.boom_height,
-              rope_length=(c.boom_height - h) / (1.0 + t / c.EA))
+        Crane(c.lug, EA=c.EA, boom_height=c.boom_height, rope_length=(c.boom_height - h) / (1.0 + t / c.EA))
         for c, h, t in zip(scene.cranes, heights, tensions)
     )
-    forward = Scene(scene.body, scene.lugs, cranes,
-                    Attitude(yaw=scene.attitude.yaw), Analysis("elastic"))
+    forward = Scene(scene.body, scene.lugs, cranes, Attitude(yaw=scene.attitude.yaw), Analysis("elastic"))
     return state, forward
 
 
@@ -148,8 +158,10 @@ def pentagon():
     Its constructed state is a saddle of the energy; IPOPT's fallback once returned it."""
     angles = np.linspace(0, 2 * math.pi, 5, endpoint=False)
     lugs = tuple(Lug(f"L{i}", (5 * math.cos(a), 5 * math.sin(a), 0.0)) for i, a in enumerate(angles))
-    cranes = tuple(Crane(lug.name, EA=10000.0 if i == 0 else 1000.0, boom_height=40.0 if i == 0 else 60.0)
-                   for i, lug in enumerate(lugs))
+    cranes = tuple(
+        Crane(lug.name, EA=10000.0 if i == 0 else 1000.0, boom_height=40.0 if i == 0 else 60.0)
+        for i, lug in enumerate(lugs)
+    )
     return Scene(Body(562.0, (0.0, 0.0, 2.0)), lugs, cranes, Attitude())
 
 

@@ -80,7 +80,8 @@ def test_table3_model_rows_sum_to_zero_and_splits_are_exact(tanker):
         elastic = paper_elastic_tensions(scene, [heel], [trim])[0]
         for held in (elastic[3] - 20.0, elastic[3] + 20.0):
             rigid = tanker.with_attitude(heel=heel, trim=trim).with_analysis(
-                model="rigid", redundant=(Redundant("T4", held),))
+                model="rigid", redundant=(Redundant("T4", held),)
+            )
             t = tensions(solve(rigid))
             assert_allclose(elastic[0] + elastic[1], t[0] + t[1], rtol=1e-12)
             assert_allclose(elastic[0] + elastic[3], t[0] + t[3], rtol=1e-12)
@@ -95,7 +96,6 @@ def test_table3_reproduced_under_the_stated_reading():
     one-angle-at-a-time reading leaves over 4 t."""
     scene = table3.long_rope_tanker()
     readings = table3.candidate_readings()
-    worst = {name: np.abs(table3.table(scene, r) - table3.PUBLISHED).max()
-             for name, r in readings.items()}
+    worst = {name: np.abs(table3.table(scene, r) - table3.PUBLISHED).max() for name, r in readings.items()}
     assert worst["psi and phi step together, table signs flipped (chosen)"] < 1.2
     assert min(v for k, v in worst.items() if "one angle" in k) > 4.0

@@ -34,8 +34,11 @@ OPERATOR = re.compile(r"\s(?:&&|\|\||;|\|)\s")
 def blocks(language):
     """(line number, text) of every fenced block in README.md tagged ``language``."""
     text = README.read_text(encoding="utf-8")
-    return [(text.count("\n", 0, m.start()) + 1, m.group(2))
-            for m in FENCE.finditer(text) if m.group(1) == language]
+    return [
+        (text.count("\n", 0, m.start()) + 1, m.group(2))
+        for m in FENCE.finditer(text)
+        if m.group(1) == language
+    ]
 
 
 def commands():
@@ -54,7 +57,7 @@ def alternatives(argv):
     """Expand ``--model rigid|elastic`` into one argv per alternative."""
     for i, word in enumerate(argv):
         if "|" in word and not word.startswith("-"):
-            return [v for alt in word.split("|") for v in alternatives(argv[:i] + [alt] + argv[i + 1:])]
+            return [v for alt in word.split("|") for v in alternatives(argv[:i] + [alt] + argv[i + 1 :])]
     return [argv]
 
 
@@ -82,8 +85,10 @@ def test_command_line_parses(line, argv):
         try:
             cli._parser().parse_args(variant)
         except SystemExit as err:
-            pytest.fail(f"README.md:{line}: `liftplan {shlex.join(variant)}` is refused by the "
-                        f"parser (exit {err.code})")
+            pytest.fail(
+                f"README.md:{line}: `liftplan {shlex.join(variant)}` is refused by the "
+                f"parser (exit {err.code})"
+            )
 
 
 def runnable():
@@ -97,14 +102,18 @@ def runnable():
 
 
 #: Examples whose command takes more than ~20 s on 2 cores: run with ``-m slow``.
-SLOW_EXAMPLES = {"examples/hull154_plan.toml", "examples/ferry_strength_plan.toml",
-                 "examples/block_8_points_plan.toml"}
+SLOW_EXAMPLES = {
+    "examples/hull154_plan.toml",
+    "examples/ferry_strength_plan.toml",
+    "examples/block_8_points_plan.toml",
+}
 
 
 def _param(line, argv):
     slow = any(w in SLOW_EXAMPLES for w in argv)
-    return pytest.param(line, argv, id=f"line{line}-{'-'.join(argv[:1])}",
-                        marks=[pytest.mark.slow] if slow else [])
+    return pytest.param(
+        line, argv, id=f"line{line}-{'-'.join(argv[:1])}", marks=[pytest.mark.slow] if slow else []
+    )
 
 
 @pytest.mark.parametrize("line, argv", [_param(*c) for c in runnable()])

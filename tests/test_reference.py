@@ -19,8 +19,7 @@ def scene_of(case, model):
     return Scene(
         body=Body(case["weight"], tuple(case["cog"])),
         lugs=tuple(Lug(name, tuple(p)) for name, p in zip(names, case["lugs"])),
-        cranes=tuple(Crane(name, EA=ea, boom_height=h)
-                     for name, ea, h in zip(names, case["EA"], case["H"])),
+        cranes=tuple(Crane(name, EA=ea, boom_height=h) for name, ea, h in zip(names, case["EA"], case["H"])),
         attitude=Attitude(case["heel"], case["trim"], case["yaw"], case["lift"]),
         analysis=Analysis(model, held if model == "rigid" else ()),
     )

@@ -72,12 +72,17 @@ def ink_extent_mm(png):
 
 def render(pdf, out):
     """Every page of ``pdf`` as PNG at DPI, in page order; and the text of each page."""
-    subprocess.run(["pdftoppm", "-png", "-r", str(DPI), str(pdf), str(out / "page")],
-                   check=True, capture_output=True, timeout=120)
+    subprocess.run(
+        ["pdftoppm", "-png", "-r", str(DPI), str(pdf), str(out / "page")],
+        check=True,
+        capture_output=True,
+        timeout=120,
+    )
     pages = sorted(out.glob("page-*.png"), key=lambda p: int(p.stem.split("-")[-1]))
-    text = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], check=True,
-                          capture_output=True, text=True, timeout=120).stdout
-    return pages, text.split("\f")[:len(pages)]
+    text = subprocess.run(
+        ["pdftotext", "-layout", str(pdf), "-"], check=True, capture_output=True, text=True, timeout=120
+    ).stdout
+    return pages, text.split("\f")[: len(pages)]
 
 
 CASES = {
@@ -122,7 +127,8 @@ def test_nothing_is_printed_beyond_the_text_width(printed):
         first, last = extent
         assert last <= A4_WIDTH_MM - right + EDGE_MM, (
             f"{name} page {k}: ink at {last:.1f} mm, the text ends at {A4_WIDTH_MM - right:.0f} mm "
-            "(a table or figure wider than the page)")
+            "(a table or figure wider than the page)"
+        )
         assert first >= left - EDGE_MM, f"{name} page {k}: ink at {first:.1f} mm from the left edge"
 
 
@@ -141,10 +147,20 @@ def test_title_block_fields_are_in_the_html_and_the_pdf(printed):
     name, problem, files, _, texts, _ = printed
     page = html.unescape(files.html.read_text(encoding="utf-8"))
     first = " ".join(texts[0].split())
-    fields = [v for v in (problem.report.project, problem.report.client, problem.report.document,
-                          problem.report.revision, problem.report.prepared_by,
-                          problem.report.checked_by, problem.report.approved_by,
-                          problem.report.date) if v]
+    fields = [
+        v
+        for v in (
+            problem.report.project,
+            problem.report.client,
+            problem.report.document,
+            problem.report.revision,
+            problem.report.prepared_by,
+            problem.report.checked_by,
+            problem.report.approved_by,
+            problem.report.date,
+        )
+        if v
+    ]
     assert len(fields) >= 5, name  # every example here fills most of its title block
     for value in fields:
         assert value in page, f"{name}: {value!r} not in the HTML"
@@ -157,8 +173,11 @@ def test_title_block_fields_are_in_the_html_and_the_pdf(printed):
 def test_engineering_appendix_comes_after_the_recommendation(printed):
     name, _, _, _, texts, _ = printed
     whole = "\f".join(texts)
-    assert whole.index("1 Recommendation") < whole.index("3 Checks to hand over") < \
-        whole.index("Engineering appendix"), name
+    assert (
+        whole.index("1 Recommendation")
+        < whole.index("3 Checks to hand over")
+        < whole.index("Engineering appendix")
+    ), name
     # the appendix starts a page of its own: its heading is the first line under the header
     page = next(t for t in texts if "Engineering appendix" in t)
     lines = [line.strip() for line in page.splitlines() if line.strip()]
@@ -170,8 +189,9 @@ def test_the_margin_check_sees_a_table_wider_than_the_page(tmp_path):
     # the check above must be able to fail: 30 columns of long numbers cannot fit 170 mm
     import weasyprint
 
-    wide = table([f"column {k} [t]" for k in range(30)],
-                 [[f"{123456.789 + k:.3f}" for k in range(30)]], "too wide")
+    wide = table(
+        [f"column {k} [t]" for k in range(30)], [[f"{123456.789 + k:.3f}" for k in range(30)]], "too wide"
+    )
     pdf = tmp_path / "wide.pdf"
     weasyprint.HTML(string=document("wide", wide, "header")).write_pdf(pdf)
     images, _ = render(pdf, tmp_path)
@@ -189,11 +209,14 @@ def test_report_table_is_optional_and_read_as_given():
     assert block.report == ReportInfo()
 
 
-@pytest.mark.parametrize(("table_text", "fragment"), [
-    ('revision = 3', "report.revision = 3"),
-    ('projekt = "X"', "report.projekt"),
-    (f'project = "{"x" * 201}"', "report.project"),
-])
+@pytest.mark.parametrize(
+    ("table_text", "fragment"),
+    [
+        ("revision = 3", "report.revision = 3"),
+        ('projekt = "X"', "report.projekt"),
+        (f'project = "{"x" * 201}"', "report.project"),
+    ],
+)
 def test_report_table_errors_name_the_key(table_text, fragment):
     text = (EXAMPLES / "block_sling_plan.toml").read_text(encoding="utf-8")
     with pytest.raises(InvalidScene) as err:

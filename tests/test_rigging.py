@@ -32,13 +32,32 @@ W = 200.0
 def block(slings, cog=(0.0, 0.0, 1.0), weight=W, lugs=None, tips=None, **scene):
     """A block on cranes "A" and "B" (boom 40 m, hoist 20 m, EA 60 000 t), slings given as
     {crane: Sling}; lugs default to a 20 x 6 m rectangle P1-P4 at z = 2."""
-    lugs = lugs or {"P1": (-10.0, 3.0, 2.0), "P2": (-10.0, -3.0, 2.0),
-                    "P3": (10.0, 3.0, 2.0), "P4": (10.0, -3.0, 2.0)}
+    lugs = lugs or {
+        "P1": (-10.0, 3.0, 2.0),
+        "P2": (-10.0, -3.0, 2.0),
+        "P3": (10.0, 3.0, 2.0),
+        "P4": (10.0, -3.0, 2.0),
+    }
     tips = tips or {}
-    cranes = tuple(Crane(name=name, sling=sling, boom_height=40.0, rope_length=20.0, EA=60000.0,
-                         swl=300.0, tip=tips.get(name)) for name, sling in slings.items())
-    return Scene(Body(weight, cog), tuple(Lug(n, at) for n, at in lugs.items()), cranes,
-                 Attitude(lift_height=10.0), **scene)
+    cranes = tuple(
+        Crane(
+            name=name,
+            sling=sling,
+            boom_height=40.0,
+            rope_length=20.0,
+            EA=60000.0,
+            swl=300.0,
+            tip=tips.get(name),
+        )
+        for name, sling in slings.items()
+    )
+    return Scene(
+        Body(weight, cog),
+        tuple(Lug(n, at) for n, at in lugs.items()),
+        cranes,
+        Attitude(lift_height=10.0),
+        **scene,
+    )
 
 
 def pair(a, b, length=8.0, **stiffness):
@@ -65,8 +84,11 @@ def test_four_leg_sling_on_a_rectangle_closed_form():
     """Two 4-leg slings on 4 x 6 m rectangles, CG in the middle: by the double symmetry every
     leg carries (W/2) / (4 sin a), with sin a = sqrt(l^2 - r^2) / l, r the half diagonal.
     Tolerance as the 2-leg case (stiff legs' stretch)."""
-    lugs = {f"{side}{k}": (x + dx, dy, 0.0) for side, x in (("A", -10.0), ("B", 10.0))
-            for k, (dx, dy) in enumerate(((-2, 3), (2, 3), (2, -3), (-2, -3)))}
+    lugs = {
+        f"{side}{k}": (x + dx, dy, 0.0)
+        for side, x in (("A", -10.0), ("B", 10.0))
+        for k, (dx, dy) in enumerate(((-2, 3), (2, 3), (2, -3), (-2, -3)))
+    }
     slings = {c: Sling(tuple(Leg(f"{c}{k}", 9.0, EA=STIFF) for k in range(4))) for c in "AB"}
     eq = solve(block(slings, cog=(0.0, 0.0, -1.0), lugs=lugs))
     r = math.hypot(2.0, 3.0)
@@ -81,8 +103,11 @@ def bars(weight=2.0, ea=None, top=5.0, bottom=4.0, stiff=STIFF):
     bar = {"EA": ea} if ea is not None else {}
 
     def sling(a, b):
-        return Sling((Leg(a, bottom, EA=stiff), Leg(b, bottom, EA=stiff)),
-                     Spreader(6.0, (Leg(None, top, EA=stiff), Leg(None, top, EA=stiff)), weight, **bar))
+        return Sling(
+            (Leg(a, bottom, EA=stiff), Leg(b, bottom, EA=stiff)),
+            Spreader(6.0, (Leg(None, top, EA=stiff), Leg(None, top, EA=stiff)), weight, **bar),
+        )
+
     return {"A": sling("P1", "P2"), "B": sling("P3", "P4")}
 
 
@@ -117,15 +142,23 @@ def test_vertical_legs_equal_the_vertical_model():
     eq = solve(scene)
     ends = eq.rigging.spreader_ends
     height = {"P1": ends["A"][0][2], "P2": ends["A"][1][2], "P3": ends["B"][0][2], "P4": ends["B"][1][2]}
-    vertical = Scene(scene.body, scene.lugs,
-                     tuple(Crane(name, EA=20000.0, boom_height=height[name], rope_length=4.0)
-                           for name in scene.lug_names), Attitude(lift_height=eq.pose.lift_height))
+    vertical = Scene(
+        scene.body,
+        scene.lugs,
+        tuple(Crane(name, EA=20000.0, boom_height=height[name], rope_length=4.0) for name in scene.lug_names),
+        Attitude(lift_height=eq.pose.lift_height),
+    )
     ref = solve(vertical, "elastic")
-    assert_allclose([eq.rigging.legs[f"{c}/{lug}"] for c, lug in (("A", "P1"), ("A", "P2"), ("B", "P3"),
-                                                                  ("B", "P4"))],
-                    list(ref.tensions.values()), rtol=1e-8)
-    assert_allclose((eq.pose.heel, eq.pose.trim, eq.pose.lift_height),
-                    (ref.pose.heel, ref.pose.trim, ref.pose.lift_height), atol=1e-8)
+    assert_allclose(
+        [eq.rigging.legs[f"{c}/{lug}"] for c, lug in (("A", "P1"), ("A", "P2"), ("B", "P3"), ("B", "P4"))],
+        list(ref.tensions.values()),
+        rtol=1e-8,
+    )
+    assert_allclose(
+        (eq.pose.heel, eq.pose.trim, eq.pose.lift_height),
+        (ref.pose.heel, ref.pose.trim, ref.pose.lift_height),
+        atol=1e-8,
+    )
     assert eq.pose.trim > 0.01  # the off-centre CG really tilts it (bow down)
 
 
@@ -134,8 +167,10 @@ def test_matches_moorpy_free_hook_points():
     centroids: hook loads, legs and hook positions against MoorPy with the hooks as free
     points. Tolerance 1e-6 relative: MoorPy's lines weigh 1e-9 t/m and it stops at 1e-10 m."""
     tips = {"A": (-11.0, 1.0, 40.0), "B": (10.5, -0.5, 41.0)}
-    slings = {"A": Sling((Leg("P1", 8.0, diameter=64.0), Leg("P2", 8.5, diameter=56.0))),
-              "B": Sling((Leg("P3", 7.5, EA=30000.0), Leg("P4", 8.0, diameter=64.0)))}
+    slings = {
+        "A": Sling((Leg("P1", 8.0, diameter=64.0), Leg("P2", 8.5, diameter=56.0))),
+        "B": Sling((Leg("P3", 7.5, EA=30000.0), Leg("P4", 8.0, diameter=64.0))),
+    }
     scene = block(slings, cog=(1.5, -0.8, 1.0), tips=tips)
     eq = solve(scene)
     assert max(f.horizontal for f in eq.rope_forces.values()) > 0.5  # hoists really inclined
@@ -152,14 +187,21 @@ def test_matches_moorpy_free_hook_points():
 def test_slack_leg_carries_nothing():
     """A 4-leg sling with one leg 0.5 m long: it hangs slack (tension only), the other three
     carry the hook load, and its key is listed as slack."""
-    lugs = {f"{side}{k}": (x + dx, dy, 0.0) for side, x in (("A", -10.0), ("B", 10.0))
-            for k, (dx, dy) in enumerate(((-2, 3), (2, 3), (2, -3), (-2, -3)))}
-    slings = {c: Sling(tuple(Leg(f"{c}{k}", 9.5 if (c, k) == ("A", 0) else 9.0, EA=20000.0)
-                             for k in range(4))) for c in "AB"}
+    lugs = {
+        f"{side}{k}": (x + dx, dy, 0.0)
+        for side, x in (("A", -10.0), ("B", 10.0))
+        for k, (dx, dy) in enumerate(((-2, 3), (2, 3), (2, -3), (-2, -3)))
+    }
+    slings = {
+        c: Sling(tuple(Leg(f"{c}{k}", 9.5 if (c, k) == ("A", 0) else 9.0, EA=20000.0) for k in range(4)))
+        for c in "AB"
+    }
     eq = solve(block(slings, cog=(0.0, 0.0, -1.0), lugs=lugs))
     assert eq.rigging.legs["A/A0"] == 0.0 and "A/A0" in eq.slack
-    vertical = sum(eq.rigging.legs[f"A/A{k}"] * math.sin(math.radians(eq.rigging.sling_angles[f"A/A{k}"]))
-                   for k in range(4))
+    vertical = sum(
+        eq.rigging.legs[f"A/A{k}"] * math.sin(math.radians(eq.rigging.sling_angles[f"A/A{k}"]))
+        for k in range(4)
+    )
     assert_allclose(vertical, eq.tensions["A"], rtol=1e-6)  # hoist nearly vertical (pendulum)
 
 
@@ -174,16 +216,22 @@ def test_invariance_reordering_and_mirroring():
     """Cranes listed the other way round, legs reordered, or the scene mirrored (y -> -y):
     the same leg and hook loads by name (mirror: heel and hook y change sign). Tolerance:
     round-off of a re-ordered Newton solve."""
-    slings = {"A": Sling((Leg("P1", 8.0, diameter=64.0), Leg("P2", 8.5, diameter=56.0))),
-              "B": Sling((Leg("P3", 7.5, EA=30000.0), Leg("P4", 8.0, diameter=64.0)))}
+    slings = {
+        "A": Sling((Leg("P1", 8.0, diameter=64.0), Leg("P2", 8.5, diameter=56.0))),
+        "B": Sling((Leg("P3", 7.5, EA=30000.0), Leg("P4", 8.0, diameter=64.0))),
+    }
     base = solve(block(slings, cog=(1.5, -0.8, 1.0)))
     swapped = {"B": Sling(slings["B"].legs[::-1]), "A": Sling(slings["A"].legs[::-1])}
     other = solve(block(swapped, cog=(1.5, -0.8, 1.0)))
     for key, value in base.rigging.legs.items():
         assert_allclose(other.rigging.legs[key], value, rtol=1e-9)
     assert_allclose([other.tensions[k] for k in base.tensions], list(base.tensions.values()), rtol=1e-9)
-    mirror_lugs = {"P1": (-10.0, -3.0, 2.0), "P2": (-10.0, 3.0, 2.0),
-                   "P3": (10.0, -3.0, 2.0), "P4": (10.0, 3.0, 2.0)}
+    mirror_lugs = {
+        "P1": (-10.0, -3.0, 2.0),
+        "P2": (-10.0, 3.0, 2.0),
+        "P3": (10.0, -3.0, 2.0),
+        "P4": (10.0, 3.0, 2.0),
+    }
     mirror = solve(block(slings, cog=(1.5, 0.8, 1.0), lugs=mirror_lugs))
     for key, value in base.rigging.legs.items():
         assert_allclose(mirror.rigging.legs[key], value, rtol=1e-9)
@@ -241,15 +289,21 @@ def text(a=A, b=B, extra="", frame="z-up", lugs=LUGS, cog=(0.0, 0.0, 1.0)):
 
 BAD = {
     "one leg": (A.split("},")[0] + "}", ["cranes[A].sling.legs", "1 given", "2 to 4"]),
-    "five legs": (", ".join([A] * 2 + ['{ lug = "P1", length = 8.0, EA = 1.0 }']),
-                  ["cranes[A].sling.legs", "5 given", "2 to 4"]),
+    "five legs": (
+        ", ".join([A] * 2 + ['{ lug = "P1", length = 8.0, EA = 1.0 }']),
+        ["cranes[A].sling.legs", "5 given", "2 to 4"],
+    ),
     "unknown lug": (A.replace('"P2"', '"Q9"'), ["cranes[A].sling.legs.lug = 'Q9'", "unknown lug"]),
     "lug twice in a sling": (A.replace('"P2"', '"P1"'), ["'P1'", "used twice"]),
     "lug on two cranes": (A.replace('"P2"', '"P3"'), ["'P3'", "used twice", "cranes A and B"]),
-    "diameter <= 0": (A.replace("diameter = 64.0 }, {", "diameter = 0.0 }, {"),
-                      ["cranes[A].sling.legs[P1].diameter = 0.0", "> 0"]),
-    "both EA and diameter": (A.replace("diameter = 64.0 }, {", "diameter = 64.0, EA = 5e4 }, {"),
-                             ["cranes[A].sling.legs[P1]", "both EA and diameter", "exactly one"]),
+    "diameter <= 0": (
+        A.replace("diameter = 64.0 }, {", "diameter = 0.0 }, {"),
+        ["cranes[A].sling.legs[P1].diameter = 0.0", "> 0"],
+    ),
+    "both EA and diameter": (
+        A.replace("diameter = 64.0 }, {", "diameter = 64.0, EA = 5e4 }, {"),
+        ["cranes[A].sling.legs[P1]", "both EA and diameter", "exactly one"],
+    ),
     "neither EA nor diameter": (A.replace(", diameter = 64.0 }, {", " }, {"), ["neither EA nor diameter"]),
     "negative length": (A.replace("length = 8.0", "length = -8.0", 1), ["legs[P1].length = -8.0"]),
 }
@@ -273,14 +327,25 @@ def test_other_bad_rigging_input():
         loads_scene(text(extra="[rigging]\nmin_sling_angle = 95.0"))
     with pytest.raises(InvalidScene, match="both lug and sling"):
         loads_scene(text().replace('name = "A"\n', 'name = "A"\nlug = "P1"\n', 1))
-    one_top = f'legs = [ {A} ], spreader = {{ length = 6.0, top = [ {{ length = 5.0, EA = 1e5 }} ] }}'
+    one_top = f"legs = [ {A} ], spreader = {{ length = 6.0, top = [ {{ length = 5.0, EA = 1e5 }} ] }}"
     with pytest.raises(InvalidScene, match=r"cranes\[A\].sling.spreader.top: 1 given"):
         loads_scene(text().replace(f"legs = [ {A} ]", one_top))
     scene = loads_scene(text())
     with pytest.raises(InvalidScene, match="the elastic model hangs one rope per lug"):
         solve(scene, "elastic")
-    single = Scene(scene.body, scene.lugs[:3], (Crane(name="A", sling=Sling(tuple(
-        Leg(n, 8.0, EA=1e5) for n in ("P1", "P2", "P3"))), boom_height=40.0, rope_length=20.0, EA=6e4),))
+    single = Scene(
+        scene.body,
+        scene.lugs[:3],
+        (
+            Crane(
+                name="A",
+                sling=Sling(tuple(Leg(n, 8.0, EA=1e5) for n in ("P1", "P2", "P3"))),
+                boom_height=40.0,
+                rope_length=20.0,
+                EA=6e4,
+            ),
+        ),
+    )
     with pytest.raises(InvalidScene, match="turn freely about its hoist rope"):
         solve(single)
 

@@ -73,8 +73,9 @@ def test_boom_heights_follow_from_the_lengths(chosen):
     scene = chosen.scene
     assert [c.rope_length for c in scene.cranes] == list(chosen.rope_lengths.values())
     eq = solve(scene)
-    assert_allclose([eq.tensions[k] for k in chosen.labels], list(chosen.tensions.values()),
-                    atol=1e-6)  # the plan and the forward model agree to the solve's tolerance
+    assert_allclose(
+        [eq.tensions[k] for k in chosen.labels], list(chosen.tensions.values()), atol=1e-6
+    )  # the plan and the forward model agree to the solve's tolerance
 
 
 def test_json_carries_the_lengths(chosen):
@@ -107,11 +108,14 @@ def test_a_range_of_one_length_is_that_fixed_length(today):
 BASE = (EXAMPLES / "tanker_plan.toml").read_text()
 
 
-@pytest.mark.parametrize("bad", [
-    "rope_length = { min = 40.0, max = 30.0 } ",
-    "rope_length = { min = -1.0, max = 30.0 } ",
-    "rope_length = { min = 25.0 } ",
-])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        "rope_length = { min = 40.0, max = 30.0 } ",
+        "rope_length = { min = -1.0, max = 30.0 } ",
+        "rope_length = { min = 25.0 } ",
+    ],
+)
 def test_bad_ranges_are_one_line_errors(bad):
     with pytest.raises(InvalidScene) as err:
         loads_problem(BASE.replace("rope_length = 30.0 ", bad))

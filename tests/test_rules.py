@@ -62,8 +62,9 @@ def nd_crane_loads(alpha_deg, p=ND):
 def nd_geometry(weight=1.0, p=ND):
     """Figure 19B-1 in the z-up frame: crane #1's lift points at x = 0, crane #2's at x = L and
     b - a higher, the CoG c from crane #1 and a below its lift points."""
-    return TiltGeometry({"crane1": (0.0, 0.0, 0.0), "crane2": (p["L"], 0.0, p["b"] - p["a"])},
-                        (p["c"], 0.0, -p["a"]), weight)
+    return TiltGeometry(
+        {"crane1": (0.0, 0.0, 0.0), "crane2": (p["L"], 0.0, p["b"] - p["a"])}, (p["c"], 0.0, -p["a"]), weight
+    )
 
 
 def nd_envelope(p=ND):
@@ -104,8 +105,12 @@ def test_nd_b15_lift_point_loads():
     # B.1.5: lift point 1 = crane #1 x (f + y) / B, lift point 4 = crane #1 x (e + y) / B, etc.
     one, two = nd_crane_loads(3.0)
     p = ND
-    expected = {"LP1": one * (p["f"] + p["y"]) / p["B"], "LP4": one * (p["e"] + p["y"]) / p["B"],
-                "LP2": two * (p["f"] + p["y"]) / p["B"], "LP3": two * (p["e"] + p["y"]) / p["B"]}
+    expected = {
+        "LP1": one * (p["f"] + p["y"]) / p["B"],
+        "LP4": one * (p["e"] + p["y"]) / p["B"],
+        "LP2": two * (p["f"] + p["y"]) / p["B"],
+        "LP3": two * (p["e"] + p["y"]) / p["B"],
+    }
     # the same through the library: crane #1's share split by the lever rule across the pair
     # (lift point 1 e from the CoG, lift point 4 f from it), the envelope moved y towards each
     pair = TiltGeometry({"LP1": (0.0, p["e"], 0.0), "LP4": (0.0, -p["f"], 0.0)}, (0.0, 0.0, -1.0), one)
@@ -115,11 +120,19 @@ def test_nd_b15_lift_point_loads():
 
 
 # ---- factors, each against its clause -----------------------------------------------------
-@pytest.mark.parametrize("weight, onshore, inshore, offshore", [
-    (100.0001, 1.05, 1.12, 1.25), (300.0, 1.05, 1.12, 1.25), (300.0001, 1.05, 1.10, 1.20),
-    (1000.0, 1.05, 1.10, 1.20), (1000.5, 1.03, 1.08, 1.15), (2500.0, 1.03, 1.08, 1.15),
-    (2500.5, 1.03, 1.05, 1.10), (50_000.0, 1.03, 1.05, 1.10),
-])
+@pytest.mark.parametrize(
+    "weight, onshore, inshore, offshore",
+    [
+        (100.0001, 1.05, 1.12, 1.25),
+        (300.0, 1.05, 1.12, 1.25),
+        (300.0001, 1.05, 1.10, 1.20),
+        (1000.0, 1.05, 1.10, 1.20),
+        (1000.5, 1.03, 1.08, 1.15),
+        (2500.0, 1.03, 1.08, 1.15),
+        (2500.5, 1.03, 1.05, 1.10),
+        (50_000.0, 1.03, 1.05, 1.10),
+    ],
+)
 def test_daf_table_5_1_rows(weight, onshore, inshore, offshore):
     # 0027/ND Rev 11 Table 5-1, printed to two decimals; row upper bounds are inclusive.
     got = [dynamic_amplification(weight, where) for where in ("onshore", "inshore", "offshore")]
@@ -174,8 +187,9 @@ def held_by_casadi(points, cog, weight, preload, ea, length, heel, trim, lift=1.
     n = len(points)
     body = np.array(points, float)
     boom = lift + body[:, 2] + length + np.asarray(preload) * length / ea
-    p = np.concatenate([[0.0], body.reshape(-1), cog, [weight], boom, np.full(n, length),
-                        np.full(n, ea), [50.0]])
+    p = np.concatenate(
+        [[0.0], body.reshape(-1), cog, [weight], boom, np.full(n, length), np.full(n, ea), [50.0]]
+    )
     assert p.size == Layout(n).size
     tensions, _, _ = rope_model(n).held([lift, math.radians(heel), math.radians(trim)], p)
     return np.array(tensions).ravel()
@@ -188,9 +202,13 @@ def test_held_tilt_equals_the_casadi_held_model(heel, trim):
     points = [(16.2, 6.0, 6.0), (65.6, 6.0, 5.0), (65.6, -6.0, 7.0), (16.2, -6.0, 6.5)]
     cog, weight, ea, length = (35.86, 0.4, 2.5), 904.0, 50_000.0, 30.0
     preload = [280.0, 170.0, 185.0, 269.0]
-    geometry = TiltGeometry({f"T{i + 1}": pt for i, pt in enumerate(points)}, cog, weight,
-                            preload={f"T{i + 1}": t for i, t in enumerate(preload)},
-                            stiffness={f"T{i + 1}": ea / length for i in range(4)})
+    geometry = TiltGeometry(
+        {f"T{i + 1}": pt for i, pt in enumerate(points)},
+        cog,
+        weight,
+        preload={f"T{i + 1}": t for i, t in enumerate(preload)},
+        stiffness={f"T{i + 1}": ea / length for i in range(4)},
+    )
     level = held_by_casadi(points, cog, weight, preload, ea, length, 0.0, 0.0)
     tilt, direction = (heel, 0.0) if heel else (trim, 90.0)  # heel about +x, trim about +y
     got = geometry.loads(tilt, direction)
@@ -200,8 +218,9 @@ def test_held_tilt_equals_the_casadi_held_model(heel, trim):
 
 
 def test_three_hooks_are_statics_alone():
-    geometry = TiltGeometry({"A": (0.0, 0.0, 0.0), "B": (20.0, -5.0, 1.0), "C": (8.0, 9.0, -0.5)},
-                            (9.0, 1.0, -3.0), 300.0)
+    geometry = TiltGeometry(
+        {"A": (0.0, 0.0, 0.0), "B": (20.0, -5.0, 1.0), "C": (8.0, 9.0, -0.5)}, (9.0, 1.0, -3.0), 300.0
+    )
     loads = geometry.loads(4.0, 33.0)
     rot = rotation_about(33.0, 4.0)
     world = {k: rot @ np.array(v) for k, v in geometry.points.items()}
@@ -237,11 +256,19 @@ def two_crane_chain(lug_capacity=700.0):
     pairs = {"C1": (("LP1", p["f"]), ("LP4", p["e"])), "C2": (("LP2", p["f"]), ("LP3", p["e"]))}
     cranes = []
     for name, hook in (("C1", "crane1"), ("C2", "crane2")):
-        lugs = tuple(LugLoads(lug, share=worst[name] * (far + p["y"]) / p["B"],
-                              tilt_share=tilt[hook].load * (far + p["y"]) / p["B"],
-                              sling_angle=60.0, capacity=lug_capacity) for lug, far in pairs[name])
-        cranes.append(CraneLoads(name, nominal[name], worst[name], tilt[hook].load, swl=900.0,
-                                 radius=24.0, lugs=lugs))
+        lugs = tuple(
+            LugLoads(
+                lug,
+                share=worst[name] * (far + p["y"]) / p["B"],
+                tilt_share=tilt[hook].load * (far + p["y"]) / p["B"],
+                sling_angle=60.0,
+                capacity=lug_capacity,
+            )
+            for lug, far in pairs[name]
+        )
+        cranes.append(
+            CraneLoads(name, nominal[name], worst[name], tilt[hook].load, swl=900.0, radius=24.0, lugs=lugs)
+        )
     return DesignLoadChain(tuple(cranes), w, Rules(location="inshore", rigging_weight=30.0))
 
 
@@ -262,8 +289,14 @@ def test_hand_calculation_two_crane_1200t():
     assert [printed(r.static_hook_load, 1) for r in (c1, c2)] == [763.5, 714.4]
     assert [printed(r.design_hook_load, 1) for r in (c1, c2)] == [824.6, 771.6]
     assert [printed(r.utilisation, 3) for r in (c1, c2)] == [0.916, 0.857]
-    assert c1.check == Check.upper("design_hook_load", "C1", c1.design_hook_load, 900.0, "t",
-                                   note="dynamic hook load / chart SWL at 24 m")
+    assert c1.check == Check.upper(
+        "design_hook_load",
+        "C1",
+        c1.design_hook_load,
+        900.0,
+        "t",
+        note="dynamic hook load / chart SWL at 24 m",
+    )
     assert_allclose(c1.code_margin.value, (624.0 * 1.05 + 30.0) * 1.20, **EXACT)
     lugs = {lug.lug: lug for r in chain.results for lug in r.lugs}
     lp4 = 1200 * one * (ND["e"] + ND["y"]) / ND["B"]
@@ -272,14 +305,22 @@ def test_hand_calculation_two_crane_1200t():
     assert_allclose(lugs["LP4"].design_load, lugs["LP4"].leg_load * 1.30, **EXACT)
     assert_allclose(lugs["LP4"].out_of_plane, 0.05 * lugs["LP4"].design_load, **EXACT)
     assert {k: printed(v.design_load, 1) for k, v in lugs.items()} == {
-        "LP1": 599.3, "LP4": 724.2, "LP2": 559.2, "LP3": 675.7}
+        "LP1": 599.3,
+        "LP4": 724.2,
+        "LP2": 559.2,
+        "LP3": 675.7,
+    }
     assert [lug.check.ok for lug in lugs.values()] == [True, False, True, True]
     assert [c.name for c in chain.checks if not c.ok] == ["lug_design_load"]
 
 
 # ---- hand calculation 2: the 1500 GT tanker on four floating cranes ----------------------
-TANKER = {"Big-P": (16.2, 6.0, 6.0), "Big-S": (16.2, -6.0, 6.0),
-          "Mid-P": (65.6, 6.0, 6.0), "Mid-S": (65.6, -6.0, 6.0)}
+TANKER = {
+    "Big-P": (16.2, 6.0, 6.0),
+    "Big-S": (16.2, -6.0, 6.0),
+    "Mid-P": (65.6, 6.0, 6.0),
+    "Mid-S": (65.6, -6.0, 6.0),
+}
 TANKER_COG, TANKER_W = (35.86, 0.0, 2.5), 904.0
 TANKER_ENVELOPE = [(sx * 0.5, sy * 0.3, sz * 0.2) for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
 
@@ -289,8 +330,11 @@ def rectangle_share(name, dx=0.0, dy=0.0):
     W/4 + W (x_G - x_m)(x_i - x_m) / (4 * 24.7^2) + W y_G y_i / (4 * 6^2)."""
     x, y, _ = TANKER[name]
     xm = 40.9
-    return (TANKER_W / 4 + TANKER_W * (TANKER_COG[0] + dx - xm) * (x - xm) / (4 * 24.7**2)
-            + TANKER_W * dy * y / (4 * 6.0**2))
+    return (
+        TANKER_W / 4
+        + TANKER_W * (TANKER_COG[0] + dx - xm) * (x - xm) / (4 * 24.7**2)
+        + TANKER_W * dy * y / (4 * 6.0**2)
+    )
 
 
 def tanker_chain():
@@ -301,10 +345,22 @@ def tanker_chain():
     tilt = geometry.worst(alpha, TANKER_ENVELOPE)
     k, delta = 50_000.0 / 30.0, 0.02  # EA / l0 [t/m], hook tolerance [m]
     swl = {"Big-P": 1000.0, "Big-S": 1000.0, "Mid-P": 450.0, "Mid-S": 450.0}
-    cranes = tuple(CraneLoads(name, nominal[name], worst[name], tilt[name].load, swl=swl[name],
-                              skew=1.0 + k * delta / nominal[name]) for name in TANKER)
-    rules = Rules(location="inshore", separate_vessels=True,
-                  rigging_weight={"Big-P": 60.0, "Big-S": 60.0, "Mid-P": 25.0, "Mid-S": 25.0})
+    cranes = tuple(
+        CraneLoads(
+            name,
+            nominal[name],
+            worst[name],
+            tilt[name].load,
+            swl=swl[name],
+            skew=1.0 + k * delta / nominal[name],
+        )
+        for name in TANKER
+    )
+    rules = Rules(
+        location="inshore",
+        separate_vessels=True,
+        rigging_weight={"Big-P": 60.0, "Big-S": 60.0, "Mid-P": 25.0, "Mid-S": 25.0},
+    )
     return DesignLoadChain(cranes, TANKER_W, rules), alpha
 
 
@@ -332,7 +388,13 @@ def test_hand_calculation_tanker_four_cranes():
     out = json.loads(json.dumps(chain.to_json()))
     assert out["cranes"][0]["check"]["name"] == "design_hook_load"
     assert [f["name"] for f in out["cranes"][0]["factors"]] == [
-        "weight_contingency", "cog", "tilt", "skew", "yaw", "daf"]
+        "weight_contingency",
+        "cog",
+        "tilt",
+        "skew",
+        "yaw",
+        "daf",
+    ]
     assert all(f["source"] for f in out["cranes"][0]["factors"])
 
 
@@ -361,8 +423,10 @@ def test_no_envelope_takes_the_cog_factor_and_chart_with_dynamics():
 
 
 def test_over_the_chart_fails_the_check():
-    cranes = tuple(CraneLoads(n, nominal=250.0, worst=260.0, tilt=270.0, swl=300.0, skew=1.1)
-                   for n in ("A", "B", "C", "D"))
+    cranes = tuple(
+        CraneLoads(n, nominal=250.0, worst=260.0, tilt=270.0, swl=300.0, skew=1.1)
+        for n in ("A", "B", "C", "D")
+    )
     chain = DesignLoadChain(cranes, 1000.0, Rules(location="offshore"))
     result = chain.result("A")
     # offshore, 1000 < 1 050 t <= 2500: DAF 1.15; four hooks: the computed skew on the hook
@@ -374,31 +438,48 @@ def test_over_the_chart_fails_the_check():
 # ---- [rules] table and bad input ----------------------------------------------------------
 def test_rules_table_defaults_and_overrides():
     assert read_rules(None) == Rules()
-    rules = read_rules({"location": "inshore", "weight_contingency": 1.1, "daf": 1.2, "skew_factor": 1.3,
-                        "tilt": 2.0, "hook_elevation": 0.5, "yaw_factor": 1.1, "separate_vessels": True,
-                        "rigging_weight": {"Big-P": 25}, "consequence_factor": 1.5,
-                        "lateral_fraction": 0.1, "chart_includes_dynamics": True, "code_margin": 0.25,
-                        "cog_factor": 1.05})
+    rules = read_rules(
+        {
+            "location": "inshore",
+            "weight_contingency": 1.1,
+            "daf": 1.2,
+            "skew_factor": 1.3,
+            "tilt": 2.0,
+            "hook_elevation": 0.5,
+            "yaw_factor": 1.1,
+            "separate_vessels": True,
+            "rigging_weight": {"Big-P": 25},
+            "consequence_factor": 1.5,
+            "lateral_fraction": 0.1,
+            "chart_includes_dynamics": True,
+            "code_margin": 0.25,
+            "cog_factor": 1.05,
+        }
+    )
     assert rules.design_tilt() == (2.0, 0.5)
     assert rules.rigging_for("Big-P") == 25.0 and rules.rigging_for("other") == 0.0
     assert Rules(separate_vessels=True, daf=1.1).design_tilt() == (5.0, 1.0)
 
 
-@pytest.mark.parametrize("table, message", [
-    ({"locaton": "inshore"}, "rules.locaton = 'inshore': unknown key, expected one of location"),
-    ({"location": "nearshore"}, "rules.location = 'nearshore'"),
-    ({"daf": "1.1"}, "rules.daf = '1.1'"),
-    ({"daf": 0.9}, "rules.daf = 0.9: expected a finite factor >= 1"),
-    ({"weight_contingency": float("nan")}, "rules.weight_contingency = nan"),
-    ({"tilt": 45.0}, "rules.tilt = 45.0: expected a design tilt in [0, 30) deg"),
-    ({"hook_elevation": -1.0}, "rules.hook_elevation = -1.0: expected a finite number >= 0"),
-    ({"separate_vessels": "yes"}, "rules.separate_vessels = 'yes'"),
-    ({"separate_vessels": True, "synchronised_sheerleg": True}, "rules.synchronised_sheerleg = true"),
-    ({"separate_vessels": True}, "rules.daf: missing"),
-    ({"rigging_weight": -5.0}, "rules.rigging_weight = -5.0: expected a finite number >= 0"),
-    ({"lateral_fraction": 1.5}, "rules.lateral_fraction = 1.5"),
-    ({"code_margin": -0.1}, "rules.code_margin = -0.1"),
-], ids=lambda v: str(v)[:30])
+@pytest.mark.parametrize(
+    "table, message",
+    [
+        ({"locaton": "inshore"}, "rules.locaton = 'inshore': unknown key, expected one of location"),
+        ({"location": "nearshore"}, "rules.location = 'nearshore'"),
+        ({"daf": "1.1"}, "rules.daf = '1.1'"),
+        ({"daf": 0.9}, "rules.daf = 0.9: expected a finite factor >= 1"),
+        ({"weight_contingency": float("nan")}, "rules.weight_contingency = nan"),
+        ({"tilt": 45.0}, "rules.tilt = 45.0: expected a design tilt in [0, 30) deg"),
+        ({"hook_elevation": -1.0}, "rules.hook_elevation = -1.0: expected a finite number >= 0"),
+        ({"separate_vessels": "yes"}, "rules.separate_vessels = 'yes'"),
+        ({"separate_vessels": True, "synchronised_sheerleg": True}, "rules.synchronised_sheerleg = true"),
+        ({"separate_vessels": True}, "rules.daf: missing"),
+        ({"rigging_weight": -5.0}, "rules.rigging_weight = -5.0: expected a finite number >= 0"),
+        ({"lateral_fraction": 1.5}, "rules.lateral_fraction = 1.5"),
+        ({"code_margin": -0.1}, "rules.code_margin = -0.1"),
+    ],
+    ids=lambda v: str(v)[:30],
+)
 def test_rules_table_bad_input(table, message):
     with pytest.raises(InvalidScene) as err:
         read_rules(table)
@@ -425,6 +506,7 @@ def test_chain_bad_input():
 
 
 # -- the rules' tilt per direction -----------------------------------------------------------------
+
 
 def test_tilt_per_direction_closed_forms():
     """Four hooks on a 40 m x 12 m rectangle: a 1.0 m elevation difference tilts the body by
@@ -468,7 +550,8 @@ def test_tilt_per_direction_two_hooks_is_the_two_crane_rule():
 def test_tilt_per_direction_refuses_an_elevation_beyond_the_spacing():
     from liftplan.model.rules import TiltGeometry
 
-    geometry = TiltGeometry({"A": (0.0, 0.0, 0.0), "B": (20.0, 0.0, 0.0), "C": (40.0, 0.5, 0.0)},
-                            (20.0, 0.2, -1.0), 100.0)
+    geometry = TiltGeometry(
+        {"A": (0.0, 0.0, 0.0), "B": (20.0, 0.0, 0.0), "C": (40.0, 0.5, 0.0)}, (20.0, 0.2, -1.0), 100.0
+    )
     with pytest.raises(InvalidScene, match="hook_elevation = 1.0: expected less than the hook spacing"):
         geometry.tilt_along(0.0, 3.0, 1.0)

@@ -20,9 +20,7 @@ VALID = {
         {"name": "D", "at": [-10.0, 5.0, 3.0]},
     ],
     "ropes": {"EA": 20000.0},
-    "cranes": [
-        {"lug": n, "boom_height": 30.0, "rope_length": 20.0, "swl": 80.0} for n in "ABCD"
-    ],
+    "cranes": [{"lug": n, "boom_height": 30.0, "rope_length": 20.0, "swl": 80.0} for n in "ABCD"],
     "analysis": {"model": "elastic"},
 }
 
@@ -64,18 +62,26 @@ CASES = [
     ("negative EA", lambda d: d["ropes"].update(EA=-5.0), ["EA = -5.0", "> 0"]),
     ("zero rope length", lambda d: d["cranes"][2].update(rope_length=0.0), ["rope_length", "> 0"]),
     ("negative swl", lambda d: d["cranes"][2].update(swl=-1.0), ["swl", "> 0"]),
-    ("two lugs", lambda d: (d["lugs"].pop(), d["lugs"].pop(), d["cranes"].pop(), d["cranes"].pop()),
-     ["2 given", "three or more"]),
+    (
+        "two lugs",
+        lambda d: (d["lugs"].pop(), d["lugs"].pop(), d["cranes"].pop(), d["cranes"].pop()),
+        ["2 given", "three or more"],
+    ),
     ("string weight", lambda d: d["body"].update(weight="heavy"), ["body.weight = 'heavy'", "number"]),
     ("short point", lambda d: d["lugs"][0].update(at=[1.0, 2.0]), ["lugs[0].at"]),
     ("bad frame", lambda d: d.update(frame="y-up"), ["frame = 'y-up'", "z-up", "choi"]),
     ("bad model", lambda d: d["analysis"].update(model="stiff"), ["analysis.model = 'stiff'"]),
     ("heel beyond 90", lambda d: d.update(attitude={"heel": 120.0}), ["attitude.heel", "[-90, 90]"]),
-    ("collinear lugs",
-     lambda d: [lug.update(at=[float(10 * i), 0.0, 3.0]) for i, lug in enumerate(d["lugs"])],
-     ["collinear", "singular"]),
-    ("CG outside", lambda d: d["body"].update(cog=[15.0, 0.0, 1.0]),
-     ["body.cog", "outside", "edge B-A", "C, D would go slack"]),
+    (
+        "collinear lugs",
+        lambda d: [lug.update(at=[float(10 * i), 0.0, 3.0]) for i, lug in enumerate(d["lugs"])],
+        ["collinear", "singular"],
+    ),
+    (
+        "CG outside",
+        lambda d: d["body"].update(cog=[15.0, 0.0, 1.0]),
+        ["body.cog", "outside", "edge B-A", "C, D would go slack"],
+    ),
 ]
 
 
@@ -116,9 +122,13 @@ def test_bad_hulls(hull, expected):
 def test_choi_frame_hull_box_and_ground_are_converted():
     from liftplan.model import loads_scene
 
-    raw = {"frame": "choi", "body": {"weight": 100.0, "cog": [2.0, 1.0, 3.0]}, "water": {},
-           "hull": {"box": {"min": [0, 0, 0], "max": [4, 2, 6]}},
-           "ground": {"contact": [1.0, 0.0, 5.0]}}
+    raw = {
+        "frame": "choi",
+        "body": {"weight": 100.0, "cog": [2.0, 1.0, 3.0]},
+        "water": {},
+        "hull": {"box": {"min": [0, 0, 0], "max": [4, 2, 6]}},
+        "ground": {"contact": [1.0, 0.0, 5.0]},
+    }
     scene = loads_scene(tomli_w.dumps(raw))
     assert scene.hull.bounds[0].tolist() == [0, -6, 0] and scene.hull.bounds[1].tolist() == [4, 0, 2]
     assert scene.ground.contact == (1.0, -5.0, 0.0)
@@ -146,8 +156,12 @@ def test_choi_frame_converts_points():
 
 # -- random malformed files: always InvalidScene, never another exception ------------------
 junk = st.one_of(
-    st.none(), st.booleans(), st.integers(-10, 10), st.floats(allow_nan=True),
-    st.text(max_size=5), st.lists(st.floats(-50, 50), max_size=4),
+    st.none(),
+    st.booleans(),
+    st.integers(-10, 10),
+    st.floats(allow_nan=True),
+    st.text(max_size=5),
+    st.lists(st.floats(-50, 50), max_size=4),
     st.dictionaries(st.text(max_size=3), st.integers(), max_size=2),
 )
 
@@ -169,7 +183,8 @@ ALL_PATHS = [p for p in _paths(VALID) if p]
 @given(
     edits=st.lists(
         st.tuples(st.sampled_from(ALL_PATHS), st.sampled_from(["set", "delete", "add"]), junk),
-        min_size=1, max_size=3,
+        min_size=1,
+        max_size=3,
     )
 )
 def test_random_malformed_files_end_in_the_clear_error(edits):

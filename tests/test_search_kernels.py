@@ -62,8 +62,9 @@ def test_plan_geometry_never_rules_out_a_set_the_full_screening_keeps():
         dropped = code != FEASIBLE
         # the screening's own tests (without the pre-screen) on the dropped sets
         with np.errstate(divide="ignore", invalid="ignore"):
-            bound, reason = _screen_chunk(problem, sets[dropped], cranes[dropped],
-                                          screening_scenarios(problem))
+            bound, reason = _screen_chunk(
+                problem, sets[dropped], cranes[dropped], screening_scenarios(problem)
+            )
         assert np.all(np.isinf(bound))
         assert np.array_equal(reason, code[dropped])
 

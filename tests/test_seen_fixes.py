@@ -28,10 +28,13 @@ EXAMPLES = ROOT / "examples"
 
 # -- 1. the chain's words ------------------------------------------------------------------
 def _two_cranes(cog_searched=True):
-    cranes = (CraneLoads("A", nominal=600.0, worst=612.0, tilt=630.0, swl=900.0),
-              CraneLoads("B", nominal=400.0, worst=420.0, tilt=410.0, swl=900.0))
-    return DesignLoadChain(cranes, 1000.0, Rules(location="inshore"), cog_searched=cog_searched,
-                           tilt_note="3 deg governs")
+    cranes = (
+        CraneLoads("A", nominal=600.0, worst=612.0, tilt=630.0, swl=900.0),
+        CraneLoads("B", nominal=400.0, worst=420.0, tilt=410.0, swl=900.0),
+    )
+    return DesignLoadChain(
+        cranes, 1000.0, Rules(location="inshore"), cog_searched=cog_searched, tilt_note="3 deg governs"
+    )
 
 
 def _note(result, name):
@@ -42,17 +45,22 @@ def test_tilt_note_names_the_worst_tension_over_the_box_and_the_cg_envelope():
     chain = _two_cranes()
     note = _note(chain.result("A"), "tilt")
     assert "searched" not in note
-    assert note == ("share at the rules' tilt 630 t against 612 t, the crane's worst tension over "
-                    "the heel/trim tolerance box and the CG envelope; 3 deg governs")
+    assert note == (
+        "share at the rules' tilt 630 t against 612 t, the crane's worst tension over "
+        "the heel/trim tolerance box and the CG envelope; 3 deg governs"
+    )
     assert "in the worst tension (worst / nominal = 1.0200)" in _note(chain.result("A"), "cog")
 
 
 def test_tilt_note_without_a_cg_envelope_says_the_box_only():
-    chain = DesignLoadChain(_two_cranes().cranes, 1000.0, Rules(location="inshore", cog_factor=1.03),
-                            cog_searched=False)
+    chain = DesignLoadChain(
+        _two_cranes().cranes, 1000.0, Rules(location="inshore", cog_factor=1.03), cog_searched=False
+    )
     note = _note(chain.result("B"), "tilt")
-    assert note == ("share at the rules' tilt 410 t against 420 t, the crane's worst tension over "
-                    "the heel/trim tolerance box (no CG envelope)")
+    assert note == (
+        "share at the rules' tilt 410 t against 420 t, the crane's worst tension over "
+        "the heel/trim tolerance box (no CG envelope)"
+    )
 
 
 def test_chain_docstrings_do_not_say_worst_searched():
@@ -102,8 +110,9 @@ def _steep_file(tmp_path):
 
     text = (EXAMPLES / "block_three_slings_plan.toml").read_text()
     dx = 3.0 / math.tan(math.radians(STEEP))
-    extra = (f'\n[[candidates]]\nname = "STEEP"\nat = [{7.0 + dx!r}, 5.5, 0.0]\n'
-             'bulkhead = "frame x = +7.0 m"\n')
+    extra = (
+        f'\n[[candidates]]\nname = "STEEP"\nat = [{7.0 + dx!r}, 5.5, 0.0]\nbulkhead = "frame x = +7.0 m"\n'
+    )
     text = text.replace("\n[plan]", extra + "\n[plan]", 1)
     path = tmp_path / "steep.toml"
     path.write_text(text)
@@ -115,7 +124,7 @@ def test_file_path_rules_the_steep_pair_out_and_its_derived_problem_passes_the_g
     from liftplan.planner.slings.apex import apex_problem
 
     problem = load_problem(_steep_file(tmp_path))
-    derived, rigs = apex_problem(problem)          # builds PlanProblem(..., hinges=...) itself
+    derived, rigs = apex_problem(problem)  # builds PlanProblem(..., hinges=...) itself
     steep = problem.names.index("STEEP")
     assert not any(steep in pair for pair in rigs.lugs.tolist())
     reason = [k for k in rigs.ruled_out if "plumb" in k]
@@ -148,7 +157,7 @@ def test_python_hinges_with_a_pair_near_plumb_are_refused_in_one_line(tmp_path):
     assert text.startswith(f"hinges[2] ({name}): the lug pair A (7, 5.5, 3) B (")
     assert f"is {STEEP:.2f} deg from the horizontal" in text
     assert "heel/trim box (+-2, +-2 deg) tilts it by up to 2.83 deg" in text
-    assert "steepest 87.00 deg at heel 0.00, trim 2.00 deg" in text   # the pair leans forward
+    assert "steepest 87.00 deg at heel 0.00, trim 2.00 deg" in text  # the pair leans forward
     assert "expected a pair less than 77.17 deg from the horizontal" in text
     # exactly plumb, and one point
     rows[2, 3:6] = rows[2, 0:3] + [0.0, 0.0, 2.0]
@@ -170,9 +179,9 @@ def test_python_guard_names_the_pair_in_the_files_frame():
     from liftplan.model.statics import fixed_hinges
     from liftplan.planner import load_problem
 
-    problem = load_problem(EXAMPLES / "tanker_plan.toml")       # frame = "choi"
+    problem = load_problem(EXAMPLES / "tanker_plan.toml")  # frame = "choi"
     rows = fixed_hinges(problem.points)
-    rows[1, 3:6] = rows[1, 0:3] + [0.0, 0.0, 1.0]               # z-up: straight up
+    rows[1, 3:6] = rows[1, 0:3] + [0.0, 0.0, 1.0]  # z-up: straight up
     with pytest.raises(InvalidScene) as err:
         dataclasses.replace(problem, hinges=tuple(map(tuple, rows)))
     # BH1-S is at (4.2, 6, 12) in the file; one metre up is +y in the papers' frame
@@ -210,13 +219,14 @@ def test_flexible_water_imports_no_private_helpers():
     import liftplan.model.water.equilibrium as equilibrium
 
     tree = ast.parse((ROOT / "model" / "strength" / "flexible_water.py").read_text())
-    taken = [alias.name for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)
-             for alias in node.names]
+    taken = [
+        alias.name for node in ast.walk(tree) if isinstance(node, ast.ImportFrom) for alias in node.names
+    ]
     assert "tilted_rotation" in taken and "equilibrium_result" in taken
     assert not [name for name in taken if name.startswith("_") and name != "_GAUSS3"]
     for name in ("tilted_rotation", "equilibrium_result"):
         assert "Parameters" in getattr(equilibrium, name).__doc__
-    assert equilibrium._rotation is equilibrium.tilted_rotation   # the package still exports it
+    assert equilibrium._rotation is equilibrium.tilted_rotation  # the package still exports it
 
 
 def _bow_lift(ei, boom=40.0):
@@ -225,20 +235,29 @@ def _bow_lift(ei, boom=40.0):
     from liftplan.model.scenefile import loads_scene
 
     text = (EXAMPLES / "stranded_barge.toml").read_text()
-    text = text.replace("cog = [5.0, 0.0, 2.0]",
-                        "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]")
+    text = text.replace(
+        "cog = [5.0, 0.0, 2.0]", "cog = [5.0, 0.0, 2.0]\nweight_curve = [[-50.0, 140.0], [50.0, 260.0]]"
+    )
     text = text.replace("[ground]", f"EI = [[-50.0, {ei!r}]]\n\n[ground]")
     text = text.replace("contact = [30.0, -2.0, -5.0]", "contact = [-45.0, 0.0, -5.0]")
     text += '\n[analysis]\nhull = "flexible"\n'
     for k, (x, y) in enumerate(((40.0, 10.0), (48.0, 10.0), (48.0, -10.0), (40.0, -10.0))):
-        text += (f'\n[[lugs]]\nname = "B{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "B{k + 1}"\n'
-                 f"boom_height = {boom + 0.01 * k!r}\nrope_length = 35.0\nEA = 50000.0\nswl = 2000.0\n")
+        text += (
+            f'\n[[lugs]]\nname = "B{k + 1}"\nat = [{x}, {y}, 5.0]\n\n[[cranes]]\nlug = "B{k + 1}"\n'
+            f"boom_height = {boom + 0.01 * k!r}\nrope_length = 35.0\nEA = 50000.0\nswl = 2000.0\n"
+        )
     return loads_scene(text, base=EXAMPLES)
 
 
 def _numbers(eq):
-    return [*eq.tensions.values(), eq.afloat.ground_reaction, eq.afloat.buoyancy, eq.pose.heel,
-            eq.pose.trim, eq.flexible_hull.max_deflection.signed]
+    return [
+        *eq.tensions.values(),
+        eq.afloat.ground_reaction,
+        eq.afloat.buoyancy,
+        eq.pose.heel,
+        eq.pose.trim,
+        eq.flexible_hull.max_deflection.signed,
+    ]
 
 
 def test_flexible_hull_in_water_builds_its_model_once_per_discretisation():
@@ -260,7 +279,7 @@ def test_flexible_hull_in_water_builds_its_model_once_per_discretisation():
     fresh = solve(other)
     assert fw.water_beam_model.cache_info().misses >= 1
     assert _numbers(again) == pytest.approx(_numbers(fresh), rel=1e-9, abs=1e-9)
-    assert _numbers(again) != pytest.approx(_numbers(first), rel=1e-6)   # other numbers went in
+    assert _numbers(again) != pytest.approx(_numbers(first), rel=1e-6)  # other numbers went in
 
 
 # -- 4. the console at many ropes: 100 columns, long tables in groups ------------------------
@@ -270,12 +289,15 @@ def test_fold_and_grouped():
     rows = [f"row {k}" for k in range(20)]
     out = grouped(rows)
     assert out[8] == "" and out[17] == "" and [r for r in out if r] == rows
-    assert grouped(rows[:16]) == rows[:16]     # two groups or fewer: as they are
-    line = ("spread: nominal 44.73 t, worst 66.56 t at heel +1.00 deg, trim +0.50 deg, "
-            "CG (-5.00, 0.60, 7.00) m")
+    assert grouped(rows[:16]) == rows[:16]  # two groups or fewer: as they are
+    line = (
+        "spread: nominal 44.73 t, worst 66.56 t at heel +1.00 deg, trim +0.50 deg, CG (-5.00, 0.60, 7.00) m"
+    )
     folded = fold(line, width=80)
-    assert folded == ["spread: nominal 44.73 t, worst 66.56 t at heel +1.00 deg, trim +0.50 deg,",
-                      "  CG (-5.00, 0.60, 7.00) m"]        # the point stays on one line
+    assert folded == [
+        "spread: nominal 44.73 t, worst 66.56 t at heel +1.00 deg, trim +0.50 deg,",
+        "  CG (-5.00, 0.60, 7.00) m",
+    ]  # the point stays on one line
     assert fold("short") == ["short"]
 
 
@@ -286,13 +308,13 @@ def _check_console(text, n):
     rows = lines[head + 2 : head + 2 + n + (n - 1) // 8]
     assert [line for line in rows if line][0].startswith("L1 ")
     assert [line.split()[0] for line in rows if line] == [f"L{k + 1}" for k in range(n)]
-    assert all(rows[k] == "" for k in range(8, len(rows), 9))          # groups of eight
+    assert all(rows[k] == "" for k in range(8, len(rows), 9))  # groups of eight
     for title in ("worst in the box (CG in the file's frame):", "at the rules' tilt"):
         at = next(k for k, line in enumerate(lines) if line.startswith(title))
         assert lines[at + 2].split()[0] == "L1" and lines[at + 10] == ""
     sensitivity = next(k for k, line in enumerate(lines) if line.startswith("tension change per cm"))
     cells = lines[sensitivity + 1].split()
-    assert cells[0] == "L1" and cells[14] == "L8" and len(cells) == 16    # eight hooks a line
+    assert cells[0] == "L1" and cells[14] == "L8" and len(cells) == 16  # eight hooks a line
     rank = next(k for k, line in enumerate(lines) if line.startswith("rank "))
     assert lines[rank].endswith("lugs (crane)") and lines[rank + 1].startswith("1 ")
 
@@ -314,7 +336,7 @@ def test_plan_and_solve_consoles_at_64_ropes(capsys):
     assert main(["solve", str(EXAMPLES / "hull154_64_points.toml")]) == 0
     lines = capsys.readouterr().out.splitlines()
     table = lines[lines.index("") + 4 :]
-    assert max(len(line) for line in table) <= 100   # the rows (the summary lines are text)
+    assert max(len(line) for line in table) <= 100  # the rows (the summary lines are text)
 
 
 def test_sling_console_fits_100_columns():

@@ -69,8 +69,7 @@ def test_json_carries_every_check_and_a_script_can_gate_on_them(tmp_path):
     assert all(CHECK_KEYS <= set(c) and c["ok"] for c in checks)
     assert {c["name"] for c in checks} == {"swl", "min_tension", "taut"}
     # SWL 250 t: the 272.11 t ropes are at 108.8 %
-    over = run("solve", str(edited(tmp_path, TANKER, "swl = 400.0", "swl = 250.0")), "--json",
-               "--strict")
+    over = run("solve", str(edited(tmp_path, TANKER, "swl = 400.0", "swl = 250.0")), "--json", "--strict")
     assert over.returncode == 4
     failed = [c for c in json.loads(over.stdout)["checks"] if not c["ok"]]
     assert {c["subject"] for c in failed} == {"T1", "T4"}
@@ -87,16 +86,22 @@ def test_slack_rope_of_a_grounded_hull_is_a_state_not_a_failure(capsys):
 
 def test_slack_rope_fails_the_taut_check():
     scene = load_scene(TANKER)
-    eq = Equilibrium(model="elastic", pose=Pose(0.0, 0.0, 0.0, -131.0),
-                     tensions={"T1": 452.0, "T2": 0.0, "T3": 0.0, "T4": 452.0}, weight=904.0,
-                     swl={"T1": 400.0, "T2": 400.0, "T3": 400.0, "T4": None}, slack=("T2", "T3"),
-                     residual=0.0, solver=SolverInfo("newton", True, 3, 0.001))
+    eq = Equilibrium(
+        model="elastic",
+        pose=Pose(0.0, 0.0, 0.0, -131.0),
+        tensions={"T1": 452.0, "T2": 0.0, "T3": 0.0, "T4": 452.0},
+        weight=904.0,
+        swl={"T1": 400.0, "T2": 400.0, "T3": 400.0, "T4": None},
+        slack=("T2", "T3"),
+        residual=0.0,
+        solver=SolverInfo("newton", True, 3, 0.001),
+    )
     checks = {(c.name, c.subject): c for c in equilibrium_checks(scene, eq)}
     assert not checks["swl", "T1"].ok and ("swl", "T4") not in checks  # no SWL given: no check
     assert checks["min_tension", "T2"].ok  # zero is no compression...
     taut = checks["taut", "ropes"]
     assert not taut.ok and taut.value == 2 and taut.limit == 4 and "T2, T3" in taut.note  # ...but slack
-    warning, = equilibrium_warnings(scene, eq)
+    (warning,) = equilibrium_warnings(scene, eq)
     assert "-131 m" in warning and "far below the datum" in warning
 
 
@@ -104,11 +109,13 @@ def test_plausibility_names_the_key_and_the_slip(tmp_path):
     assert scene_warnings(load_scene(TANKER)) == []
     assert problem_warnings(load_problem(TANKER_PLAN)) == []
     low = load_scene(edited(tmp_path, TANKER, "lift_height = 1.0", "lift_height = -150.0"))
-    assert any(w.startswith("attitude.lift_height = -150 m: far below the datum") for w in
-               scene_warnings(low))
+    assert any(
+        w.startswith("attitude.lift_height = -150 m: far below the datum") for w in scene_warnings(low)
+    )
     problem = load_problem(edited(tmp_path, TANKER_PLAN, "hook_tolerance = 0.02", "hook_tolerance = 20.0"))
     assert problem_warnings(problem) == [
-        "plan.hook_tolerance = 20 m: more than 0.5 m of hook-height error; mm typed as m?"]
+        "plan.hook_tolerance = 20 m: more than 0.5 m of hook-height error; mm typed as m?"
+    ]
     problem = load_problem(edited(tmp_path, TANKER_PLAN, "heel = 2.0, trim", "heel = 45.0, trim"))
     assert problem_warnings(problem)[0].startswith("plan.tolerance.heel = 45 deg")
 
@@ -140,23 +147,30 @@ def interrupt(args, ready, tmp_path, after=0.5, loop=None):
     if loop is not None:
         module, name, again = loop
         body = "        real(*a, **k)\n" if again else "        time.sleep(0.05)\n"
-        patch = (f"import importlib, time; m = importlib.import_module({module!r}); "
-                 f"real = m.{name}\n"
-                 "def looping(*a, **k):\n"
-                 "    real(*a, **k)\n"
-                 "    print('computing', file=sys.stderr, flush=True)\n"
-                 "    while True:\n"
-                 + body +
-                 f"m.{name} = looping\n")
-    code = ("import sys\n" + patch + "from liftplan.planner.cli import main\n"
-            "print('started', file=sys.stderr, flush=True)\n"
-            f"sys.exit(main({[str(a) for a in args]!r}))\n")
+        patch = (
+            f"import importlib, time; m = importlib.import_module({module!r}); "
+            f"real = m.{name}\n"
+            "def looping(*a, **k):\n"
+            "    real(*a, **k)\n"
+            "    print('computing', file=sys.stderr, flush=True)\n"
+            "    while True:\n" + body + f"m.{name} = looping\n"
+        )
+    code = (
+        "import sys\n" + patch + "from liftplan.planner.cli import main\n"
+        "print('started', file=sys.stderr, flush=True)\n"
+        f"sys.exit(main({[str(a) for a in args]!r}))\n"
+    )
     # as from a shell: Ctrl-C at its default in the child, whatever this process inherited (a
     # suite started as a background job of a non-interactive shell ignores SIGINT; that is
     # inherited across exec and Python keeps it: the children then ran on for 60 s)
-    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, start_new_session=True, cwd=tmp_path,
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+        cwd=tmp_path,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
     os.set_blocking(proc.stderr.fileno(), False)
     seen, deadline = b"", time.monotonic() + 120
     while ready.encode() not in seen and time.monotonic() < deadline and proc.poll() is None:
@@ -175,10 +189,14 @@ def interrupt(args, ready, tmp_path, after=0.5, loop=None):
     return proc.returncode, out.decode(), (seen + err).decode()
 
 
-@pytest.mark.parametrize(("args", "loop"), [
-    (["plan", TANKER_PLAN], ("liftplan.planner.plan", "search", True)),
-    (["lift", LIFT, "--step", "0.25"], ("liftplan.model.lift", "load_curve", False)),
-], ids=["plan", "lift"])
+@pytest.mark.parametrize(
+    ("args", "loop"),
+    [
+        (["plan", TANKER_PLAN], ("liftplan.planner.plan", "search", True)),
+        (["lift", LIFT, "--step", "0.25"], ("liftplan.model.lift", "load_curve", False)),
+    ],
+    ids=["plan", "lift"],
+)
 def test_ctrl_c_is_one_line_exit_130(tmp_path, args, loop):
     code, out, err = interrupt(args, "computing", tmp_path, after=0.5, loop=loop)
     assert code == 130, err
@@ -235,12 +253,15 @@ def test_ctrl_c_during_batch_is_one_line_exit_130(tmp_path):
     # 600 plans on a local cluster: interrupted at its first finished case, long before the end
     study = tmp_path / "study.toml"
     (tmp_path / "tanker_plan.toml").write_text(TANKER_PLAN.read_text())
-    study.write_text('[study]\nproblem = "tanker_plan.toml"\n[sweep]\n"plan.tolerance.heel" = [1.0, 2.0]\n'
-                     '[sample]\ncount = 300\nweight = [0.95, 1.05]\n')
+    study.write_text(
+        '[study]\nproblem = "tanker_plan.toml"\n[sweep]\n"plan.tolerance.heel" = [1.0, 2.0]\n'
+        "[sample]\ncount = 300\nweight = [0.95, 1.05]\n"
+    )
     code, out, err = interrupt(["batch", study, "--workers", "2"], "case/s", tmp_path, after=0.2)
     assert code == 130, err
     assert err.strip().splitlines()[-1] == (
-        "liftplan: interrupted; the finished cases are kept, run the same command to resume")
+        "liftplan: interrupted; the finished cases are kept, run the same command to resume"
+    )
     for noise in ("Traceback", "CasADi", "distributed.", "KeyboardInterrupt"):
         assert noise not in err
     assert (tmp_path / "study.csv.partial").exists()
@@ -258,12 +279,15 @@ def test_report_naming_an_existing_file_is_refused_before_planning(tmp_path, cap
     assert target.read_text() == "keep me"
 
 
-@pytest.mark.parametrize("figure, fragment", [
-    ("curve.jpg", "unknown file type '.jpg'; expected one of .png, .pdf, .svg"),
-    ("curve", "unknown file type '(none)'"),
-    ("folder.png/", "is a folder"),
-    ("blocker/curve.png", "is a file, not a folder"),
-])
+@pytest.mark.parametrize(
+    "figure, fragment",
+    [
+        ("curve.jpg", "unknown file type '.jpg'; expected one of .png, .pdf, .svg"),
+        ("curve", "unknown file type '(none)'"),
+        ("folder.png/", "is a folder"),
+        ("blocker/curve.png", "is a file, not a folder"),
+    ],
+)
 def test_bad_figure_paths_are_refused_before_computing(tmp_path, capsys, figure, fragment):
     (tmp_path / "folder.png").mkdir()
     (tmp_path / "blocker").write_text("")
@@ -273,8 +297,13 @@ def test_bad_figure_paths_are_refused_before_computing(tmp_path, capsys, figure,
 
 
 def test_figure_into_a_missing_folder_creates_it_and_defaults_to_the_current_folder(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "liftplan.planner.cli", "lift", str(LIFT), "--json"],
-                         capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    out = subprocess.run(
+        [sys.executable, "-m", "liftplan.planner.cli", "lift", str(LIFT), "--json"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+    )
     assert out.returncode == 0, out.stderr
     assert (tmp_path / "sunken_block_lift_load_curve.png").stat().st_size > 0
     assert not (EXAMPLES / "sunken_block_lift_load_curve.png").exists()
@@ -298,10 +327,13 @@ def test_figure_on_a_full_disk_keeps_the_table_and_exits_2(tmp_path, capsys, mon
     assert one_error_line(captured.err) and "No space left on device" in captured.err
 
 
-@pytest.mark.parametrize("output, fragment", [
-    ("folder", "is a folder; expected a file name"),
-    ("/proc/liftplan/out.csv", "cannot write in /proc"),  # no file can be created under /proc
-])
+@pytest.mark.parametrize(
+    "output, fragment",
+    [
+        ("folder", "is a folder; expected a file name"),
+        ("/proc/liftplan/out.csv", "cannot write in /proc"),  # no file can be created under /proc
+    ],
+)
 def test_batch_output_mistakes_are_refused(tmp_path, capsys, output, fragment):
     (tmp_path / "folder").mkdir()
     (tmp_path / "tanker_plan.toml").write_text(TANKER_PLAN.read_text())
@@ -315,8 +347,11 @@ def test_batch_output_mistakes_are_refused(tmp_path, capsys, output, fragment):
 
 
 def test_broken_pipe_closes_quietly():
-    proc = subprocess.Popen([sys.executable, "-m", "liftplan.planner.cli", "solve", str(TANKER)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "liftplan.planner.cli", "solve", str(TANKER)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     proc.stdout.close()  # the reader is gone before the first line is written
     err = proc.stderr.read()
     assert proc.wait(timeout=120) == 141 and err == b""
@@ -393,31 +428,43 @@ CASES = {
     "toml nested 50 000 deep": (lambda t: ["solve", deep_toml(t / "deep.toml")], "nested too deeply"),
     "lift --to inf": (lambda t: ["lift", LIFT, "--to", "inf"], "--to inf: expected a finite"),
     "lift --step nan": (lambda t: ["lift", LIFT, "--step", "nan"], "--step nan: expected a finite"),
-    "plan yaw 1e308": (lambda t: ["plan", plan_with(t, "[attitude]", "[attitude]\nyaw = 1e308")],
-                       "attitude.yaw = 1e+308: expected a value in [-360, 360] deg"),
-    "study problem a folder": (lambda t: ["batch", study(t, "", problem="sub")],
-                               "study.problem = 'sub'"),
+    "plan yaw 1e308": (
+        lambda t: ["plan", plan_with(t, "[attitude]", "[attitude]\nyaw = 1e308")],
+        "attitude.yaw = 1e+308: expected a value in [-360, 360] deg",
+    ),
+    "study problem a folder": (lambda t: ["batch", study(t, "", problem="sub")], "study.problem = 'sub'"),
     "study problem binary": (lambda t: ["batch", study(t, "", problem="blob.bin")], "not a text file"),
     "study problem empty": (lambda t: ["batch", study(t, "", problem="")], "study.problem = ''"),
-    "study problem /dev/null": (lambda t: ["batch", study(t, "", problem="/dev/null")],
-                                "not a regular file"),
-    "study problem empty file": (lambda t: ["batch", study(t, "", problem="empty.toml")],
-                                 "body: missing"),
-    "sample weight inf": (lambda t: ["batch", study(t, "[sample]\ncount = 3\nweight = [1.0, inf]\n")],
-                          "sample.weight = [1.0, inf]: expected finite factors"),
-    "sweep string": (lambda t: ["batch", study(t, '[sweep]\n"plan.tolerance.heel" = ["2"]\n')],
-                     "sweep.'plan.tolerance.heel'[0] = '2': no case can use it"),
+    "study problem /dev/null": (lambda t: ["batch", study(t, "", problem="/dev/null")], "not a regular file"),
+    "study problem empty file": (lambda t: ["batch", study(t, "", problem="empty.toml")], "body: missing"),
+    "sample weight inf": (
+        lambda t: ["batch", study(t, "[sample]\ncount = 3\nweight = [1.0, inf]\n")],
+        "sample.weight = [1.0, inf]: expected finite factors",
+    ),
+    "sweep string": (
+        lambda t: ["batch", study(t, '[sweep]\n"plan.tolerance.heel" = ["2"]\n')],
+        "sweep.'plan.tolerance.heel'[0] = '2': no case can use it",
+    ),
     "sweep cg with two components": (
         lambda t: ["batch", study(t, '[sweep]\n"body.cog" = [[35.0, 2.5]]\n')],
-        "sweep.'body.cog'[0] = [35.0, 2.5]: no case can use it"),
-    "check sweep nan weight": (lambda t: ["batch", study(t, '[sweep]\n"body.weight" = [904.0, nan]\n')],
-                               "sweep.'body.weight'[1] = nan: no case can use it"),
-    "check sweep negative weight": (lambda t: ["batch", study(t, '[sweep]\n"body.weight" = [-904.0]\n')],
-                                    "expected a number > 0"),
+        "sweep.'body.cog'[0] = [35.0, 2.5]: no case can use it",
+    ),
+    "check sweep nan weight": (
+        lambda t: ["batch", study(t, '[sweep]\n"body.weight" = [904.0, nan]\n')],
+        "sweep.'body.weight'[1] = nan: no case can use it",
+    ),
+    "check sweep negative weight": (
+        lambda t: ["batch", study(t, '[sweep]\n"body.weight" = [-904.0]\n')],
+        "expected a number > 0",
+    ),
     "check sweep 200 deg tolerance": (
-        lambda t: ["batch", study(t, '[sweep]\n"plan.tolerance.heel" = [200.0]\n')], "expected 0 to 90 deg"),
+        lambda t: ["batch", study(t, '[sweep]\n"plan.tolerance.heel" = [200.0]\n')],
+        "expected 0 to 90 deg",
+    ),
     "check sweep negative min_tension": (
-        lambda t: ["batch", study(t, '[sweep]\n"plan.min_tension" = [-5.0]\n')], "expected >= 0 t"),
+        lambda t: ["batch", study(t, '[sweep]\n"plan.min_tension" = [-5.0]\n')],
+        "expected >= 0 t",
+    ),
 }
 
 
@@ -443,8 +490,12 @@ def test_fuzz_cases_run_as_a_user_runs_them_exit_2_no_traceback(tmp_path):
 def test_scene_path_that_is_a_fifo_is_refused_not_waited_on(tmp_path):
     fifo = tmp_path / "scene.toml"
     os.mkfifo(fifo)
-    out = subprocess.run([sys.executable, "-m", "liftplan.planner.cli", "solve", str(fifo)],
-                         capture_output=True, text=True, timeout=60)  # a hang fails here
+    out = subprocess.run(
+        [sys.executable, "-m", "liftplan.planner.cli", "solve", str(fifo)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )  # a hang fails here
     assert out.returncode == 2 and one_error_line(out.stderr) and "not a regular file" in out.stderr
 
 

@@ -94,8 +94,10 @@ def test_tilt_note_names_the_breakout_where_it_governs(block_plan):
         assert f"share at the rules' tilt {c.tilt.load:.4g} t against" in note
     for c in governs:
         note = _factor(c, "tilt").note
-        assert f"the breakout tension {c.breakout:.4g} t (breakout governs over the worst in the box " \
-               f"{max(c.worst, c.nominal):.4g} t)" in note
+        assert (
+            f"the breakout tension {c.breakout:.4g} t (breakout governs over the worst in the box "
+            f"{max(c.worst, c.nominal):.4g} t)" in note
+        )
         # the CoG note's ratio is the box's, not the breakout tension's over the nominal
         cog = _factor(c, "cog").note
         assert f"worst / nominal = {max(c.worst, c.nominal) / c.nominal:.4f}" in cog
@@ -105,8 +107,9 @@ def test_tilt_note_names_the_breakout_where_it_governs(block_plan):
         assert "breakout" not in _factor(c, "cog").note
     # the JSON carries the same notes
     data = block_plan.design_loads.to_json()
-    assert [next(f["note"] for f in c["factors"] if f["name"] == "tilt") for c in data["cranes"]] == \
-        [_factor(c, "tilt").note for c in cranes]
+    assert [next(f["note"] for f in c["factors"] if f["name"] == "tilt") for c in data["cranes"]] == [
+        _factor(c, "tilt").note for c in cranes
+    ]
 
 
 def test_breakout_static_input_through_the_chain_by_hand(block_plan):
@@ -120,8 +123,11 @@ def test_breakout_static_input_through_the_chain_by_hand(block_plan):
         assert c.design.static_hook_load == pytest.approx(shl, rel=1e-12)
         assert c.design_hook_load == pytest.approx(shl * factors["daf"], rel=1e-12)
     first = block_plan.capacity[0]  # the docs' worked numbers (crane 1, breakout governs)
-    assert (round(first.breakout, 1), round(first.design.static_hook_load, 1),
-            round(first.design_hook_load, 1)) == (263.5, 276.7, 332.0)
+    assert (
+        round(first.breakout, 1),
+        round(first.design.static_hook_load, 1),
+        round(first.design_hook_load, 1),
+    ) == (263.5, 276.7, 332.0)
 
 
 # -- 3. the Monte-Carlo study: like with like -------------------------------------------------
@@ -154,8 +160,9 @@ def test_design_tension_is_the_static_load_the_design_load_is_built_from(tanker_
             factors = {f.name: f.value for f in c.design.factors}
             static = max(c.static_input, c.tilt.load)
             assert c.design_tension == pytest.approx(static * factors["skew"], rel=1e-12)
-            redone = (c.design_tension * rules.weight_contingency * factors["cog"]
-                      + c.design.rigging_weight) * factors["daf"]
+            redone = (
+                c.design_tension * rules.weight_contingency * factors["cog"] + c.design.rigging_weight
+            ) * factors["daf"]
             assert redone == pytest.approx(c.design_hook_load, rel=1e-12)
             # it covers the plan's own worst of that rope (every hook error in the tolerance)
             assert c.design_tension >= c.worst
@@ -188,27 +195,36 @@ def test_montecarlo_rows_carry_above_design_tension(tmp_path, tanker_plan):
     from liftplan.planner.batch.study import load_study
 
     shutil.copy(EXAMPLES / "tanker_plan.toml", tmp_path / "tanker_plan.toml")
-    (tmp_path / "mc.toml").write_text('[study]\nproblem = "tanker_plan.toml"\nkind = "montecarlo"\n'
-                                      "[montecarlo]\ndraws = 400\nseed = 3\ntolerance = 0.05\n",
-                                      encoding="utf-8")
+    (tmp_path / "mc.toml").write_text(
+        '[study]\nproblem = "tanker_plan.toml"\nkind = "montecarlo"\n'
+        "[montecarlo]\ndraws = 400\nseed = 3\ntolerance = 0.05\n",
+        encoding="utf-8",
+    )
     study = load_study(tmp_path / "mc.toml")
     api = hook_monte_carlo(tanker_plan, draws=400, tolerance=0.05, seed=3)
     cases = list(study.cases())
-    rows = [dict(zip(header(study), row)) for row in
-            montecarlo_rows(study, tanker_plan, cases, montecarlo_chunk(tanker_plan.scene, api.errors))]
+    rows = [
+        dict(zip(header(study), row))
+        for row in montecarlo_rows(study, tanker_plan, cases, montecarlo_chunk(tanker_plan.scene, api.errors))
+    ]
     design_tension = np.array([c.design_tension for c in tanker_plan.capacity])
     design_load = np.array([c.design_hook_load for c in tanker_plan.capacity])
-    assert [r["above_design_tension"] for r in rows] == \
-        np.any(api.tensions > design_tension, axis=1).astype(int).tolist()
-    assert [r["above_design_load"] for r in rows] == \
-        np.any(api.tensions > design_load, axis=1).astype(int).tolist()
+    assert [r["above_design_tension"] for r in rows] == np.any(api.tensions > design_tension, axis=1).astype(
+        int
+    ).tolist()
+    assert [r["above_design_load"] for r in rows] == np.any(api.tensions > design_load, axis=1).astype(
+        int
+    ).tolist()
     assert sum(r["above_design_tension"] for r in rows) > sum(r["above_design_load"] for r in rows)
     assert header(study)[-1] == "above_design_tension"  # appended: the old columns keep their place
 
 
 # -- 4. console tables ------------------------------------------------------------------------
-LONG_NAMES = {'"F-P"': '"FRAME-12-PORT-PADEYE-A"', '"F-S"': '"FRAME-12-STBD-PADEYE-A"',
-              '"FWD"': '"FORWARD-CRAWLER-600T"'}
+LONG_NAMES = {
+    '"F-P"': '"FRAME-12-PORT-PADEYE-A"',
+    '"F-S"': '"FRAME-12-STBD-PADEYE-A"',
+    '"FWD"': '"FORWARD-CRAWLER-600T"',
+}
 
 
 def test_solve_tables_fit_long_crane_lug_and_leg_names(tmp_path):
@@ -225,19 +241,23 @@ def test_solve_tables_fit_long_crane_lug_and_leg_names(tmp_path):
     # the leg table: each row's lug starts where the header's "to lug" does, after a space
     head = next(k for k, line in enumerate(lines) if line.startswith("leg "))
     column = lines[head].index("to lug")
-    rows = lines[head + 1:head + 5]
+    rows = lines[head + 1 : head + 5]
     for row in rows:
         leg, lug = row.split()[:2]
         assert row.index(lug, len(leg)) == column and row[column - 1] == " ", row
         assert lug in leg  # the leg key is crane/lug
         # the tension column ends where its header does
-        assert row.split()[2] == row[:lines[head].index("tension [t]") + 11].split()[-1]
-    assert {row.split()[1] for row in rows} == {"FRAME-12-PORT-PADEYE-A", "FRAME-12-STBD-PADEYE-A",
-                                                 "A-P", "A-S"}
+        assert row.split()[2] == row[: lines[head].index("tension [t]") + 11].split()[-1]
+    assert {row.split()[1] for row in rows} == {
+        "FRAME-12-PORT-PADEYE-A",
+        "FRAME-12-STBD-PADEYE-A",
+        "A-P",
+        "A-S",
+    }
     # the crane table: the tension column ends under its header for every crane and the total
     top = next(k for k, line in enumerate(lines) if line.startswith("crane "))
     end = lines[top].index("tension [t]") + len("tension [t]")
-    for row in lines[top + 1:top + 4]:
+    for row in lines[top + 1 : top + 4]:
         name = row.split()[0]
         assert row[:end].split()[-1] == row.split()[1] and row[end] == " ", row
         assert name in ("FORWARD-CRAWLER-600T", "AFT", "total")
@@ -253,7 +273,7 @@ def _lift_lines(stop, step, speed):
     lines = lift_table(scene, curve).splitlines()
     start = lines.index("events (bisected between steps to 0.1 mm):")
     events = {}
-    for line in lines[start + 1:]:
+    for line in lines[start + 1 :]:
         if not line.startswith("  ") or line.startswith("  events in time"):
             break
         name, rest = line.strip().split(": ", 1)
@@ -275,11 +295,14 @@ def test_lift_console_gives_a_reason_for_every_event_kind():
     curve, events = _lift_lines(0.25, 0.05, 2.0)
     assert set(events) == kinds
     assert curve.event("breakout") is not None and events["breakout"].startswith("hoist 0.18")
-    assert events["released"] == ("none within the range (broken out, the contact not yet 0.1 m off "
-                                  "its bed at the last hoist 0.25 m)")
+    assert events["released"] == (
+        "none within the range (broken out, the contact not yet 0.1 m off its bed at the last hoist 0.25 m)"
+    )
     final = curve.drainage[0].final
-    assert events["drained (aft tank)"] == \
-        f"none within the range ({final:.1f} t of water still in it at the last hoist 0.25 m)"
+    assert (
+        events["drained (aft tank)"]
+        == f"none within the range ({final:.1f} t of water still in it at the last hoist 0.25 m)"
+    )
 
 
 # -- 5. the strength figure's force labels ----------------------------------------------------
@@ -291,14 +314,18 @@ def _barge(stations, spacing=10.0):
         for side, y in (("P", 5.0), ("S", -5.0)):
             name = f"S{k + 1:02d}-{side}"
             lugs.append(f'[[lugs]]\nname = "{name}"\nat = [{spacing * (k + 0.5)}, {y}, 6.0]\n')
-            cranes.append(f'[[cranes]]\nlug = "{name}"\nboom_height = 40.0\nrope_length = 20.0\n'
-                          "swl = 600.0\n")
+            cranes.append(
+                f'[[cranes]]\nlug = "{name}"\nboom_height = 40.0\nrope_length = 20.0\nswl = 600.0\n'
+            )
             held.append(f'{{ lug = "{name}", tension = {20.0 * spacing / 2:.1f} }}')
     weight = 20.0 * length
-    return (f'name = "barge on {2 * stations} jacks"\n[body]\nweight = {weight}\n'
-            f"cog = [{length / 2}, 0.0, 3.0]\nweight_curve = [[0.0, 20.0], [{length}, 20.0]]\n"
-            + "".join(lugs) + "".join(cranes)
-            + f'[analysis]\nmodel = "rigid"\nredundant = [{", ".join(held[3:])}]\n')
+    return (
+        f'name = "barge on {2 * stations} jacks"\n[body]\nweight = {weight}\n'
+        f"cog = [{length / 2}, 0.0, 3.0]\nweight_curve = [[0.0, 20.0], [{length}, 20.0]]\n"
+        + "".join(lugs)
+        + "".join(cranes)
+        + f'[analysis]\nmodel = "rigid"\nredundant = [{", ".join(held[3:])}]\n'
+    )
 
 
 def _labels(fig):
@@ -358,8 +385,11 @@ def test_strength_figure_keeps_names_at_the_stems_where_they_fit(tmp_path):
     girder = hull_girder(scene, eq)
     for fig in (strength_figure(scene, eq, girder), _print_width(strength_figure(scene, eq, girder))):
         texts, boxes = _labels(fig)
-        assert [t.get_text().split("\n")[0] for t in texts] == ["S01-P, S01-S", "S02-P, S02-S",
-                                                                "S03-P, S03-S"]
+        assert [t.get_text().split("\n")[0] for t in texts] == [
+            "S01-P, S01-S",
+            "S02-P, S02-S",
+            "S03-P, S03-S",
+        ]
         for a, b in zip(boxes, boxes[1:]):
             assert not a.overlaps(b)
 

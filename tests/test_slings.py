@@ -28,18 +28,32 @@ BLOCK = Path(EXAMPLES) / "block_sling_plan.toml"
 
 
 def crane(name, x, swl, legs=9.0):
-    return FleetCrane(name=name, EA=40000.0, rope_length=24.0, position=(x, 0.0),
-                      load_chart=((8.0, swl), (30.0, 0.5 * swl)), boom_min=20.0, boom_max=60.0,
-                      sling=SlingSpec(length=legs, EA=20000.0))
+    return FleetCrane(
+        name=name,
+        EA=40000.0,
+        rope_length=24.0,
+        position=(x, 0.0),
+        load_chart=((8.0, swl), (30.0, 0.5 * swl)),
+        boom_min=20.0,
+        boom_max=60.0,
+        sling=SlingSpec(length=legs, EA=20000.0),
+    )
 
 
 def block_problem(cog=(0.0, 0.0, 1.3), xs=(-5.5, 5.5), ys=(3.5, -3.5), **changes):
     """A 180 t block, candidates on a deck at z = 3 m."""
     candidates = tuple(Candidate(f"C{x:+.1f}{y:+.1f}", (x, y, 3.0)) for x in xs for y in ys)
     problem = PlanProblem(
-        body=Body(180.0, cog), candidates=candidates, cranes=2, crane=None,
+        body=Body(180.0, cog),
+        candidates=candidates,
+        cranes=2,
+        crane=None,
         fleet=(crane("FWD", 16.0, 200.0), crane("AFT", -16.0, 200.0)),
-        heel_tolerance=2.0, trim_tolerance=2.0, lift_height=8.0, top=3, min_sling_angle=60.0,
+        heel_tolerance=2.0,
+        trim_tolerance=2.0,
+        lift_height=8.0,
+        top=3,
+        min_sling_angle=60.0,
     )
     return dataclasses.replace(problem, **changes)
 
@@ -69,8 +83,9 @@ def test_tilted_lift_matches_the_rigging_model():
     cranes = list(scene.cranes)
     k = next(i for i, c in enumerate(cranes) if c.name == "FWD")
     tip = cranes[k].tip
-    raised = dataclasses.replace(cranes[k], boom_height=cranes[k].boom_height + 0.4,
-                                 tip=(tip[0], tip[1], tip[2] + 0.4))
+    raised = dataclasses.replace(
+        cranes[k], boom_height=cranes[k].boom_height + 0.4, tip=(tip[0], tip[1], tip[2] + 0.4)
+    )
     cranes[k] = raised
     eq = solve_rigging(dataclasses.replace(scene, cranes=tuple(cranes)))
     theta = math.radians(eq.pose.trim)  # + bow down: FWD raised gives bow up (< 0)
@@ -98,8 +113,9 @@ def test_choice_equals_brute_force_on_the_rigging_model():
     """Every feasible pair of pairs (both assignments) solved on the rigging model: the
     plan's choice has the least hook-load utilisation spread at level (no tilt, no CG
     envelope: the objective is then the level value)."""
-    problem = block_problem(cog=(1.2, 0.3, 1.3), xs=(-6.0, -3.0, 4.0, 6.5), ys=(3.5, -3.5),
-                            trim_tolerance=0.0, heel_tolerance=5.0)
+    problem = block_problem(
+        cog=(1.2, 0.3, 1.3), xs=(-6.0, -3.0, 4.0, 6.5), ys=(3.5, -3.5), trim_tolerance=0.0, heel_tolerance=5.0
+    )
     every = plan(dataclasses.replace(problem, top=100_000))
     assert every.options > 20  # the brute force has something to choose from
     values = {}
@@ -121,12 +137,14 @@ def test_crane_order_does_not_change_the_plan():
 
 
 def test_short_slings_cannot_reach_any_pair():
-    short = tuple(dataclasses.replace(c, sling=SlingSpec(length=3.0, EA=20000.0))
-                  for c in block_problem().fleet)
+    short = tuple(
+        dataclasses.replace(c, sling=SlingSpec(length=3.0, EA=20000.0)) for c in block_problem().fleet
+    )
     with pytest.raises(PlanInfeasible, match="12 options: legs shorter than half the pair's spacing"):
         plan(block_problem(fleet=short))
-    flat = tuple(dataclasses.replace(c, sling=SlingSpec(length=4.0, EA=20000.0))
-                 for c in block_problem().fleet)  # 3.5 m half-spacing on 4 m legs: 29 deg
+    flat = tuple(
+        dataclasses.replace(c, sling=SlingSpec(length=4.0, EA=20000.0)) for c in block_problem().fleet
+    )  # 3.5 m half-spacing on 4 m legs: 29 deg
     with pytest.raises(PlanInfeasible, match="sling angle below the limit"):
         plan(block_problem(fleet=flat))
 
@@ -138,8 +156,9 @@ def test_bad_sling_input():
     with pytest.raises(InvalidScene, match="exactly one of EA"):
         SlingSpec(length=9.0)
     with pytest.raises(InvalidScene, match="two cranes"):
-        block_problem(fleet=(block_problem().fleet[0], dataclasses.replace(
-            block_problem().fleet[1], sling=None)))
+        block_problem(
+            fleet=(block_problem().fleet[0], dataclasses.replace(block_problem().fleet[1], sling=None))
+        )
 
 
 def test_block_example_plans_and_solves(capsys, tmp_path):
@@ -166,10 +185,8 @@ def test_sling_report_and_scene_file(tmp_path):
     solved = solve(load_scene(path))
     for c, crane in enumerate(result.problem.fleet):
         # the scene file round-trips the plan: same rigging model, same hook loads (1e-6 t)
-        assert solved.tensions[crane.name] == pytest.approx(result.verified.tensions[crane.name],
-                                                            abs=1e-6)
-        assert solved.tensions[crane.name] == pytest.approx(result.chosen.hook_nominal[c],
-                                                            abs=2e-3 * 180)
+        assert solved.tensions[crane.name] == pytest.approx(result.verified.tensions[crane.name], abs=1e-6)
+        assert solved.tensions[crane.name] == pytest.approx(result.chosen.hook_nominal[c], abs=2e-3 * 180)
 
 
 def test_report_of_a_sling_plan(tmp_path):

@@ -49,12 +49,23 @@ STIFF_TOL = 2e-5
 
 # -- the model ---------------------------------------------------------------------------------
 
+
 def _params(points, hinges=None, yaw=10.0, seed=1):
     rng = np.random.default_rng(seed)
     n = len(points)
     boom = points[:, 2] + 30.0 + rng.uniform(0.3, 1.5, n)
-    base = np.concatenate([[math.radians(yaw)], points.ravel(), [0.5, 0.2, 1.0], [100.0], boom,
-                           np.full(n, 30.0), np.full(n, 3.0e4), [20.0]])
+    base = np.concatenate(
+        [
+            [math.radians(yaw)],
+            points.ravel(),
+            [0.5, 0.2, 1.0],
+            [100.0],
+            boom,
+            np.full(n, 30.0),
+            np.full(n, 3.0e4),
+            [20.0],
+        ]
+    )
     return base if hinges is None else np.concatenate([base, np.asarray(hinges).ravel()])
 
 
@@ -87,8 +98,7 @@ def test_hinged_hook_is_the_two_leg_slings_apex_at_any_attitude():
         expected = pair_apex(lugs_a @ rot.T, lugs_b @ rot.T, length) + [0.0, 0.0, lift]
         _, _, posed, _ = model.statics(np.array([lift, math.radians(heel), math.radians(trim)]), p)
         np.testing.assert_allclose(np.array(posed).T, expected, atol=1e-12)
-        np.testing.assert_allclose(hinged_hooks(rows, level, rot) + [0.0, 0.0, lift], expected,
-                                   atol=1e-12)
+        np.testing.assert_allclose(hinged_hooks(rows, level, rot) + [0.0, 0.0, lift], expected, atol=1e-12)
         # a body-fixed apex is off by about h phi sideways: the element matters
         if heel:
             assert np.abs(level @ rot.T + [0, 0, lift] - expected).max() > 0.1
@@ -108,6 +118,7 @@ def test_parallel_spreader_hook_is_the_rigs_potential_minimum():
 
 
 # -- plans -------------------------------------------------------------------------------------
+
 
 def _posed_check(result, heel, trim, cog_offset=(0.0, 0.0, 0.0), stiffer=1.0):
     """The plan held at (heel, trim) against the rigging model: each crane's boom raised by the
@@ -132,11 +143,13 @@ def _posed_check(result, heel, trim, cog_offset=(0.0, 0.0, 0.0), stiffer=1.0):
         stiff = [dataclasses.replace(leg, EA=leg.EA * stiffer) for leg in sling.legs]
         spreader = sling.spreader
         if spreader is not None:
-            spreader = dataclasses.replace(spreader, top=tuple(
-                dataclasses.replace(leg, EA=leg.EA * stiffer) for leg in spreader.top))
+            spreader = dataclasses.replace(
+                spreader, top=tuple(dataclasses.replace(leg, EA=leg.EA * stiffer) for leg in spreader.top)
+            )
         sling = dataclasses.replace(sling, legs=tuple(stiff), spreader=spreader)
-        cranes.append(dataclasses.replace(crane, boom_height=boom, sling=sling,
-                                          tip=(hooks[k, 0], hooks[k, 1], boom)))
+        cranes.append(
+            dataclasses.replace(crane, boom_height=boom, sling=sling, tip=(hooks[k, 0], hooks[k, 1], boom))
+        )
     if any(o != 0.0 for o in cog_offset):
         cog = tuple(np.add(scene.body.cog, cog_offset))
         scene = dataclasses.replace(scene, body=dataclasses.replace(scene.body, cog=cog))
@@ -212,13 +225,24 @@ def _crane(name, swl, sling):
 
 def _three_crane_problem():
     sling = SlingSpec(length=8.0, legs=2, EA=20000.0)
-    candidates = tuple(Candidate(f"G{g}{k}", (x + dx, y + dy, 3.0), bulkhead=f"G{g}")
-                       for g, (x, y) in enumerate([(-6.0, 3.0), (-6.0, -3.0), (6.0, 0.0)])
-                       for k, (dx, dy) in enumerate([(0.0, 1.2), (-1.0, -0.7), (1.0, -0.7)]))
+    candidates = tuple(
+        Candidate(f"G{g}{k}", (x + dx, y + dy, 3.0), bulkhead=f"G{g}")
+        for g, (x, y) in enumerate([(-6.0, 3.0), (-6.0, -3.0), (6.0, 0.0)])
+        for k, (dx, dy) in enumerate([(0.0, 1.2), (-1.0, -0.7), (1.0, -0.7)])
+    )
     fleet = (_crane("A", 300.0, sling), _crane("B", 200.0, sling), _crane("C", 260.0, sling))
-    return PlanProblem(body=Body(150.0, (0.5, 0.4, 1.0)), candidates=candidates, cranes=3,
-                       crane=None, fleet=fleet, heel_tolerance=2.0, trim_tolerance=1.0,
-                       lift_height=8.0, top=3, objective="utilisation")
+    return PlanProblem(
+        body=Body(150.0, (0.5, 0.4, 1.0)),
+        candidates=candidates,
+        cranes=3,
+        crane=None,
+        fleet=fleet,
+        heel_tolerance=2.0,
+        trim_tolerance=1.0,
+        lift_height=8.0,
+        top=3,
+        objective="utilisation",
+    )
 
 
 def test_three_cranes_on_two_leg_slings_equal_brute_force():
@@ -264,12 +288,24 @@ def test_three_cranes_on_two_leg_slings_equal_brute_force():
 def _spreader_problem(bar_length=4.0):
     bar = SpreaderSpec(length=bar_length, top_length=5.0, weight=2.0)
     sling = SlingSpec(length=1.5, legs=2, EA=20000.0, spreader=bar)
-    candidates = tuple(Candidate(f"S{x:+.0f}{y:+.0f}", (x, y, 3.0), bulkhead=f"x{x:+.0f}")
-                       for x in (-7.0, -3.0, 1.0, 3.0, 7.0) for y in (-4.0, 4.0))
+    candidates = tuple(
+        Candidate(f"S{x:+.0f}{y:+.0f}", (x, y, 3.0), bulkhead=f"x{x:+.0f}")
+        for x in (-7.0, -3.0, 1.0, 3.0, 7.0)
+        for y in (-4.0, 4.0)
+    )
     fleet = tuple(_crane(n, 300.0, sling) for n in ("FP", "FS", "AP", "AS"))
-    return PlanProblem(body=Body(180.0, (0.0, 0.0, 1.3)), candidates=candidates, cranes=4,
-                       crane=None, fleet=fleet, heel_tolerance=2.0, trim_tolerance=2.0,
-                       lift_height=8.0, top=3, cog_envelope=CogEnvelope((0.2, 0.2, 0.1)))
+    return PlanProblem(
+        body=Body(180.0, (0.0, 0.0, 1.3)),
+        candidates=candidates,
+        cranes=4,
+        crane=None,
+        fleet=fleet,
+        heel_tolerance=2.0,
+        trim_tolerance=2.0,
+        lift_height=8.0,
+        top=3,
+        cog_envelope=CogEnvelope((0.2, 0.2, 0.1)),
+    )
 
 
 def test_spreader_bars_on_four_cranes_hook_load_is_share_plus_bar():
@@ -277,16 +313,16 @@ def test_spreader_bars_on_four_cranes_hook_load_is_share_plus_bar():
     assert isinstance(result, ApexSlingPlan) and result.rigs.kind == "spreader"
     weight, bar = 180.0, 2.0
     # each hook: the body's share (the held preload) plus its bar; the shares carry the body
-    np.testing.assert_allclose(result.hook_nominal - bar, result._per_crane(result.inner.chosen.preload),
-                               atol=1e-12)
+    np.testing.assert_allclose(
+        result.hook_nominal - bar, result._per_crane(result.inner.chosen.preload), atol=1e-12
+    )
     assert result.hook_nominal.sum() == pytest.approx(weight + 4 * bar, abs=1e-9)
     # the symmetric block on a symmetric set: W/4 + the bar on every hook
     np.testing.assert_allclose(result.hook_nominal, weight / 4 + bar, atol=1e-6)
     # the bar is rigging weight in the rules' chain
     assert all(r.rigging_weight == pytest.approx(bar) for r in result.design.results)
     for c, name in enumerate(result.crane_names):  # the rigging model at level
-        assert result.verified.tensions[name] == pytest.approx(result.hook_nominal[c],
-                                                               abs=MODEL_TOL * weight)
+        assert result.verified.tensions[name] == pytest.approx(result.hook_nominal[c], abs=MODEL_TOL * weight)
     for top in result.top_legs:  # each top leg (W/4 + w) / (2 sin a), sin a = sqrt(25 - 4) / 5
         np.testing.assert_allclose(top, (weight / 4 + bar) / (2 * math.sqrt(21.0) / 5.0), rtol=1e-9)
     hook, leg, pose = _posed_check(result, 1.5, -2.0, (0.2, -0.2, 0.1), stiffer=1000.0)
@@ -295,8 +331,9 @@ def test_spreader_bars_on_four_cranes_hook_load_is_share_plus_bar():
 
 
 def test_spreader_that_spans_no_pair_is_refused_with_the_reason():
-    with pytest.raises(PlanInfeasible, match="a trapezoid rig sways with the tilt, planned for two "
-                                             "cranes only"):
+    with pytest.raises(
+        PlanInfeasible, match="a trapezoid rig sways with the tilt, planned for two cranes only"
+    ):
         plan(_spreader_problem(bar_length=5.0))
 
 
@@ -336,7 +373,7 @@ def test_a_pair_that_turns_plumb_in_the_box_is_not_a_hinged_rig():
 
     base = _three_crane_problem()
     candidates = list(base.candidates)
-    steep = (6.0 + 6.0 / np.tan(np.radians(89.5)), 1.2, -3.0)   # below G20 (6, 1.2, 3)
+    steep = (6.0 + 6.0 / np.tan(np.radians(89.5)), 1.2, -3.0)  # below G20 (6, 1.2, 3)
     candidates[7] = dataclasses.replace(candidates[7], at=steep)
     problem = dataclasses.replace(base, candidates=tuple(candidates))
     rigs = crane_rigs(problem, problem.fleet[0], 50.0, parallel=True)
@@ -348,7 +385,7 @@ def test_a_pair_that_turns_plumb_in_the_box_is_not_a_hinged_rig():
     # the refused pair passes plumb at trim 0.5 deg: its hinge plane flips there, the hook
     # jumps across the pair for 0.02 deg of trim (and is NaN where it is exactly plumb)
     bad = hinge_rows(pts[[6]], pts[[7]])
-    hook = pts[[6]] + [1.0, 0.0, 0.0]   # 1 m off the pair in its plane
+    hook = pts[[6]] + [1.0, 0.0, 0.0]  # 1 m off the pair in its plane
 
     def posed(trim):
         return hinged_hooks(bad, hook, rotation_matrix(0.0, trim, 0.0))

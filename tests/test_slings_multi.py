@@ -37,16 +37,17 @@ MODEL_TOL = 1e-3
 
 # -- closed forms ------------------------------------------------------------------------------
 
+
 def test_symmetric_three_leg_sling_closed_form():
     rho, length, weight = 2.0, 9.0, 120.0
-    lugs = np.array([[rho * math.cos(a), rho * math.sin(a), 3.0]
-                     for a in np.radians([90.0, 210.0, 330.0])])
+    lugs = np.array([[rho * math.cos(a), rho * math.sin(a), 3.0] for a in np.radians([90.0, 210.0, 330.0])])
     apex, reach = tripod_apex(lugs[None], length)
     np.testing.assert_allclose(reach, length, atol=1e-12)
     np.testing.assert_allclose(apex[0], [0.0, 0.0, 3.0 + math.sqrt(length**2 - rho**2)], atol=1e-12)
     sin_a = math.sqrt(length**2 - rho**2) / length
-    np.testing.assert_allclose(leg_split(apex[0], lugs, (0.0, 0.0, weight)),
-                               weight / (3.0 * sin_a), rtol=1e-12)
+    np.testing.assert_allclose(
+        leg_split(apex[0], lugs, (0.0, 0.0, weight)), weight / (3.0 * sin_a), rtol=1e-12
+    )
 
 
 def test_symmetric_four_leg_sling_closed_form():
@@ -55,8 +56,9 @@ def test_symmetric_four_leg_sling_closed_form():
     apex, reach = tripod_apex(lugs[None], length)
     np.testing.assert_allclose(reach, length, atol=1e-12)  # concyclic: all four legs reach
     sin_a = math.sqrt(length**2 - 2 * half**2) / length
-    np.testing.assert_allclose(leg_split(apex[0], lugs, (0.0, 0.0, weight)),
-                               weight / (4.0 * sin_a), rtol=1e-12)
+    np.testing.assert_allclose(
+        leg_split(apex[0], lugs, (0.0, 0.0, weight)), weight / (4.0 * sin_a), rtol=1e-12
+    )
     # a sideways load: the elastic split still balances the load
     load = np.array([3.0, -2.0, weight])
     tension = leg_split(apex[0], lugs, load)
@@ -76,21 +78,34 @@ def test_spreader_symmetric_closed_form():
 
 # -- two cranes with spreader bars ---------------------------------------------------------------
 
+
 def _block(fleet, cranes=None, **changes):
-    candidates = tuple(Candidate(f"F{x:+.1f}{y:+.1f}", (x, y, 3.0), bulkhead=f"x{x:+.1f}")
-                       for x in (-6.0, -4.5, 4.5, 6.0) for y in (-5.0, -3.0, 3.0, 5.0))
-    problem = PlanProblem(body=Body(180.0, (0.0, 0.0, 1.3)), candidates=candidates,
-                          cranes=cranes or len(fleet), crane=None, fleet=tuple(fleet),
-                          heel_tolerance=2.0, trim_tolerance=2.0, lift_height=8.0, top=3,
-                          cog_envelope=CogEnvelope((0.2, 0.2, 0.1)))
+    candidates = tuple(
+        Candidate(f"F{x:+.1f}{y:+.1f}", (x, y, 3.0), bulkhead=f"x{x:+.1f}")
+        for x in (-6.0, -4.5, 4.5, 6.0)
+        for y in (-5.0, -3.0, 3.0, 5.0)
+    )
+    problem = PlanProblem(
+        body=Body(180.0, (0.0, 0.0, 1.3)),
+        candidates=candidates,
+        cranes=cranes or len(fleet),
+        crane=None,
+        fleet=tuple(fleet),
+        heel_tolerance=2.0,
+        trim_tolerance=2.0,
+        lift_height=8.0,
+        top=3,
+        cog_envelope=CogEnvelope((0.2, 0.2, 0.1)),
+    )
     return dataclasses.replace(problem, **changes)
 
 
 def _crane(name, swl, sling, position=None, chart=None):
     if chart is None:
         return FleetCrane(name=name, EA=40000.0, rope_length=24.0, swl=swl, sling=sling)
-    return FleetCrane(name=name, EA=40000.0, rope_length=24.0, position=position,
-                      load_chart=chart, sling=sling)
+    return FleetCrane(
+        name=name, EA=40000.0, rope_length=24.0, position=position, load_chart=chart, sling=sling
+    )
 
 
 def test_spreader_plan_hook_load_is_half_the_weight_plus_the_bar():
@@ -112,6 +127,7 @@ def test_spreader_plan_hook_load_is_half_the_weight_plus_the_bar():
 
 
 # -- three or more cranes on 3/4-leg slings ---------------------------------------------------
+
 
 def test_four_leg_example_plans_and_the_written_scene_solves_to_its_hook_loads(capsys, tmp_path):
     code = main(["plan", str(FOUR_LEG), "--json"])
@@ -145,21 +161,33 @@ def test_no_crane_beyond_its_reach_and_crane_order_does_not_matter():
     renamed = tuple(dataclasses.replace(c, name=f"K{k}") for k, c in enumerate(problem.fleet))
     second = plan(dataclasses.replace(problem, fleet=tuple(reversed(renamed))))
     mapping = {f"K{k}": c.name for k, c in enumerate(problem.fleet)}
-    pairs = lambda p, m=None: sorted(((m or {}).get(p.cranes[k], p.cranes[k]), p.lugs[k])  # noqa: E731
-                                     for k in p.labels)
+    pairs = lambda p, m=None: sorted(  # noqa: E731
+        ((m or {}).get(p.cranes[k], p.cranes[k]), p.lugs[k]) for k in p.labels
+    )
     assert pairs(second, mapping) == pairs(first)
     assert second.inner.chosen.worst_value == pytest.approx(first.inner.chosen.worst_value, abs=1e-9)
 
 
 def _three_crane_problem():
     sling = SlingSpec(length=8.0, legs=3, EA=20000.0)
-    candidates = tuple(Candidate(f"G{g}{k}", (x + dx, y + dy, 3.0), bulkhead=f"G{g}")
-                       for g, (x, y) in enumerate([(-6.0, 3.0), (-6.0, -3.0), (6.0, 0.0), (1.0, 4.5)])
-                       for k, (dx, dy) in enumerate([(0.0, 1.2), (-1.0, -0.7), (1.0, -0.7)]))
+    candidates = tuple(
+        Candidate(f"G{g}{k}", (x + dx, y + dy, 3.0), bulkhead=f"G{g}")
+        for g, (x, y) in enumerate([(-6.0, 3.0), (-6.0, -3.0), (6.0, 0.0), (1.0, 4.5)])
+        for k, (dx, dy) in enumerate([(0.0, 1.2), (-1.0, -0.7), (1.0, -0.7)])
+    )
     fleet = (_crane("A", 300.0, sling), _crane("B", 200.0, sling), _crane("C", 260.0, sling))
-    return PlanProblem(body=Body(150.0, (0.5, 0.4, 1.0)), candidates=candidates, cranes=3,
-                       crane=None, fleet=fleet, heel_tolerance=2.0, trim_tolerance=1.0,
-                       lift_height=8.0, top=3, objective="utilisation")
+    return PlanProblem(
+        body=Body(150.0, (0.5, 0.4, 1.0)),
+        candidates=candidates,
+        cranes=3,
+        crane=None,
+        fleet=fleet,
+        heel_tolerance=2.0,
+        trim_tolerance=1.0,
+        lift_height=8.0,
+        top=3,
+        objective="utilisation",
+    )
 
 
 def test_three_cranes_on_three_leg_slings_equal_brute_force():
@@ -204,6 +232,7 @@ def test_three_cranes_on_three_leg_slings_equal_brute_force():
 
 
 # -- refusals ----------------------------------------------------------------------------------
+
 
 def test_bad_multi_sling_input():
     sling = SlingSpec(length=8.0, legs=3, EA=20000.0)

@@ -16,8 +16,7 @@ HEAVY = ("cvxpy", "dask", "distributed", "matplotlib", "scipy")
 
 def imported_after(code):
     """The heavy modules loaded by ``code`` in a fresh interpreter."""
-    probe = (f"import sys\n{code}\n"
-             f"print(__import__('json').dumps([m for m in {HEAVY!r} if m in sys.modules]))")
+    probe = f"import sys\n{code}\nprint(__import__('json').dumps([m for m in {HEAVY!r} if m in sys.modules]))"
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -26,14 +25,17 @@ def imported_after(code):
 def test_cli_import_and_help_load_nothing_heavy():
     assert imported_after("import liftplan.planner.cli") == []
     assert imported_after("import liftplan.model, liftplan.planner") == []
-    help_code = ("from liftplan.planner.cli import main\n"
-                 "try:\n    main(['--help'])\nexcept SystemExit:\n    pass")
+    help_code = (
+        "from liftplan.planner.cli import main\ntry:\n    main(['--help'])\nexcept SystemExit:\n    pass"
+    )
     assert imported_after(help_code) == []
 
 
 def test_solve_loads_no_cvxpy_dask_or_matplotlib():
-    code = ("from liftplan.planner.cli import main\n"
-            f"assert main(['solve', {str(EXAMPLES / 'tanker_upright.toml')!r}, '--json']) == 0")
+    code = (
+        "from liftplan.planner.cli import main\n"
+        f"assert main(['solve', {str(EXAMPLES / 'tanker_upright.toml')!r}, '--json']) == 0"
+    )
     assert imported_after(code) == []
 
 
@@ -54,8 +56,10 @@ def test_lazy_exports_are_complete_and_solve_stays_the_function():
 
 
 def test_submodule_imported_first_still_leaves_the_function():
-    code = ("import liftplan.model.solve, liftplan.planner.plan\n"
-            "from liftplan.model import solve\nfrom liftplan.planner import plan\n"
-            "assert callable(solve) and callable(plan), (solve, plan)")
+    code = (
+        "import liftplan.model.solve, liftplan.planner.plan\n"
+        "from liftplan.model import solve\nfrom liftplan.planner import plan\n"
+        "assert callable(solve) and callable(plan), (solve, plan)"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr

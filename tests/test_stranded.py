@@ -13,8 +13,11 @@ from liftplan.model import solve
 from liftplan.model.hull import Hull
 from liftplan.model.scene import Attitude, Body, Ground, Scene, Water
 
-BARGE = dict(body=Body(20000.0, (5.0, 0.0, 2.0)), water=Water(density=1.0273, level=0.0),
-             hull=Hull.box([-50, -15, -5], [50, 15, 5]))
+BARGE = dict(
+    body=Body(20000.0, (5.0, 0.0, 2.0)),
+    water=Water(density=1.0273, level=0.0),
+    hull=Hull.box([-50, -15, -5], [50, 15, 5]),
+)
 
 
 def barge(contact, **extra):
@@ -88,8 +91,11 @@ def test_floats_free_when_ground_reaction_would_be_negative():
     free = solve(Scene(**light))
     # floating free, no crane: the one case the word "afloat" is for
     assert eq.afloat.state == "afloat" and eq.afloat.ground_reaction == 0.0
-    assert_allclose((eq.pose.heel, eq.pose.trim, eq.pose.lift_height),
-                    (free.pose.heel, free.pose.trim, free.pose.lift_height), atol=1e-8)
+    assert_allclose(
+        (eq.pose.heel, eq.pose.trim, eq.pose.lift_height),
+        (free.pose.heel, free.pose.trim, free.pose.lift_height),
+        atol=1e-8,
+    )
     assert_allclose(free.afloat.buoyancy, 14000.0, rtol=1e-9)
     # a floating box: B and G on one vertical
     assert_allclose(free.afloat.centre_of_buoyancy[:2], free.afloat.centre_of_gravity[:2], atol=1e-6)
@@ -123,8 +129,11 @@ def test_sinking_hull_is_reported():
 def test_capsized_on_its_side(method):
     """Heel 90 deg: the barge lies on its starboard side on a contact 12 m down. The
     body's trim axis is vertical there, so a pitch of the capsized hull shows as yaw."""
-    scene = Scene(ground=Ground((30.0, -15.0, 0.0)), attitude=Attitude(heel=90.0, lift_height=-12.0),
-                  **dict(BARGE, body=Body(15000.0, (5.0, -10.0, 0.0))))
+    scene = Scene(
+        ground=Ground((30.0, -15.0, 0.0)),
+        attitude=Attitude(heel=90.0, lift_height=-12.0),
+        **dict(BARGE, body=Body(15000.0, (5.0, -10.0, 0.0))),
+    )
     eq = solve(scene, method=method)
     a = eq.afloat
     assert eq.pose.heel == pytest.approx(90.0, abs=1e-6)
@@ -136,9 +145,19 @@ def test_capsized_on_its_side(method):
 
 
 def test_cli_stranded_json_keys():
-    out = subprocess.run([sys.executable, "-m", "liftplan.planner.cli", "solve",
-                          str(EXAMPLES / "stranded_barge.toml"), "--json"],
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "liftplan.planner.cli",
+            "solve",
+            str(EXAMPLES / "stranded_barge.toml"),
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     data = json.loads(out.stdout)
     for key in ("model", "converged", "heel", "trim", "buoyancy", "ground_reaction", "freeing_force"):
         assert key in data

@@ -61,6 +61,7 @@ def test_attitude_matrix_is_the_frames_definition():
 
 # -- closed forms -------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("a", [15.0, 20.0, 25.0, 32.0])
 def test_uniform_beam_on_two_symmetric_lug_stations(a):
     """Lugs at x = -a and +a (port and starboard), W/2 at each station: M at midspan
@@ -105,6 +106,7 @@ def test_uniform_beam_on_four_lug_stations():
 
 # -- buoyancy per length of a box ---------------------------------------------------------------
 
+
 def _clipped_area(y0, y1, z0, z1, up, zo, s):
     """Wet area and first moment (about z = 0) of the box section [y0, y1] x [z0, z1] at x = s:
     the rectangle clipped by g.(s, y, z) + zo < 0 (Sutherland-Hodgman), then the shoelace
@@ -132,9 +134,19 @@ def _clipped_area(y0, y1, z0, z1, up, zo, s):
     return area, first
 
 
-@pytest.mark.parametrize(("heel", "trim", "zo"), [
-    (0.0, 0.0, 0.0), (0.0, 0.0, 3.0), (0.0, 0.0, -7.0), (10.0, 0.0, 1.0),
-    (35.0, 0.0, -1.5), (70.0, 0.0, 2.0), (5.0, 2.0, 0.5), (-20.0, -3.0, -2.0)])
+@pytest.mark.parametrize(
+    ("heel", "trim", "zo"),
+    [
+        (0.0, 0.0, 0.0),
+        (0.0, 0.0, 3.0),
+        (0.0, 0.0, -7.0),
+        (10.0, 0.0, 1.0),
+        (35.0, 0.0, -1.5),
+        (70.0, 0.0, 2.0),
+        (5.0, 2.0, 0.5),
+        (-20.0, -3.0, -2.0),
+    ],
+)
 def test_box_buoyancy_per_length_is_density_times_section(heel, trim, zo):
     lower, upper, density = (-50.0, -15.0, -5.0), (50.0, 15.0, 5.0), 1.025
     hull = Hull.box(lower, upper)
@@ -161,23 +173,30 @@ def test_box_buoyancy_per_length_is_density_times_section(heel, trim, zo):
 
 # -- the curves close -------------------------------------------------------------------------
 
+
 def _inclined_tanker():
     """The tanker on ropes whose tips stand 3 m aft and 2 m to port of the lugs (inclined)."""
     scene = example("tanker_upright")
     tips = {c.lug: lug for c, lug in zip(scene.cranes, scene.lug_points())}
-    cranes = tuple(dataclasses.replace(c, rope_length=30.0, boom_height=None,
-                                       tip=(tips[c.lug][0] - 3.0, tips[c.lug][1] + 2.0, 40.0))
-                   for c in scene.cranes)
+    cranes = tuple(
+        dataclasses.replace(
+            c, rope_length=30.0, boom_height=None, tip=(tips[c.lug][0] - 3.0, tips[c.lug][1] + 2.0, 40.0)
+        )
+        for c in scene.cranes
+    )
     return dataclasses.replace(scene, cranes=cranes, analysis=Analysis())
 
 
 CLOSING = {
     "rigid, heeled and trimmed": lambda: beam(
         [(-30.0, 5.0), (25.0, 5.0), (25.0, -5.0), (-30.0, -5.0)],
-        attitude=Attitude(heel=4.0, trim=-3.0, lift_height=2.0), model="rigid",
-        redundant=(Redundant("L0", 190.0),)),
+        attitude=Attitude(heel=4.0, trim=-3.0, lift_height=2.0),
+        model="rigid",
+        redundant=(Redundant("L0", 190.0),),
+    ),
     "paper-elastic, trimmed": lambda: with_uniform_curve(
-        example("tanker_upright").with_attitude(heel=2.0, trim=5.0), 35.86 - 35.0, 35.86 + 35.0),
+        example("tanker_upright").with_attitude(heel=2.0, trim=5.0), 35.86 - 35.0, 35.86 + 35.0
+    ),
     "elastic": lambda: with_uniform_curve(example("symmetric_block"), -20.0, 20.0),
     "inclined": lambda: with_uniform_curve(_inclined_tanker(), 35.86 - 35.0, 35.86 + 35.0),
     "rigging": lambda: with_uniform_curve(example("block_two_slings"), 0.4 - 7.6, 0.4 + 7.6),
@@ -208,6 +227,7 @@ def test_curves_close_past_both_ends(case):
 
 # -- maxima against an independent integration --------------------------------------------------
 
+
 def test_maxima_equal_an_independent_mpmath_integration():
     """An uneven weight curve on four lugs at three stations, solved by paper-elastic at level:
     Q and M re-derived from their definition with mpmath (quadrature of the curve and sums of
@@ -217,8 +237,9 @@ def test_maxima_equal_an_independent_mpmath_integration():
     w = np.array([p[1] for p in curve])
     area = float(np.sum(np.diff(x) * (w[:-1] + w[1:]) / 2))
     first = float(np.sum(np.diff(x) / 6 * (w[:-1] * (2 * x[:-1] + x[1:]) + w[1:] * (x[:-1] + 2 * x[1:]))))
-    scene = beam([(-28.0, 5.0), (3.0, 5.0), (30.0, 0.0), (-28.0, -5.0)], curve=curve,
-                 cog=(first / area, 0.0, 2.0))
+    scene = beam(
+        [(-28.0, 5.0), (3.0, 5.0), (30.0, 0.0), (-28.0, -5.0)], curve=curve, cog=(first / area, 0.0, 2.0)
+    )
     scene = scene.with_body(weight=area)
     eq = solve(scene)
     g = hull_girder(scene, eq)
@@ -280,11 +301,11 @@ def test_inclined_hull_moment_equals_hydrostatics_of_the_aft_part():
     for s in (-30.0, -5.0, 12.5, 29.0, 31.0, 45.0):
         hs = MeshHydrostatics(Hull.box(lower, (s, upper[1], upper[2])).triangles).at(rot, zo)
         centre = rot.T @ (np.array(hs.centre) - [0.0, 0.0, zo])  # body frame
-        buoy = rho * hs.volume * up                                 # body components of B
+        buoy = rho * hs.volume * up  # body components of B
         length = s - (-40.0)
         weight = -per_length * length * up
         m = (s - centre[0]) * buoy[2] + (centre[2] - zg) * buoy[0]
-        m += (s - (-40.0 + length / 2)) * weight[2]                 # the curve, at z_G: no couple
+        m += (s - (-40.0 + length / 2)) * weight[2]  # the curve, at z_G: no couple
         contact = np.array(scene.ground.contact)
         if contact[0] < s:
             reaction = eq.afloat.ground_reaction * up
@@ -297,21 +318,24 @@ def test_weight_curve_mismatch_is_spread_and_reported():
     """A curve 0.3 % heavy with its centroid 0.03 m forward: accepted, corrected exactly."""
     x0, x1 = -40.0 + 0.03, 40.0 + 0.03
     per_length = 1.003 * W / (x1 - x0)
-    scene = beam([(-20.0, 5.0), (20.0, 5.0), (20.0, -5.0), (-20.0, -5.0)],
-                 curve=((x0, per_length), (x1, per_length)))
+    scene = beam(
+        [(-20.0, 5.0), (20.0, 5.0), (20.0, -5.0), (-20.0, -5.0)], curve=((x0, per_length), (x1, per_length))
+    )
     g = hull_girder(scene, solve(scene))
     assert_allclose(g.correction, (-0.003 * W, -0.03), rtol=1e-9)
-    assert_allclose(g.closure, 0.0, atol=1e-9 * W * L)        # closes all the same
+    assert_allclose(g.closure, 0.0, atol=1e-9 * W * L)  # closes all the same
     assert_allclose(g.weight.integral().end(), W, rtol=1e-13)  # the corrected curve carries W
 
 
 # -- checks -------------------------------------------------------------------------------------
 
+
 def test_envelope_checks_at_the_worst_ratio_point():
     scene = beam([(-25.0, 5.0), (25.0, 5.0), (25.0, -5.0), (-25.0, -5.0)])
     envelope = ((-40.0, 1000.0), (0.0, 3000.0), (40.0, 1000.0))
-    scene = dataclasses.replace(scene, strength=Strength(bending_moment=envelope,
-                                                         shear_force=((-40.0, 500.0), (40.0, 500.0))))
+    scene = dataclasses.replace(
+        scene, strength=Strength(bending_moment=envelope, shear_force=((-40.0, 500.0), (40.0, 500.0)))
+    )
     eq = solve(scene)
     g = hull_girder(scene, eq)
     checks = {c.name: c for c in strength_checks(scene, eq, g)}
@@ -329,15 +353,21 @@ def test_envelope_checks_at_the_worst_ratio_point():
 TANKER = (EXAMPLES / "tanker_strength.toml").read_text()
 
 
-@pytest.mark.parametrize(("old", "new", "fragments"), [
-    ("[66.0, 10.13]", "[66.0, 11.13]", ["body.weight_curve: integral", "904 t", "expected within 0.5 %"]),
-    ("[0.0, 4.0], [8.0, 19.34]", "[0.0, 4.6], [8.0, 19.34]",
-     ["centroid x", "35.86", "expected within 0.05 m"]),
-    ("[20.0, 10.13]", "[17.0, 10.13]", ["body.weight_curve[3] = [17, 10.13]", "not greater", "18"]),
-    ("[76.0, 8.10]", "[76.0, -8.10]", ["body.weight_curve[5]", "-8.1 t/m is negative", "expected >= 0"]),
-    ("weight_curve = [", "weight_curve = [[1.0, 2.0]]\nold = [", ["unknown key"]),
-    ("shear_force = [[0.0, 350.0]", "shear_force = [[0.0, 0.0]", ["strength.shear_force[0]", "> 0 t"]),
-])
+@pytest.mark.parametrize(
+    ("old", "new", "fragments"),
+    [
+        ("[66.0, 10.13]", "[66.0, 11.13]", ["body.weight_curve: integral", "904 t", "expected within 0.5 %"]),
+        (
+            "[0.0, 4.0], [8.0, 19.34]",
+            "[0.0, 4.6], [8.0, 19.34]",
+            ["centroid x", "35.86", "expected within 0.05 m"],
+        ),
+        ("[20.0, 10.13]", "[17.0, 10.13]", ["body.weight_curve[3] = [17, 10.13]", "not greater", "18"]),
+        ("[76.0, 8.10]", "[76.0, -8.10]", ["body.weight_curve[5]", "-8.1 t/m is negative", "expected >= 0"]),
+        ("weight_curve = [", "weight_curve = [[1.0, 2.0]]\nold = [", ["unknown key"]),
+        ("shear_force = [[0.0, 350.0]", "shear_force = [[0.0, 0.0]", ["strength.shear_force[0]", "> 0 t"]),
+    ],
+)
 def test_bad_weight_curve_and_envelopes_are_one_line_errors(old, new, fragments):
     assert old in TANKER
     with pytest.raises(InvalidScene) as err:
@@ -355,6 +385,7 @@ def test_strength_without_a_weight_curve_is_refused():
 
 
 # -- the command line ---------------------------------------------------------------------------
+
 
 def test_solve_json_strength_block(capsys):
     code = main(["solve", str(EXAMPLES / "tanker_strength.toml"), "--json"])
@@ -377,7 +408,7 @@ def test_solve_json_strength_block(capsys):
 def test_failed_envelope_is_flagged_and_strict_exits_4(tmp_path, capsys):
     path = tmp_path / "weak.toml"
     path.write_text(TANKER.replace("[20.0, 4000.0], [62.0, 4000.0]", "[20.0, 1500.0], [62.0, 1500.0]"))
-    assert main(["solve", str(path)]) == 0            # a converged solve exits 0 ...
+    assert main(["solve", str(path)]) == 0  # a converged solve exits 0 ...
     out = capsys.readouterr()
     assert "FAIL bending_moment x = " in out.out and "check(s) failed: bending_moment" in out.err
     assert main(["solve", str(path), "--strict"]) == 4  # ... unless --strict
@@ -396,8 +427,17 @@ def test_strength_figure_written_and_refused_without_a_curve(tmp_path, capsys):
     assert main(["solve", str(EXAMPLES / "tanker_upright.toml"), "--strength-figure", str(figure)]) == 2
     err = capsys.readouterr().err
     assert "no [body] weight_curve" in err and len(err.strip().splitlines()) == 1
-    assert main(["solve", str(EXAMPLES / "tanker_strength.toml"), "--strength-figure",
-                 str(tmp_path / "girder.gif")]) == 2
+    assert (
+        main(
+            [
+                "solve",
+                str(EXAMPLES / "tanker_strength.toml"),
+                "--strength-figure",
+                str(tmp_path / "girder.gif"),
+            ]
+        )
+        == 2
+    )
     assert "unknown file type" in capsys.readouterr().err
 
 

@@ -72,19 +72,33 @@ def _cog_x():
     return first / area
 
 
-def small_problem(control="force", objective="bending", cranes=5, stations=(4, 16, 28, 40, 52),
-                  plan_extra="", drop_curve=False, drop_shear=False):
+def small_problem(
+    control="force",
+    objective="bending",
+    cranes=5,
+    stations=(4, 16, 28, 40, 52),
+    plan_extra="",
+    drop_curve=False,
+    drop_shear=False,
+):
     rows = []
     for k, x in enumerate(stations):
         for side, y in (("P", 5.0), ("S", -5.0)):
             rows.append(f'[[candidates]]\nname = "S{k}{side}"\nat = [{x}, {y}, 6.0]\n')
-    text = SMALL.format(cog_x=f"{_cog_x():.6f}", cranes=cranes, objective=objective, control=control,
-                        candidates="\n".join(rows))
+    text = SMALL.format(
+        cog_x=f"{_cog_x():.6f}",
+        cranes=cranes,
+        objective=objective,
+        control=control,
+        candidates="\n".join(rows),
+    )
     text = text.replace("min_tension = 20.0", "min_tension = 20.0\n" + plan_extra)
     if drop_curve:
         text = text.replace("weight_curve = [[0.0, 10.0], [15.0, 30.0], [40.0, 20.0], [60.0, 14.0]]", "")
-        text = text.replace("[strength]", "[plan_strength_unused]").split("[plan_strength_unused]")[0] + \
-            text.split("shear_force = [[0.0, 400.0], [60.0, 400.0]]")[1]
+        text = (
+            text.replace("[strength]", "[plan_strength_unused]").split("[plan_strength_unused]")[0]
+            + text.split("shear_force = [[0.0, 400.0], [60.0, 400.0]]")[1]
+        )
     if drop_shear:
         text = text.replace("shear_force = [[0.0, 400.0], [60.0, 400.0]]", "")
     return loads_problem(text)
@@ -130,9 +144,10 @@ def _weight_aft(body, dx, s):
     if top <= x[0]:
         return 0.0, 0.0
     inner = [p for p in x[1:-1] if p < top]
-    return (integrate.quad(w, x[0], top, points=inner or None, limit=200, epsabs=1e-12)[0],
-            integrate.quad(lambda t: w(t) * (s - t), x[0], top, points=inner or None, limit=200,
-                           epsabs=1e-12)[0])
+    return (
+        integrate.quad(w, x[0], top, points=inner or None, limit=200, epsabs=1e-12)[0],
+        integrate.quad(lambda t: w(t) * (s - t), x[0], top, points=inner or None, limit=200, epsabs=1e-12)[0],
+    )
 
 
 def test_strength_lp_equals_linprog():
@@ -166,8 +181,13 @@ def test_strength_lp_equals_linprog():
         rm = tuple(np.concatenate(v) for v in rows["m"])
         rq = tuple(np.concatenate(v) for v in rows["q"])
         lp = strength_lp(n, len(rm[1]), len(rq[1]), 1)
-        trows = (np.eye(n)[None], np.zeros((1, n)), np.zeros((1, n)), np.full((1, n), 20.0),
-                 ctx.limit[chosen][None])
+        trows = (
+            np.eye(n)[None],
+            np.zeros((1, n)),
+            np.zeros((1, n)),
+            np.full((1, n), 20.0),
+            ctx.limit[chosen][None],
+        )
         result = lp.solve(weights, rm, rq, trows, a0, b0, (np.full(n, 20.0), limit))
         mine = weights[0] * result.bending + weights[1] * result.shear
         # --- linprog: variables (T_1..T_n, t_M, t_Q)
@@ -187,9 +207,15 @@ def test_strength_lp_equals_linprog():
                         b_ub.append(-sign * h / a)
         cost = np.zeros(n + 2)
         cost[n], cost[n + 1] = weights[0] + 1e-7, weights[1] + 1e-7
-        out = linprog(cost, A_ub=np.array(a_ub), b_ub=np.array(b_ub),
-                      A_eq=np.hstack([a0, np.zeros((3, 2))]), b_eq=b0,
-                      bounds=[(20.0, lim) for lim in limit] + [(0, None)] * 2, method="highs")
+        out = linprog(
+            cost,
+            A_ub=np.array(a_ub),
+            b_ub=np.array(b_ub),
+            A_eq=np.hstack([a0, np.zeros((3, 2))]),
+            b_eq=b0,
+            bounds=[(20.0, lim) for lim in limit] + [(0, None)] * 2,
+            method="highs",
+        )
         assert out.status == 0
         theirs = weights[0] * out.x[n] + weights[1] * out.x[n + 1]
         assert mine == pytest.approx(theirs, rel=1e-6)
@@ -264,10 +290,13 @@ def test_force_plan_balances_every_state():
 
 
 # -- input -----------------------------------------------------------------------------------------
-@pytest.mark.parametrize("objective, control, message", [
-    ("spread", "force", 'cranes.control = "force" with plan.objective'),
-    ("bending", "jack", "crane.control"),
-])
+@pytest.mark.parametrize(
+    "objective, control, message",
+    [
+        ("spread", "force", 'cranes.control = "force" with plan.objective'),
+        ("bending", "jack", "crane.control"),
+    ],
+)
 def test_bad_input_one_line(objective, control, message):
     with pytest.raises(InvalidScene) as err:
         small_problem(control=control, objective=objective)
@@ -295,8 +324,7 @@ def test_ferry_plan_json_beside_the_spread_plan():
     """`liftplan plan` on the ferry: the strength plan and the spread-optimal plan, each with its
     peak |M|, |Q| and spread; the strength plan's peak |M| / allowable is the lower, the spread
     plan's spread the lower, and the search proved its optimum."""
-    run = subprocess.run(["liftplan", "plan", FERRY, "--json"],
-                         capture_output=True, text=True, timeout=600)
+    run = subprocess.run(["liftplan", "plan", FERRY, "--json"], capture_output=True, text=True, timeout=600)
     assert run.returncode in (0, 4), run.stderr
     out = json.loads(run.stdout)
     strength, spread = out["strength"], out["spread_optimal"]

@@ -33,8 +33,15 @@ document = "PS-01-LP"
 revision = "A"
 date = "2026-05-01"
 """
-SECTIONS = ("1 Recommendation", "2 Basis of the plan", "3 Strength-optimal against spread-optimal",
-            "4 Checks to hand over", "5 Figures", "6 Assumptions", "Engineering appendix")
+SECTIONS = (
+    "1 Recommendation",
+    "2 Basis of the plan",
+    "3 Strength-optimal against spread-optimal",
+    "4 Checks to hand over",
+    "5 Figures",
+    "6 Assumptions",
+    "Engineering appendix",
+)
 
 
 def small_text(control="force", cranes=5, bending="[[0.0, 1500.0], [30.0, 4000.0], [60.0, 1500.0]]"):
@@ -42,8 +49,13 @@ def small_text(control="force", cranes=5, bending="[[0.0, 1500.0], [30.0, 4000.0
     for k, x in enumerate((4, 16, 28, 40, 52)):
         for side, y in (("P", 5.0), ("S", -5.0)):
             rows.append(f'[[candidates]]\nname = "S{k}{side}"\nat = [{x}, {y}, 6.0]\nbulkhead = "B{k}"\n')
-    text = SMALL.format(cog_x=f"{_cog_x():.6f}", cranes=cranes, objective="bending", control=control,
-                        candidates="\n".join(rows))
+    text = SMALL.format(
+        cog_x=f"{_cog_x():.6f}",
+        cranes=cranes,
+        objective="bending",
+        control=control,
+        candidates="\n".join(rows),
+    )
     return text.replace("[[0.0, 1500.0], [30.0, 4000.0], [60.0, 1500.0]]", bending) + REPORT
 
 
@@ -150,11 +162,13 @@ def test_appendix_states_the_lower_bound_and_gap(force_report):
     data = json.loads(result.stdout)
     rows = {row[0]: row[1] for row in table(parsed(out / "report.html"), "Optimality")}
     assert float(rows["strength-optimal: lower bound (no lug set does better)"]) == pytest.approx(
-        data["lower_bound"], rel=1e-5)
+        data["lower_bound"], rel=1e-5
+    )
     assert float(rows["strength-optimal: gap"]) == pytest.approx(data["gap"], abs=1e-6)
     assert rows["strength-optimal: why the search ended"] == data["strength"]["search"]["stopped"]
     assert float(rows["spread-optimal: lower bound (no lug set does better)"]) == pytest.approx(
-        data["spread_optimal"]["search"]["lower_bound"], rel=1e-5)
+        data["spread_optimal"]["search"]["lower_bound"], rel=1e-5
+    )
 
 
 def test_every_check_is_listed_with_its_status(force_report):

@@ -29,12 +29,20 @@ LUGS = (("A", (10.0, 5.0, 6.0)), ("B", (50.0, 5.0, 6.0)), ("C", (50.0, -5.0, 6.0
 def symmetric_block(hook):
     """A flooded 60 x 12 x 6 m block symmetric fore-aft and side to side, so it hangs
     level: an air tank (z 0-2 m) under a tank of trapped water (z 2-4 m), both x 25-35 m."""
-    hull = Hull.box([0, -6, 0], [60, 6, 6], flooding="flooded", steel_density=7.85, compartments=(
-        Compartment("air", {"min": [25, -6, 0], "max": [35, 6, 2]}, "air"),
-        Compartment("trapped", {"min": [25, -6, 2], "max": [35, 6, 4]}, "water"),
-    ))
+    hull = Hull.box(
+        [0, -6, 0],
+        [60, 6, 6],
+        flooding="flooded",
+        steel_density=7.85,
+        compartments=(
+            Compartment("air", {"min": [25, -6, 0], "max": [35, 6, 2]}, "air"),
+            Compartment("trapped", {"min": [25, -6, 2], "max": [35, 6, 4]}, "water"),
+        ),
+    )
     return Scene(
-        body=Body(600.0, (30.0, 0.0, 2.5)), water=Water(RHO, 0.0), hull=hull,
+        body=Body(600.0, (30.0, 0.0, 2.5)),
+        water=Water(RHO, 0.0),
+        hull=hull,
         lugs=tuple(Lug(name, at) for name, at in LUGS),
         cranes=tuple(Crane(name, EA=50000.0, boom_height=hook, rope_length=44.0) for name, _ in LUGS),
     )
@@ -47,10 +55,17 @@ def displaced(depth):
     return steel + 120.0 * np.clip(depth, 0.0, 2.0) + 120.0 * np.clip(depth - 2.0, 0.0, 2.0)
 
 
-@pytest.mark.parametrize("hook, state", [
-    (30.0, "hanging submerged"), (46.0, "piercing the surface"), (47.0, "piercing the surface"),
-    (48.0, "piercing the surface"), (50.0, "piercing the surface"), (56.0, "clear"),
-])
+@pytest.mark.parametrize(
+    "hook, state",
+    [
+        (30.0, "hanging submerged"),
+        (46.0, "piercing the surface"),
+        (47.0, "piercing the surface"),
+        (48.0, "piercing the surface"),
+        (50.0, "piercing the surface"),
+        (56.0, "clear"),
+    ],
+)
 def test_buoyancy_is_the_weight_of_the_displaced_water(hook, state):
     """B = density x displaced volume, against the closed form of the level block at keel
     depths (20.1, 4.07, 3.1, 2.12, 0.18 m, clear) cutting the steel only, the trapped tank
@@ -79,13 +94,18 @@ def test_afloat_only_for_a_hull_floating_free():
     """Ropes slack (hooks too low) and an intact light box: it floats, state afloat, no
     crane load; the same box on a taut rope is 'piercing the surface', not afloat."""
     box = Hull.box([-5, -2, -1], [5, 2, 1])
-    lugs = tuple(Lug(n, (x, y, 1.0)) for n, x, y in (("A", -4, 1.5), ("B", 4, 1.5), ("C", 4, -1.5),
-                                                       ("D", -4, -1.5)))
+    lugs = tuple(
+        Lug(n, (x, y, 1.0)) for n, x, y in (("A", -4, 1.5), ("B", 4, 1.5), ("C", 4, -1.5), ("D", -4, -1.5))
+    )
 
     def scene(hook):
-        return Scene(body=Body(40.0, (0.0, 0.0, 0.0)), water=Water(RHO, 0.0), hull=box, lugs=lugs,
-                     cranes=tuple(Crane(lug.name, EA=5000.0, boom_height=hook, rope_length=10.0)
-                                  for lug in lugs))
+        return Scene(
+            body=Body(40.0, (0.0, 0.0, 0.0)),
+            water=Water(RHO, 0.0),
+            hull=box,
+            lugs=lugs,
+            cranes=tuple(Crane(lug.name, EA=5000.0, boom_height=hook, rope_length=10.0) for lug in lugs),
+        )
 
     free = solve(scene(5.0)).afloat
     assert free.state == "afloat" and free.buoyancy == pytest.approx(40.0, rel=1e-9)
@@ -103,7 +123,8 @@ def test_moments_balance_at_the_named_centres():
         origin = np.asarray(a.centre_of_gravity) - rot @ np.asarray(scene.body.cog)
         lugs = scene.lug_points() @ rot.T + origin
         down = eq.weight * np.asarray(a.centre_of_gravity) + a.trapped_water * np.asarray(
-            a.centre_of_trapped_water)
+            a.centre_of_trapped_water
+        )
         up = a.buoyancy * np.asarray(a.centre_of_buoyancy) + np.array(list(eq.tensions.values())) @ lugs
         if a.ground_reaction:
             up = up + a.ground_reaction * np.asarray(a.contact)
@@ -190,7 +211,7 @@ def test_plateau_is_a_range_not_a_point(curves):
     assert coarse.plateau[0][1] == fine.plateau[0][1] == curves[0.1].hoist[-1] and coarse.to_end
     for curve in curves.values():
         m = curve.max_load
-        (start, end), = m.plateau
+        ((start, end),) = m.plateau
         peak = curve.tensions.max(axis=1)
         inside = (curve.hoist >= start) & (curve.hoist <= end)
         assert np.all(peak[inside] >= m.tension - m.tolerance)
@@ -244,8 +265,10 @@ def test_console_explains_the_sum_of_tensions(curves):
     a = eq.afloat
     assert "state: grounded" in text and "afloat" not in text
     line = next(x for x in text.splitlines() if x.startswith("sum of rope tensions"))
-    assert (f"W {eq.weight:.1f} - B {a.buoyancy:.1f} + trapped water {a.trapped_water:.1f} "
-            f"- F_R {a.ground_reaction:.1f}") in line
+    assert (
+        f"W {eq.weight:.1f} - B {a.buoyancy:.1f} + trapped water {a.trapped_water:.1f} "
+        f"- F_R {a.ground_reaction:.1f}"
+    ) in line
     assert f"{sum(eq.tensions.values()):.1f} t" in line
     assert f"displaced volume {a.displaced_volume:.1f} m3" in text
     curve = curves[0.25]

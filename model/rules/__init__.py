@@ -23,8 +23,15 @@ Example::
     chain.result("A").design_hook_load, chain.result("A").check.ok
 """
 
-from .chain import CraneDesignLoad, CraneLoads, DesignLoadChain, Factor, LugDesignLoad, LugLoads
-from .factors import (
+from liftplan.model.rules.chain import (
+    CraneDesignLoad,
+    CraneLoads,
+    DesignLoadChain,
+    Factor,
+    LugDesignLoad,
+    LugLoads,
+)
+from liftplan.model.rules.factors import (
     CODE_MARGIN,
     CODE_MARGIN_MANY,
     DEFAULT_SKEW_FACTOR,
@@ -38,14 +45,34 @@ from .factors import (
     weight_contingency,
     yaw_factor,
 )
-from .settings import Rules
-from .table import RulesTable, read_rules, rules_from_table
-from .tilt import TiltGeometry, TiltLoad, rotation_about
+from liftplan.model.rules.settings import Rules
+from liftplan.model.rules.table import RulesTable, read_rules, rules_from_table
+from liftplan.model.rules.tilt import TiltGeometry, TiltLoad, rotation_about
 
 __all__ = [
-    "CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "CraneDesignLoad", "CraneLoads",
-    "DesignLoadChain", "Factor", "LugDesignLoad", "LugLoads", "Rules", "RulesTable", "TiltGeometry",
-    "TiltLoad", "code_margin", "cog_factor", "dynamic_amplification", "governing_tilt", "read_rules",
-    "rotation_about", "rules_from_table", "rules_tilt", "skew_factor", "sling_stiffness",
-    "weight_contingency", "yaw_factor",
+    "CODE_MARGIN",
+    "CODE_MARGIN_MANY",
+    "DEFAULT_SKEW_FACTOR",
+    "CraneDesignLoad",
+    "CraneLoads",
+    "DesignLoadChain",
+    "Factor",
+    "LugDesignLoad",
+    "LugLoads",
+    "Rules",
+    "RulesTable",
+    "TiltGeometry",
+    "TiltLoad",
+    "code_margin",
+    "cog_factor",
+    "dynamic_amplification",
+    "governing_tilt",
+    "read_rules",
+    "rotation_about",
+    "rules_from_table",
+    "rules_tilt",
+    "skew_factor",
+    "sling_stiffness",
+    "weight_contingency",
+    "yaw_factor",
 ]

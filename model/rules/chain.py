@@ -32,11 +32,11 @@ import math
 from dataclasses import asdict, dataclass, field
 from functools import cached_property
 
-from ..checks import Check
-from ..errors import InvalidScene
-from ..scene import finite, positive
-from . import factors
-from .settings import Rules
+from liftplan.model.checks import Check
+from liftplan.model.errors import InvalidScene
+from liftplan.model.rules import factors
+from liftplan.model.rules.settings import Rules
+from liftplan.model.scene import finite, positive
 
 
 @dataclass(frozen=True)
@@ -73,13 +73,16 @@ class LugLoads:
             object.__setattr__(self, "tilt_share", _load(f"{where}.tilt_share", self.tilt_share))
         angle = finite(f"{where}.sling_angle", self.sling_angle)
         if not 0.0 < angle <= 90.0:
-            raise InvalidScene(f"{where}.sling_angle = {self.sling_angle!r}: expected an angle in "
-                               "(0, 90] deg from the horizontal")
+            raise InvalidScene(
+                f"{where}.sling_angle = {self.sling_angle!r}: expected an angle in "
+                "(0, 90] deg from the horizontal"
+            )
         object.__setattr__(self, "sling_angle", angle)
         out = finite(f"{where}.out_of_plane", self.out_of_plane)
         if not 0.0 <= out < 90.0:
-            raise InvalidScene(f"{where}.out_of_plane = {self.out_of_plane!r}: expected an angle in "
-                               "[0, 90) deg")
+            raise InvalidScene(
+                f"{where}.out_of_plane = {self.out_of_plane!r}: expected an angle in [0, 90) deg"
+            )
         object.__setattr__(self, "out_of_plane", out)
         if self.capacity is not None:
             object.__setattr__(self, "capacity", positive(f"{where}.capacity", self.capacity))
@@ -125,8 +128,10 @@ class CraneLoads:
         for key in ("nominal", "worst"):
             object.__setattr__(self, key, _load(f"{where}.{key}", getattr(self, key)))
         if self.worst < self.nominal:
-            raise InvalidScene(f"{where}.worst = {self.worst!r}: expected >= nominal {self.nominal:g} t "
-                               "(the worst over a box that holds the level attitude)")
+            raise InvalidScene(
+                f"{where}.worst = {self.worst!r}: expected >= nominal {self.nominal:g} t "
+                "(the worst over a box that holds the level attitude)"
+            )
         if self.tilt is not None:
             object.__setattr__(self, "tilt", _load(f"{where}.tilt", self.tilt))
         object.__setattr__(self, "swl", positive(f"{where}.swl", self.swl))
@@ -205,12 +210,20 @@ class CraneDesignLoad:
 
     def to_json(self):
         return {
-            "crane": self.crane, "radius": self.radius, "swl": self.swl, "nominal": self.nominal,
-            "worst": self.worst, "tilt_share": self.tilt_share,
-            "factors": [asdict(f) for f in self.factors], "product": self.product,
-            "rigging_weight": self.rigging_weight, "static_hook_load": self.static_hook_load,
-            "dynamic_hook_load": self.dynamic_hook_load, "design_hook_load": self.design_hook_load,
-            "utilisation": self.utilisation, "check": self.check.to_json(),
+            "crane": self.crane,
+            "radius": self.radius,
+            "swl": self.swl,
+            "nominal": self.nominal,
+            "worst": self.worst,
+            "tilt_share": self.tilt_share,
+            "factors": [asdict(f) for f in self.factors],
+            "product": self.product,
+            "rigging_weight": self.rigging_weight,
+            "static_hook_load": self.static_hook_load,
+            "dynamic_hook_load": self.dynamic_hook_load,
+            "design_hook_load": self.design_hook_load,
+            "utilisation": self.utilisation,
+            "check": self.check.to_json(),
             "code_margin": self.code_margin.to_json() if self.code_margin is not None else None,
             "lugs": [lug.to_json() for lug in self.lugs],
         }
@@ -255,8 +268,9 @@ class DesignLoadChain:
         if isinstance(self.rules.rigging_weight, dict):
             unknown = sorted(set(self.rules.rigging_weight) - set(names))
             if unknown:
-                raise InvalidScene(f"rules.rigging_weight.{unknown[0]}: no such crane, expected one of "
-                                   f"{', '.join(names)}")
+                raise InvalidScene(
+                    f"rules.rigging_weight.{unknown[0]}: no such crane, expected one of {', '.join(names)}"
+                )
         if len(self.cranes) >= 2:
             for crane in self.cranes:
                 if crane.tilt is None:
@@ -281,8 +295,9 @@ class DesignLoadChain:
         for r in self.results:
             if r.crane == crane:
                 return r
-        raise InvalidScene(f"crane = {crane!r}: no such crane, expected one of "
-                           f"{', '.join(c.name for c in self.cranes)}")
+        raise InvalidScene(
+            f"crane = {crane!r}: no such crane, expected one of {', '.join(c.name for c in self.cranes)}"
+        )
 
     @property
     def checks(self):
@@ -296,9 +311,13 @@ class DesignLoadChain:
         return out
 
     def to_json(self):
-        return {"weight": self.weight, "design_weight": self.design_weight,
-                "rules": _rules_json(self.rules), "cog_searched": self.cog_searched,
-                "cranes": [r.to_json() for r in self.results]}
+        return {
+            "weight": self.weight,
+            "design_weight": self.design_weight,
+            "rules": _rules_json(self.rules),
+            "cog_searched": self.cog_searched,
+            "cranes": [r.to_json() for r in self.results],
+        }
 
     def factor_notes(self, crane):
         """The notes of the ``cog`` and ``tilt`` factors of one crane, in words.
@@ -319,8 +338,10 @@ class DesignLoadChain:
         """
         worst = crane.worst
         if self.cog_searched and crane.nominal > 0:
-            cog = (f"CoG envelope searched by the planner: in the worst tension (worst / nominal = "
-                   f"{worst / crane.nominal:.4f})")
+            cog = (
+                f"CoG envelope searched by the planner: in the worst tension (worst / nominal = "
+                f"{worst / crane.nominal:.4f})"
+            )
         elif self.cog_searched:
             cog = "CoG envelope searched by the planner"
         else:
@@ -328,10 +349,15 @@ class DesignLoadChain:
         if crane.tilt is None:
             tilt = "single hook: no multi-hook tilt"
         else:
-            over = ("the heel/trim tolerance box and the CG envelope" if self.cog_searched
-                    else "the heel/trim tolerance box (no CG envelope)")
-            tilt = (f"share at the rules' tilt {crane.tilt:.4g} t against {worst:.4g} t, the crane's "
-                    f"worst tension over {over}")
+            over = (
+                "the heel/trim tolerance box and the CG envelope"
+                if self.cog_searched
+                else "the heel/trim tolerance box (no CG envelope)"
+            )
+            tilt = (
+                f"share at the rules' tilt {crane.tilt:.4g} t against {worst:.4g} t, the crane's "
+                f"worst tension over {over}"
+            )
         if self.tilt_note:
             tilt += f"; {self.tilt_note}"
         return {"cog": cog, "tilt": tilt}
@@ -363,15 +389,26 @@ class DesignLoadChain:
         design_hook = static_hook if rules.chart_includes_dynamics else dynamic_hook
         where = f" at {crane.radius:.3g} m" if crane.radius is not None else ""
         kind = "static (chart includes dynamics, 10.3.2)" if rules.chart_includes_dynamics else "dynamic"
-        check = Check.upper("design_hook_load", crane.name, design_hook, crane.swl, "t",
-                            note=f"{kind} hook load / chart SWL{where}")
+        check = Check.upper(
+            "design_hook_load",
+            crane.name,
+            design_hook,
+            crane.swl,
+            "t",
+            note=f"{kind} hook load / chart SWL{where}",
+        )
         margin = factors.code_margin(hooks, rules.code_margin)
         margin_check = None
         if margin > 0.0:
             share = crane.nominal * wc + rigging
             margin_check = Check.upper(
-                "code_margin", crane.name, share * (1.0 + margin), crane.swl, "t",
-                note=f"calculated share {share:.4g} t x {1.0 + margin:.2f} ({hooks} cranes)")
+                "code_margin",
+                crane.name,
+                share * (1.0 + margin),
+                crane.swl,
+                "t",
+                note=f"calculated share {share:.4g} t x {1.0 + margin:.2f} ({hooks} cranes)",
+            )
 
         skew_note = f"{how}; rules' default {factors.DEFAULT_SKEW_FACTOR:g}"
         if crane.skew is not None and how != "computed":
@@ -380,23 +417,55 @@ class DesignLoadChain:
         cog_note, tilt_note = own["cog"], own["tilt"]
         table = (
             Factor("weight_contingency", wc, factors.SOURCES["weight_contingency"], "hook and lug"),
-            Factor("cog", cog, factors.SOURCES["cog_envelope" if self.cog_searched else "cog_factor"],
-                   "hook and lug", cog_note),
-            Factor("tilt", tilt, factors.SOURCES["tilt"],
-                   "hook and lug" if crane.tilt is not None else "none", tilt_note),
-            Factor("skew", skew, factors.SOURCES["skew"],
-                   "hook and lug" if skew_on_hook else "lug" if skew > 1.0 else "none", skew_note),
-            Factor("yaw", yaw, factors.SOURCES["yaw"], "lug" if yaw > 1.0 else "none",
-                   "more than one sling on the hook" if yaw > 1.0 else "one sling on the hook, or one hook"),
+            Factor(
+                "cog",
+                cog,
+                factors.SOURCES["cog_envelope" if self.cog_searched else "cog_factor"],
+                "hook and lug",
+                cog_note,
+            ),
+            Factor(
+                "tilt",
+                tilt,
+                factors.SOURCES["tilt"],
+                "hook and lug" if crane.tilt is not None else "none",
+                tilt_note,
+            ),
+            Factor(
+                "skew",
+                skew,
+                factors.SOURCES["skew"],
+                "hook and lug" if skew_on_hook else "lug" if skew > 1.0 else "none",
+                skew_note,
+            ),
+            Factor(
+                "yaw",
+                yaw,
+                factors.SOURCES["yaw"],
+                "lug" if yaw > 1.0 else "none",
+                "more than one sling on the hook" if yaw > 1.0 else "one sling on the hook, or one hook",
+            ),
             Factor("daf", daf, factors.SOURCES["daf"], "hook and lug", daf_note),
         )
         product = tilt * wc * cog * hook_skew * daf
         lugs = tuple(self._lug(crane, lug, tilt, cog, daf, yaw, skew) for lug in crane.lugs)
         return CraneDesignLoad(
-            crane=crane.name, radius=crane.radius, swl=crane.swl, nominal=crane.nominal, worst=crane.worst,
-            tilt_share=crane.tilt, factors=table, product=product, rigging_weight=rigging,
-            static_hook_load=static_hook, dynamic_hook_load=dynamic_hook, design_hook_load=design_hook,
-            utilisation=design_hook / crane.swl, check=check, code_margin=margin_check, lugs=lugs,
+            crane=crane.name,
+            radius=crane.radius,
+            swl=crane.swl,
+            nominal=crane.nominal,
+            worst=crane.worst,
+            tilt_share=crane.tilt,
+            factors=table,
+            product=product,
+            rigging_weight=rigging,
+            static_hook_load=static_hook,
+            dynamic_hook_load=dynamic_hook,
+            design_hook_load=design_hook,
+            utilisation=design_hook / crane.swl,
+            check=check,
+            code_margin=margin_check,
+            lugs=lugs,
         )
 
     def _lug(self, crane, lug, tilt, cog, daf, yaw, skew):
@@ -414,13 +483,27 @@ class DesignLoadChain:
         out_of_plane = design * math.sin(off) + rules.lateral_fraction * design
         check = None
         if lug.capacity is not None:
-            check = Check.upper("lug_design_load", lug.name, design, lug.capacity, "t",
-                                note=f"leg load x consequence {rules.consequence_factor:g} "
-                                     f"(crane {crane.name})")
-        return LugDesignLoad(lug=lug.name, crane=crane.name, share=lug.share, vertical=vertical,
-                             sling_angle=lug.sling_angle, leg_load=leg, design_load=design,
-                             in_plane=in_plane, out_of_plane=out_of_plane,
-                             product=product * (static / lug.share if lug.share > 0 else 1.0), check=check)
+            check = Check.upper(
+                "lug_design_load",
+                lug.name,
+                design,
+                lug.capacity,
+                "t",
+                note=f"leg load x consequence {rules.consequence_factor:g} (crane {crane.name})",
+            )
+        return LugDesignLoad(
+            lug=lug.name,
+            crane=crane.name,
+            share=lug.share,
+            vertical=vertical,
+            sling_angle=lug.sling_angle,
+            leg_load=leg,
+            design_load=design,
+            in_plane=in_plane,
+            out_of_plane=out_of_plane,
+            product=product * (static / lug.share if lug.share > 0 else 1.0),
+            check=check,
+        )
 
 
 def _load(key, value):

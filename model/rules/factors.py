@@ -15,29 +15,29 @@ from __future__ import annotations
 
 import math
 
-from ..errors import InvalidScene
+from liftplan.model.errors import InvalidScene
 
 #: Where each factor comes from (shown beside its value in every output).
 SOURCES = {
     "weight_contingency": "0027/ND Rev 11 6.2.1 -> 0001/ND 8.3.1-8.3.3 (value: project default, "
-                          "clause value not stored here)",
+    "clause value not stored here)",
     "cog_envelope": "0027/ND Rev 11 6.2.3 / 6.3.1: hook and lift point loads at the extremes of "
-                    "the CoG envelope (searched by the planner)",
+    "the CoG envelope (searched by the planner)",
     "cog_factor": "0027/ND Rev 11 6.2.3 -> 0001/ND 8.3.3 (hooks), 6.3.1 -> 0001/ND 8.4.3 (lift "
-                  "points); value not stored here, given in [rules]",
+    "points); value not stored here, given in [rules]",
     "tilt": "0027/ND Rev 11 5.4.2-5.4.6, Appendix B.1 (2-hook lift factors)",
     "daf": "0027/ND Rev 11 5.5.1 Table 5-1 (in air), 5.5.2",
     "skew": "0027/ND Rev 11 5.6.12 (SKL 1.25, matched slings) / 5.6.13 (computed: E = 80 000 N/mm2, "
-            "A = 0.785 d2)",
+    "A = 0.785 d2)",
     "yaw": "0027/ND Rev 11 5.4.7 (yaw effect factor 1.05, more than one sling on the hook)",
     "rigging": "0027/ND Rev 11 6.2.2, 6.2.4 (static hook load = design weight + rigging weight)",
     "hook_check": "0027/ND Rev 11 10.3.1 (dynamic hook load against the load-radius curve) / 10.3.2",
     "consequence": "0027/ND Rev 11 11.4.1 Table 11-1 (lift points 1.30), 11.4.2",
     "lateral": "lift point lateral load, 5 % of the factored lift point load: common practice "
-               "(0027/ND Section 12); clause text not stored here",
+    "(0027/ND Section 12); clause text not stored here",
     "code_margin": "crane-code capacity margin over the calculated share: 20 % for 2 cranes "
-                   "(AS 2550.1, non-synchronised), 33 % / 50 % for 3 / 4+ (common practice; "
-                   "no stored clause)",
+    "(AS 2550.1, non-synchronised), 33 % / 50 % for 3 / 4+ (common practice; "
+    "no stored clause)",
 }
 
 LOCATIONS = ("onshore", "inshore", "offshore")

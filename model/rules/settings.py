@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..errors import InvalidScene
-from . import factors
+from liftplan.model.errors import InvalidScene
+from liftplan.model.rules import factors
 
 
 def _set(obj, name, value):
@@ -101,8 +101,11 @@ class Rules:
                 raise InvalidScene(f"rules.{name} = {getattr(self, name)!r}: expected true or false")
         _set(self, "weight_contingency", factors.weight_contingency(self.weight_contingency))
         _set(self, "yaw_factor", factors.factor_at_least_one("rules.yaw_factor", self.yaw_factor))
-        _set(self, "consequence_factor",
-             factors.factor_at_least_one("rules.consequence_factor", self.consequence_factor))
+        _set(
+            self,
+            "consequence_factor",
+            factors.factor_at_least_one("rules.consequence_factor", self.consequence_factor),
+        )
         for name in ("cog_factor", "daf", "skew_factor"):
             _optional_factor(self, name)
         if self.tilt is not None:
@@ -114,12 +117,19 @@ class Rules:
             _set(self, "hook_elevation", _non_negative("rules.hook_elevation", self.hook_elevation))
         lateral = _non_negative("rules.lateral_fraction", self.lateral_fraction)
         if lateral >= 1.0:
-            raise InvalidScene(f"rules.lateral_fraction = {self.lateral_fraction!r}: expected a fraction "
-                               "in [0, 1)")
+            raise InvalidScene(
+                f"rules.lateral_fraction = {self.lateral_fraction!r}: expected a fraction in [0, 1)"
+            )
         _set(self, "lateral_fraction", lateral)
         if isinstance(self.rigging_weight, dict):
-            _set(self, "rigging_weight", {str(k): _non_negative(f"rules.rigging_weight.{k}", v)
-                                          for k, v in self.rigging_weight.items()})
+            _set(
+                self,
+                "rigging_weight",
+                {
+                    str(k): _non_negative(f"rules.rigging_weight.{k}", v)
+                    for k, v in self.rigging_weight.items()
+                },
+            )
         else:
             _set(self, "rigging_weight", _non_negative("rules.rigging_weight", self.rigging_weight))
         if self.code_margin is not None:
@@ -129,7 +139,7 @@ class Rules:
             raise InvalidScene(
                 "rules.daf: missing; Table 5-1 covers lifts by 2 or more vessels only inshore in totally "
                 "sheltered waters (0027/ND 5.5.2), offshore multi-vessel DAFs are set by 5.5.4-5.5.6 "
-                "(not stored here): expected [rules] daf for location = \"offshore\" with separate_vessels"
+                '(not stored here): expected [rules] daf for location = "offshore" with separate_vessels'
             )
 
     def rigging_for(self, crane):
@@ -141,5 +151,7 @@ class Rules:
     def design_tilt(self):
         """The tilt and hook elevation difference this lift is designed for: (deg, m)."""
         tilt, elevation = factors.rules_tilt(self.separate_vessels, self.synchronised_sheerleg)
-        return (self.tilt if self.tilt is not None else tilt,
-                self.hook_elevation if self.hook_elevation is not None else elevation)
+        return (
+            self.tilt if self.tilt is not None else tilt,
+            self.hook_elevation if self.hook_elevation is not None else elevation,
+        )

@@ -30,9 +30,9 @@ from typing import Annotated, Literal
 
 from pydantic import Strict, ValidationError
 
-from ..errors import InvalidScene
-from ..scenefile import Num, Table, Text, one_line
-from .settings import Rules
+from liftplan.model.errors import InvalidScene
+from liftplan.model.rules.settings import Rules
+from liftplan.model.scenefile import Num, Table, Text, one_line
 
 Flag = Annotated[bool, Strict()]
 

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import EquilibriumNotFound, InvalidScene
-from ..scene import finite, point, positive
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.scene import finite, point, positive
 
 _DIRECTIONS = 72  # first sweep of tilt directions (5 deg steps), then golden-section refined
 _GOLDEN_STEPS = 48  # bracket of 10 deg shrunk to ~1e-9 deg
@@ -70,8 +70,9 @@ class TiltGeometry:
     def __post_init__(self):
         if not isinstance(self.points, dict) or len(self.points) < 2:
             raise InvalidScene(f"tilt points = {self.points!r}: expected two or more named lift points")
-        object.__setattr__(self, "points", {str(k): point(f"tilt points[{k}]", v)
-                                            for k, v in self.points.items()})
+        object.__setattr__(
+            self, "points", {str(k): point(f"tilt points[{k}]", v) for k, v in self.points.items()}
+        )
         object.__setattr__(self, "cog", point("tilt cog", self.cog))
         object.__setattr__(self, "weight", positive("tilt weight", self.weight))
         names = list(self.points)
@@ -80,8 +81,9 @@ class TiltGeometry:
             if values is None:
                 continue
             if set(values) != set(names):
-                raise InvalidScene(f"tilt {key} = {values!r}: expected one value for each of "
-                                   f"{', '.join(names)}")
+                raise InvalidScene(
+                    f"tilt {key} = {values!r}: expected one value for each of {', '.join(names)}"
+                )
             check = positive if key == "stiffness" else finite
             object.__setattr__(self, key, {k: check(f"tilt {key}[{k}]", values[k]) for k in names})
         if self.n >= 4:
@@ -134,7 +136,7 @@ class TiltGeometry:
         InvalidScene
             The elevation difference is not less than the spacing along that direction.
         """
-        from .factors import governing_tilt
+        from liftplan.model.rules.factors import governing_tilt
 
         return governing_tilt(tilt, hook_elevation, self.spacing_along(direction))
 
@@ -177,8 +179,9 @@ class TiltGeometry:
         along = body[1, :2] - body[0, :2]
         span = float(np.hypot(*along))
         if span <= 0.0:
-            raise InvalidScene("tilt points: the two lift points are above one another, expected a plan "
-                               "distance > 0")
+            raise InvalidScene(
+                "tilt points: the two lift points are above one another, expected a plan distance > 0"
+            )
         unit = along / span
         s = np.array([0.0, span, float((cog[:2] - body[0, :2]) @ unit)])
         z = np.array([body[0, 2], body[1, 2], cog[2]])
@@ -196,8 +199,9 @@ class TiltGeometry:
         if self.n == 3:
             return _solve(a_mat, b_vec)
         preload = np.array([self.preload[k] for k in self.names])
-        stiff = (np.ones(self.n) if self.stiffness is None
-                 else np.array([self.stiffness[k] for k in self.names]))
+        stiff = (
+            np.ones(self.n) if self.stiffness is None else np.array([self.stiffness[k] for k in self.names])
+        )
         dz = world[:, 2] - body[:, 2]
         phi0 = np.column_stack([np.ones(self.n), body[:, 0], body[:, 1]])
         base = preload - stiff * dz
@@ -244,9 +248,10 @@ class TiltGeometry:
         dict of str -> TiltLoad   (``tilt`` of each: the tilt about its worst direction)
         """
         out = {}
-        from .factors import governing_tilt
+        from liftplan.model.rules.factors import governing_tilt
 
         if self.n > 2:
+
             def along(direction):
                 return self.tilt_along(direction, tilt, hook_elevation)
         else:

@@ -29,10 +29,19 @@ The solvers import :mod:`.flexible` only (lazily, for a scene with ``hull.EI``);
 line calls the rest after a solve.
 """
 
-from .checks import strength_checks
-from .flexible import TENSION_CHANGE, FlexibleHull
-from .girder import GRID, GirderForces, PointLoad, hull_girder
-from .piecewise import Extreme, Piecewise
+from liftplan.model.strength.checks import strength_checks
+from liftplan.model.strength.flexible import TENSION_CHANGE, FlexibleHull
+from liftplan.model.strength.girder import GRID, GirderForces, PointLoad, hull_girder
+from liftplan.model.strength.piecewise import Extreme, Piecewise
 
-__all__ = ["GRID", "TENSION_CHANGE", "Extreme", "FlexibleHull", "GirderForces", "Piecewise", "PointLoad",
-           "hull_girder", "strength_checks"]
+__all__ = [
+    "GRID",
+    "TENSION_CHANGE",
+    "Extreme",
+    "FlexibleHull",
+    "GirderForces",
+    "Piecewise",
+    "PointLoad",
+    "hull_girder",
+    "strength_checks",
+]

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidScene
+from liftplan.model.errors import InvalidScene
 
 #: At least this many elements over the girder's length (more where the data have points).
 ELEMENTS = 40
@@ -51,15 +51,16 @@ def hermite(t, h):
         Multipliers of (w_a, w'_a, w_b, w'_b).
     """
     t = np.asarray(t, dtype=float)
-    return np.stack([1 - 3 * t**2 + 2 * t**3, h * (t - 2 * t**2 + t**3), 3 * t**2 - 2 * t**3,
-                     h * (-(t**2) + t**3)], axis=-1)
+    return np.stack(
+        [1 - 3 * t**2 + 2 * t**3, h * (t - 2 * t**2 + t**3), 3 * t**2 - 2 * t**3, h * (-(t**2) + t**3)],
+        axis=-1,
+    )
 
 
 def _curvature(t, h):
     """Second derivatives d2N/du2 of :func:`hermite`  [1/m2, 1/m]."""
     t = np.asarray(t, dtype=float)
-    return np.stack([(-6 + 12 * t) / h**2, (-4 + 6 * t) / h, (6 - 12 * t) / h**2, (-2 + 6 * t) / h],
-                    axis=-1)
+    return np.stack([(-6 + 12 * t) / h**2, (-4 + 6 * t) / h, (6 - 12 * t) / h**2, (-2 + 6 * t) / h], axis=-1)
 
 
 def bending_stiffness(h, ei_a, ei_b):
@@ -169,8 +170,9 @@ def node_of(mesh_x, x):
 def hermite_slope(t, h):
     """First derivatives dN/du of :func:`hermite`  [1/m, -]."""
     t = np.asarray(t, dtype=float)
-    return np.stack([(-6 * t + 6 * t**2) / h, 1 - 4 * t + 3 * t**2, (6 * t - 6 * t**2) / h,
-                     -2 * t + 3 * t**2], axis=-1)
+    return np.stack(
+        [(-6 * t + 6 * t**2) / h, 1 - 4 * t + 3 * t**2, (6 * t - 6 * t**2) / h, -2 * t + 3 * t**2], axis=-1
+    )
 
 
 def free_layout(m):
@@ -195,7 +197,7 @@ def girder_mesh(scene, elements=ELEMENTS, extra=()):
     -------
     GirderMesh
     """
-    from .girder import _weight
+    from liftplan.model.strength.girder import _weight
 
     stiffness = scene.girder
     if stiffness is None:
@@ -225,7 +227,7 @@ def girder_mesh(scene, elements=ELEMENTS, extra=()):
         gj = np.interp(x, *zip(*stiffness.GJ))
         torsion = 0.5 * (gj[:-1] + gj[1:]) / h
     curve, _ = _weight(scene.body)
-    q = curve(x)                       # the corrected weight curve is linear between the nodes
+    q = curve(x)  # the corrected weight curve is linear between the nodes
     q_left = curve(x[1:], "left")
     weight = np.zeros(2 * len(x))
     for k, (hk, qa, qb) in enumerate(zip(h, q[:-1], q_left)):

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..checks import Check
+from liftplan.model.checks import Check
 
 
 def strength_checks(scene, eq, girder=None):
@@ -26,17 +26,27 @@ def strength_checks(scene, eq, girder=None):
     if scene.strength is None or scene.body.weight_curve is None:
         return []
     if girder is None:
-        from .girder import hull_girder
+        from liftplan.model.strength.girder import hull_girder
 
         girder = hull_girder(scene, eq)
     checks = []
-    for name, curve, unit in (("bending_moment", girder.moment_curve, "t m"),
-                              ("shear_force", girder.shear_curve, "t")):
+    for name, curve, unit in (
+        ("bending_moment", girder.moment_curve, "t m"),
+        ("shear_force", girder.shear_curve, "t"),
+    ):
         envelope = getattr(scene.strength, name)
         if envelope is None:
             continue
         x, value, limit = curve.worst_ratio(envelope)
         what = "|M|" if name == "bending_moment" else "|Q|"
-        checks.append(Check.upper(name, f"x = {x:.1f} m", value, limit, unit,
-                                  note=f"{what} / allowable = {value / limit:.0%}, the worst along the body"))
+        checks.append(
+            Check.upper(
+                name,
+                f"x = {x:.1f} m",
+                value,
+                limit,
+                unit,
+                note=f"{what} / allowable = {value / limit:.0%}, the worst along the body",
+            )
+        )
     return checks

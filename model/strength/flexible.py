@@ -14,10 +14,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..acceptance import RESIDUAL_TOL, schur_positive_definite
-from .beam import ELEMENTS, girder_mesh
-from .flexible_model import flexible_model
-from .piecewise import Extreme
+from liftplan.model.acceptance import RESIDUAL_TOL, schur_positive_definite
+from liftplan.model.strength.beam import ELEMENTS, girder_mesh
+from liftplan.model.strength.flexible_model import flexible_model
+from liftplan.model.strength.piecewise import Extreme
 
 #: Deflections beyond this fraction of the hull's length leave small-deflection beam theory
 #: (equilibrium on the undeformed geometry, plane sections): said in the result's reason.
@@ -99,12 +99,16 @@ class FlexibleHull:
     def lines(self):
         """Console lines: which hull, the change, the deflection."""
         peak = self.max_deflection
-        out = [f"hull: {self.used} ({self.reason})",
-               f"hull deflection from the chord through its ends: {1000 * peak.signed:+.1f} mm at "
-               f"x = {peak.x:.1f} m ({'sagging' if peak.signed < 0 else 'hogging'})"]
+        out = [
+            f"hull: {self.used} ({self.reason})",
+            f"hull deflection from the chord through its ends: {1000 * peak.signed:+.1f} mm at "
+            f"x = {peak.x:.1f} m ({'sagging' if peak.signed < 0 else 'hogging'})",
+        ]
         if self.flexible_ground_reaction is not None:
-            out.append(f"ground reaction: {self.flexible_ground_reaction:.2f} t flexible, "
-                       f"{self.rigid_ground_reaction:.2f} t rigid")
+            out.append(
+                f"ground reaction: {self.flexible_ground_reaction:.2f} t flexible, "
+                f"{self.rigid_ground_reaction:.2f} t rigid"
+            )
         if self.twist is not None:
             k = int(np.argmax(np.abs(self.twist)))
             out.append(f"hull twist: {self.twist[k]:+.4f} deg at x = {self.x[k]:.1f} m")
@@ -184,9 +188,16 @@ def flexible_state(scene, p, x_start, elements=ELEMENTS):
     beam_residual = float(np.max(np.abs(residual[3:]))) if residual.size > 3 else 0.0
     if not np.isfinite(beam_residual):
         beam_residual = np.inf
-    return FlexibleState(x=z[:3], beam=z[3:], tensions=tensions.ravel(), stretch=stretch.ravel(),
-                         statics=statics.ravel(), beam_residual=beam_residual,
-                         stable=schur_positive_definite(hess, 3), mesh=mesh)
+    return FlexibleState(
+        x=z[:3],
+        beam=z[3:],
+        tensions=tensions.ravel(),
+        stretch=stretch.ravel(),
+        statics=statics.ravel(),
+        beam_residual=beam_residual,
+        stable=schur_positive_definite(hess, 3),
+        mesh=mesh,
+    )
 
 
 def hull_report(scene, mesh, state, rigid, used, forced, ground=None, buoyancy=None, note=""):
@@ -219,8 +230,7 @@ def hull_report(scene, mesh, state, rigid, used, forced, ground=None, buoyancy=N
         names, change = ["nothing (no rope, no ground contact)"], np.zeros(1)
     k = int(np.argmax(change))
     flexible_values = list(state.tensions) + ([] if ground is None else [ground[1]])
-    by = (f"by {_percent(change[k])}" if np.isfinite(change[k]) else
-          f"from 0 t to {flexible_values[k]:.4g} t")
+    by = f"by {_percent(change[k])}" if np.isfinite(change[k]) else f"from 0 t to {flexible_values[k]:.4g} t"
     w, _, twist = mesh.full(state.beam)
     peak = int(np.argmax(np.abs(w)))
     span = float(mesh.x[-1] - mesh.x[0])
@@ -228,23 +238,34 @@ def hull_report(scene, mesh, state, rigid, used, forced, ground=None, buoyancy=N
     if forced:
         reason = f'analysis.hull = "{used}"; flexibility changes {names[k]} {by}'
     elif used == "flexible":
-        reason = (f"flexibility changes {names[k]} {by}, more than "
-                  f"{_percent(TENSION_CHANGE)}: the flexible hull is used")
+        reason = (
+            f"flexibility changes {names[k]} {by}, more than "
+            f"{_percent(TENSION_CHANGE)}: the flexible hull is used"
+        )
     else:
         what = "tension or ground reaction" if ground is not None else "tension"
-        reason = (f"flexibility changes no {what} by more than {_percent(TENSION_CHANGE)} (at most "
-                  f"{_percent(change[k])}, {names[k]}): the rigid hull is used")
+        reason = (
+            f"flexibility changes no {what} by more than {_percent(TENSION_CHANGE)} (at most "
+            f"{_percent(change[k])}, {names[k]}): the rigid hull is used"
+        )
     if note:
         reason += f"; {note}"
     if not small:
-        reason += (f"; the deflection {abs(w[peak]):.3g} m exceeds {SMALL_DEFLECTION:g} x the length: "
-                   "beyond small-deflection beam theory, check the stiffness")
+        reason += (
+            f"; the deflection {abs(w[peak]):.3g} m exceeds {SMALL_DEFLECTION:g} x the length: "
+            "beyond small-deflection beam theory, check the stiffness"
+        )
     return FlexibleHull(
-        used=used, reason=reason, small_deflection=small, x=mesh.x.copy(), deflection=w,
+        used=used,
+        reason=reason,
+        small_deflection=small,
+        x=mesh.x.copy(),
+        deflection=w,
         twist=np.degrees(twist) if mesh.torsion is not None else None,
         rigid_tensions=dict(zip(scene.lug_names, map(float, rigid))),
         flexible_tensions=dict(zip(scene.lug_names, map(float, state.tensions))),
-        max_change=float(change[k]), max_change_rope=names[k],
+        max_change=float(change[k]),
+        max_change_rope=names[k],
         max_deflection=Extreme(float(abs(w[peak])), float(mesh.x[peak]), float(w[peak])),
         rigid_ground_reaction=None if ground is None else float(ground[0]),
         flexible_ground_reaction=None if ground is None else float(ground[1]),

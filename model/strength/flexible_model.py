@@ -11,8 +11,8 @@ from functools import cache, cached_property
 
 import casadi as ca
 
-from ..frames import rotation
-from ..statics import Layout, pose_points, rope_tensions, statics_system
+from liftplan.model.frames import rotation
+from liftplan.model.statics import Layout, pose_points, rope_tensions, statics_system
 
 
 # -- flexible hull: the body as an elastic beam on the elastic ropes -------------------------
@@ -100,8 +100,7 @@ class FlexibleRopeModel:
         w_lug = ca.mtimes(select, w_nodes)
         slope_lug = ca.mtimes(select, slope_nodes)
         twist_lug = ca.mtimes(select, twist_nodes)
-        moved = (up[0] * (-dz * slope_lug) + up[1] * (-dz * twist_lug)
-                 + up[2] * (w_lug + dy * twist_lug))
+        moved = up[0] * (-dz * slope_lug) + up[1] * (-dz * twist_lug) + up[2] * (w_lug + dy * twist_lug)
         heights = lugs[2, :].T + moved
         tension, stretch = rope_tensions(boom, heights, length, stiffness)
         row_scale = ca.vertcat(weight, weight * scale, weight * scale)
@@ -114,7 +113,7 @@ class FlexibleRopeModel:
         force[0::2] = ca.mtimes(select.T, tension * up[2])
         force[1::2] = ca.mtimes(select.T, -tension * up[0] * dz)
         force -= up[2] * loads
-        bend_rows = (k_d - force)
+        bend_rows = k_d - force
         keep = [k for k in range(2 * m) if k not in (0, 2 * m - 2)]
         moment_rows = ca.DM([1.0 if k % 2 else 0.0 for k in keep])
         beam_scale = weight * (1 + (scale - 1) * moment_rows)
@@ -134,8 +133,12 @@ class FlexibleRopeModel:
             residual.append(rows / (weight * scale))
             strain += 0.5 * ca.dot(twist_nodes, g_theta)
         self._residual = ca.vertcat(*residual)
-        energy = (weight * (cog_w[2]) + ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
-                  + strain + work_weight) / (weight * scale)
+        energy = (
+            weight * (cog_w[2])
+            + ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
+            + strain
+            + work_weight
+        ) / (weight * scale)
         self._z, self._p, self._q = z, p, q
         self._outputs = (tension, stretch, ca.mtimes(a_mat, tension) - b_vec, self._residual, energy)
 
@@ -144,17 +147,26 @@ class FlexibleRopeModel:
         """(z, p, q) -> (T, stretch, statics residual [t], scaled residual, energy Hessian)."""
         tension, stretch, statics, residual, energy = self._outputs
         hess = ca.hessian(energy, self._z)[0]
-        return ca.Function("flexible_eval", [self._z, self._p, self._q],
-                           [tension, stretch, statics, residual, hess])
+        return ca.Function(
+            "flexible_eval", [self._z, self._p, self._q], [tension, stretch, statics, residual, hess]
+        )
 
     @cached_property
     def solver(self):
         """(z0, p, q) -> z: casadi Newton on the scaled residual (failure judged by the caller)."""
         pq = ca.vertcat(self._p, self._q)
         newton = ca.rootfinder(
-            "flexible_newton", "newton", {"x": self._z, "p": pq, "g": self._residual},
-            {"abstol": 1e-12, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
-             "show_eval_warnings": False})
+            "flexible_newton",
+            "newton",
+            {"x": self._z, "p": pq, "g": self._residual},
+            {
+                "abstol": 1e-12,
+                "abstolStep": 1e-15,
+                "max_iter": 60,
+                "error_on_fail": False,
+                "show_eval_warnings": False,
+            },
+        )
         z0 = ca.MX.sym("z0", self._z.shape[0])
         p = ca.MX.sym("p", self.layout.size)
         q = ca.MX.sym("q", self.beam.size)

@@ -51,13 +51,13 @@ from functools import cache, cached_property, lru_cache
 import casadi as ca
 import numpy as np
 
-from ..acceptance import schur_positive_definite
-from ..afloat import buoyancy_weights
-from ..errors import EquilibriumNotFound, InvalidScene
-from ..frames import rotation_matrix, tilt
-from .beam import _GAUSS3, ELEMENTS, girder_mesh, hermite, hermite_slope, node_of
-from .piecewise import Piecewise
-from .sections import cut_segments
+from liftplan.model.acceptance import schur_positive_definite
+from liftplan.model.afloat import buoyancy_weights
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.frames import rotation_matrix, tilt
+from liftplan.model.strength.beam import _GAUSS3, ELEMENTS, girder_mesh, hermite, hermite_slope, node_of
+from liftplan.model.strength.piecewise import Piecewise
+from liftplan.model.strength.sections import cut_segments
 
 #: Accepted when the scaled residuals (forces / W, moments / (W L)) are below this (as the
 #: rigid water model, :data:`liftplan.model.water.equilibrium.RESIDUAL_TOL`).
@@ -242,14 +242,33 @@ class WaterBeamShape:
         """(name, size) of each block of the parameter vector, in order."""
         n, m, ns = self.n, self.m, self.stations
         k, ke = len(self.segments), len(self.envelope)
-        return (("rot0", 9), ("contact", 3), ("ground", 1), ("gravity", 1), ("weight", 1),
-                ("cog", 3), ("reference", 3), ("span", 1), ("hooks", n), ("lengths", n), ("ea", n),
-                ("points", 3 * n), ("stations", ns), ("weights", ns),
-                ("shape_w", _station_pattern(m).nnz()), ("shape_s", _station_pattern(m).nnz()),
-                ("segment_p", 2 * k), ("segment_q", 2 * k), ("kappa", k),
-                ("envelope_p", 2 * ke), ("envelope_q", 2 * ke), ("trapped_line", 2 * ns),
-                ("trapped", 4 * self.trapped), ("loads", 2 * m),
-                ("stiffness", _stiffness_pattern(m).nnz()))
+        return (
+            ("rot0", 9),
+            ("contact", 3),
+            ("ground", 1),
+            ("gravity", 1),
+            ("weight", 1),
+            ("cog", 3),
+            ("reference", 3),
+            ("span", 1),
+            ("hooks", n),
+            ("lengths", n),
+            ("ea", n),
+            ("points", 3 * n),
+            ("stations", ns),
+            ("weights", ns),
+            ("shape_w", _station_pattern(m).nnz()),
+            ("shape_s", _station_pattern(m).nnz()),
+            ("segment_p", 2 * k),
+            ("segment_q", 2 * k),
+            ("kappa", k),
+            ("envelope_p", 2 * ke),
+            ("envelope_q", 2 * ke),
+            ("trapped_line", 2 * ns),
+            ("trapped", 4 * self.trapped),
+            ("loads", 2 * m),
+            ("stiffness", _stiffness_pattern(m).nnz()),
+        )
 
 
 @cache
@@ -341,12 +360,17 @@ class WaterBeamModel:
         seg = np.asarray(shape.segments, dtype=int)
         gather = _sparse(np.arange(len(seg)), seg, np.ones(len(seg)), (len(seg), ns))
         area_k, first_y, first_z = _clipped(
-            ca.reshape(block["segment_p"], len(seg), 2), ca.reshape(block["segment_q"], len(seg), 2),
-            block["kappa"], up[1], ca.mtimes(gather, uz), ca.mtimes(gather, c0))
+            ca.reshape(block["segment_p"], len(seg), 2),
+            ca.reshape(block["segment_q"], len(seg), 2),
+            block["kappa"],
+            up[1],
+            ca.mtimes(gather, uz),
+            ca.mtimes(gather, c0),
+        )
         scatter = gather.T
-        b = ca.mtimes(scatter, area_k)         # t/m
-        s_y = ca.mtimes(scatter, first_y)      # t m / m, about body y = 0
-        s_z = ca.mtimes(scatter, first_z)      # t m / m, about body z = 0
+        b = ca.mtimes(scatter, area_k)  # t/m
+        s_y = ca.mtimes(scatter, first_y)  # t m / m, about body y = 0
+        s_z = ca.mtimes(scatter, first_z)  # t m / m, about body z = 0
         # trapped water per length (uniform over each compartment), and its first moments
         tw, tw_z = block["trapped_line"][0:ns], block["trapped_line"][ns : 2 * ns]
         buoyancy = ca.dot(wdm, b)
@@ -354,14 +378,20 @@ class WaterBeamModel:
         e_seg = np.asarray(shape.envelope, dtype=int)
         e_gather = _sparse(np.arange(len(e_seg)), e_seg, np.ones(len(e_seg)), (len(e_seg), ns))
         e_area = _clipped(
-            ca.reshape(block["envelope_p"], len(e_seg), 2), ca.reshape(block["envelope_q"], len(e_seg), 2),
-            ca.DM.ones(len(e_seg)), up[1], ca.mtimes(e_gather, uz), ca.mtimes(e_gather, c0))[0]
+            ca.reshape(block["envelope_p"], len(e_seg), 2),
+            ca.reshape(block["envelope_q"], len(e_seg), 2),
+            ca.DM.ones(len(e_seg)),
+            up[1],
+            ca.mtimes(e_gather, uz),
+            ca.mtimes(e_gather, c0),
+        )[0]
         immersed = ca.dot(wdm, ca.mtimes(e_gather.T, e_area))
         # forces (world vertical, up) and moments about the reference point (world x, y)
         net = buoyancy + ca.sum1(tension) - weight_total
         ref = ca.mtimes(rot[0:2, :], contact if shape.grounded else block["reference"])
-        first_buoy = ca.vertcat(*(
-            ca.dot(wdm, rot[r, 0] * st * b + rot[r, 1] * s_y + rot[r, 2] * s_z) for r in range(3)))
+        first_buoy = ca.vertcat(
+            *(ca.dot(wdm, rot[r, 0] * st * b + rot[r, 1] * s_y + rot[r, 2] * s_z) for r in range(3))
+        )
         first = first_buoy[0:2] - body_weight * ca.mtimes(rot[0:2, :], cog)
         trapped = ca.reshape(block["trapped"], 4, shape.trapped)
         for j in range(shape.trapped):
@@ -400,22 +430,58 @@ class WaterBeamModel:
         # generalised forces conjugate to z (pose: force and moments; beam: loads - K d)
         self._gen, self._z, self._p = ca.vertcat(*generalised, -rows[keep.tolist()]), z, p
         self.evaluate = ca.Function(
-            "water_beam_eval", [z, p],
-            [tension, stretch, reaction, zo, buoyancy, first_buoy, residual, dropped, b, s_z,
-             ca.vertcat(tilts), force, immersed],
-            ["z", "p"], ["tension", "stretch", "reaction", "zo", "buoyancy", "first_buoyancy",
-                         "residual", "dropped", "b", "s_z", "tilts", "force", "immersed"])
+            "water_beam_eval",
+            [z, p],
+            [
+                tension,
+                stretch,
+                reaction,
+                zo,
+                buoyancy,
+                first_buoy,
+                residual,
+                dropped,
+                b,
+                s_z,
+                ca.vertcat(tilts),
+                force,
+                immersed,
+            ],
+            ["z", "p"],
+            [
+                "tension",
+                "stretch",
+                "reaction",
+                "zo",
+                "buoyancy",
+                "first_buoyancy",
+                "residual",
+                "dropped",
+                "b",
+                "s_z",
+                "tilts",
+                "force",
+                "immersed",
+            ],
+        )
         self.solve = ca.rootfinder(
-            "water_beam_newton", "newton", ca.Function("water_beam_g", [z, p], [residual]),
-            {"abstol": 1e-13, "abstolStep": 1e-15, "max_iter": 60, "error_on_fail": False,
-             "show_eval_warnings": False})
+            "water_beam_newton",
+            "newton",
+            ca.Function("water_beam_g", [z, p], [residual]),
+            {
+                "abstol": 1e-13,
+                "abstolStep": 1e-15,
+                "max_iter": 60,
+                "error_on_fail": False,
+                "show_eval_warnings": False,
+            },
+        )
 
     @cached_property
     def stiffness(self):
         """(z, p) -> minus the Jacobian of the generalised forces (pose: net force and moments;
         beam: loads - K d), in t/m, t, t m/rad (built on first use: it is slow to build)."""
-        return ca.Function("water_beam_stiffness", [self._z, self._p],
-                           [-ca.jacobian(self._gen, self._z)])
+        return ca.Function("water_beam_stiffness", [self._z, self._p], [-ca.jacobian(self._gen, self._z)])
 
     @staticmethod
     def parameters(scene, setup, data, shape):
@@ -425,7 +491,7 @@ class WaterBeamModel:
         body = scene.body
         st = np.asarray(data.stations, dtype=float)
         elem = np.clip(np.searchsorted(mesh.x, st, side="right") - 1, 0, m - 2)
-        if not np.array_equal(elem, np.arange(ns) // 3):   # 3 Gauss points inside each element
+        if not np.array_equal(elem, np.arange(ns) // 3):  # 3 Gauss points inside each element
             raise ValueError("water beam stations: expected three inside each element, in order")
         h = mesh.x[elem + 1] - mesh.x[elem]
         t = (st - mesh.x[elem]) / h
@@ -455,16 +521,25 @@ class WaterBeamModel:
         parts = {
             "rot0": np.asarray(data.rot0, dtype=float).ravel(order="F"),
             "contact": np.zeros(3) if data.contact is None else np.asarray(data.contact, dtype=float),
-            "ground": [float(data.ground)], "gravity": [float(setup.gravity)],
-            "weight": [float(body.weight)], "cog": np.asarray(body.cog, dtype=float),
+            "ground": [float(data.ground)],
+            "gravity": [float(setup.gravity)],
+            "weight": [float(body.weight)],
+            "cog": np.asarray(body.cog, dtype=float),
             "reference": np.asarray(setup.cog, dtype=float),
             "span": [float(mesh.x[-1] - mesh.x[0])],
-            "hooks": hooks, "lengths": lengths, "ea": ea, "points": points,
-            "stations": st, "weights": np.asarray(data.weights, dtype=float),
+            "hooks": hooks,
+            "lengths": lengths,
+            "ea": ea,
+            "points": points,
+            "stations": st,
+            "weights": np.asarray(data.weights, dtype=float),
             "shape_w": _values(_station_pattern(m), shape_w),
             "shape_s": _values(_station_pattern(m), shape_s),
-            "segment_p": p.ravel(order="F"), "segment_q": q.ravel(order="F"), "kappa": kap,
-            "envelope_p": e_p.ravel(order="F"), "envelope_q": e_q.ravel(order="F"),
+            "segment_p": p.ravel(order="F"),
+            "segment_q": q.ravel(order="F"),
+            "kappa": kap,
+            "envelope_p": e_p.ravel(order="F"),
+            "envelope_q": e_q.ravel(order="F"),
             "trapped_line": np.concatenate([tw, tw_z]),
             "trapped": np.array([[w, *np.asarray(centre, dtype=float)] for w, centre in trapped]).ravel(),
             "loads": np.asarray(mesh.weight, dtype=float),
@@ -484,10 +559,16 @@ def water_beam_shape(scene, data):
     envelope = scene.hull.triangles
     e_seg = oriented_segments(envelope, np.ones(len(envelope)), data.stations)[0]
     return WaterBeamShape(
-        n=scene.n, m=data.mesh.m, grounded=bool(data.grounded), gauge=data.gauge,
+        n=scene.n,
+        m=data.mesh.m,
+        grounded=bool(data.grounded),
+        gauge=data.gauge,
         lug_nodes=tuple(int(k) for k in data.mesh.lug_nodes),
         contact_node=node_of(data.mesh.x, data.contact[0]) if data.grounded else -1,
-        segments=tuple(seg.tolist()), envelope=tuple(e_seg.tolist()), trapped=len(trapped))
+        segments=tuple(seg.tolist()),
+        envelope=tuple(e_seg.tolist()),
+        trapped=len(trapped),
+    )
 
 
 #: Built models kept (each a few MB of casadi expressions; a study's sweep or a lift's steps
@@ -642,15 +723,19 @@ class WaterBeamState:
             return None
         if not self.quadrature_exact and math.isfinite(self.residual):
             buoyancy, moment = self.quadrature_error
-            why = (f"the buoyancy quadrature is not the hull's exact buoyancy after {self.remeshed + 1} "
-                   f"meshes (error {buoyancy:.3g} t, first moment {moment:.3g} t m): the section "
-                   "breaks did not settle on beam nodes")
+            why = (
+                f"the buoyancy quadrature is not the hull's exact buoyancy after {self.remeshed + 1} "
+                f"meshes (error {buoyancy:.3g} t, first moment {moment:.3g} t m): the section "
+                "breaks did not settle on beam nodes"
+            )
         elif self.residual > RESIDUAL_TOL:
             why = f"residual {self.residual:.3g}"
         else:
             why = "unstable (the stiffness is not positive definite)"
-        return (f"hydrostatic, flexible hull {where}: no accepted equilibrium ({why}); "
-                'expected a converged solve, or analysis.hull = "rigid"')
+        return (
+            f"hydrostatic, flexible hull {where}: no accepted equilibrium ({why}); "
+            'expected a converged solve, or analysis.hull = "rigid"'
+        )
 
 
 def gauss_stations(x):
@@ -668,7 +753,8 @@ def check_span(scene):
     if lo < x[0] - tol or hi > x[-1] + tol:
         raise InvalidScene(
             f"hull: x from {lo:g} to {hi:g} m reaches past body.weight_curve (from {x[0]:g} to "
-            f"{x[-1]:g} m); expected the weight curve to span the hull for a flexible hull in water")
+            f"{x[-1]:g} m); expected the weight curve to span the hull for a flexible hull in water"
+        )
 
 
 def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="chord"):
@@ -695,9 +781,9 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         Not accepted (:attr:`WaterBeamState.accepted`) when the quadrature is still not exact
         after :data:`REMESH` meshes: the caller refuses it (:meth:`WaterBeamState.refusal`).
     """
-    from ..afloat import buoyancy_weights
-    from ..water.equilibrium import WaterSetup, tilted_rotation
-    from .sections import section_breaks
+    from liftplan.model.afloat import buoyancy_weights
+    from liftplan.model.strength.sections import section_breaks
+    from liftplan.model.water.equilibrium import WaterSetup, tilted_rotation
 
     check_span(scene)
     setup = WaterSetup(scene)
@@ -708,16 +794,23 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         extra = list(section_breaks(tris, rotation[2], zo)) + ([contact[0]] if grounded else [])
         mesh = girder_mesh(scene, elements, extra=extra)
         stations, weights = gauss_stations(mesh.x)
-        data = WaterBeamData(mesh=mesh, rot0=rotation, grounded=grounded, contact=contact,
-                             ground=float(setup.ground_height), stations=stations, weights=weights,
-                             gauge=gauge)
+        data = WaterBeamData(
+            mesh=mesh,
+            rot0=rotation,
+            grounded=grounded,
+            contact=contact,
+            ground=float(setup.ground_height),
+            stations=stations,
+            weights=weights,
+            gauge=gauge,
+        )
         shape = water_beam_shape(scene, data)
         model = water_beam_model(shape)
         params = WaterBeamModel.parameters(scene, setup, data, shape)
         z0 = np.zeros(model.npose + 2 * mesh.m - 2)
         if not grounded:
             z0[0] = zo
-        with model.lock:   # the iteration count is the last call's
+        with model.lock:  # the iteration count is the last call's
             z = np.asarray(model.solve(ca.DM(z0), ca.DM(params))).ravel()
             iterations = int(model.solve.stats().get("iter_count", -1))
         out = {k: np.asarray(v) for k, v in model.evaluate(z=ca.DM(z), p=ca.DM(params)).items()}
@@ -728,8 +821,10 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
             error, exact = (math.nan, math.nan), False
             break
         error = _quadrature_error(setup, tris, kappa, rotation, zo, stations, weights)
-        exact = bool(abs(error[0]) <= 1e-12 * setup.gravity
-                     and abs(error[1]) <= 1e-12 * setup.gravity * scene.hull.size)
+        exact = bool(
+            abs(error[0]) <= 1e-12 * setup.gravity
+            and abs(error[1]) <= 1e-12 * setup.gravity * scene.hull.size
+        )
         if exact:
             break
     residual = float(max(np.max(np.abs(out["residual"])), np.max(np.abs(out["dropped"]))))
@@ -738,14 +833,25 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
     npose = model.npose
     free = z[npose:]
     return WaterBeamState(
-        rotation=rotation, zo=zo, beam=free, tensions=out["tension"].ravel(),
-        stretch=out["stretch"].ravel(), reaction=float(out["reaction"].ravel()[0]),
+        rotation=rotation,
+        zo=zo,
+        beam=free,
+        tensions=out["tension"].ravel(),
+        stretch=out["stretch"].ravel(),
+        reaction=float(out["reaction"].ravel()[0]),
         buoyancy=float(out["buoyancy"].ravel()[0]),
-        immersed_volume=float(out["immersed"].ravel()[0]), first_buoyancy=out["first_buoyancy"].ravel(),
-        residual=residual, stable=schur_positive_definite(stiffness(model, z, params), npose),
-        buoyancy_curve=_curves(mesh.x, out["b"].ravel(), out["s_z"].ravel()), mesh=mesh,
-        iterations=iterations, remeshed=remeshed, quadrature_error=error, quadrature_exact=exact,
-        gauge=gauge)
+        immersed_volume=float(out["immersed"].ravel()[0]),
+        first_buoyancy=out["first_buoyancy"].ravel(),
+        residual=residual,
+        stable=schur_positive_definite(stiffness(model, z, params), npose),
+        buoyancy_curve=_curves(mesh.x, out["b"].ravel(), out["s_z"].ravel()),
+        mesh=mesh,
+        iterations=iterations,
+        remeshed=remeshed,
+        quadrature_error=error,
+        quadrature_exact=exact,
+        gauge=gauge,
+    )
 
 
 def deflected_height(scene, state, points):
@@ -764,8 +870,9 @@ def deflected_height(scene, state, points):
     w, slope = state.bending()
     deflection, turn = beam_at(state.mesh, w, slope, points[:, 0])
     up = state.rotation[2]
-    return (points @ up + state.zo + up[2] * deflection
-            - up[0] * (points[:, 2] - float(scene.body.cog[2])) * turn)
+    return (
+        points @ up + state.zo + up[2] * deflection - up[0] * (points[:, 2] - float(scene.body.cog[2])) * turn
+    )
 
 
 def contact_height(scene, state):
@@ -794,7 +901,7 @@ def _quadrature_error(setup, tris, kappa, rotation, zo, stations, weights):
     """The Gauss quadrature of the sections (:func:`.sections.immersed_sections`) less the
     clipped hull's exact buoyancy [t] and the largest error of its first moments [t m] at this
     chord pose: a kink of the buoyancy per length inside an element leaves one."""
-    from .sections import immersed_sections
+    from liftplan.model.strength.sections import immersed_sections
 
     up = rotation[2]
     per_length, moment = immersed_sections(tris, kappa, up, zo, stations)
@@ -802,8 +909,8 @@ def _quadrature_error(setup, tris, kappa, rotation, zo, stations, weights):
     p = setup.params(rotation)
     out = setup.model.free.call({"x": ca.DM([zo, 0.0, 0.0]), "p": ca.DM(p)})
     exact_b = float(np.asarray(out["buoyancy"]).ravel()[0])
-    world = np.asarray(out["moment"]).ravel()[:3]       # about o, world axes
-    body = rotation.T @ (world - [0.0, 0.0, zo * exact_b])   # about the body origin, body axes
+    world = np.asarray(out["moment"]).ravel()[:3]  # about o, world axes
+    body = rotation.T @ (world - [0.0, 0.0, zo * exact_b])  # about the body origin, body axes
     exact = np.array([exact_b, body[0], body[2]])
     return float(quadrature[0] - exact[0]), float(np.max(np.abs(quadrature[1:] - exact[1:])))
 
@@ -814,8 +921,10 @@ def _curves(x, b, s_z):
     inverse = np.linalg.inv(t[:, None] ** np.arange(3))
     h = np.diff(x)[:, None]
     scale = h ** -np.arange(3)
-    return (Piecewise(x, (b.reshape(-1, 3) @ inverse.T) * scale),
-            Piecewise(x, (s_z.reshape(-1, 3) @ inverse.T) * scale))
+    return (
+        Piecewise(x, (b.reshape(-1, 3) @ inverse.T) * scale),
+        Piecewise(x, (s_z.reshape(-1, 3) @ inverse.T) * scale),
+    )
 
 
 # -- the solve: the least hull the scene needs -----------------------------------------------
@@ -838,10 +947,12 @@ def gauge_note(scene, state, forces):
     positive = [f for f in forces if f > 1e-9 * scene.body.weight]
     if not positive or spread < GAUGE_NOTE * min(positive):
         return ""
-    return (f"equilibrium on the chord's undeformed geometry: with the deflection {ratio:.2g} x the "
-            f"length, where the beam is held moves the forces by about {spread:.3g} t "
-            f"({100 * spread / min(positive):.2g} % of the smallest, {min(positive):.4g} t; "
-            f"measured {GAUGE_COEFFICIENT:g} W x deflection / length, studies/flexible_ground.py)")
+    return (
+        f"equilibrium on the chord's undeformed geometry: with the deflection {ratio:.2g} x the "
+        f"length, where the beam is held moves the forces by about {spread:.3g} t "
+        f"({100 * spread / min(positive):.2g} % of the smallest, {min(positive):.4g} t; "
+        f"measured {GAUGE_COEFFICIENT:g} W x deflection / length, studies/flexible_ground.py)"
+    )
 
 
 def _held_rigid(scene, method):
@@ -874,20 +985,23 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     EquilibriumNotFound
         Either solve was not accepted, with the reason.
     """
-    from ..results import SolverInfo
-    from ..water import solve_hydrostatic
-    from ..water.equilibrium import WaterSetup, equilibrium_result, water_state
-    from .flexible import TENSION_CHANGE, RigidHullNote, hull_report, tension_change
+    from liftplan.model.results import SolverInfo
+    from liftplan.model.strength.flexible import TENSION_CHANGE, RigidHullNote, hull_report, tension_change
+    from liftplan.model.water import solve_hydrostatic
+    from liftplan.model.water.equilibrium import WaterSetup, equilibrium_result, water_state
 
     hull = hull or scene.analysis.hull
-    rigid_scene = dataclasses.replace(scene, girder=None,
-                                      analysis=dataclasses.replace(scene.analysis, hull="auto"))
+    rigid_scene = dataclasses.replace(
+        scene, girder=None, analysis=dataclasses.replace(scene.analysis, hull="auto")
+    )
     rigid = dataclasses.replace(solve_hydrostatic(rigid_scene, method=method), frame=scene.frame)
     held = _held_rigid(scene, method)
     if held is not None:
         if hull == "flexible":
-            raise InvalidScene(f'analysis.hull = "flexible": {held}; expected method "newton" without '
-                               "ground.breakout for a flexible hull in water")
+            raise InvalidScene(
+                f'analysis.hull = "flexible": {held}; expected method "newton" without '
+                "ground.breakout for a flexible hull in water"
+            )
         return dataclasses.replace(rigid, flexible_hull=RigidHullNote(held))
     if hull == "rigid":
         return dataclasses.replace(rigid, flexible_hull=RigidHullNote('analysis.hull = "rigid"'))
@@ -895,8 +1009,9 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     level = scene.water.level
     pose = rigid.pose
     begin = time.perf_counter()
-    state = water_beam_state(scene, rotation_matrix(pose.heel, pose.trim, pose.yaw),
-                             pose.lift_height - level, grounded)
+    state = water_beam_state(
+        scene, rotation_matrix(pose.heel, pose.trim, pose.yaw), pose.lift_height - level, grounded
+    )
     sank = False
     if not grounded and scene.ground is not None and state.accepted:
         # the rigid hull floats or hangs clear of its contact; the bending one may reach it
@@ -912,11 +1027,13 @@ def solve_hull_in_water(scene, method="newton", hull=None):
         raise EquilibriumNotFound(
             f"hydrostatic, flexible hull: afloat the bending hull reaches below its ground contact, "
             f"grounded it lifts off it (reaction {state.reaction:.4g} t); no consistent contact found, "
-            'expected analysis.hull = "rigid" or a stiffer hull.EI')
+            'expected analysis.hull = "rigid" or a stiffer hull.EI'
+        )
     if grounded and not state.reaction > 0.0:
         raise EquilibriumNotFound(
             f"hydrostatic, flexible hull: the bending hull lifts off its ground contact (reaction "
-            f"{state.reaction:.4g} t); expected a contact that carries load, or analysis.hull = \"rigid\"")
+            f'{state.reaction:.4g} t); expected a contact that carries load, or analysis.hull = "rigid"'
+        )
     rigid_t = np.array([rigid.tensions[name] for name in scene.lug_names])
     weight = scene.body.weight
     change = tension_change(rigid_t, state.tensions, weight)
@@ -925,14 +1042,24 @@ def solve_hull_in_water(scene, method="newton", hull=None):
         ground = (float(rigid.afloat.ground_reaction), state.reaction)
         change = np.append(change, tension_change([ground[0]], [ground[1]], weight))
     used = "flexible" if hull == "flexible" or (change.size and np.max(change) > TENSION_CHANGE) else "rigid"
-    notes = (["in water the hull bends but does not twist (hull.GJ unused)"]
-             if scene.girder.GJ is not None else [])
+    notes = (
+        ["in water the hull bends but does not twist (hull.GJ unused)"] if scene.girder.GJ is not None else []
+    )
     gauge = gauge_note(scene, state, list(state.tensions) + ([] if ground is None else [ground[1]]))
     if gauge:
         notes.append(gauge)
     note = "; ".join(notes)
-    report = hull_report(scene, state.mesh, state, rigid_t, used, forced=hull == "flexible",
-                         ground=ground, buoyancy=state.buoyancy_curve, note=note)
+    report = hull_report(
+        scene,
+        state.mesh,
+        state,
+        rigid_t,
+        used,
+        forced=hull == "flexible",
+        ground=ground,
+        buoyancy=state.buoyancy_curve,
+        note=note,
+    )
     if used == "rigid":
         return dataclasses.replace(rigid, flexible_hull=report)
     setup = WaterSetup(scene)
@@ -945,18 +1072,26 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     if state.buoyancy > 0.0:  # the skeleton's G is placed right: the buoyancy's centre from it
         offset = state.first_buoyancy / state.buoyancy - state.rotation @ np.asarray(scene.body.cog)
         centre = tuple(float(v) for v in np.asarray(af.centre_of_gravity) + turn @ offset)
-    bottom, top = deflected_hull_heights(scene, state)   # the bending hull's, not the chord's
+    bottom, top = deflected_hull_heights(scene, state)  # the bending hull's, not the chord's
     reaction = state.reaction if grounded else (0.0 if scene.ground is not None else None)
     friction = scene.ground.friction if scene.ground is not None else None
     afloat = dataclasses.replace(
-        af, buoyancy=state.buoyancy, displaced_volume=state.buoyancy / scene.water.density,
+        af,
+        buoyancy=state.buoyancy,
+        displaced_volume=state.buoyancy / scene.water.density,
         immersed_volume=state.immersed_volume,
-        ground_reaction=reaction, centre_of_buoyancy=centre,
+        ground_reaction=reaction,
+        centre_of_buoyancy=centre,
         freeing_force=friction * reaction if friction is not None and reaction is not None else None,
-        state=water_state(grounded, bottom, top, float(state.tensions.sum()), setup.gravity))
+        state=water_state(grounded, bottom, top, float(state.tensions.sum()), setup.gravity),
+    )
     names = scene.lug_names
     return dataclasses.replace(
-        skeleton, tensions=dict(zip(names, state.tensions.tolist())), afloat=afloat,
+        skeleton,
+        tensions=dict(zip(names, state.tensions.tolist())),
+        afloat=afloat,
         slack=tuple(name for name, s in zip(names, state.stretch) if s <= 0.0),
-        residual=state.residual * setup.gravity, flexible_hull=report, frame=scene.frame)
-
+        residual=state.residual * setup.gravity,
+        flexible_hull=report,
+        frame=scene.frame,
+    )

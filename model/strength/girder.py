@@ -43,9 +43,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidScene
-from ..scene import curve_totals
-from .piecewise import Extreme, Piecewise, on_breaks
+from liftplan.model.errors import InvalidScene
+from liftplan.model.scene import curve_totals
+from liftplan.model.strength.piecewise import Extreme, Piecewise, on_breaks
 
 #: Output stations: the breakpoints and this many equal steps over the loaded length.
 GRID = 200
@@ -128,8 +128,9 @@ class GirderForces:
             "bending_moment": self.moment.tolist(),
             "max_bending_moment": self.max_moment.to_json(),
             "max_shear_force": self.max_shear.to_json(),
-            "point_loads": [{"name": p.name, "x": p.x, "normal": p.normal, "couple": p.couple}
-                            for p in self.point_loads],
+            "point_loads": [
+                {"name": p.name, "x": p.x, "normal": p.normal, "couple": p.couple} for p in self.point_loads
+            ],
             "weight_correction": {"weight": self.correction[0], "centroid_shift": self.correction[1]},
             "closure": {"shear_force": self.closure[0], "bending_moment": self.closure[1]},
         }
@@ -158,14 +159,15 @@ def hull_girder(scene, eq, grid=GRID):
     """
     body = scene.body
     if body.weight_curve is None:
-        raise InvalidScene("body.weight_curve: missing; expected [[x m, t/m], ...] for the shear "
-                           "force and bending moment")
+        raise InvalidScene(
+            "body.weight_curve: missing; expected [[x m, t/m], ...] for the shear force and bending moment"
+        )
     pose = eq.pose
     rot = attitude_matrix(pose.heel, pose.trim, pose.yaw)
     up = rot[2]
     z_ref = body.cog[2]
     weight, correction = _weight(body)
-    parts = [(weight, -up[2], None)]       # (t/m piecewise, normal factor, couple density)
+    parts = [(weight, -up[2], None)]  # (t/m piecewise, normal factor, couple density)
     buoyancy = trapped = None
     if eq.afloat is not None:
         flexible = getattr(eq.flexible_hull, "buoyancy", None)  # the deflected hull's, when used
@@ -192,13 +194,24 @@ def hull_girder(scene, eq, grid=GRID):
     shear = Piecewise(breaks, q).integral(jumps=forces)
     moment_curve = shear.integral(jumps=couples, density=Piecewise(breaks, m))
     max_shear, max_moment = shear.extreme(), moment_curve.extreme()
-    stations, q_out, m_out = _sample(shear, moment_curve, grid, (max_shear.x, max_moment.x),
-                                     tol=1e-12 * body.weight)
+    stations, q_out, m_out = _sample(
+        shear, moment_curve, grid, (max_shear.x, max_moment.x), tol=1e-12 * body.weight
+    )
     return GirderForces(
-        stations=stations, shear=q_out, moment=m_out, max_shear=max_shear, max_moment=max_moment,
-        shear_curve=shear, moment_curve=moment_curve, weight=weight, buoyancy=buoyancy,
-        trapped_water=trapped, point_loads=points, correction=correction,
-        closure=(shear.end(), moment_curve.end()), normal_factor=float(up[2]),
+        stations=stations,
+        shear=q_out,
+        moment=m_out,
+        max_shear=max_shear,
+        max_moment=max_moment,
+        shear_curve=shear,
+        moment_curve=moment_curve,
+        weight=weight,
+        buoyancy=buoyancy,
+        trapped_water=trapped,
+        point_loads=points,
+        correction=correction,
+        closure=(shear.end(), moment_curve.end()),
+        normal_factor=float(up[2]),
     )
 
 
@@ -238,8 +251,8 @@ def _weight(body):
 
 def _buoyancy(scene, pose, up):
     """Buoyancy per length and its moment about body z = 0, at the solved pose."""
-    from ..afloat import buoyancy_weights
-    from .sections import sectional_buoyancy
+    from liftplan.model.afloat import buoyancy_weights
+    from liftplan.model.strength.sections import sectional_buoyancy
 
     tris, kappa, _ = buoyancy_weights(scene.hull, scene.body.weight, scene.water.density)
     zo = pose.lift_height - scene.water.level
@@ -284,8 +297,11 @@ def _point_loads(scene, eq, rot, z_ref):
                 continue
             for leg in crane.sling.legs:
                 key = f"{crane.label}/{leg.lug}"
-                upper = (r.hook_positions[crane.label] if crane.sling.spreader is None
-                         else r.spreader_ends[crane.label][leg.end - 1])
+                upper = (
+                    r.hook_positions[crane.label]
+                    if crane.sling.spreader is None
+                    else r.spreader_ends[crane.label][leg.end - 1]
+                )
                 span = np.asarray(upper) - (origin + rot @ lugs[leg.lug])
                 yield load(f"leg {key}", lugs[leg.lug], r.legs[key] * span / np.linalg.norm(span))
     elif eq.rope_forces is not None:
@@ -307,8 +323,11 @@ def _sample(shear, moment, grid, extra, tol):
     scale = max(hi - lo, 1.0)
     jump = (np.abs(q_left - q_right) > tol) | (np.abs(m_left - m_right) > tol * scale)
     stations = np.concatenate([xs[jump], xs])
-    order = np.argsort(np.concatenate([np.zeros(jump.sum()), np.ones(len(xs))]) + 2 * np.concatenate(
-        [np.nonzero(jump)[0], np.arange(len(xs))]), kind="stable")
+    order = np.argsort(
+        np.concatenate([np.zeros(jump.sum()), np.ones(len(xs))])
+        + 2 * np.concatenate([np.nonzero(jump)[0], np.arange(len(xs))]),
+        kind="stable",
+    )
     q = np.concatenate([q_left[jump], q_right])[order]
     m = np.concatenate([m_left[jump], m_right])[order]
     return stations[order], q, m

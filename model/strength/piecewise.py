@@ -117,8 +117,9 @@ class Piecewise:
         which, t = unit_roots(_scaled(derivative, h))
         x_in = b[which] + t * h[which]
         xs = np.concatenate([b[:-1], b[1:], x_in])
-        values = np.concatenate([self.coef[:, 0], _horner(self.coef, h),
-                                 _horner(self.coef[which], t * h[which])])
+        values = np.concatenate(
+            [self.coef[:, 0], _horner(self.coef, h), _horner(self.coef[which], t * h[which])]
+        )
         return xs, values
 
     def worst_ratio(self, envelope):
@@ -228,8 +229,7 @@ def unit_roots(coef):
     size = np.max(np.abs(coef), axis=1)
     significant = np.abs(coef) > _NEGLIGIBLE * size[:, None]
     # effective degree: the highest significant coefficient
-    degree = np.where(significant.any(axis=1),
-                      coef.shape[1] - 1 - np.argmax(significant[:, ::-1], axis=1), 0)
+    degree = np.where(significant.any(axis=1), coef.shape[1] - 1 - np.argmax(significant[:, ::-1], axis=1), 0)
     for d in range(1, coef.shape[1]):
         rows = np.nonzero(degree == d)[0]
         if not len(rows):

@@ -13,7 +13,7 @@ from its compartments as it rises.
 The load curve that puts them together is :mod:`liftplan.model.lift`.
 """
 
-from .equilibrium import (  # noqa: F401 - the package's public names (and two the tests use)
+from liftplan.model.water.equilibrium import (  # noqa: F401 - the package's public names (and two the tests use)
     BodyLoads,
     Settled,
     Start,

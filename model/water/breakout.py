@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..frames import rotation_matrix
+from liftplan.model.frames import rotation_matrix
 
 #: kPa in one t/m2 (a tonne-force per square metre, g = 9.80665 m/s2).
 KPA_PER_T_M2 = 9.80665
@@ -75,9 +75,15 @@ class BreakoutForce:
     time_factor: float | None = None
 
     def to_json(self):
-        return {"force": self.force, "model": self.model, "submerged_weight": self.submerged_weight,
-                "clear": self.clear, "area": self.area, "static_resistance": self.static_resistance,
-                "time_factor": self.time_factor}
+        return {
+            "force": self.force,
+            "model": self.model,
+            "submerged_weight": self.submerged_weight,
+            "clear": self.clear,
+            "area": self.area,
+            "static_resistance": self.static_resistance,
+            "time_factor": self.time_factor,
+        }
 
 
 def underside_area(hull, rotation):
@@ -118,15 +124,18 @@ def breakout_force(scene):
     EquilibriumNotFound
         The hull would float up at rest (nothing to break out).
     """
-    from ..water_loads import held_loads  # the water forces at the scene's pose
+    from liftplan.model.water_loads import held_loads  # the water forces at the scene's pose
 
     spec = scene.ground.breakout
     net = held_loads(scene).net_weight
     if spec.factor is not None:
         return BreakoutForce(spec.factor * net, "factor", net, spec.clear)
     a = scene.attitude
-    area = spec.area if spec.area is not None else underside_area(
-        scene.hull, rotation_matrix(a.heel, a.trim, a.yaw))
+    area = (
+        spec.area
+        if spec.area is not None
+        else underside_area(scene.hull, rotation_matrix(a.heel, a.trim, a.yaw))
+    )
     resistance = soil_resistance(spec.shear_strength, area, spec.bearing_factor)
     factor = liu_time_factor(spec.pull_time, spec.embedded_time)  # the scene checked the ratio
     return BreakoutForce(factor * resistance, "soil", net, spec.clear, area, resistance, factor)
@@ -159,8 +168,13 @@ class BreakoutLoad:
         return self.total / self.weight
 
     def to_json(self):
-        return {"total": self.total, "weight": self.weight, "weight_factor": self.weight_factor,
-                "point": list(self.point), "breakout": self.breakout.to_json()}
+        return {
+            "total": self.total,
+            "weight": self.weight,
+            "weight_factor": self.weight_factor,
+            "point": list(self.point),
+            "breakout": self.breakout.to_json(),
+        }
 
 
 def breakout_load(scene):
@@ -182,8 +196,8 @@ def breakout_load(scene):
     -------
     BreakoutLoad
     """
-    from ..errors import InvalidScene
-    from ..water_loads import held_loads
+    from liftplan.model.errors import InvalidScene
+    from liftplan.model.water_loads import held_loads
 
     if scene.ground is None or scene.hull is None:
         raise InvalidScene("breakout: expected a scene with [hull], [water] and [ground]")

@@ -37,9 +37,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import EquilibriumNotFound
-from ..hydrostatics import MeshHydrostatics
-from .equilibrium import BodyLoads, settle
+from liftplan.model.errors import EquilibriumNotFound
+from liftplan.model.hydrostatics import MeshHydrostatics
+from liftplan.model.water.equilibrium import BodyLoads, settle
 
 G = 9.80665  # m/s2
 RTOL = 1e-10  # the integrator's relative tolerance on the volumes
@@ -95,6 +95,7 @@ class Tank:
             return low
         if volume >= self.full:
             return high
+
         def excess(h):
             return self._below(rot, zo, h)[0] - volume
 
@@ -158,8 +159,13 @@ class TankSummary:
     mass_error: float
 
     def to_json(self):
-        return {"compartment": self.name, "initial": self.initial, "final": self.final,
-                "drain_time": self.drain_time, "mass_error": self.mass_error}
+        return {
+            "compartment": self.name,
+            "initial": self.initial,
+            "final": self.final,
+            "drain_time": self.drain_time,
+            "mass_error": self.mass_error,
+        }
 
 
 class Drainage:
@@ -185,8 +191,9 @@ class Drainage:
         # water compartments without openings: full for ever
         fixed = [c for c in scene.hull.compartments if c.contents == "water" and c.name not in by_tank]
         self.fixed = self.density * sum(c.volume for c in fixed)
-        self.fixed_moment = self.density * sum((c.volume * np.asarray(c.centroid) for c in fixed),
-                                               np.zeros(3))
+        self.fixed_moment = self.density * sum(
+            (c.volume * np.asarray(c.centroid) for c in fixed), np.zeros(3)
+        )
         self.timed = [k for k, t in enumerate(self.tanks) if not t.instant and speed is not None]
         self.size = scene.hull.size
 
@@ -244,8 +251,10 @@ class Drainage:
             shift = 0.0
             if again.trapped_centre is not None and loads.trapped_centre is not None:
                 shift = float(np.max(np.abs(np.subtract(again.trapped_centre, loads.trapped_centre))))
-            if (abs(again.trapped - loads.trapped) <= FIXED_POINT_TOL * weight
-                    and shift * again.trapped <= FIXED_POINT_TOL * weight * self.size):
+            if (
+                abs(again.trapped - loads.trapped) <= FIXED_POINT_TOL * weight
+                and shift * again.trapped <= FIXED_POINT_TOL * weight * self.size
+            ):
                 return state
             loads, start = again, pose
         raise EquilibriumNotFound(
@@ -280,7 +289,7 @@ class DrainHistory:
 
     def drained(self, time):
         """Water that has left each timed tank by ``time``  [m3]."""
-        return np.asarray(self.solution(time))[len(self.tanks):]
+        return np.asarray(self.solution(time))[len(self.tanks) :]
 
     def mass_error(self, time):
         """|V + drained - V_0| / V_0 of each timed tank at ``time``  [-]."""
@@ -329,6 +338,7 @@ def integrate(drainage, duration, max_step):
             pose = state(t, y).start
             head = tanks[k].flow(pose.rotation, pose.zo, y[k])[1]
             return SILL_HEAD if head is None else head - SILL_HEAD
+
         event.direction = -1.0
         return event
 
@@ -336,9 +346,17 @@ def integrate(drainage, duration, max_step):
     y0 = np.concatenate([drainage.initial(), np.zeros(count)])
     failure = None
     try:
-        sol = solve_ivp(rhs, (0.0, duration), y0, method="RK45", rtol=RTOL,
-                        atol=RTOL * max(1.0, float(y0.max())), max_step=max_step,
-                        events=events or None, dense_output=True)
+        sol = solve_ivp(
+            rhs,
+            (0.0, duration),
+            y0,
+            method="RK45",
+            rtol=RTOL,
+            atol=RTOL * max(1.0, float(y0.max())),
+            max_step=max_step,
+            events=events or None,
+            dense_output=True,
+        )
     except EquilibriumNotFound as err:
         raise EquilibriumNotFound(f"draining: {err}") from None
     if sol.status < 0:
@@ -354,5 +372,6 @@ def integrate(drainage, duration, max_step):
             # the openings still flowing: above the outside water, at the lowest sill
             coefficient = float(np.sum(tank.coefficient[(z >= 0.0) & (z <= z[z >= 0.0].min() + SILL_HEAD)]))
             drain_times[tank.name] = float(t + area / coefficient * np.sqrt(2.0 * SILL_HEAD / G))
-    return DrainHistory(sol.sol, tuple(t.name for t in tanks), float(sol.t[-1]), failure,
-                        drain_times, y0[:count])
+    return DrainHistory(
+        sol.sol, tuple(t.name for t in tanks), float(sol.t[-1]), failure, drain_times, y0[:count]
+    )

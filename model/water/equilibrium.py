@@ -37,11 +37,11 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from ..afloat import AfloatModel, Layout, buoyancy_weights
-from ..errors import EquilibriumNotFound, InvalidScene
-from ..frames import attitude_angles, rotation_matrix, tilt
-from ..hydrostatics import MeshHydrostatics
-from ..results import Afloat, Equilibrium, Pose, SolverInfo
+from liftplan.model.afloat import AfloatModel, Layout, buoyancy_weights
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.frames import attitude_angles, rotation_matrix, tilt
+from liftplan.model.hydrostatics import MeshHydrostatics
+from liftplan.model.results import Afloat, Equilibrium, Pose, SolverInfo
 
 # Accepted when the scaled residual (force / W, moments / (W L)) is below this: 1e-9 of a
 # 20 000 t barge is 20 g; round-off of the clipped sums is ~1e-13.
@@ -130,19 +130,29 @@ class WaterSetup:
         if scene.n:
             model = "hydrostatic (a hull hanging from ropes)"
             hook = [h - water.level for h in scene.crane_values("boom_height", model)]
-            ropes = [scene.lug_points().ravel(), hook, scene.crane_values("rope_length", model),
-                     scene.crane_values("EA", model)]
+            ropes = [
+                scene.lug_points().ravel(),
+                hook,
+                scene.crane_values("rope_length", model),
+                scene.crane_values("EA", model),
+            ]
         self.start = Start(a.lift_height - water.level, rotation_matrix(a.heel, a.trim, a.yaw))
         self.loads = BodyLoads(self.trapped, self.trapped_centre)
         self.breakout = None
         if ground is not None and ground.breakout is not None and scene.n:
-            from .breakout import breakout_force  # only for a bedded hull with ropes
+            from liftplan.model.water.breakout import breakout_force  # only for a bedded hull with ropes
 
             self.breakout = breakout_force(scene)
-        self.base = np.concatenate([
-            self.start.rotation.ravel(order="F"), [gravity], cog, pivot,
-            [self.ground_height, hull.size], *ropes,
-        ])
+        self.base = np.concatenate(
+            [
+                self.start.rotation.ravel(order="F"),
+                [gravity],
+                cog,
+                pivot,
+                [self.ground_height, hull.size],
+                *ropes,
+            ]
+        )
 
     def gravity_of(self, loads):
         """Total downward force [t] and its body-frame point [m] with ``loads``
@@ -172,8 +182,9 @@ class WaterSetup:
         return p
 
 
-def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, paper_tol=None,
-                   loads=None, grounded=True):
+def solve_in_water(
+    scene, method="newton", setup=None, start=None, hoist=0.0, paper_tol=None, loads=None, grounded=True
+):
     """Equilibrium of a hull in water (stranded, afloat, or hanging from vertical ropes).
 
     Parameters
@@ -218,8 +229,9 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
         )
     start = start or setup.start
     if loads is not None and method == "paper-newton":
-        raise InvalidScene("method = 'paper-newton': expected the scene's own loads "
-                           "(no breakout, no draining)")
+        raise InvalidScene(
+            "method = 'paper-newton': expected the scene's own loads (no breakout, no draining)"
+        )
     gravity = setup.gravity if loads is None else setup.gravity_of(loads)[0]
     p = setup.params(start.rotation, hoist, loads)
     zo_start = start.zo
@@ -272,8 +284,9 @@ def solve_in_water(scene, method="newton", setup=None, start=None, hoist=0.0, pa
                 f"{_label(scene)}: the grounded solve found no equilibrium and the afloat one puts "
                 f"the contact {below:.3g} m below the ground; expected a reachable resting pose"
             )
-    info = SolverInfo("newton" if method == "newton" else "newton (afloat after paper-newton)",
-                      True, iterations, seconds)
+    info = SolverInfo(
+        "newton" if method == "newton" else "newton (afloat after paper-newton)", True, iterations, seconds
+    )
     return equilibrium_result(setup, float(x[0]), rot, hoist, info, grounded=False, loads=loads)
 
 
@@ -346,8 +359,14 @@ def settle(setup, hoist=0.0, start=None, loads=None):
         start = pose  # released: the hull springs up from here (off the ground: the ropes
         # carry more than W + water - B + F_b)
     loads = dataclasses.replace(loads, soil=0.0)
-    eq = solve_in_water(scene, setup=setup, start=start, hoist=hoist,
-                        loads=None if loads == setup.loads else loads, grounded=not held)
+    eq = solve_in_water(
+        scene,
+        setup=setup,
+        start=start,
+        hoist=hoist,
+        loads=None if loads == setup.loads else loads,
+        grounded=not held,
+    )
     phase = "grounded" if eq.afloat.state == "grounded" else "free"
     return Settled(eq, _pose(eq, level), 0.0, phase, loads)
 
@@ -412,8 +431,10 @@ def _label(scene):
 def _hint(setup):
     whole = setup.envelope.at(np.eye(3), -1e3 * setup.scene.hull.size).volume * setup.scene.water.density
     if not setup.scene.n and setup.scene.ground is None and setup.gravity > whole:
-        return (f"the weight {setup.gravity:.6g} t exceeds the buoyancy of the whole hull "
-                f"{whole:.6g} t: it sinks; expected a ground contact or ropes")
+        return (
+            f"the weight {setup.gravity:.6g} t exceeds the buoyancy of the whole hull "
+            f"{whole:.6g} t: it sinks; expected a ground contact or ropes"
+        )
     return "check the start attitude and that the scene can hold the hull"
 
 
@@ -427,9 +448,7 @@ def _converged(residual, rot, tol=RESIDUAL_TOL):
     """Finite attitude and a residual below ``tol``."""
     residual = np.asarray(residual, dtype=float)
     return (
-        np.all(np.isfinite(residual))
-        and np.all(np.isfinite(rot))
-        and float(np.max(np.abs(residual))) <= tol
+        np.all(np.isfinite(residual)) and np.all(np.isfinite(rot)) and float(np.max(np.abs(residual))) <= tol
     )
 
 
@@ -465,8 +484,7 @@ def paper_newton(setup, start, tol=PAPER_TOL, max_iter=PAPER_MAX_ITER):
         # positions relative to O (the origin sits zo above o on the water plane)
         centre = np.array(hs.centre) - [0.0, 0.0, zo] if hs.volume > 0 else np.zeros(3)
         buoy = rho * hs.volume
-        f = np.array([buoy - weight, buoy * centre[1] - weight * g[1],
-                      -(buoy * centre[0] - weight * g[0])])
+        f = np.array([buoy - weight, buoy * centre[1] - weight * g[1], -(buoy * centre[0] - weight * g[0])])
         jac = np.array([[-c[1], c[0]], [1.0, 0.0], [0.0, 1.0]])
         moment = jac.T @ f  # moments about the pivot
         if np.max(np.abs(moment)) <= tol:
@@ -475,11 +493,13 @@ def paper_newton(setup, start, tol=PAPER_TOL, max_iter=PAPER_MAX_ITER):
         xf, yf = hs.flotation if hs.flotation else (0.0, 0.0)
         i_t, i_l, i_xy = hs.inertia
         s_yy, s_xx, s_xy = i_t + area * yf**2, i_l + area * xf**2, i_xy + area * xf * yf
-        d = rho * np.array([
-            [-area, -area * yf, area * xf],
-            [-area * yf, -(hs.volume * centre[2] + s_yy), s_xy],
-            [area * xf, s_xy, -(hs.volume * centre[2] + s_xx)],
-        ])
+        d = rho * np.array(
+            [
+                [-area, -area * yf, area * xf],
+                [-area * yf, -(hs.volume * centre[2] + s_yy), s_xy],
+                [area * xf, s_xy, -(hs.volume * centre[2] + s_xx)],
+            ]
+        )
         d[1, 1] += weight * g[2]
         d[2, 2] += weight * g[2]
         try:
@@ -643,6 +663,7 @@ def equilibrium_result(setup, zo, rot, hoist, solver, grounded, loads=None):
         afloat=afloat,
     )
 
+
 def submerged_scene(setup):
     """The rope-only scene equivalent to the hull while fully submerged, or None.
 
@@ -662,7 +683,10 @@ def submerged_scene(setup):
         return None
     cog = (setup.gravity * setup.cog - buoy * centre) / net
     rope_scene = dataclasses.replace(
-        scene, water=None, hull=None, ground=None,
+        scene,
+        water=None,
+        hull=None,
+        ground=None,
         body=dataclasses.replace(scene.body, weight=net, cog=cog, weight_curve=None),
         analysis=dataclasses.replace(scene.analysis, model="elastic"),
     )
@@ -682,7 +706,7 @@ def solve_hydrostatic(scene, method="newton"):
     Equilibrium
         ``model`` is ``"submerged"`` or ``"hydrostatic"``.
     """
-    from ..solve import solve_elastic  # solve imports this module
+    from liftplan.model.solve import solve_elastic  # solve imports this module
 
     setup = WaterSetup(scene)
     start = None

@@ -117,10 +117,18 @@ def check_plan(problem, indices, preload, cases, grid=3, cranes=None):
     g = len(units)
     heel = cases.heel_tolerance[:, None] * units[None, :, 0]  # (m, g)
     trim = cases.trim_tolerance[:, None] * units[None, :, 1]
-    x = np.column_stack([np.full(m * g, problem.lift_height),
-                         np.radians(heel).ravel(), np.radians(trim).ravel()])
-    params = pack(problem, lugset.points, cases.cog, lugset.boom_heights(preload), cases.weight,
-                  rope_length=lugset.rope_length, EA=lugset.EA)
+    x = np.column_stack(
+        [np.full(m * g, problem.lift_height), np.radians(heel).ravel(), np.radians(trim).ravel()]
+    )
+    params = pack(
+        problem,
+        lugset.points,
+        cases.cog,
+        lugset.boom_heights(preload),
+        cases.weight,
+        rope_length=lugset.rope_length,
+        EA=lugset.EA,
+    )
     tensions, _, _ = run_block(rope_model(n).held_columns, n, x, np.repeat(params, g, axis=0))
     tensions = tensions.reshape(m, g, n)
 
@@ -130,28 +138,36 @@ def check_plan(problem, indices, preload, cases, grid=3, cranes=None):
     low, high = tensions.min(axis=(1, 2)), tensions.max(axis=(1, 2))
     swl = lugset.swl  # (n,): each crane's chart SWL at its radius
     flagged = ~np.all(np.isfinite(tensions), axis=(1, 2)) | np.any(
-        (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2))
+        (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2)
+    )
     status, reason = [OK] * m, [""] * m
     outside = outside_support(lugset.points[:, :2], cases.cog[:, :2])
     names = [problem.candidates[i].name for i in lugset.indices]
     for k in np.flatnonzero(flagged | (outside > 0)):  # only flagged cases need a reason
         if outside[k] > 0:
-            status[k], reason[k] = INVALID, (
-                f"body.cog lies {outside[k]:.3g} m outside the plan's lugs' support polygon (in "
-                "plan); expected the CG over the lugs")
+            status[k], reason[k] = (
+                INVALID,
+                (
+                    f"body.cog lies {outside[k]:.3g} m outside the plan's lugs' support polygon (in "
+                    "plan); expected the CG over the lugs"
+                ),
+            )
         else:
-            status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k],
-                                          names)
+            status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k], names)
     failed = np.array([s in (FAILED, INVALID) for s in status])
 
     def blank(values):
         return np.where(failed, np.nan, values)
 
     return CheckResult(
-        status=status, reason=reason,
+        status=status,
+        reason=reason,
         worst_spread=blank(spread[rows, worst]),
-        worst_heel=blank(heel[rows, worst]), worst_trim=blank(trim[rows, worst]),
-        min_tension=blank(low), max_tension=blank(high), utilisation=blank((tensions / swl).max(axis=(1, 2))),
+        worst_heel=blank(heel[rows, worst]),
+        worst_trim=blank(trim[rows, worst]),
+        min_tension=blank(low),
+        max_tension=blank(high),
+        utilisation=blank((tensions / swl).max(axis=(1, 2))),
     )
 
 
@@ -196,7 +212,6 @@ def _judge(tensions, heel, trim, swl, min_tension, names):
             where = f"at heel {heel[j]:+.2f}, trim {trim[j]:+.2f} deg"
             rope = f"rope L{i + 1} ({names[i]})"
             if outcome == FAILED:
-                return FAILED, (f"{rope} slack {where}: the all-taut (held) model does "
-                                "not hold there")
+                return FAILED, (f"{rope} slack {where}: the all-taut (held) model does not hold there")
             return UNSAFE, f"{rope} {tensions[j, i]:.1f} t {word} {bound:g} t {where}"
     return OK, ""

@@ -130,10 +130,14 @@ class HookMonteCarlo:
             "rope_max": dict(zip(self.labels, solved.max(axis=0).tolist())),
             "p_spread_above_plan_worst": self.probability(spread > self.plan_worst_spread + 1e-6),
             "p_above_design_load": self.above(self.design_load),
-            "p_above_design_tension": (self.above(self.design_tension)
-                                       if self.design_tension is not None else float("nan")),
-            "design_tension": (dict(zip(self.labels, self.design_tension.tolist()))
-                               if self.design_tension is not None else None),
+            "p_above_design_tension": (
+                self.above(self.design_tension) if self.design_tension is not None else float("nan")
+            ),
+            "design_tension": (
+                dict(zip(self.labels, self.design_tension.tolist()))
+                if self.design_tension is not None
+                else None
+            ),
             "p_above_swl": self.above(self.swl),
             "p_slack": self.probability(slack),
             "plan_worst_spread": self.plan_worst_spread,
@@ -159,8 +163,9 @@ def draw_units(draws, n, distribution="uniform", seed=0):
 @cache
 def block_solver(n):
     """The elastic Newton solve mapped over :data:`BLOCK` parameter columns (one call)."""
-    return FastCall(rope_model(n).elastic_solver.function.map(
-        f"elastic_solve_{n}_block", "serial", BLOCK, [], []))
+    return FastCall(
+        rope_model(n).elastic_solver.function.map(f"elastic_solve_{n}_block", "serial", BLOCK, [], [])
+    )
 
 
 def solve_draws(scene, errors):
@@ -191,7 +196,7 @@ def solve_draws(scene, errors):
     for start in range(0, draws, BLOCK):
         size = min(BLOCK, draws - start)
         params[:, boom] = p0[boom]  # padding columns: the plan itself
-        params[:size, boom] += errors[start:start + size]
+        params[:size, boom] += errors[start : start + size]
         x, t, _, residual, minors = (a.reshape(BLOCK, -1) for a in solver(params.ravel()))
         for k in range(size):
             if elastic_verdict(scene, x[k], residual[k], minors[k]).ok:
@@ -219,17 +224,27 @@ def hook_monte_carlo(plan, draws=10_000, tolerance=None, distribution="uniform",
     HookMonteCarlo
     """
     n = len(plan.labels)
-    scale = plan.lugset.hook_tolerance if tolerance is None else \
-        np.broadcast_to(np.asarray(tolerance, dtype=float), (n,))
+    scale = (
+        plan.lugset.hook_tolerance
+        if tolerance is None
+        else np.broadcast_to(np.asarray(tolerance, dtype=float), (n,))
+    )
     if not np.all(np.isfinite(scale)) or np.any(scale < 0):
         raise InvalidScene(f"tolerance = {tolerance!r}: expected finite hook tolerances >= 0 m")
     errors = draw_units(draws, n, distribution, seed) * scale
     # the plan's scene lists its cranes in label order, as the errors are drawn
     tensions, heel, trim = solve_draws(plan.scene, errors)
     return HookMonteCarlo(
-        labels=plan.labels, tolerance=np.asarray(scale, dtype=float), distribution=distribution,
-        seed=seed, errors=errors, tensions=tensions, heel=heel, trim=trim,
-        plan_worst_spread=plan.worst_spread, plan_rope_max=np.asarray(plan.chosen.rope_max),
+        labels=plan.labels,
+        tolerance=np.asarray(scale, dtype=float),
+        distribution=distribution,
+        seed=seed,
+        errors=errors,
+        tensions=tensions,
+        heel=heel,
+        trim=trim,
+        plan_worst_spread=plan.worst_spread,
+        plan_rope_max=np.asarray(plan.chosen.rope_max),
         design_load=np.array([c.design_hook_load for c in plan.capacity]),
         swl=np.asarray(plan.chosen.swl, dtype=float),
         design_tension=np.array([c.design_tension for c in plan.capacity]),

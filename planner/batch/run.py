@@ -33,14 +33,34 @@ from liftplan.planner.plan import plan
 
 #: Result columns of each kind of study (after ``case``, the parameters, status, reason).
 RESULTS = {
-    "plan": ["lugs", "boom_heights", "spread", "worst_spread", "worst_heel", "worst_trim",
-             "min_tension", "max_tension", "utilisation", "bound", "evaluated", "seconds"],
-    "check": ["worst_spread", "worst_heel", "worst_trim", "min_tension", "max_tension",
-              "utilisation"],
+    "plan": [
+        "lugs",
+        "boom_heights",
+        "spread",
+        "worst_spread",
+        "worst_heel",
+        "worst_trim",
+        "min_tension",
+        "max_tension",
+        "utilisation",
+        "bound",
+        "evaluated",
+        "seconds",
+    ],
+    "check": ["worst_spread", "worst_heel", "worst_trim", "min_tension", "max_tension", "utilisation"],
     # a Monte-Carlo draw: tension.L1..Ln first (see results_columns), then these
     # (above_design_tension last: added after the others, so scripts reading by position hold)
-    "montecarlo": ["heel", "trim", "spread", "max_tension", "above_plan_worst",
-                   "above_design_load", "above_swl", "slack", "above_design_tension"],
+    "montecarlo": [
+        "heel",
+        "trim",
+        "spread",
+        "max_tension",
+        "above_plan_worst",
+        "above_design_load",
+        "above_swl",
+        "slack",
+        "above_design_tension",
+    ],
 }
 JOURNAL_MARK = "# liftplan batch"
 
@@ -89,8 +109,7 @@ def header(study):
     return ["case", *study.columns(), "status", "reason", *results_columns(study)]
 
 
-def run_study(study, client=None, scheduler=None, workers=None, restart=False, progress=True,
-              output=None):
+def run_study(study, client=None, scheduler=None, workers=None, restart=False, progress=True, output=None):
     """Run every case of a study not yet done and write its table.
 
     Parameters
@@ -134,8 +153,13 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
         # a grid point that is no valid planning scene (each sweep value is; a combination
         # may not be): its cases are invalid rows with the reason, not numbers
         reasons, per = study.grid_reasons, max(study.sample_count, 1)
-        journal.write([_row(study, i, case, "invalid", _one_line_text(reasons[i // per]))
-                       for i, case in pending if reasons[i // per]])
+        journal.write(
+            [
+                _row(study, i, case, "invalid", _one_line_text(reasons[i // per]))
+                for i, case in pending
+                if reasons[i // per]
+            ]
+        )
         runnable = [(i, case) for i, case in pending if not reasons[i // per]]
     tasks = _tasks(study, runnable, base)
     seconds, cores = 0.0, 1
@@ -145,12 +169,19 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
 
             cores = sum(dask_client.nthreads().values())
             # imports and casadi JIT compiles on every worker before the clock starts
-            dask_client.run(warm_up, len(base.chosen.indices) if base is not None else None,
-                            study.kind == "montecarlo")
+            dask_client.run(
+                warm_up, len(base.chosen.indices) if base is not None else None, study.kind == "montecarlo"
+            )
             start = time.perf_counter()
             futures = {dask_client.submit(fn, *args, pure=False): chunk for fn, args, chunk in tasks}
-            with tqdm(total=study.size, initial=study.size - len(runnable), unit="case",
-                      disable=not progress, file=sys.stderr, dynamic_ncols=True) as bar:
+            with tqdm(
+                total=study.size,
+                initial=study.size - len(runnable),
+                unit="case",
+                disable=not progress,
+                file=sys.stderr,
+                dynamic_ncols=True,
+            ) as bar:
                 for future in as_completed(futures):
                     try:
                         rows = _rows(study, futures[future], future.result(), base)
@@ -160,8 +191,9 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
                     bar.update(len(rows))
             seconds = time.perf_counter() - start
     counts = journal.finish(output)
-    return BatchSummary(output=output, cases=study.size, ran=len(pending), counts=counts,
-                        seconds=seconds, cores=cores)
+    return BatchSummary(
+        output=output, cases=study.size, ran=len(pending), counts=counts, seconds=seconds, cores=cores
+    )
 
 
 @contextmanager
@@ -177,7 +209,8 @@ def _connect(client, scheduler, workers):
         except Exception as err:  # noqa: BLE001 - whatever answers there, one line naming it
             raise LiftPlanError(
                 f"--scheduler {scheduler}: cannot connect ({_one_line(err)}); expected the address "
-                "of a running Dask scheduler, e.g. tcp://10.0.0.5:8786") from None
+                "of a running Dask scheduler, e.g. tcp://10.0.0.5:8786"
+            ) from None
         with client:
             yield client
         return
@@ -187,8 +220,13 @@ def _connect(client, scheduler, workers):
     main = threading.current_thread() is threading.main_thread()  # only it may set handlers
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
     try:
-        cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.ERROR)
+        cluster = LocalCluster(
+            n_workers=count,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",
+            silence_logs=logging.ERROR,
+        )
     finally:
         if main:
             signal.signal(signal.SIGINT, previous)
@@ -223,8 +261,10 @@ def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
     from distributed.comm.addressing import parse_address, parse_host_port
 
     def refuse(why):
-        return LiftPlanError(f"--scheduler {address}: {why}; expected the address of a running Dask "
-                             "scheduler, e.g. tcp://10.0.0.5:8786")
+        return LiftPlanError(
+            f"--scheduler {address}: {why}; expected the address of a running Dask "
+            "scheduler, e.g. tcp://10.0.0.5:8786"
+        )
 
     try:
         scheme, location = parse_address(address)
@@ -258,7 +298,7 @@ def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
     try:
         (frames,) = struct.unpack_from("<Q", body)
         first = struct.unpack_from("<Q", body, 8)[0]
-        greeting = msgpack.loads(body[8 + 8 * frames:8 + 8 * frames + first])
+        greeting = msgpack.loads(body[8 + 8 * frames : 8 + 8 * frames + first])
         ok = isinstance(greeting, dict) and "python" in greeting
     except (struct.error, ValueError, msgpack.UnpackException):
         ok = False
@@ -268,17 +308,30 @@ def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
 
 def _tasks(study, pending, base):
     """(function, arguments, cases) per Dask task; ``base`` is the plan a check study checks."""
-    chunks = [pending[k:k + study.chunk] for k in range(0, len(pending), study.chunk)]
+    chunks = [pending[k : k + study.chunk] for k in range(0, len(pending), study.chunk)]
     if study.kind == "plan":
         return [(plan_rows, (study, chunk), chunk) for chunk in chunks]
     if study.kind == "montecarlo":
         return montecarlo_tasks(study, base, pending)
     # numbers, not Python objects, cross to the workers and back: Dask moves arrays fast
     # and lists of dicts slowly (measured 2 s of 4 for 60 000 cases)
-    return [(check_chunk, (CheckTask(base.problem, base.chosen.indices, base.chosen.preload,
-                                     check_cases(study, base.problem, chunk), study.grid,
-                                     base.chosen.cranes),),
-             chunk) for chunk in chunks]
+    return [
+        (
+            check_chunk,
+            (
+                CheckTask(
+                    base.problem,
+                    base.chosen.indices,
+                    base.chosen.preload,
+                    check_cases(study, base.problem, chunk),
+                    study.grid,
+                    base.chosen.cranes,
+                ),
+            ),
+            chunk,
+        )
+        for chunk in chunks
+    ]
 
 
 @dataclass(frozen=True)
@@ -302,9 +355,8 @@ def montecarlo_tasks(study, base, pending):
     spec = study.montecarlo
     scale = spec.scale(base)
     errors = draw_units(spec.draws, len(base.labels), spec.distribution, spec.seed) * scale
-    chunks = [pending[k:k + study.chunk] for k in range(0, len(pending), study.chunk)]
-    return [(montecarlo_chunk, (base.scene, errors[[i for i, _ in chunk]]), chunk)
-            for chunk in chunks]
+    chunks = [pending[k : k + study.chunk] for k in range(0, len(pending), study.chunk)]
+    return [(montecarlo_chunk, (base.scene, errors[[i for i, _ in chunk]]), chunk) for chunk in chunks]
 
 
 def montecarlo_chunk(scene, errors):
@@ -324,8 +376,15 @@ def montecarlo_rows(study, base, cases, result):
     for (index, _), e, t, h, r in zip(cases, errors, tensions, heel, trim):
         numbers = [float(v) for v in e]
         if not np.all(np.isfinite(t)):
-            rows.append([index, *numbers, "failed", "no stable upright elastic equilibrium for "
-                         "these hook errors", *([""] * len(results_columns(study)))])
+            rows.append(
+                [
+                    index,
+                    *numbers,
+                    "failed",
+                    "no stable upright elastic equilibrium for these hook errors",
+                    *([""] * len(results_columns(study))),
+                ]
+            )
             continue
         spread = float(np.ptp(t))
         slack = int(np.sum(t <= 0.0))
@@ -337,9 +396,24 @@ def montecarlo_rows(study, base, cases, result):
         elif slack:
             i = int(np.argmin(t))
             status, reason = "unsafe", f"rope {labels[i]} slack"
-        rows.append([index, *numbers, status, reason, *t.tolist(), float(h), float(r), spread,
-                     float(t.max()), int(spread > base.worst_spread + 1e-6),
-                     _above(t, design), int(over.size > 0), slack, _above(t, covered)])
+        rows.append(
+            [
+                index,
+                *numbers,
+                status,
+                reason,
+                *t.tolist(),
+                float(h),
+                float(r),
+                spread,
+                float(t.max()),
+                int(spread > base.worst_spread + 1e-6),
+                _above(t, design),
+                int(over.size > 0),
+                slack,
+                _above(t, covered),
+            ]
+        )
     return rows
 
 
@@ -353,8 +427,9 @@ def _above(tensions, limits):
 
 def check_chunk(task):
     """Check one chunk of cases (runs on a worker); returns a :class:`CheckResult`."""
-    return check_plan(task.problem, task.indices, task.preload, task.cases, grid=task.grid,
-                      cranes=task.cranes)
+    return check_plan(
+        task.problem, task.indices, task.preload, task.cases, grid=task.grid, cranes=task.cranes
+    )
 
 
 def check_cases(study, problem, cases):
@@ -382,11 +457,20 @@ def _rows(study, cases, result, base=None):
         return result
     if study.kind == "montecarlo":
         return montecarlo_rows(study, base, cases, result)
-    numbers = np.column_stack([result.worst_spread, result.worst_heel, result.worst_trim,
-                               result.min_tension, result.max_tension, result.utilisation])
-    return [_row(study, index, case, status, reason, row.tolist())
-            for (index, case), status, reason, row
-            in zip(cases, result.status, result.reason, numbers)]
+    numbers = np.column_stack(
+        [
+            result.worst_spread,
+            result.worst_heel,
+            result.worst_trim,
+            result.min_tension,
+            result.max_tension,
+            result.utilisation,
+        ]
+    )
+    return [
+        _row(study, index, case, status, reason, row.tolist())
+        for (index, case), status, reason, row in zip(cases, result.status, result.reason, numbers)
+    ]
 
 
 def warm_up(cranes=None, elastic=False):
@@ -419,11 +503,29 @@ def plan_rows(study, cases):
         else:
             chosen = result.chosen
             low, high = chosen.tension_range
-            rows.append(_row(study, index, case, "ok", "", [
-                " ".join(chosen.lugs), " ".join(f"{h:.4f}" for h in chosen.boom_heights),
-                result.spread, result.worst_spread, chosen.worst.heel, chosen.worst.trim,
-                low, high, chosen.max_utilisation, chosen.bound,
-                result.stats.evaluated, time.perf_counter() - start]))
+            rows.append(
+                _row(
+                    study,
+                    index,
+                    case,
+                    "ok",
+                    "",
+                    [
+                        " ".join(chosen.lugs),
+                        " ".join(f"{h:.4f}" for h in chosen.boom_heights),
+                        result.spread,
+                        result.worst_spread,
+                        chosen.worst.heel,
+                        chosen.worst.trim,
+                        low,
+                        high,
+                        chosen.max_utilisation,
+                        chosen.bound,
+                        result.stats.evaluated,
+                        time.perf_counter() - start,
+                    ],
+                )
+            )
     return rows
 
 
@@ -472,15 +574,18 @@ class Journal:
         if first != self.mark:
             raise LiftPlanError(
                 f"{self.path}: an interrupted run of a different study (or a changed study "
-                "file); expected the same study, or rerun with --restart")
+                "file); expected the same study, or rerun with --restart"
+            )
         # a row cut off mid-write by the interruption has no newline: drop it
         complete = text[: text.rfind("\n") + 1]
         if len(complete) != len(text):
             self.path.write_text(complete, encoding="utf-8")
         rows = list(csv.reader(complete.splitlines()[1:]))
         if not rows or rows[0] != self.header:
-            raise LiftPlanError(f"{self.path}: the journal's columns differ from the study's; "
-                                "expected the same study, or rerun with --restart")
+            raise LiftPlanError(
+                f"{self.path}: the journal's columns differ from the study's; "
+                "expected the same study, or rerun with --restart"
+            )
         self.done = {int(row[0]) for row in rows[1:] if len(row) == len(self.header)}
 
     def write(self, rows):

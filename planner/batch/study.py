@@ -58,8 +58,7 @@ Count = Annotated[int, Strict(), Field(ge=1)]
 Value = Annotated[float, Strict()] | Annotated[int, Strict()] | str | list
 
 #: Keys a ``check`` study may vary (the plan's lugs and boom heights stay fixed).
-CHECK_KEYS = ("body.weight", "body.cog", "plan.tolerance.heel", "plan.tolerance.trim",
-              "plan.min_tension")
+CHECK_KEYS = ("body.weight", "body.cog", "plan.tolerance.heel", "plan.tolerance.trim", "plan.min_tension")
 #: The sweep key that picks a named candidate subset.
 CANDIDATES = "candidates"
 MAX_CASES = 10_000_000
@@ -122,10 +121,14 @@ class MonteCarloSpec:
     def scale(self, plan):
         """Each planned hook's error scale (label order)  [m]."""
         own = dict(self.tolerances)
-        base = (plan.lugset.hook_tolerance if self.tolerance is None
-                else np.full(len(plan.labels), self.tolerance))
-        return np.array([own.get(name, value) for name, value in
-                         zip(plan.chosen.crane_names, base)], dtype=float)
+        base = (
+            plan.lugset.hook_tolerance
+            if self.tolerance is None
+            else np.full(len(plan.labels), self.tolerance)
+        )
+        return np.array(
+            [own.get(name, value) for name, value in zip(plan.chosen.crane_names, base)], dtype=float
+        )
 
 
 @dataclass(frozen=True)
@@ -184,10 +187,15 @@ class Study:
     @property
     def fingerprint(self):
         """Hash of everything that defines the cases (a resumed run must match it)."""
-        spec = {"kind": self.kind, "base": self.base, "sweep": self.sweep,
-                "sets": self.candidate_sets, "sample": [self.sample_count, self.seed,
-                                                        self.weight_range, self.cog_widths],
-                "grid": self.grid, "montecarlo": self.montecarlo}
+        spec = {
+            "kind": self.kind,
+            "base": self.base,
+            "sweep": self.sweep,
+            "sets": self.candidate_sets,
+            "sample": [self.sample_count, self.seed, self.weight_range, self.cog_widths],
+            "grid": self.grid,
+            "montecarlo": self.montecarlo,
+        }
         return hashlib.sha256(json.dumps(spec, sort_keys=True, default=str).encode()).hexdigest()[:16]
 
     @property
@@ -209,8 +217,11 @@ class Study:
 
     @cached_property
     def _vectors(self):
-        return {key for key in self._keys if key == "body.cog" or any(
-            isinstance(v, list) for k, vs in self.sweep if k == key for v in vs)}
+        return {
+            key
+            for key in self._keys
+            if key == "body.cog" or any(isinstance(v, list) for k, vs in self.sweep if k == key for v in vs)
+        }
 
     @property
     def labels(self):
@@ -222,8 +233,11 @@ class Study:
         draw's hook errors, one per planned lug)."""
         if self.montecarlo is not None:
             return [f"error.{label}" for label in self.labels]
-        return [f"{key}.{axis}" if key in self._vectors else key
-                for key in self._keys for axis in ("xyz" if key in self._vectors else "-")]
+        return [
+            f"{key}.{axis}" if key in self._vectors else key
+            for key in self._keys
+            for axis in ("xyz" if key in self._vectors else "-")
+        ]
 
     def cases(self):
         """Every case, as (index, {dotted key: value}) in a fixed order."""
@@ -268,10 +282,12 @@ class Study:
             return [None]
         rng = np.random.default_rng(self.seed)
         count = self.sample_count
-        factors = (rng.uniform(*self.weight_range, count) if self.weight_range is not None
-                   else [None] * count)
-        offsets = (rng.uniform(-1.0, 1.0, (count, 3)) * np.asarray(self.cog_widths)
-                   if self.cog_widths is not None else [None] * count)
+        factors = rng.uniform(*self.weight_range, count) if self.weight_range is not None else [None] * count
+        offsets = (
+            rng.uniform(-1.0, 1.0, (count, 3)) * np.asarray(self.cog_widths)
+            if self.cog_widths is not None
+            else [None] * count
+        )
         return list(zip(factors, offsets))
 
     def row_values(self, case):
@@ -303,8 +319,10 @@ class Study:
         if name == "all":
             return self.base["candidates"]
         if name not in self.candidate_sets:
-            raise InvalidScene(f"sweep.candidates = {name!r}: expected 'all' or a name in "
-                               f"[candidate_sets] ({', '.join(self.candidate_sets) or 'none'})")
+            raise InvalidScene(
+                f"sweep.candidates = {name!r}: expected 'all' or a name in "
+                f"[candidate_sets] ({', '.join(self.candidate_sets) or 'none'})"
+            )
         keep = self.candidate_sets[name]
         return [c for c in self.base["candidates"] if c.get("name") in keep]
 
@@ -361,8 +379,11 @@ def loads_study(text, base=Path("."), stem="study"):
     sample = data.sample
     if sample is not None and sample.weight is None and sample.cog is None:
         raise InvalidScene("[sample]: expected weight = [low, high] and/or cog = [dx, dy, dz]")
-    if sample is not None and sample.weight is not None and not (
-            0 < sample.weight[0] <= sample.weight[1] < math.inf):
+    if (
+        sample is not None
+        and sample.weight is not None
+        and not (0 < sample.weight[0] <= sample.weight[1] < math.inf)
+    ):
         raise InvalidScene(f"sample.weight = {sample.weight}: expected finite factors 0 < low <= high")
     if sample is not None and sample.cog is not None and not all(0 <= w < math.inf for w in sample.cog):
         raise InvalidScene(f"sample.cog = {list(sample.cog)}: expected finite half-widths >= 0 m")
@@ -370,8 +391,10 @@ def loads_study(text, base=Path("."), stem="study"):
     if spec.kind == "check":
         for key in data.sweep:
             if key not in CHECK_KEYS:
-                raise InvalidScene(f"sweep.{key!r}: a check study keeps the plan's lugs; expected "
-                                   f"one of {', '.join(CHECK_KEYS)}")
+                raise InvalidScene(
+                    f"sweep.{key!r}: a check study keeps the plan's lugs; expected "
+                    f"one of {', '.join(CHECK_KEYS)}"
+                )
     study = Study(
         name=spec.name or stem,
         kind=spec.kind,
@@ -400,16 +423,21 @@ def _montecarlo_spec(data, raw, folder):
     table = data.montecarlo
     if data.study.kind != "montecarlo":
         if table is not None:
-            raise InvalidScene(f"montecarlo: given with study.kind = {data.study.kind!r}; expected "
-                               "kind = \"montecarlo\" (or no [montecarlo] table)")
+            raise InvalidScene(
+                f"montecarlo: given with study.kind = {data.study.kind!r}; expected "
+                'kind = "montecarlo" (or no [montecarlo] table)'
+            )
         return None
     for key in ("sweep", "sample", "candidate_sets"):
         if getattr(data, key):
-            raise InvalidScene(f"{key}: given with study.kind = 'montecarlo'; expected none (the "
-                               "cases are the [montecarlo] draws on the one plan)")
+            raise InvalidScene(
+                f"{key}: given with study.kind = 'montecarlo'; expected none (the "
+                "cases are the [montecarlo] draws on the one plan)"
+            )
     table = table or _MonteCarlo()
     values = [("montecarlo.tolerance", table.tolerance)] + [
-        (f"montecarlo.tolerances.{name}", v) for name, v in table.tolerances.items()]
+        (f"montecarlo.tolerances.{name}", v) for name, v in table.tolerances.items()
+    ]
     for key, value in values:
         if value is not None and not 0.0 <= value < math.inf:
             raise InvalidScene(f"{key} = {value!r}: expected a finite hook tolerance >= 0 m")
@@ -417,17 +445,26 @@ def _montecarlo_spec(data, raw, folder):
     names = [c.name for c in problem.fleet]
     for name in table.tolerances:
         if name not in names:
-            raise InvalidScene(f"montecarlo.tolerances.{name}: no such crane; expected one of "
-                               f"{', '.join(names)}")
-    own = [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
-           for c in problem.fleet]
-    scales = [table.tolerances.get(c.name, v if table.tolerance is None else table.tolerance)
-              for c, v in zip(problem.fleet, own)]
+            raise InvalidScene(
+                f"montecarlo.tolerances.{name}: no such crane; expected one of {', '.join(names)}"
+            )
+    own = [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in problem.fleet]
+    scales = [
+        table.tolerances.get(c.name, v if table.tolerance is None else table.tolerance)
+        for c, v in zip(problem.fleet, own)
+    ]
     if not any(v > 0.0 for v in scales):
-        raise InvalidScene("montecarlo.tolerance: every hook's tolerance is 0 (the plan assumes no "
-                           "hook error and none is given here); expected tolerance > 0 m")
-    return MonteCarloSpec(draws=table.draws, distribution=table.distribution, seed=table.seed,
-                          tolerance=table.tolerance, tolerances=tuple(table.tolerances.items()))
+        raise InvalidScene(
+            "montecarlo.tolerance: every hook's tolerance is 0 (the plan assumes no "
+            "hook error and none is given here); expected tolerance > 0 m"
+        )
+    return MonteCarloSpec(
+        draws=table.draws,
+        distribution=table.distribution,
+        seed=table.seed,
+        tolerance=table.tolerance,
+        tolerances=tuple(table.tolerances.items()),
+    )
 
 
 def _read_problem(base, name, folder):

@@ -57,8 +57,10 @@ def equilibrium_table(scene, eq, girder=None):
 def _strength_lines(scene, eq, girder):
     """Largest |M| and |Q| with where they are, against the allowable there."""
     lines = ["", "hull girder (body as a beam along x; Q, M of the part aft of the section, M > 0 sagging):"]
-    for name, peak, unit, symbol in (("bending_moment", girder.max_moment, "t m", "M"),
-                                      ("shear_force", girder.max_shear, "t", "Q")):
+    for name, peak, unit, symbol in (
+        ("bending_moment", girder.max_moment, "t m", "M"),
+        ("shear_force", girder.max_shear, "t", "Q"),
+    ):
         line = f"  max |{symbol}| {peak.value:10.1f} {unit:<3} at x = {peak.x:7.2f} m"
         if symbol == "M" and peak.value > 0.0:
             line += " (sagging)" if peak.signed > 0 else " (hogging)"
@@ -68,8 +70,10 @@ def _strength_lines(scene, eq, girder):
         lines.append(line)
     added, moved = girder.correction
     if abs(added) > 1e-9 * eq.weight or abs(moved) > 1e-9:
-        lines.append(f"  weight curve: {added:+.3g} t and its centroid {moved:+.3g} m spread linearly over "
-                     "its length to carry W at the CG's x")
+        lines.append(
+            f"  weight curve: {added:+.3g} t and its centroid {moved:+.3g} m spread linearly over "
+            "its length to carry W at the CG's x"
+        )
     return lines
 
 
@@ -84,8 +88,7 @@ def _rope_lines(eq):
         return []
     who = "crane" if eq.rigging is not None else "lug"
     w = _name_width([who, "total", *eq.tensions], 8)
-    lines = [f"{who:<{w}}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}"
-             f"{'utilisation [%]':>17}"]
+    lines = [f"{who:<{w}}{'tension [t]':>13}{'share of W [%]':>16}{'SWL [t]':>10}{'utilisation [%]':>17}"]
     for name, tension in eq.tensions.items():
         swl = eq.swl[name]
         util = eq.utilisation[name]
@@ -104,16 +107,21 @@ def _rope_lines(eq):
 def _rigging_lines(eq):
     """Hook loads are the crane rows above; here the legs, hooks and spreader bars."""
     r = eq.rigging
-    lines = ["", f"hook loads above are the hoist-rope tensions; sling legs (angle from the horizontal, "
-                 f"limit {r.min_sling_angle:g} deg):"]
+    lines = [
+        "",
+        f"hook loads above are the hoist-rope tensions; sling legs (angle from the horizontal, "
+        f"limit {r.min_sling_angle:g} deg):",
+    ]
     legs = _name_width(["leg", *r.legs], 16)
     lugs = _name_width(["to lug", *(v or "(bar end)" for v in r.leg_lugs.values())], 10)
     lines.append(f"{'leg':<{legs}}{'to lug':<{lugs}}{'tension [t]':>13}{'angle [deg]':>13}")
     for key, tension in r.legs.items():
         angle = r.sling_angles[key]
-        lines.append(f"{key:<{legs}}{r.leg_lugs[key] or '(bar end)':<{lugs}}{tension:>13.2f}{angle:>13.2f}"
-                     + ("  slack" if key in eq.slack else "")
-                     + ("  BELOW LIMIT" if not angle >= r.min_sling_angle else ""))
+        lines.append(
+            f"{key:<{legs}}{r.leg_lugs[key] or '(bar end)':<{lugs}}{tension:>13.2f}{angle:>13.2f}"
+            + ("  slack" if key in eq.slack else "")
+            + ("  BELOW LIMIT" if not angle >= r.min_sling_angle else "")
+        )
     frame = f"world, frame {eq.frame}"
     for name, at in r.hook_positions.items():
         lines.append("hook {}: ({:.3f}, {:.3f}, {:.3f}) m ({})".format(name, *eq.file_point(at), frame))
@@ -134,11 +142,15 @@ def _afloat_lines(eq):
         f"displaced volume {a.displaced_volume:.1f} m3, centre of buoyancy {xyz(a.centre_of_buoyancy)}",
     ]
     if abs(a.immersed_volume - a.displaced_volume) > 1e-9 * max(a.immersed_volume, 1.0):
-        lines.append(f"hull envelope below the water plane: {a.immersed_volume:.1f} m3 (flooded: only the "
-                     "steel and the watertight compartments displace water)")
+        lines.append(
+            f"hull envelope below the water plane: {a.immersed_volume:.1f} m3 (flooded: only the "
+            "steel and the watertight compartments displace water)"
+        )
     if a.trapped_water:
-        lines.append(f"trapped water (a weight, carried with the hull): {a.trapped_water:.1f} t at "
-                     f"{xyz(a.centre_of_trapped_water)}")
+        lines.append(
+            f"trapped water (a weight, carried with the hull): {a.trapped_water:.1f} t at "
+            f"{xyz(a.centre_of_trapped_water)}"
+        )
     lines.append(f"centre of gravity (weight in air): {xyz(a.centre_of_gravity)} (world)")
     if a.ground_reaction is not None:
         lines.append(f"ground reaction F_R: {a.ground_reaction:.1f} t at {xyz(a.contact)}")
@@ -174,8 +186,12 @@ def load_curve_table(scene, curve, rows=25):
 
     title = scene.name or "scene"
     names = curve.lugs
-    head = f"{'hoist [m]':>10}" + "".join(f"{'T ' + n + ' [t]':>12}" for n in names) + \
-        f"{'sum T [t]':>11}{'heel [deg]':>12}{'trim [deg]':>12}{'buoyancy [t]':>14}{'ground [t]':>12}  state"
+    head = (
+        f"{'hoist [m]':>10}"
+        + "".join(f"{'T ' + n + ' [t]':>12}" for n in names)
+        + f"{'sum T [t]':>11}{'heel [deg]':>12}{'trim [deg]':>12}"
+        + f"{'buoyancy [t]':>14}{'ground [t]':>12}  state"
+    )
     lines = [
         title,
         f"weight in air W = {curve.weight:.1f} t"
@@ -191,15 +207,18 @@ def load_curve_table(scene, curve, rows=25):
             keep |= {k - 1, k}
     for k in sorted(keep):
         lines.append(
-            f"{curve.hoist[k]:>10.4f}" + "".join(f"{t:>12.1f}" for t in curve.tensions[k])
+            f"{curve.hoist[k]:>10.4f}"
+            + "".join(f"{t:>12.1f}" for t in curve.tensions[k])
             + f"{curve.crane_load[k]:>11.1f}{curve.heel[k]:>12.2f}{curve.trim[k]:>12.2f}"
             f"{curve.buoyancy[k]:>14.1f}{curve.ground_reaction[k]:>12.1f}  {curve.state[k]}"
         )
     m = curve.max_load
     ranges = ", ".join(f"{a:.3f}-{b:.3f} m" for a, b in m.plateau)
-    lines.append(f"maximum crane load: {m.tension:.1f} t on {m.lug}, held (within {100 * PLATEAU_REL:g} % = "
-                 f"{m.tolerance:.2f} t of it) over hoist {ranges}"
-                 + (" (to the last hoist computed)" if m.to_end else ""))
+    lines.append(
+        f"maximum crane load: {m.tension:.1f} t on {m.lug}, held (within {100 * PLATEAU_REL:g} % = "
+        f"{m.tolerance:.2f} t of it) over hoist {ranges}"
+        + (" (to the last hoist computed)" if m.to_end else "")
+    )
     lines.append(f"events (bisected between steps to {1e3 * EVENT_TOL:g} mm):")
     for e in curve.events:
         lines.append(f"  {e.name}: hoist {e.hoist:.4f} m +- {1e3 * e.tolerance:.2f} mm ({e.description})")
@@ -236,21 +255,27 @@ def missing_events(scene, curve):
     """
     last = f"at the last hoist {curve.hoist[-1]:.4g} m"
     why = {
-        "lift-off": "free of the ground from the start" if curve.state[0] != "grounded"
+        "lift-off": "free of the ground from the start"
+        if curve.state[0] != "grounded"
         else "still on the ground " + last,
-        "surface": "out of the water in part from the start" if curve.top[0] >= 0.0
+        "surface": "out of the water in part from the start"
+        if curve.top[0] >= 0.0
         else "the top stays under water to the last hoist",
-        "clear": "clear from the start" if curve.bottom[0] >= 0.0
-        else "not clear of the water " + last,
+        "clear": "clear from the start" if curve.bottom[0] >= 0.0 else "not clear of the water " + last,
     }
     b = curve.breakout
     if b is not None and b.force > 0.0:  # the lift looks for these only with a breakout force
         first, end = _phase(curve, 0), _phase(curve, -1)
-        why["breakout"] = ("off its bed from the start" if first != "grounded"
-                           else "still held by the soil " + last)
-        why["released"] = (f"more than {b.clear:g} m off its bed from the start" if first == "free"
-                           else "still held by the soil " + last if end == "grounded"
-                           else f"broken out, the contact not yet {b.clear:g} m off its bed " + last)
+        why["breakout"] = (
+            "off its bed from the start" if first != "grounded" else "still held by the soil " + last
+        )
+        why["released"] = (
+            f"more than {b.clear:g} m off its bed from the start"
+            if first == "free"
+            else "still held by the soil " + last
+            if end == "grounded"
+            else f"broken out, the contact not yet {b.clear:g} m off its bed " + last
+        )
     out = [(name, reason) for name, reason in why.items() if curve.event(name) is None]
     drained = {e.subject for e in curve.events if e.name == "drained"}
     for tank in curve.drainage:
@@ -284,9 +309,11 @@ def batch_table(study, summary):
     lines = [f"study {study.name} ({study.kind}): {summary.cases} cases"]
     resumed = summary.cases - summary.ran
     if summary.ran:
-        lines.append(f"ran {summary.ran} in {summary.seconds:.2f} s on {summary.cores} cores "
-                     f"({summary.rate_per_core:,.0f} cases/s per core)"
-                     + (f"; {resumed} were done before (resumed)" if resumed else ""))
+        lines.append(
+            f"ran {summary.ran} in {summary.seconds:.2f} s on {summary.cores} cores "
+            f"({summary.rate_per_core:,.0f} cases/s per core)"
+            + (f"; {resumed} were done before (resumed)" if resumed else "")
+        )
     else:
         lines.append("every case was done before (resumed)")
     lines += ["", f"{'status':<12}{'cases':>8}"]

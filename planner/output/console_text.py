@@ -31,10 +31,13 @@ def fold(line, width=WIDTH, indent="  "):
             depth += (char == "(") - (char == ")")
             level.append(depth)
         cut = None
-        for outside in (True, False):   # a parenthesis stays whole where it can
+        for outside in (True, False):  # a parenthesis stays whole where it can
             for mark in ("; ", ", ", " "):
-                spots = [k for k in range(len(indent) + 1, width)
-                         if line.startswith(mark, k) and (level[k] == 0 or not outside)]
+                spots = [
+                    k
+                    for k in range(len(indent) + 1, width)
+                    if line.startswith(mark, k) and (level[k] == 0 or not outside)
+                ]
                 if spots:
                     cut = spots[-1] + len(mark.rstrip())
                     break

@@ -37,8 +37,7 @@ def rope_sides(plan):
     y = plan.lugset.points[:, 1]
     middle, width = 0.5 * (y.max() + y.min()), float(np.ptp(y))
     tol = 0.01 * width
-    return ["port" if v > middle + tol else "starboard" if v < middle - tol else "centre line"
-            for v in y]
+    return ["port" if v > middle + tol else "starboard" if v < middle - tol else "centre line" for v in y]
 
 
 def tension_curves(plan):
@@ -65,32 +64,36 @@ def tension_curves(plan):
         norm = Normalize(xs[:, 0].min(), xs[:, 0].max() + 1e-9)
         cmap = colormaps["viridis"]
         sides = rope_sides(plan)
-    for ax, angle, tol in zip(axes, ("heel", "trim"),
-                              (problem.heel_tolerance, problem.trim_tolerance)):
+    for ax, angle, tol in zip(axes, ("heel", "trim"), (problem.heel_tolerance, problem.trim_tolerance)):
         span = max(_SPAN, 2 * tol)
         values = np.linspace(-span, span, 161)
         zero = np.zeros_like(values)
-        tensions = plan.tensions_at(values, zero) if angle == "heel" else \
-            plan.tensions_at(zero, values)
+        tensions = plan.tensions_at(values, zero) if angle == "heel" else plan.tensions_at(zero, values)
         for k, (label, column) in enumerate(zip(plan.labels, tensions.T)):
             extra = "" if equal else f", SWL {swl[label]:.1f} t"
             style = {"lw": 1.3, "label": f"{label} ({plan.lugs[label]}, {plan.cranes[label]}{extra})"}
             if many:
                 style = {"lw": 0.9, "color": cmap(norm(xs[k, 0])), "ls": _SIDE_STYLE[sides[k]]}
-            line, = ax.plot(values, column, **style)
+            (line,) = ax.plot(values, column, **style)
             if not equal:
                 ax.axhline(swl[label], color=line.get_color(), ls="--", lw=0.9)
         if many:
             _name_extremes(ax, values, tensions, [f"{k} ({plan.lugs[k]})" for k in plan.labels])
         ax.axvspan(-tol, tol, color="0.9", label=f"tolerance box +-{tol:g} deg")
         if equal:
-            ax.axhline(next(iter(swl.values())), color="k", ls="--", lw=0.9,
-                       label=f"SWL {next(iter(swl.values())):.1f} t")
+            ax.axhline(
+                next(iter(swl.values())),
+                color="k",
+                ls="--",
+                lw=0.9,
+                label=f"SWL {next(iter(swl.values())):.1f} t",
+            )
         else:
             ax.plot([], [], color="0.3", ls="--", lw=0.9, label="SWL (dashed, in the rope's colour)")
         if problem.min_tension > 0:
-            ax.axhline(problem.min_tension, color="k", ls=":", lw=0.9,
-                       label=f"min tension {problem.min_tension:g} t")
+            ax.axhline(
+                problem.min_tension, color="k", ls=":", lw=0.9, label=f"min tension {problem.min_tension:g} t"
+            )
         sign = "starboard down" if angle == "heel" else "bow down"
         ax.set_xlabel(f"{angle} [deg] (+ {sign})")
         ax.set_xlim(-span, span)
@@ -100,17 +103,25 @@ def tension_curves(plan):
     axes[0].set_ylim(bottom=0.0)
     if many:
         for side in dict.fromkeys(sides):
-            axes[0].plot([], [], color="0.3", lw=0.9, ls=_SIDE_STYLE[side],
-                         label=f"{side} ropes (colour: station x)")
+            axes[0].plot(
+                [], [], color="0.3", lw=0.9, ls=_SIDE_STYLE[side], label=f"{side} ropes (colour: station x)"
+            )
         from matplotlib.cm import ScalarMappable
 
-        bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="right",
-                           fraction=0.04, pad=0.01)
+        bar = fig.colorbar(
+            ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="right", fraction=0.04, pad=0.01
+        )
         bar.set_label("rope's station x [m] (forward)", size=_FONT)
         bar.ax.tick_params(labelsize=_SMALL)
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncols=3 if equal or many else 2,
-               fontsize=_SMALL, frameon=False)
+    fig.legend(
+        handles,
+        labels,
+        loc="outside lower center",
+        ncols=3 if equal or many else 2,
+        fontsize=_SMALL,
+        frameon=False,
+    )
     title = "Rope tensions with the plan's preload held (nominal CG)"
     if many:
         title += f": {len(plan.labels)} ropes, each named in the tables"
@@ -122,8 +133,15 @@ def _name_extremes(ax, values, tensions, labels):
     """Name the highest and the lowest rope at both ends of the curves (many ropes)."""
     for end, ha, shift in ((0, "left", 2), (-1, "right", -2)):
         for k, va in ((int(np.argmax(tensions[end])), "bottom"), (int(np.argmin(tensions[end])), "top")):
-            ax.annotate(labels[k], (values[end], tensions[end, k]), fontsize=_SMALL, ha=ha, va=va,
-                        xytext=(shift, 2 if va == "bottom" else -2), textcoords="offset points")
+            ax.annotate(
+                labels[k],
+                (values[end], tensions[end, k]),
+                fontsize=_SMALL,
+                ha=ha,
+                va=va,
+                xytext=(shift, 2 if va == "bottom" else -2),
+                textcoords="offset points",
+            )
 
 
 def _file_plan(problem, xy):
@@ -147,8 +165,7 @@ def _plan_extent(problem, plan):
     seen = [pts]
     if problem.outline:
         seen.append(_file_plan(problem, np.array(problem.outline))[0])
-    seen += [_file_plan(problem, np.array([c.position]))[0]
-             for c in problem.fleet if c.position is not None]
+    seen += [_file_plan(problem, np.array([c.position]))[0] for c in problem.fleet if c.position is not None]
     seen = np.vstack(seen)
     return seen.min(axis=0), seen.max(axis=0)
 
@@ -187,7 +204,7 @@ def plan_view(plan):
         ax.plot(outline[:, 0], outline[:, 1], color="0.3", lw=1.0, label="hull outline")
     pts, side = _file_plan(problem, problem.points[:, :2])
     ax.scatter(pts[:, 0], pts[:, 1], s=12, color="0.55", label="candidates", zorder=2)
-    (cog, ), _ = _file_plan(problem, np.array([problem.body.cog[:2]]))
+    (cog,), _ = _file_plan(problem, np.array([problem.body.cog[:2]]))
     centre = np.mean(pts, axis=0)
     chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
     taken = {plan.lugs[label] for label in plan.labels}
@@ -199,9 +216,16 @@ def plan_view(plan):
         # away from the body's middle, on screen (the papers' frame draws its z axis down)
         up = (y >= centre[1]) != choi
         rise = 4 + 7 * row
-        ax.annotate(name, (x, y), fontsize=_SMALL - 0.5, color="0.25" if name in taken else "0.45",
-                    ha="center", va="bottom" if up else "top",
-                    xytext=(0, rise if up else -rise), textcoords="offset points")
+        ax.annotate(
+            name,
+            (x, y),
+            fontsize=_SMALL - 0.5,
+            color="0.25" if name in taken else "0.45",
+            ha="center",
+            va="bottom" if up else "top",
+            xytext=(0, rise if up else -rise),
+            textcoords="offset points",
+        )
     order = _around(chosen, cog)
     order = np.r_[order, order[:1]]
     ax.plot(chosen[order, 0], chosen[order, 1], color="tab:blue", lw=0.8, ls="--")
@@ -211,25 +235,34 @@ def plan_view(plan):
         if row is None:
             continue
         inward = (y < centre[1]) != choi  # the lug's name goes inside the hull
-        ax.annotate(label, (x, y), fontsize=_FONT, color="tab:blue", fontweight="bold",
-                    ha="center", va="bottom" if inward else "top",
-                    xytext=(0, 5 if inward else -5), textcoords="offset points")
+        ax.annotate(
+            label,
+            (x, y),
+            fontsize=_FONT,
+            color="tab:blue",
+            fontweight="bold",
+            ha="center",
+            va="bottom" if inward else "top",
+            xytext=(0, 5 if inward else -5),
+            textcoords="offset points",
+        )
     thinned = None in shown or None in names_shown
     if _positioned(problem):
         _draw_cranes(ax, plan)
     ax.set_xlim(low[0], high[0])
     ax.set_ylim(low[1], high[1])
     _cog_envelope(ax, problem, cog, high - low)
-    ax.scatter([cog[0]], [cog[1]], marker="+", s=50, lw=1.2, color="tab:red", label="CG (nominal)",
-               zorder=5)
+    ax.scatter([cog[0]], [cog[1]], marker="+", s=50, lw=1.2, color="tab:red", label="CG (nominal)", zorder=5)
     ax.set_aspect("equal")
     if choi:
         ax.invert_yaxis()  # seen from above with x to the right, starboard is down
     ax.set_xlabel("x [m] (forward)")
     ax.set_ylabel(side)
     frame = "papers' frame" if choi else "z-up frame"
-    ax.set_title(f"Plan view ({frame}, seen from above)" + (
-        "\nnames left out where they would overlap; the tables name every lug" if thinned else ""))
+    ax.set_title(
+        f"Plan view ({frame}, seen from above)"
+        + ("\nnames left out where they would overlap; the tables name every lug" if thinned else "")
+    )
     _style(ax)
     fig.legend(loc="outside lower center", ncols=4, fontsize=_SMALL, frameon=False)
     return fig
@@ -241,8 +274,9 @@ def _label_rows(names, points, centre, metres_per_mm, rows=2, size=_SMALL - 0.5)
     where every row is taken it is not drawn (many points: the figure stays legible and the
     tables name every point). The last point of a side is always named (the one before it
     gives way)."""
-    width = [len(n) * 0.62 * size * 0.3528 * metres_per_mm + 1.5 * metres_per_mm
-             for n in names]  # [m]: characters x em fraction x pt -> mm -> m, plus a gap
+    width = [
+        len(n) * 0.62 * size * 0.3528 * metres_per_mm + 1.5 * metres_per_mm for n in names
+    ]  # [m]: characters x em fraction x pt -> mm -> m, plus a gap
     placed = [None] * len(names)
     for side in (points[:, 1] >= centre[1], points[:, 1] < centre[1]):
         last = {}  # row -> (index, x, half width) of the last name placed in it
@@ -272,11 +306,20 @@ def _cog_envelope(ax, problem, cog, span):
     smallest = 0.025 * max(span)  # [m] below this the box is a speck at print size
     scale = max(1.0, smallest / max(dx, dy))
     scale = float(np.ceil(scale)) if scale > 1.0 else 1.0
-    label = (f"CG envelope {size}" if scale == 1.0 else
-             f"CG envelope {size}, drawn x{scale:g}")
-    ax.add_patch(Rectangle((cog[0] - scale * dx, cog[1] - scale * dy), 2 * scale * dx,
-                           2 * scale * dy, fc=(0.84, 0.15, 0.16, 0.15), ec="tab:red", lw=0.9,
-                           ls="-" if scale == 1.0 else "--", label=label, zorder=4))
+    label = f"CG envelope {size}" if scale == 1.0 else f"CG envelope {size}, drawn x{scale:g}"
+    ax.add_patch(
+        Rectangle(
+            (cog[0] - scale * dx, cog[1] - scale * dy),
+            2 * scale * dx,
+            2 * scale * dy,
+            fc=(0.84, 0.15, 0.16, 0.15),
+            ec="tab:red",
+            lw=0.9,
+            ls="-" if scale == 1.0 else "--",
+            label=label,
+            zorder=4,
+        )
+    )
 
 
 def _positioned(problem):
@@ -293,13 +336,21 @@ def _draw_cranes(ax, plan):
     chosen, _ = _file_plan(problem, plan.lugset.points[:, :2])
     centre = np.mean(_file_plan(problem, problem.points[:, :2])[0], axis=0)
     lug_of = {name: k for k, name in enumerate(plan.chosen.crane_names)}
-    colors = ["tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
-              "tab:cyan", "tab:gray"]
+    colors = [
+        "tab:orange",
+        "tab:green",
+        "tab:purple",
+        "tab:brown",
+        "tab:pink",
+        "tab:olive",
+        "tab:cyan",
+        "tab:gray",
+    ]
     for j, crane in enumerate(problem.fleet):
         if crane.position is None:
             continue
         color = colors[j % len(colors)]
-        ((cx, cy), ), _ = _file_plan(problem, np.array([crane.position]))
+        ((cx, cy),), _ = _file_plan(problem, np.array([crane.position]))
         ax.scatter([cx], [cy], marker="s", s=40, color=color, zorder=4)
         if np.isfinite(crane.reach):
             ax.add_patch(Circle((cx, cy), crane.reach, fill=False, ec=color, ls=":", lw=0.7))
@@ -312,10 +363,17 @@ def _draw_cranes(ax, plan):
             text += f"\n{label}: radius {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.1f} t"
         # the crane's text away from the hull, on screen
         up = (cy >= centre[1]) != choi
-        ax.annotate(text, (cx, cy), fontsize=_SMALL, color=color, ha="center",
-                    va="bottom" if up else "top", xytext=(0, 5 if up else -5),
-                    textcoords="offset points",
-                    bbox={"fc": "white", "ec": "none", "alpha": 0.8, "pad": 0.5})
+        ax.annotate(
+            text,
+            (cx, cy),
+            fontsize=_SMALL,
+            color=color,
+            ha="center",
+            va="bottom" if up else "top",
+            xytext=(0, 5 if up else -5),
+            textcoords="offset points",
+            bbox={"fc": "white", "ec": "none", "alpha": 0.8, "pad": 0.5},
+        )
     ax.plot([], [], color="0.4", ls=":", lw=0.7, label="crane reach (chart)")
     ax.scatter([], [], marker="s", color="0.4", label="crane slew centre")
 
@@ -330,18 +388,29 @@ def spread_map(plan, count=41):
     fig = Figure(figsize=(125 * _MM, 100 * _MM), layout="constrained")
     ax = fig.subplots()
     mesh = ax.pcolormesh(heel, trim, spread.T, shading="auto", cmap="viridis")
-    unit = ("largest T / SWL [-]" if largest else "max - min of T / SWL [-]") if utilisation \
+    unit = (
+        ("largest T / SWL [-]" if largest else "max - min of T / SWL [-]")
+        if utilisation
         else "max - min tension [t]"
+    )
     bar = fig.colorbar(mesh, ax=ax)
     bar.set_label(unit, size=_FONT)
     bar.ax.tick_params(labelsize=_SMALL)
     worst = plan.chosen.worst
     dx, dy, dz = _file_point(plan.problem, worst.cog_offset)
     value = f"{plan.chosen.worst_value:.3f}" if utilisation else f"{plan.worst_spread:.1f} t"
-    ax.scatter([worst.heel], [worst.trim], marker="*", s=120, color="tab:red", edgecolors="white",
-               linewidths=0.6, label=f"worst {value} at heel {worst.heel:+.2f}, trim "
-                                     f"{worst.trim:+.2f} deg, CG offset ({dx:+.2f}, {dy:+.2f}, "
-                                     f"{dz:+.2f}) m")
+    ax.scatter(
+        [worst.heel],
+        [worst.trim],
+        marker="*",
+        s=120,
+        color="tab:red",
+        edgecolors="white",
+        linewidths=0.6,
+        label=f"worst {value} at heel {worst.heel:+.2f}, trim "
+        f"{worst.trim:+.2f} deg, CG offset ({dx:+.2f}, {dy:+.2f}, "
+        f"{dz:+.2f}) m",
+    )
     ax.set_xlabel("heel [deg] (+ starboard down)")
     ax.set_ylabel("trim [deg] (+ bow down)")
     what = ("Largest T / SWL" if largest else "Utilisation spread") if utilisation else "Tension spread"
@@ -357,8 +426,13 @@ def _around(points, cog):
     return np.argsort(np.arctan2(plan[:, 1], plan[:, 0]))
 
 
-_PHASE_COLOURS = {"grounded": "#c9b79c", "hanging submerged": "#9ecae1", "piercing the surface": "#c6dbef",
-                  "clear": "#e5f5e0", "afloat": "#fdd0a2"}
+_PHASE_COLOURS = {
+    "grounded": "#c9b79c",
+    "hanging submerged": "#9ecae1",
+    "piercing the surface": "#c6dbef",
+    "clear": "#e5f5e0",
+    "afloat": "#fdd0a2",
+}
 
 
 def _phases(curve):
@@ -398,25 +472,43 @@ def load_curve(curve, swl=None):
     from liftplan.model.lift import PLATEAU_REL
 
     fig = Figure(figsize=(11, 10), layout="constrained")
-    strip, loads, water, pose = fig.subplots(4, 1, sharex=True,
-                                             gridspec_kw={"height_ratios": [0.35, 3, 3, 2]})
+    strip, loads, water, pose = fig.subplots(
+        4, 1, sharex=True, gridspec_kw={"height_ratios": [0.35, 3, 3, 2]}
+    )
     span = max(float(curve.hoist[-1] - curve.hoist[0]), 1e-9)
     for state, a, b in _phases(curve):
         strip.axvspan(a, b, color=_PHASE_COLOURS.get(state, "0.9"), lw=0)
         narrow = b - a < 0.08 * span
-        strip.text(a if narrow else 0.5 * (a + b), 0.5, f" {state}", ha="left" if narrow else "center",
-                   va="center", fontsize=8, style="italic", transform=blended_transform_factory(
-                       strip.transData, strip.transAxes))
+        strip.text(
+            a if narrow else 0.5 * (a + b),
+            0.5,
+            f" {state}",
+            ha="left" if narrow else "center",
+            va="center",
+            fontsize=8,
+            style="italic",
+            transform=blended_transform_factory(strip.transData, strip.transAxes),
+        )
     strip.set_yticks([])
-    strip.set_title(f"Load curve: {curve.name or 'lift'}\ncrane loads, water and ground forces, attitude "
-                    "against hoist; the hull's state on this strip", fontsize=11)
+    strip.set_title(
+        f"Load curve: {curve.name or 'lift'}\ncrane loads, water and ground forces, attitude "
+        "against hoist; the hull's state on this strip",
+        fontsize=11,
+    )
     for name, column in zip(curve.lugs, curve.tensions.T):
         loads.plot(curve.hoist, column, label=name)
     m = curve.max_load
     for k, (a, b) in enumerate(m.plateau):
-        label = (f"max {m.tension:.1f} t ({m.lug}),\nwithin {100 * PLATEAU_REL:g} % "
-                 f"({m.tolerance:.2f} t) over\n" + ", ".join(f"{lo:.3f}-{hi:.3f} m" for lo, hi in m.plateau)
-                 + (" (to the end)" if m.to_end else "")) if k == 0 else None
+        label = (
+            (
+                f"max {m.tension:.1f} t ({m.lug}),\nwithin {100 * PLATEAU_REL:g} % "
+                f"({m.tolerance:.2f} t) over\n"
+                + ", ".join(f"{lo:.3f}-{hi:.3f} m" for lo, hi in m.plateau)
+                + (" (to the end)" if m.to_end else "")
+            )
+            if k == 0
+            else None
+        )
         loads.axvspan(a, b, color="0.85", lw=0, label=label)
         loads.plot([a, b], [m.tension, m.tension], color="k", lw=2.5, alpha=0.6)
     if swl:
@@ -427,8 +519,13 @@ def load_curve(curve, swl=None):
     water.plot(curve.hoist, curve.ground_reaction, label="ground reaction")
     water.axhline(curve.weight, color="0.4", ls="--", lw=1, label=f"weight in air W\n{curve.weight:.1f} t")
     if curve.trapped_water:
-        water.axhline(curve.weight + curve.trapped_water, color="tab:purple", ls=":", lw=1.2,
-                      label=f"W + trapped water\n{curve.weight:.1f} + {curve.trapped_water:.1f} t")
+        water.axhline(
+            curve.weight + curve.trapped_water,
+            color="tab:purple",
+            ls=":",
+            lw=1.2,
+            label=f"W + trapped water\n{curve.weight:.1f} + {curve.trapped_water:.1f} t",
+        )
     water.set_ylabel("force [t]")
     pose.plot(curve.hoist, curve.heel, label="heel\n(+ starboard down)")
     pose.plot(curve.hoist, curve.trim, label="trim (+ bow down)")
@@ -442,10 +539,17 @@ def load_curve(curve, swl=None):
     for event in curve.events:
         for ax in (strip, loads, water, pose):
             ax.axvline(event.hoist, color="tab:green", lw=1, ls="-.")
-        loads.annotate(f"{event.name} {event.hoist:.3f} m", (event.hoist, 1.0),
-                       xycoords=blended_transform_factory(loads.transData, loads.transAxes),
-                       xytext=(3, -4), textcoords="offset points", rotation=90, va="top",
-                       fontsize=8, color="tab:green")
+        loads.annotate(
+            f"{event.name} {event.hoist:.3f} m",
+            (event.hoist, 1.0),
+            xycoords=blended_transform_factory(loads.transData, loads.transAxes),
+            xytext=(3, -4),
+            textcoords="offset points",
+            rotation=90,
+            va="top",
+            fontsize=8,
+            color="tab:green",
+        )
     for ax in (loads, water, pose):
         ax.grid(True, lw=0.3)
         ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))

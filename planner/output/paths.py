@@ -40,8 +40,10 @@ def output_file(path, option, types=None):
     """
     path = _nonempty(path, option)
     if types is not None and path.suffix.lower() not in types:
-        raise InvalidScene(f"{option} {path}: unknown file type {path.suffix or '(none)'!r}; "
-                           f"expected one of {', '.join(types)}")
+        raise InvalidScene(
+            f"{option} {path}: unknown file type {path.suffix or '(none)'!r}; "
+            f"expected one of {', '.join(types)}"
+        )
     mode = _mode(path)
     if mode is not None:
         if stat.S_ISDIR(mode):
@@ -99,11 +101,14 @@ def _writable(folder, option, target):
         existing = existing.parent
     mode = _mode(existing)
     if mode is None or not stat.S_ISDIR(mode):
-        raise InvalidScene(f"{option} {target}: {existing} is a file, not a folder; "
-                           "expected a path through folders")
+        raise InvalidScene(
+            f"{option} {target}: {existing} is a file, not a folder; expected a path through folders"
+        )
     try:
         with tempfile.TemporaryFile(dir=existing):
             pass
     except OSError as err:
-        raise InvalidScene(f"{option} {target}: cannot write in {existing} "
-                           f"({err.strerror or err}); expected a writable location") from None
+        raise InvalidScene(
+            f"{option} {target}: cannot write in {existing} "
+            f"({err.strerror or err}); expected a writable location"
+        ) from None

@@ -89,8 +89,15 @@ def document(title, body, header, footer=""):
         Printed at the bottom left of every page (document number and revision).
     """
     top, right, bottom, left = MARGINS_MM
-    css = _CSS % {"top": top, "right": right, "bottom": bottom, "left": left,
-                  "width": TEXT_WIDTH_MM, "header": css_string(header), "footer": css_string(footer)}
+    css = _CSS % {
+        "top": top,
+        "right": right,
+        "bottom": bottom,
+        "left": left,
+        "width": TEXT_WIDTH_MM,
+        "header": css_string(header),
+        "footer": css_string(footer),
+    }
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <title>{html.escape(title)}</title>
@@ -117,17 +124,22 @@ def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), rope
     start, count = ropes
     stop = start + count
     if len(rows) == 1 and stop == len(headers):  # one row of values: one table, wrapped
-        return _wrapped_row(headers, rows[0], caption, start, full=full, keep=keep,
-                            text_columns=text_columns)
+        return _wrapped_row(headers, rows[0], caption, start, full=full, keep=keep, text_columns=text_columns)
     parts = []
     for first in range(0, count, ROPE_COLUMNS):
         last = min(first + ROPE_COLUMNS, count)
         keep_columns = [*range(start), *range(start + first, start + last), *range(stop, len(headers))]
         where = {old: new for new, old in enumerate(keep_columns)}
-        parts.append(one_table(
-            [headers[k] for k in keep_columns], [[row[k] for k in keep_columns] for row in rows],
-            f"{caption} ({first + 1} to {last} of {count})", full=full, keep=keep,
-            text_columns=tuple(where[k] for k in text_columns if k in where)))
+        parts.append(
+            one_table(
+                [headers[k] for k in keep_columns],
+                [[row[k] for k in keep_columns] for row in rows],
+                f"{caption} ({first + 1} to {last} of {count})",
+                full=full,
+                keep=keep,
+                text_columns=tuple(where[k] for k in text_columns if k in where),
+            )
+        )
     return "".join(parts)
 
 
@@ -139,19 +151,29 @@ def _wrapped_row(headers, row, caption, start, *, full, keep, text_columns):
     label = [html.escape(str(v)) for v in row[:start]]
     lines = []
     for first in range(start, len(headers), ROPE_COLUMNS):
-        names = headers[first:first + ROPE_COLUMNS]
+        names = headers[first : first + ROPE_COLUMNS]
         pad = ROPE_COLUMNS - len(names)
         blank = "<th></th>" * pad
-        lines.append("<tr>" + "".join(f'<th class="text">{html.escape(str(h))}</th>'
-                                      for h in headers[:start])
-                     + "".join(f"<th>{html.escape(str(h))}</th>" for h in names) + blank + "</tr>")
-        cells = "".join(f"<td>{html.escape(str(v))}</td>" for v in row[first:first + ROPE_COLUMNS])
+        lines.append(
+            "<tr>"
+            + "".join(f'<th class="text">{html.escape(str(h))}</th>' for h in headers[:start])
+            + "".join(f"<th>{html.escape(str(h))}</th>" for h in names)
+            + blank
+            + "</tr>"
+        )
+        cells = "".join(f"<td>{html.escape(str(v))}</td>" for v in row[first : first + ROPE_COLUMNS])
         text = ' class="text"'
-        lines.append("<tr>" + "".join(f"<td{text if k in text_columns else ''}>{v}</td>"
-                                      for k, v in enumerate(label))
-                     + cells + "<td></td>" * pad + "</tr>")
-    return (f'<table class="{classes}"><caption>{html.escape(caption)}</caption>'
-            f"<tbody>{''.join(lines)}</tbody></table>")
+        lines.append(
+            "<tr>"
+            + "".join(f"<td{text if k in text_columns else ''}>{v}</td>" for k, v in enumerate(label))
+            + cells
+            + "<td></td>" * pad
+            + "</tr>"
+        )
+    return (
+        f'<table class="{classes}"><caption>{html.escape(caption)}</caption>'
+        f"<tbody>{''.join(lines)}</tbody></table>"
+    )
 
 
 def one_table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
@@ -175,15 +197,19 @@ def one_table(headers, rows, caption, *, full=True, keep=None, text_columns=()):
     def cell(tag, k, value):
         value = str(value)
         # a short name ("crane 10", "not given") on one line: many-rope tables stay one line a row
-        align = ((' class="text nw"' if len(value) <= NOWRAP_CHARS else ' class="text"')
-                 if k in text_columns else "")
+        align = (
+            (' class="text nw"' if len(value) <= NOWRAP_CHARS else ' class="text"')
+            if k in text_columns
+            else ""
+        )
         return f"<{tag}{align}>{html.escape(value)}</{tag}>"
 
     head = "".join(cell("th", k, h) for k, h in enumerate(headers))
-    body = "".join("<tr>" + "".join(cell("td", k, c) for k, c in enumerate(row)) + "</tr>"
-                   for row in rows)
-    return (f'<table class="{classes}"><caption>{html.escape(caption)}</caption>'
-            f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>")
+    body = "".join("<tr>" + "".join(cell("td", k, c) for k, c in enumerate(row)) + "</tr>" for row in rows)
+    return (
+        f'<table class="{classes}"><caption>{html.escape(caption)}</caption>'
+        f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    )
 
 
 def figure(fig, alt, caption=""):
@@ -195,8 +221,10 @@ def figure(fig, alt, caption=""):
     fig.savefig(buffer, format="png", dpi=160)
     data = base64.b64encode(buffer.getvalue()).decode("ascii")
     note = f"<figcaption>{html.escape(caption)}</figcaption>" if caption else ""
-    return (f'<figure><img alt="{html.escape(alt)}" style="width: {width_mm:g}mm" '
-            f'src="data:image/png;base64,{data}">{note}</figure>')
+    return (
+        f'<figure><img alt="{html.escape(alt)}" style="width: {width_mm:g}mm" '
+        f'src="data:image/png;base64,{data}">{note}</figure>'
+    )
 
 
 def figure_size(height_mm, width_mm=TEXT_WIDTH_MM):
@@ -222,18 +250,24 @@ def title_block(info, plan_name, kind, today=None):
     def row(*pairs):
         return "<tr>" + "".join(f'<td class="k">{esc(k)}</td><td>{esc(v)}</td>' for k, v in pairs) + "</tr>"
 
-    project = ("<table class=\"title-block keep\"><tbody>"
-               + row(("Project", fields["Project"]), ("Document no.", fields["Document no."]))
-               + row(("Client", fields["Client"]), ("Revision", fields["Revision"]))
-               + row(("Subject", plan_name), ("Date", fields["Date"]))
-               + "</tbody></table>")
-    sign = ("<table class=\"title-block sign-off keep\"><tbody>"
-            '<tr><td class="k"></td><td class="k">name</td><td class="k">signature</td>'
-            '<td class="k">date</td></tr>'
-            + "".join(f'<tr><td class="k">{esc(role)}</td><td>{esc(fields[role])}</td><td></td><td></td></tr>'
-                      for role in ("Prepared by", "Checked by", "Approved by"))
-            + "</tbody></table>")
-    return (f"<h1>{esc(plan_name or 'Lift plan')}</h1><p>{esc(kind)}</p>{project}{sign}")
+    project = (
+        '<table class="title-block keep"><tbody>'
+        + row(("Project", fields["Project"]), ("Document no.", fields["Document no."]))
+        + row(("Client", fields["Client"]), ("Revision", fields["Revision"]))
+        + row(("Subject", plan_name), ("Date", fields["Date"]))
+        + "</tbody></table>"
+    )
+    sign = (
+        '<table class="title-block sign-off keep"><tbody>'
+        '<tr><td class="k"></td><td class="k">name</td><td class="k">signature</td>'
+        '<td class="k">date</td></tr>'
+        + "".join(
+            f'<tr><td class="k">{esc(role)}</td><td>{esc(fields[role])}</td><td></td><td></td></tr>'
+            for role in ("Prepared by", "Checked by", "Approved by")
+        )
+        + "</tbody></table>"
+    )
+    return f"<h1>{esc(plan_name or 'Lift plan')}</h1><p>{esc(kind)}</p>{project}{sign}"
 
 
 def running_header(info, plan_name):
@@ -255,5 +289,7 @@ def status(checks):
     if not failed:
         return f'<p class="status">All {len(checks)} checks pass (listed under "Checks to hand over").</p>'
     names = "; ".join(f"{c.name} {c.subject}" for c in failed)
-    return (f'<p class="status fail">{len(failed)} of {len(checks)} checks FAIL: '
-            f"{html.escape(names)}. Do not lift on this plan as it stands.</p>")
+    return (
+        f'<p class="status fail">{len(failed)} of {len(checks)} checks FAIL: '
+        f"{html.escape(names)}. Do not lift on this plan as it stands.</p>"
+    )

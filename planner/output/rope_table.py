@@ -75,8 +75,10 @@ def _cell(eq, name):
         return " " * _CELL
     util = eq.utilisation[name]
     flag = "s" if name in eq.slack else "!" if util is not None and util > 1.0 else " "
-    return (f"{name:<8}{eq.tensions[name]:>9.2f}{100 * eq.share[name]:>7.2f}"
-            f"{(f'{100 * util:.1f}' if util is not None else '-'):>9} {flag}")
+    return (
+        f"{name:<8}{eq.tensions[name]:>9.2f}{100 * eq.share[name]:>7.2f}"
+        f"{(f'{100 * util:.1f}' if util is not None else '-'):>9} {flag}"
+    )
 
 
 def rope_rows(scene, eq):
@@ -114,14 +116,18 @@ def rope_rows(scene, eq):
     tensions = eq.tensions
     high = max(tensions, key=tensions.get)
     low = min(tensions, key=tensions.get)
-    lines = [f"{len(tensions)} ropes, W = {eq.weight:.2f} t: tension max {tensions[high]:.2f} t at "
-             f"{at(high)}, min {tensions[low]:.2f} t at {at(low)}, spread {eq.spread:.2f} t"]
+    lines = [
+        f"{len(tensions)} ropes, W = {eq.weight:.2f} t: tension max {tensions[high]:.2f} t at "
+        f"{at(high)}, min {tensions[low]:.2f} t at {at(low)}, spread {eq.spread:.2f} t"
+    ]
     utilisation = {k: u for k, u in eq.utilisation.items() if u is not None}
     if utilisation:
         top = max(utilisation, key=utilisation.get)
         over = [k for k, u in utilisation.items() if u > 1.0]
-        lines.append(f"utilisation max {100 * utilisation[top]:.1f} % at {at(top)}; over the SWL: "
-                     + (_names(over) if over else "none"))
+        lines.append(
+            f"utilisation max {100 * utilisation[top]:.1f} % at {at(top)}; over the SWL: "
+            + (_names(over) if over else "none")
+        )
     else:
         lines.append("utilisation: no SWL given")
     lines.append(f"slack: {_names(list(eq.slack)) if eq.slack else 'none'}")
@@ -138,8 +144,11 @@ def rope_rows(scene, eq):
         total = sum(tensions[name] for _, sides in groups for name in sides[key])
         totals.append(f"   {'total':<8}{total:>9.2f}{100 * total / eq.weight:>7.2f}" + " " * 11)
     lines.append(" " * 9 + "".join(totals).rstrip())
-    flags = [text for flag, text in (("s", "s: slack"), ("!", "!: over the SWL"))
-             if any(_cell(eq, name).endswith(flag) for name in tensions)]
+    flags = [
+        text
+        for flag, text in (("s", "s: slack"), ("!", "!: over the SWL"))
+        if any(_cell(eq, name).endswith(flag) for name in tensions)
+    ]
     if flags:
         lines.append("flags: " + ", ".join(flags))
     return lines

@@ -12,8 +12,11 @@ import numpy as np
 
 from liftplan.planner.output.console_text import fold, grouped
 
-OBJECTIVES = {"reserve": "the largest hook load / SWL", "utilisation": "max - min of hook load / SWL",
-              "spread": "max - min hook load"}
+OBJECTIVES = {
+    "reserve": "the largest hook load / SWL",
+    "utilisation": "max - min of hook load / SWL",
+    "spread": "max - min hook load",
+}
 
 
 def _search_lines(plan):
@@ -50,9 +53,13 @@ def sling_table(plan):
     problem = plan.problem
     names = plan.crane_names
     design = plan.design_hook_loads
-    lines = [problem.name or "lift plan", *_search_lines(plan), "",
-             f"{'crane':<13}{'lugs (below)':<17}{'R [m]':>7}{'SWL [t]':>8}{'H [m]':>8}"
-             f"{'hook [t]':>9}{'worst [t]':>10}{'design [t]':>11}{'util. [%]':>10}  check"]
+    lines = [
+        problem.name or "lift plan",
+        *_search_lines(plan),
+        "",
+        f"{'crane':<13}{'lugs (below)':<17}{'R [m]':>7}{'SWL [t]':>8}{'H [m]':>8}"
+        f"{'hook [t]':>9}{'worst [t]':>10}{'design [t]':>11}{'util. [%]':>10}  check",
+    ]
     chain = None if isinstance(plan.design, str) else plan.design
     rows = []
     for c, name in enumerate(names):
@@ -62,38 +69,54 @@ def sling_table(plan):
             f"{name[:12]:<13}{lugs[:16]:<17}{plan.hook_radius[c]:>7.1f}{plan.hook_swl[c]:>8.1f}"
             f"{plan.crane_boom_heights[c]:>8.3f}{plan.hook_nominal[c]:>9.2f}"
             f"{plan.hook_worst[c]:>10.2f}{design[c]:>11.2f}{100 * design[c] / plan.hook_swl[c]:>10.1f}"
-            f"  {'ok' if ok else 'FAIL'}")
+            f"  {'ok' if ok else 'FAIL'}"
+        )
     lines += grouped(rows)
-    lines.append("(hook = level, nominal CG; worst = largest over the tolerance and the CG envelope; "
-                 "design = the rules' chain, docs/design-loads.md; util. = design / chart SWL)")
+    lines.append(
+        "(hook = level, nominal CG; worst = largest over the tolerance and the CG envelope; "
+        "design = the rules' chain, docs/design-loads.md; util. = design / chart SWL)"
+    )
     if chain is None:
         lines.append(f"design loads not computed: {plan.design}")
     lug_design = {} if chain is None else {lug.lug: lug for r in chain.results for lug in r.lugs}
-    lines += ["", f"{'lug':<5}{'candidate':<12}{'crane':<14}{'angle [deg]':>12}{'leg, level [t]':>15}"
-                  f"{'leg, worst [t]':>15}{'lug design [t]':>15}"]
-    angles, level, worst = (np.concatenate([np.ravel(a) for a in v])
-                            for v in (plan.leg_angles, plan.legs_nominal, plan.legs_worst))
+    lines += [
+        "",
+        f"{'lug':<5}{'candidate':<12}{'crane':<14}{'angle [deg]':>12}{'leg, level [t]':>15}"
+        f"{'leg, worst [t]':>15}{'lug design [t]':>15}",
+    ]
+    angles, level, worst = (
+        np.concatenate([np.ravel(a) for a in v])
+        for v in (plan.leg_angles, plan.legs_nominal, plan.legs_worst)
+    )
     rows = []
     for k, label in enumerate(plan.labels):
         lug = plan.lugs[label]
         value = lug_design[lug].design_load if lug in lug_design else float("nan")
-        rows.append(f"{label:<5}{lug[:11]:<12}{plan.cranes[label][:13]:<14}{angles[k]:>12.1f}"
-                    f"{level[k]:>15.2f}{worst[k]:>15.2f}{value:>15.2f}")
+        rows.append(
+            f"{label:<5}{lug[:11]:<12}{plan.cranes[label][:13]:<14}{angles[k]:>12.1f}"
+            f"{level[k]:>15.2f}{worst[k]:>15.2f}{value:>15.2f}"
+        )
     lines += grouped(rows)
     for c, top in enumerate(plan.top_legs):
         if top is not None:
-            lines.append(f"{names[c]}: spreader bar {plan.bar_weights[c]:g} t on the hook; top legs "
-                         + ", ".join(f"{t:.2f} t at {a:.1f} deg" for t, a in zip(top, plan.top_angles[c])))
+            lines.append(
+                f"{names[c]}: spreader bar {plan.bar_weights[c]:g} t on the hook; top legs "
+                + ", ".join(f"{t:.2f} t at {a:.1f} deg" for t, a in zip(top, plan.top_angles[c]))
+            )
     solved = plan.verified
-    lines += ["", "rigging model (free hooks, elastic legs) at level: hook loads "
-              + ", ".join(f"{n} {solved.tensions[n]:.2f} t" for n in names)]
+    lines += [
+        "",
+        "rigging model (free hooks, elastic legs) at level: hook loads "
+        + ", ".join(f"{n} {solved.tensions[n]:.2f} t" for n in names),
+    ]
     if hasattr(plan, "chosen"):
         chosen = plan.chosen
         dx, dy, dz = chosen.worst_cog_offset
-        lines += [f"roll about the hook line (CG under it): up to {chosen.roll:.2f} deg over the CG "
-                  "envelope",
-                  f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
-                  f"({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m"]
+        lines += [
+            f"roll about the hook line (CG under it): up to {chosen.roll:.2f} deg over the CG envelope",
+            f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
+            f"({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m",
+        ]
     unit, scale = ("[t]", 1.0) if plan.objective == "spread" else ("[%]", 100.0)
     lines += ["", f"{'rank':<6}{'worst ' + unit:>12}  slings (crane)"]
     for k, slings, value in _ranking(plan):
@@ -107,11 +130,15 @@ def _ranking(plan):
     problem, names = plan.problem, plan.crane_names
     if hasattr(plan, "inner"):
         for k, r in enumerate(plan.ranking):
-            texts = [f"{'+'.join(problem.names[i] for i in plan.rigs.lugs[j])} ({crane})"
-                     for j, crane in zip(r.indices, r.crane_names)]
+            texts = [
+                f"{'+'.join(problem.names[i] for i in plan.rigs.lugs[j])} ({crane})"
+                for j, crane in zip(r.indices, r.crane_names)
+            ]
             yield k + 1, texts, r.worst_value
         return
     for k, option in enumerate(plan.ranking):
-        texts = [f"{'+'.join(problem.names[i] for i in group)} ({name})"
-                 for group, name in zip(option.pairs, names)]
+        texts = [
+            f"{'+'.join(problem.names[i] for i in group)} ({name})"
+            for group, name in zip(option.pairs, names)
+        ]
         yield k + 1, texts, option.worst_value

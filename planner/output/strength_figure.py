@@ -41,23 +41,38 @@ def strength_figure(scene, eq, girder):
     fig.suptitle(
         f"Hull girder: {scene.name or 'scene'}\n{eq.model} model, heel {pose.heel:+.2f} deg, "
         f"trim {pose.trim:+.2f} deg; Q and M of the part aft of the section (M > 0 sagging)",
-        fontsize=11)
+        fontsize=11,
+    )
 
     _load_panel(loads, girder, xx, eq.weight)
     for ax, curve, peak, name, unit, symbol in (
-            (shear, girder.shear_curve, girder.max_shear, "shear_force", "t", "Q"),
-            (moment, girder.moment_curve, girder.max_moment, "bending_moment", "t m", "M")):
+        (shear, girder.shear_curve, girder.max_shear, "shear_force", "t", "Q"),
+        (moment, girder.moment_curve, girder.max_moment, "bending_moment", "t m", "M"),
+    ):
         values = np.ravel(np.column_stack([curve(xs, "left"), curve(xs, "right")]))
         ax.plot(xx, values, color="C0", lw=1.4, label=f"{symbol}(x)")
         envelope = getattr(scene.strength, name) if scene.strength is not None else None
         if envelope is not None:
             limit = scene.strength.allowable(name, xs)
-            ax.fill_between(xs, -limit, limit, color="C2", alpha=0.15, lw=0,
-                            label=f"allowable |{symbol}| (inside the band)")
+            ax.fill_between(
+                xs,
+                -limit,
+                limit,
+                color="C2",
+                alpha=0.15,
+                lw=0,
+                label=f"allowable |{symbol}| (inside the band)",
+            )
             ax.plot(xs, limit, color="C2", lw=0.8)
             ax.plot(xs, -limit, color="C2", lw=0.8)
-        ax.plot([peak.x], [peak.signed], "o", color="C3", ms=5,
-                label=f"max |{symbol}| {peak.value:.1f} {unit} at x = {peak.x:.2f} m")
+        ax.plot(
+            [peak.x],
+            [peak.signed],
+            "o",
+            color="C3",
+            ms=5,
+            label=f"max |{symbol}| {peak.value:.1f} {unit} at x = {peak.x:.2f} m",
+        )
         ax.axhline(0.0, color="k", lw=0.6)
         ax.set_ylabel(f"{'shear force Q' if symbol == 'Q' else 'bending moment M'} [{unit}]")
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
@@ -79,8 +94,7 @@ def _text_width(text, size=_LABEL_PT):
     """Width of the widest line of ``text`` at ``size`` points  [pt]."""
     from matplotlib.textpath import TextPath
 
-    return max(TextPath((0.0, 0.0), line or " ", size=size).get_extents().width
-               for line in text.split("\n"))
+    return max(TextPath((0.0, 0.0), line or " ", size=size).get_extents().width for line in text.split("\n"))
 
 
 def _station_labels(forces, points, span):
@@ -103,28 +117,36 @@ def _station_labels(forces, points, span):
         stations.setdefault(round(p.x, 6), []).append(p)
     xs = sorted(stations)
     tops = [max(p.normal for p in stations[x]) for x in xs]
-    names = [", ".join(p.name.split(" ", 1)[1] if " " in p.name else p.name for p in stations[x])
-             for x in xs]
+    names = [", ".join(p.name.split(" ", 1)[1] if " " in p.name else p.name for p in stations[x]) for x in xs]
     totals = [sum(p.normal for p in stations[x]) for x in xs]
     full = [f"{n}\n{t:.1f} t" for n, t in zip(names, totals)]
     per_pt = max(span, 1e-9) / _PANEL_PT  # data x per point on the narrowest panel
 
     def fits(texts):
         widths = [_text_width(t) for t in texts]
-        return all((b - a) / per_pt >= 0.5 * (wa + wb) + _GAP_PT
-                   for a, b, wa, wb in zip(xs, xs[1:], widths, widths[1:]))
+        return all(
+            (b - a) / per_pt >= 0.5 * (wa + wb) + _GAP_PT
+            for a, b, wa, wb in zip(xs, xs[1:], widths, widths[1:])
+        )
 
     if fits(full):
         for x, top, text in zip(xs, tops, full):
-            forces.annotate(text, (x, top), textcoords="offset points", xytext=(0, 4), ha="center",
-                            fontsize=_LABEL_PT)
+            forces.annotate(
+                text, (x, top), textcoords="offset points", xytext=(0, 4), ha="center", fontsize=_LABEL_PT
+            )
         return [], 2
     numbers = [str(k) for k in range(1, len(xs) + 1)]
     stagger = not fits(numbers)
     for k, (x, top, number) in enumerate(zip(xs, tops, numbers)):
-        forces.annotate(number, (x, top), textcoords="offset points",
-                        xytext=(0, 4 + (_LABEL_PT + 2.0) * (k % 2 if stagger else 0)),
-                        ha="center", fontsize=_LABEL_PT, fontweight="bold")
+        forces.annotate(
+            number,
+            (x, top),
+            textcoords="offset points",
+            xytext=(0, 4 + (_LABEL_PT + 2.0) * (k % 2 if stagger else 0)),
+            ha="center",
+            fontsize=_LABEL_PT,
+            fontweight="bold",
+        )
     return [f"{k}: {n}  {t:.1f} t" for k, n, t in zip(numbers, names, totals)], 1 + stagger
 
 
@@ -144,8 +166,9 @@ def _load_panel(ax, girder, xx, weight):
     if girder.trapped_water is not None:
         trapped = sided(girder.trapped_water)
         down = np.maximum(down, trapped)
-        ax.fill_between(xx, -trapped, 0.0, color="C9", alpha=0.5, lw=0,
-                        label="trapped water per length (down)")
+        ax.fill_between(
+            xx, -trapped, 0.0, color="C9", alpha=0.5, lw=0, label="trapped water per length (down)"
+        )
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_ylabel("distributed load [t/m]")
     ax.grid(True, lw=0.3)
@@ -179,6 +202,13 @@ def _load_panel(ax, girder, xx, weight):
         blank = Line2D([], [], linestyle="none")
         more, more_labels = more + [blank] * len(key), more_labels + key
     entries = len(labels) + len(more_labels)
-    forces.legend(handles + more, labels + more_labels, loc="upper left", bbox_to_anchor=(1.13, 1.0),
-                  fontsize=8 if not key else 7, frameon=False, ncols=1 if entries <= 18 else 2,
-                  handlelength=2.0)
+    forces.legend(
+        handles + more,
+        labels + more_labels,
+        loc="upper left",
+        bbox_to_anchor=(1.13, 1.0),
+        fontsize=8 if not key else 7,
+        frameon=False,
+        ncols=1 if entries <= 18 else 2,
+        handlelength=2.0,
+    )

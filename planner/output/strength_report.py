@@ -18,15 +18,19 @@ import numpy as np
 from liftplan.planner.output import report_page
 from liftplan.planner.strength_plan import objective_weights
 
-FRAMES = {"z-up": "z-up (x forward, y to port, z up)",
-          "choi": "choi, the papers' frame (x forward, y up, z to starboard)"}
-WHAT = {"bending": "the worst |M| / allowable bending moment",
-        "shear": "the worst |Q| / allowable shear force",
-        "strength": "w_M x worst |M| / allowable + w_Q x worst |Q| / allowable"}
-CONTROL = {"force": "force (strand jacks: each holds its force; the body hangs where the forces "
-                    "balance it)",
-           "hoist": "hoist (boom heights: the level preload held, a tilt from the hooks moving "
-                    "as a plane)"}
+FRAMES = {
+    "z-up": "z-up (x forward, y to port, z up)",
+    "choi": "choi, the papers' frame (x forward, y up, z to starboard)",
+}
+WHAT = {
+    "bending": "the worst |M| / allowable bending moment",
+    "shear": "the worst |Q| / allowable shear force",
+    "strength": "w_M x worst |M| / allowable + w_Q x worst |Q| / allowable",
+}
+CONTROL = {
+    "force": "force (strand jacks: each holds its force; the body hangs where the forces balance it)",
+    "hoist": "hoist (boom heights: the level preload held, a tilt from the hooks moving as a plane)",
+}
 #: Stations per girder curve in the figures (on top of the breakpoints the curves are exact
 #: between; a plotted curve, not a check: the peaks are found exactly).
 SAMPLES = 700
@@ -69,8 +73,7 @@ def _xyz(plan, point):
 def _state_text(plan, s, peak):
     state = s.states[peak.state]
     offset = plan.in_file_frame(state["cog_offset"])
-    return (f"{state['heel']:+.2f}, {state['trim']:+.2f}",
-            ", ".join(f"{v:+.2f}" for v in offset))
+    return (f"{state['heel']:+.2f}, {state['trim']:+.2f}", ", ".join(f"{v:+.2f}" for v in offset))
 
 
 # -- the girder along the body ---------------------------------------------------------------
@@ -112,8 +115,7 @@ def _level_curves(plan, s):
     from liftplan.planner.search.strength import GirderLoads, State, exact_curves
 
     p = plan.problem
-    return exact_curves(GirderLoads(p.body), p.points[list(s.indices)], s.preload,
-                        State((0.0, 0.0, 1.0)))
+    return exact_curves(GirderLoads(p.body), p.points[list(s.indices)], s.preload, State((0.0, 0.0, 1.0)))
 
 
 def girder_figure(plan):
@@ -136,8 +138,10 @@ def girder_figure(plan):
     fig = Figure(figsize=figure_size(190.0), layout="constrained")
     shear_ax, moment_ax = fig.subplots(2, 1, sharex=True)
     envelopes = {0: p.strength.bending_moment, 1: p.strength.shear_force}
-    plans = (("strength-optimal (the plan)", plan.chosen, "tab:blue"),
-             ("spread-optimal", plan.spread_plan, "tab:orange"))
+    plans = (
+        ("strength-optimal (the plan)", plan.chosen, "tab:blue"),
+        ("spread-optimal", plan.spread_plan, "tab:orange"),
+    )
     for name, s, color in plans:
         _, _, curves = set_curves(plan, s)
         level = _level_curves(plan, s)
@@ -145,45 +149,69 @@ def girder_figure(plan):
             values = np.array([c[1 - which](xs) for c in curves])
             peak = s.bending if which == 0 else s.shear
             if len(curves) > 1:
-                ax.fill_between(xs, values.min(axis=0) / scale, values.max(axis=0) / scale,
-                                color=color, alpha=0.25, lw=0)
-            ax.plot(xs, level[1 - which](xs) / scale, color=color, lw=1.2,
-                    label=f"{name}: level, nominal CG (band: every state)")
+                ax.fill_between(
+                    xs, values.min(axis=0) / scale, values.max(axis=0) / scale, color=color, alpha=0.25, lw=0
+                )
+            ax.plot(
+                xs,
+                level[1 - which](xs) / scale,
+                color=color,
+                lw=1.2,
+                label=f"{name}: level, nominal CG (band: every state)",
+            )
             worst = curves[peak.state][1 - which]
-            ax.plot(xs, worst(xs) / scale, color=color, lw=0.8, ls="--",
-                    label=f"{name}: state of its peak |{'M' if which == 0 else 'Q'}|")
+            ax.plot(
+                xs,
+                worst(xs) / scale,
+                color=color,
+                lw=0.8,
+                ls="--",
+                label=f"{name}: state of its peak |{'M' if which == 0 else 'Q'}|",
+            )
             sides = worst(np.array([peak.x - 1e-9, peak.x + 1e-9]))  # a jump at a lug: either side
             signed = float(sides[np.argmax(np.abs(sides))])
-            ax.plot([peak.x], [np.copysign(peak.value, signed if signed != 0 else 1.0) / scale],
-                    "o", color=color, ms=4,
-                    label=f"peak {peak.value:.0f} {'t m' if which == 0 else 't'} at x = {peak.x:.1f} m "
-                          f"({100 * peak.ratio:.0f} % of allowable)"
-                    if envelopes[which] is not None else
-                    f"peak {peak.value:.0f} {'t m' if which == 0 else 't'} at x = {peak.x:.1f} m")
+            ax.plot(
+                [peak.x],
+                [np.copysign(peak.value, signed if signed != 0 else 1.0) / scale],
+                "o",
+                color=color,
+                ms=4,
+                label=f"peak {peak.value:.0f} {'t m' if which == 0 else 't'} at x = {peak.x:.1f} m "
+                f"({100 * peak.ratio:.0f} % of allowable)"
+                if envelopes[which] is not None
+                else f"peak {peak.value:.0f} {'t m' if which == 0 else 't'} at x = {peak.x:.1f} m",
+            )
     for ax, which, scale, unit in ((moment_ax, 0, 1e3, "1000 t m"), (shear_ax, 1, 1.0, "t")):
         envelope = envelopes[which]
         if envelope is not None:
             ex, ev = np.array(envelope).T
             limit = np.interp(xs, ex, ev) / scale
-            ax.fill_between(xs, -limit, limit, color="tab:green", alpha=0.10, lw=0,
-                            label="allowable (inside the band)")
+            ax.fill_between(
+                xs, -limit, limit, color="tab:green", alpha=0.10, lw=0, label="allowable (inside the band)"
+            )
             ax.plot(xs, limit, color="tab:green", lw=0.7)
             ax.plot(xs, -limit, color="tab:green", lw=0.7)
         ax.axhline(0.0, color="k", lw=0.5)
-        ax.set_ylabel(("bending moment M" if which == 0 else "shear force Q") + f" [{unit}]",
-                      fontsize=FONT_PT)
+        ax.set_ylabel(
+            ("bending moment M" if which == 0 else "shear force Q") + f" [{unit}]", fontsize=FONT_PT
+        )
         ax.grid(True, lw=0.3)
         ax.tick_params(labelsize=FONT_PT)
-        ax.legend(fontsize=FONT_PT - 1.5, loc="upper center", bbox_to_anchor=(0.5, -0.08 if which
-                                                                                == 1 else -0.12),
-                  ncols=2, frameon=False)
+        ax.legend(
+            fontsize=FONT_PT - 1.5,
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.08 if which == 1 else -0.12),
+            ncols=2,
+            frameon=False,
+        )
     # lifting points of the plan along the bottom axis
     for _, s, color in plans:
         for x in p.points[list(s.indices), 0]:
             moment_ax.axvline(x, color=color, lw=0.4, alpha=0.5, ymax=0.04 if color == "tab:blue" else 0.08)
     moment_ax.set_xlabel("body x [m] (forward); ticks at the bottom: lifting points", fontsize=FONT_PT)
-    fig.suptitle("Hull girder: shear force and bending moment of the plan (M > 0 sagging)",
-                 fontsize=FONT_PT + 1)
+    fig.suptitle(
+        "Hull girder: shear force and bending moment of the plan (M > 0 sagging)", fontsize=FONT_PT + 1
+    )
     return fig
 
 
@@ -200,16 +228,24 @@ def forces_figure(plan):
     wc = np.array(p.body.weight_curve)
     station = np.diff(np.unique(np.round(p.points[:, 0], 6))).min() if len(p.points) > 1 else 1.0
     width = 0.2 * station
-    for k, (name, s, color) in enumerate((("strength-optimal", plan.chosen, "tab:blue"),
-                                          ("spread-optimal", plan.spread_plan, "tab:orange"))):
+    for k, (name, s, color) in enumerate(
+        (("strength-optimal", plan.chosen, "tab:blue"), ("spread-optimal", plan.spread_plan, "tab:orange"))
+    ):
         pts = p.points[list(s.indices)]
         side = np.where(pts[:, 1] > 0, 1.0, -1.0) if np.ptp(pts[:, 1]) > 0 else np.zeros(len(pts))
         x = pts[:, 0] + (2 * k - 1.5 + 0.5 * (side + 1)) * width
-        ax.bar(x, s.preload, width=width, color=color, alpha=0.85 if k == 0 else 0.6,
-               label=f"{name} ({len(pts)} points)")
+        ax.bar(
+            x,
+            s.preload,
+            width=width,
+            color=color,
+            alpha=0.85 if k == 0 else 0.6,
+            label=f"{name} ({len(pts)} points)",
+        )
     ax.set_ylabel("force per lifting point [t]", fontsize=FONT_PT)
-    ax.set_xlabel("body x [m] (forward); at each station the left bar of a pair is starboard",
-                  fontsize=FONT_PT)
+    ax.set_xlabel(
+        "body x [m] (forward); at each station the left bar of a pair is starboard", fontsize=FONT_PT
+    )
     weight = ax.twinx()
     weight.fill_between(wc[:, 0], wc[:, 1], color="0.5", alpha=0.15, lw=0)
     weight.set_ylabel("weight per length [t/m] (grey)", fontsize=FONT_PT)
@@ -235,8 +271,11 @@ def _print_width(fig):
     """
     from liftplan.planner.output.report_page import FONT_PT, figure_size
 
-    rows = sum(math.ceil(len(legend.get_texts()) / _columns(len(legend.get_texts())))
-               for legend in (ax.get_legend() for ax in fig.axes) if legend is not None)
+    rows = sum(
+        math.ceil(len(legend.get_texts()) / _columns(len(legend.get_texts())))
+        for legend in (ax.get_legend() for ax in fig.axes)
+        if legend is not None
+    )
     fig.set_size_inches(*figure_size(160.0 + 3.2 * rows))
     if fig._suptitle is not None:
         fig._suptitle.set_fontsize(FONT_PT + 1)
@@ -250,8 +289,15 @@ def _print_width(fig):
             handles, labels = legend.legend_handles, [t.get_text() for t in legend.get_texts()]
             legend.remove()
             # a station key (stems numbered) takes four columns
-            ax.legend(handles, labels, fontsize=FONT_PT - 1, loc="upper center", ncols=_columns(len(labels)),
-                      bbox_to_anchor=(0.5, -0.2 if ax is bottom else -0.06), frameon=False)
+            ax.legend(
+                handles,
+                labels,
+                fontsize=FONT_PT - 1,
+                loc="upper center",
+                ncols=_columns(len(labels)),
+                bbox_to_anchor=(0.5, -0.2 if ax is bottom else -0.06),
+                frameon=False,
+            )
     return fig
 
 
@@ -290,13 +336,18 @@ def scene_toml(plan):
     force = plan.control == "force"
     lines = [
         f"# Written by liftplan plan: the strength-optimal lugs of {json.dumps(p.name)}.",
-        "# `liftplan solve` on this file gives the plan's level " + (
-            "forces (rigid model, all but three held)." if force else
-            "tensions (elastic model, the planned boom heights)."),
+        "# `liftplan solve` on this file gives the plan's level "
+        + (
+            "forces (rigid model, all but three held)."
+            if force
+            else "tensions (elastic model, the planned boom heights)."
+        ),
         f"# Coordinates in the planning file's frame: {FRAMES[p.frame]}.",
         f"name = {json.dumps((p.name or 'plan') + ': strength-optimal lugs')}",
         f"frame = {json.dumps(p.frame)}",
-        "", "[body]", f"weight = {p.body.weight!r}",
+        "",
+        "[body]",
+        f"weight = {p.body.weight!r}",
         f"cog = {vec(plan.in_file_frame(p.body.cog))}",
         f"weight_curve = {pairs(p.body.weight_curve)}",
     ]
@@ -308,22 +359,28 @@ def scene_toml(plan):
                 lines.append(f"{key} = {pairs(curve)}")
     for name, at in zip(c.names, points):
         lines += ["", "[[lugs]]", f"name = {json.dumps(name)}", f"at = {vec(plan.in_file_frame(at))}"]
-    heights = c.boom_heights if c.boom_heights is not None else (
-        p.lift_height + points[:, 2] + crane.rope_length)
+    heights = (
+        c.boom_heights if c.boom_heights is not None else (p.lift_height + points[:, 2] + crane.rope_length)
+    )
     for k, name in enumerate(c.names):
-        lines += ["", f"[[cranes]]                   # planned lug {plan.labels[k]}",
-                  f"lug = {json.dumps(name)}", f"boom_height = {float(heights[k])!r}",
-                  f"rope_length = {crane.rope_length!r}", f"EA = {crane.EA!r}",
-                  f"swl = {float(swl[k])!r}"]
-    lines += ["", "[attitude]", f"lift_height = {p.lift_height!r}", f"yaw = {p.yaw!r}", "",
-              "[analysis]"]
+        lines += [
+            "",
+            f"[[cranes]]                   # planned lug {plan.labels[k]}",
+            f"lug = {json.dumps(name)}",
+            f"boom_height = {float(heights[k])!r}",
+            f"rope_length = {crane.rope_length!r}",
+            f"EA = {crane.EA!r}",
+            f"swl = {float(swl[k])!r}",
+        ]
+    lines += ["", "[attitude]", f"lift_height = {p.lift_height!r}", f"yaw = {p.yaw!r}", "", "[analysis]"]
     if force:
         free = _free_three(points)
         held = [k for k in range(len(c.names)) if k not in free]
         lines.append('model = "rigid"')
         lines.append("redundant = [")
-        lines += [f"    {{ lug = {json.dumps(c.names[k])}, tension = {float(c.preload[k])!r} }},"
-                  for k in held]
+        lines += [
+            f"    {{ lug = {json.dumps(c.names[k])}, tension = {float(c.preload[k])!r} }}," for k in held
+        ]
         lines.append("]")
     else:
         lines.append('model = "elastic"')
@@ -367,12 +424,14 @@ def _comparison(plan):
     value_o = weights[0] * o.bending.ratio + weights[1] * o.shear.ratio
     row("objective value (the plan's objective)", c.value, value_o, ".4f", "-")
     rows.append(("lifting points", " ".join(c.names), " ".join(o.names), "", "-"))
-    text = (f"<p>The strength-optimal plan takes the peak |M| to {c.bending.value:.0f} t m against "
-            f"{o.bending.value:.0f} t m ({_percent(c.bending.value, o.bending.value)}) and the peak "
-            f"|Q| to {c.shear.value:.0f} t against {o.shear.value:.0f} t "
-            f"({_percent(c.shear.value, o.shear.value)}); it costs a worst tension spread of "
-            f"{c.worst_spread:.1f} t against {o.worst_spread:.1f} t and a highest tension of "
-            f"{c.tension_range[1]:.1f} t against {o.tension_range[1]:.1f} t.</p>")
+    text = (
+        f"<p>The strength-optimal plan takes the peak |M| to {c.bending.value:.0f} t m against "
+        f"{o.bending.value:.0f} t m ({_percent(c.bending.value, o.bending.value)}) and the peak "
+        f"|Q| to {c.shear.value:.0f} t against {o.shear.value:.0f} t "
+        f"({_percent(c.shear.value, o.shear.value)}); it costs a worst tension spread of "
+        f"{c.worst_spread:.1f} t against {o.worst_spread:.1f} t and a highest tension of "
+        f"{c.tension_range[1]:.1f} t against {o.tension_range[1]:.1f} t.</p>"
+    )
     return rows, text
 
 
@@ -390,9 +449,12 @@ def _allowables(problem):
         for curve in (s.bending_moment, s.shear_force):
             cell.append("-" if curve is None else f"{np.interp(x, *np.array(curve).T):.0f}")
         rows.append((f"{x:.2f}", *cell))
-    return _table(["x [m]", "allowable |M| [t m]", "allowable |Q| [t]"], rows,
-                  "Allowable bending moment and shear force (linear between the stations, the end "
-                  "values held beyond)", full=False)
+    return _table(
+        ["x [m]", "allowable |M| [t m]", "allowable |Q| [t]"],
+        rows,
+        "Allowable bending moment and shear force (linear between the stations, the end values held beyond)",
+        full=False,
+    )
 
 
 def render_html(plan, today=None, solved=None):
@@ -414,160 +476,255 @@ def render_html(plan, today=None, solved=None):
     unit = "force" if force else "tension"
     heights = plan.boom_heights
     lugs = _table(
-        ["lug", "candidate (bulkhead)", "position x, y, z [m]", f"level {unit} [t]",
-         *([] if force else ["boom height H [m]"]), "SWL [t]", "level / SWL [%]"],
-        [(label, f"{n} ({candidates[n].bulkhead})" if candidates[n].bulkhead else n,
-          _xyz(plan, candidates[n].at), f"{c.preload[k]:.2f}",
-          *([] if force else [f"{heights[label]:.3f}"]), f"{swl[k]:.1f}",
-          f"{100 * c.preload[k] / swl[k]:.1f}")
-         for k, (label, n) in enumerate(plan.lugs.items())],
-        "Recommended lifting points and " + ("forces (each jack holds its force)" if force
-                                             else "tensions, held by the boom heights"),
+        [
+            "lug",
+            "candidate (bulkhead)",
+            "position x, y, z [m]",
+            f"level {unit} [t]",
+            *([] if force else ["boom height H [m]"]),
+            "SWL [t]",
+            "level / SWL [%]",
+        ],
+        [
+            (
+                label,
+                f"{n} ({candidates[n].bulkhead})" if candidates[n].bulkhead else n,
+                _xyz(plan, candidates[n].at),
+                f"{c.preload[k]:.2f}",
+                *([] if force else [f"{heights[label]:.3f}"]),
+                f"{swl[k]:.1f}",
+                f"{100 * c.preload[k] / swl[k]:.1f}",
+            )
+            for k, (label, n) in enumerate(plan.lugs.items())
+        ],
+        "Recommended lifting points and "
+        + ("forces (each jack holds its force)" if force else "tensions, held by the boom heights"),
         text_columns=(1,),
     )
     heel_m, cog_m = _state_text(plan, c, c.bending)
     heel_q, cog_q = _state_text(plan, c, c.shear)
     summary = _table(
         ["quantity", "value", "unit"],
-        [("peak |M| over the states, exactly along the body", f"{c.bending.value:.1f}", "t m"),
-         ("... at x", f"{c.bending.x:.2f}", "m"),
-         ("... its ratio to the allowable there", f"{c.bending.ratio:.3f}", "-"),
-         ("... in the state heel, trim", heel_m, "deg"),
-         ("... with the CG offset (x, y, z)", cog_m, "m"),
-         ("peak |Q| over the states", f"{c.shear.value:.1f}", "t"),
-         ("... at x", f"{c.shear.x:.2f}", "m"),
-         ("... its ratio to the allowable there", f"{c.shear.ratio:.3f}", "-"),
-         ("... in the state heel, trim", heel_q, "deg"),
-         ("... with the CG offset (x, y, z)", cog_q, "m"),
-         (f"{unit} spread, level (max - min)", f"{c.spread:.2f}", "t"),
-         (f"worst {unit} spread over the states", f"{c.worst_spread:.2f}", "t"),
-         (f"{unit} range over the states", f"{c.tension_range[0]:.2f} to {c.tension_range[1]:.2f}", "t")],
+        [
+            ("peak |M| over the states, exactly along the body", f"{c.bending.value:.1f}", "t m"),
+            ("... at x", f"{c.bending.x:.2f}", "m"),
+            ("... its ratio to the allowable there", f"{c.bending.ratio:.3f}", "-"),
+            ("... in the state heel, trim", heel_m, "deg"),
+            ("... with the CG offset (x, y, z)", cog_m, "m"),
+            ("peak |Q| over the states", f"{c.shear.value:.1f}", "t"),
+            ("... at x", f"{c.shear.x:.2f}", "m"),
+            ("... its ratio to the allowable there", f"{c.shear.ratio:.3f}", "-"),
+            ("... in the state heel, trim", heel_q, "deg"),
+            ("... with the CG offset (x, y, z)", cog_q, "m"),
+            (f"{unit} spread, level (max - min)", f"{c.spread:.2f}", "t"),
+            (f"worst {unit} spread over the states", f"{c.worst_spread:.2f}", "t"),
+            (f"{unit} range over the states", f"{c.tension_range[0]:.2f} to {c.tension_range[1]:.2f}", "t"),
+        ],
         "Plan summary" + ("" if force else " (hoist control: the peaks include the hook errors)"),
-        full=False, text_columns=(0,),
+        full=False,
+        text_columns=(0,),
     )
     weights = objective_weights(p)
     envelope = p.cog_envelope
     inputs = _table(
         ["quantity", "value", "unit"],
-        [("weight W", f"{p.body.weight:.2f}", "t"),
-         ("CG (nominal)", _xyz(plan, p.body.cog), "m"),
-         ("CG envelope half-widths (x, y, z)",
-          ", ".join(f"{abs(v):.2f}" for v in plan.in_file_frame(envelope.half_widths)), "m"),
-         ("CG envelope shape", envelope.shape, "-"),
-         ("the plan keeps small", f"{p.objective}: {WHAT[p.objective]}", "-"),
-         *([("weights w_M, w_Q", f"{weights[0]:g}, {weights[1]:g}", "-")]
-           if p.objective == "strength" else []),
-         ("control", CONTROL[plan.control], "-"),
-         ("lifting points", p.cranes, "-"),
-         ("candidate points", len(p.candidates), "-"),
-         ("heel tolerance" + (" (a limit on the equilibrium tilt)" if force else ""),
-          f"+-{p.heel_tolerance:g}", "deg"),
-         ("trim tolerance" + (" (a limit on the equilibrium tilt)" if force else ""),
-          f"+-{p.trim_tolerance:g}", "deg"),
-         ("min tension", f"{p.min_tension:g}", "t"),
-         *([] if force else [("hook-height tolerance", f"+-{p.hook_tolerance:g}", "m"),
-                             ("rope EA, length l0", f"{p.fleet[0].EA:.0f} t, {p.fleet[0].rope_length:g} m",
-                              "-"),
-                             ("boom height range", f"{p.fleet[0].boom_min:g} to {p.fleet[0].boom_max:g}",
-                              "m")]),
-         ("lift height (body origin above datum)", f"{p.lift_height:g}", "m")],
-        "Basis of the plan", full=False, text_columns=(0, 1),
+        [
+            ("weight W", f"{p.body.weight:.2f}", "t"),
+            ("CG (nominal)", _xyz(plan, p.body.cog), "m"),
+            (
+                "CG envelope half-widths (x, y, z)",
+                ", ".join(f"{abs(v):.2f}" for v in plan.in_file_frame(envelope.half_widths)),
+                "m",
+            ),
+            ("CG envelope shape", envelope.shape, "-"),
+            ("the plan keeps small", f"{p.objective}: {WHAT[p.objective]}", "-"),
+            *(
+                [("weights w_M, w_Q", f"{weights[0]:g}, {weights[1]:g}", "-")]
+                if p.objective == "strength"
+                else []
+            ),
+            ("control", CONTROL[plan.control], "-"),
+            ("lifting points", p.cranes, "-"),
+            ("candidate points", len(p.candidates), "-"),
+            (
+                "heel tolerance" + (" (a limit on the equilibrium tilt)" if force else ""),
+                f"+-{p.heel_tolerance:g}",
+                "deg",
+            ),
+            (
+                "trim tolerance" + (" (a limit on the equilibrium tilt)" if force else ""),
+                f"+-{p.trim_tolerance:g}",
+                "deg",
+            ),
+            ("min tension", f"{p.min_tension:g}", "t"),
+            *(
+                []
+                if force
+                else [
+                    ("hook-height tolerance", f"+-{p.hook_tolerance:g}", "m"),
+                    ("rope EA, length l0", f"{p.fleet[0].EA:.0f} t, {p.fleet[0].rope_length:g} m", "-"),
+                    ("boom height range", f"{p.fleet[0].boom_min:g} to {p.fleet[0].boom_max:g}", "m"),
+                ]
+            ),
+            ("lift height (body origin above datum)", f"{p.lift_height:g}", "m"),
+        ],
+        "Basis of the plan",
+        full=False,
+        text_columns=(0, 1),
     )
     rows, cost = _comparison(plan)
-    comparison = _table(["quantity", "strength-optimal (the plan)", "spread-optimal",
-                         "ratio strength / spread", "unit"], rows,
-                        "The strength-optimal plan beside the spread-optimal plan (same limits, "
-                        "same states)", text_columns=(0,))
+    comparison = _table(
+        ["quantity", "strength-optimal (the plan)", "spread-optimal", "ratio strength / spread", "unit"],
+        rows,
+        "The strength-optimal plan beside the spread-optimal plan (same limits, same states)",
+        text_columns=(0,),
+    )
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
-        [(k.name, k.subject, f"{k.value:.4g}", f"{k.limit:.4g}", k.unit, "ok" if k.ok else "FAIL", k.note)
-         for k in plan.checks],
-        "Every check of the plan", text_columns=(0, 1, 6),
+        [
+            (k.name, k.subject, f"{k.value:.4g}", f"{k.limit:.4g}", k.unit, "ok" if k.ok else "FAIL", k.note)
+            for k in plan.checks
+        ],
+        "Every check of the plan",
+        text_columns=(0, 1, 6),
     )
     scene, eq, girder = solved if solved is not None else solved_scene(plan)
     from liftplan.planner.output.strength_figure import strength_figure
 
     level = _print_width(strength_figure(scene, eq, girder))
     figs = [
-        report_page.figure(forces_figure(plan), "lifting forces along the body",
-                           "The lifting forces along the body: the strength-optimal plan (blue) "
-                           "and the spread-optimal plan (orange), over the weight per length."),
-        report_page.figure(girder_figure(plan), "shear force and bending moment",
-                           "Shear force (top) and bending moment (bottom) along the body: solid, "
-                           "level with the nominal CG; band, the range over every state the plan "
-                           "was checked in; dashed, the state of the peak; the allowable "
-                           "envelope shaded green."
-                           + ("" if force else " Hook errors are not drawn (they are in the "
-                                               "peaks' values).")),
-        report_page.figure(level, "the plan solved",
-                           "The plan's scene file (plan_scene.toml) solved by liftplan solve: "
-                           "loads, shear force and bending moment at level with the nominal CG."),
+        report_page.figure(
+            forces_figure(plan),
+            "lifting forces along the body",
+            "The lifting forces along the body: the strength-optimal plan (blue) "
+            "and the spread-optimal plan (orange), over the weight per length.",
+        ),
+        report_page.figure(
+            girder_figure(plan),
+            "shear force and bending moment",
+            "Shear force (top) and bending moment (bottom) along the body: solid, "
+            "level with the nominal CG; band, the range over every state the plan "
+            "was checked in; dashed, the state of the peak; the allowable "
+            "envelope shaded green."
+            + ("" if force else " Hook errors are not drawn (they are in the peaks' values)."),
+        ),
+        report_page.figure(
+            level,
+            "the plan solved",
+            "The plan's scene file (plan_scene.toml) solved by liftplan solve: "
+            "loads, shear force and bending moment at level with the nominal CG.",
+        ),
     ]
     info = p.report
     assumptions = ASSUMPTIONS[plan.control] + ASSUMPTIONS["both"]
-    body = "\n".join([
-        report_page.title_block(info, name, f"Lift plan for the hull girder: {p.cranes} of "
-                                f"{len(p.candidates)} lifting points chosen by liftplan, "
-                                f"{plan.control} control", today),
-        f"<p>All coordinates are in the planning file's frame: {html.escape(FRAMES[p.frame])}. "
-        "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
-        "lengths in m, moments in t m.</p>",
-        report_page.status(plan.checks),
-        "<h2>1 Recommendation</h2>", lugs, summary,
-        "<h2>2 Basis of the plan</h2>", inputs, _allowables(p),
-        "<h2>3 Strength-optimal against spread-optimal</h2>", cost, comparison,
-        "<h2>4 Checks to hand over</h2>", checks,
-        f"<p>The scene file plan_scene.toml solves (liftplan solve) to the level {unit}s above: "
-        f"peak |M| {girder.max_moment.value:.1f} t m at x = {girder.max_moment.x:.2f} m, peak |Q| "
-        f"{girder.max_shear.value:.1f} t at x = {girder.max_shear.x:.2f} m at level with the "
-        "nominal CG (the plan's peaks are the worst over every state).</p>",
-        "<h2>5 Figures</h2>", *figs,
-        "<h2>6 Assumptions</h2>",
-        # one block: never a bullet or two alone on a page
-        '<ul style="break-inside: avoid">' + "".join(f"<li>{html.escape(a)}</li>" for a in assumptions)
-        + "</ul>",
-        *_appendix(plan),
-    ])
-    return report_page.document(name, body, report_page.running_header(info, name),
-                                report_page.running_footer(info))
+    body = "\n".join(
+        [
+            report_page.title_block(
+                info,
+                name,
+                f"Lift plan for the hull girder: {p.cranes} of "
+                f"{len(p.candidates)} lifting points chosen by liftplan, "
+                f"{plan.control} control",
+                today,
+            ),
+            f"<p>All coordinates are in the planning file's frame: {html.escape(FRAMES[p.frame])}. "
+            "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
+            "lengths in m, moments in t m.</p>",
+            report_page.status(plan.checks),
+            "<h2>1 Recommendation</h2>",
+            lugs,
+            summary,
+            "<h2>2 Basis of the plan</h2>",
+            inputs,
+            _allowables(p),
+            "<h2>3 Strength-optimal against spread-optimal</h2>",
+            cost,
+            comparison,
+            "<h2>4 Checks to hand over</h2>",
+            checks,
+            f"<p>The scene file plan_scene.toml solves (liftplan solve) to the level {unit}s above: "
+            f"peak |M| {girder.max_moment.value:.1f} t m at x = {girder.max_moment.x:.2f} m, peak |Q| "
+            f"{girder.max_shear.value:.1f} t at x = {girder.max_shear.x:.2f} m at level with the "
+            "nominal CG (the plan's peaks are the worst over every state).</p>",
+            "<h2>5 Figures</h2>",
+            *figs,
+            "<h2>6 Assumptions</h2>",
+            # one block: never a bullet or two alone on a page
+            '<ul style="break-inside: avoid">'
+            + "".join(f"<li>{html.escape(a)}</li>" for a in assumptions)
+            + "</ul>",
+            *_appendix(plan),
+        ]
+    )
+    return report_page.document(
+        name, body, report_page.running_header(info, name), report_page.running_footer(info)
+    )
 
 
 def _appendix(plan):
     """The optimality of both searches and where the peaks occur."""
     rows = []
-    for label, stats, unit in (("strength-optimal", plan.stats, "-"),
-                               ("spread-optimal", plan.spread_stats, "t")):
+    for label, stats, unit in (
+        ("strength-optimal", plan.stats, "-"),
+        ("spread-optimal", plan.spread_stats, "t"),
+    ):
         fmt = "{:.6g}"
-        rows += [(f"{label}: best value found", fmt.format(stats.best), unit),
-                 (f"{label}: lower bound (no lug set does better)", fmt.format(stats.lower_bound), unit),
-                 (f"{label}: gap", fmt.format(stats.gap), unit),
-                 (f"{label}: relative gap", f"{100 * stats.relative_gap:.4f}", "%"),
-                 (f"{label}: why the search ended", stats.stopped, "-"),
-                 (f"{label}: bound certified", "yes" if stats.certified else
-                  "no (candidates at different heights: attitudes by fixed point)", "-"),
-                 (f"{label}: method", stats.method, "-"),
-                 (f"{label}: MIP solves, sets evaluated", f"{stats.rounds}, {stats.evaluated}", "-"),
-                 (f"{label}: search time", f"{stats.seconds:.2f}", "s")]
-    optimality = _table(["quantity", "value", "unit"], rows,
-                        "Optimality: how far each plan can be from the best of its objective",
-                        full=False, text_columns=(0, 1), keep=False)
+        rows += [
+            (f"{label}: best value found", fmt.format(stats.best), unit),
+            (f"{label}: lower bound (no lug set does better)", fmt.format(stats.lower_bound), unit),
+            (f"{label}: gap", fmt.format(stats.gap), unit),
+            (f"{label}: relative gap", f"{100 * stats.relative_gap:.4f}", "%"),
+            (f"{label}: why the search ended", stats.stopped, "-"),
+            (
+                f"{label}: bound certified",
+                "yes"
+                if stats.certified
+                else "no (candidates at different heights: attitudes by fixed point)",
+                "-",
+            ),
+            (f"{label}: method", stats.method, "-"),
+            (f"{label}: MIP solves, sets evaluated", f"{stats.rounds}, {stats.evaluated}", "-"),
+            (f"{label}: search time", f"{stats.seconds:.2f}", "s"),
+        ]
+    optimality = _table(
+        ["quantity", "value", "unit"],
+        rows,
+        "Optimality: how far each plan can be from the best of its objective",
+        full=False,
+        text_columns=(0, 1),
+        keep=False,
+    )
     c = plan.chosen
-    states = _table(
-        ["state", "heel [deg]", "trim [deg]", "CG offset x, y, z [m]"],
-        [(k + 1, f"{st['heel']:+.3f}", f"{st['trim']:+.3f}",
-          ", ".join(f"{v:+.2f}" for v in plan.in_file_frame(st["cog_offset"])))
-         for k, st in enumerate(c.states)],
-        "The states the plan was checked in" + (" (the CG envelope's vertices at their "
-                                                "equilibrium tilts)" if plan.control == "force"
-                                                else ""),
-        full=False, keep=False,
-    ) if len(c.states) <= 64 else (
-        f"<p>The plan was checked in {len(c.states)} states (a 21 x 21 heel-trim grid over the "
-        "tolerance box for each CG-envelope vertex).</p>")
-    return ['<h2 class="appendix">Engineering appendix</h2>',
-            "<p>For the engineer checking the plan: how close each plan is proved to be to the best "
-            "of its objective (the lower bound and the gap), and the states it was checked in.</p>",
-            optimality, states]
+    states = (
+        _table(
+            ["state", "heel [deg]", "trim [deg]", "CG offset x, y, z [m]"],
+            [
+                (
+                    k + 1,
+                    f"{st['heel']:+.3f}",
+                    f"{st['trim']:+.3f}",
+                    ", ".join(f"{v:+.2f}" for v in plan.in_file_frame(st["cog_offset"])),
+                )
+                for k, st in enumerate(c.states)
+            ],
+            "The states the plan was checked in"
+            + (" (the CG envelope's vertices at their equilibrium tilts)" if plan.control == "force" else ""),
+            full=False,
+            keep=False,
+        )
+        if len(c.states) <= 64
+        else (
+            f"<p>The plan was checked in {len(c.states)} states (a 21 x 21 heel-trim grid over the "
+            "tolerance box for each CG-envelope vertex).</p>"
+        )
+    )
+    return [
+        '<h2 class="appendix">Engineering appendix</h2>',
+        "<p>For the engineer checking the plan: how close each plan is proved to be to the best "
+        "of its objective (the lower bound and the gap), and the states it was checked in.</p>",
+        optimality,
+        states,
+    ]
 
 
 def write_report(plan, directory):

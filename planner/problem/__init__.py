@@ -7,9 +7,18 @@ rope to; :mod:`.file` reads planning files (TOML; every key in ``docs/scene-file
 :mod:`.report_info` the report's title block; :mod:`.plausibility` the unit-slip warnings.
 """
 
-from .definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
-from .file import load_problem, loads_problem, problem_from_dict
-from .fleet import FleetCrane, SlingSpec
+from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
+from liftplan.planner.problem.file import load_problem, loads_problem, problem_from_dict
+from liftplan.planner.problem.fleet import FleetCrane, SlingSpec
 
-__all__ = ["Candidate", "CogEnvelope", "CraneSpec", "FleetCrane", "PlanProblem", "SlingSpec",
-           "load_problem", "loads_problem", "problem_from_dict"]
+__all__ = [
+    "Candidate",
+    "CogEnvelope",
+    "CraneSpec",
+    "FleetCrane",
+    "PlanProblem",
+    "SlingSpec",
+    "load_problem",
+    "loads_problem",
+    "problem_from_dict",
+]

@@ -28,8 +28,16 @@ from liftplan.planner.problem.fleet import (
 from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
-__all__ = ["CODE_MARGIN", "CODE_MARGIN_MANY", "DEFAULT_SKEW_FACTOR", "Candidate", "CogEnvelope",
-           "CraneSpec", "PlanProblem", "code_margin"]
+__all__ = [
+    "CODE_MARGIN",
+    "CODE_MARGIN_MANY",
+    "DEFAULT_SKEW_FACTOR",
+    "Candidate",
+    "CogEnvelope",
+    "CraneSpec",
+    "PlanProblem",
+    "code_margin",
+]
 
 MAX_CRANES = 64
 #: The hull girder's objectives (planner/strength_plan.py): worst |M| / allowable, |Q| /
@@ -281,8 +289,9 @@ class PlanProblem:
         if not isinstance(self.cranes, int) or isinstance(self.cranes, bool):
             raise InvalidScene(f"plan.cranes = {self.cranes!r}: expected an integer 3 to {MAX_CRANES}")
         if not 2 <= self.cranes <= MAX_CRANES:
-            raise InvalidScene(f"plan.cranes = {self.cranes}: expected 3 to {MAX_CRANES} (or 2 "
-                               "cranes with slings)")
+            raise InvalidScene(
+                f"plan.cranes = {self.cranes}: expected 3 to {MAX_CRANES} (or 2 cranes with slings)"
+            )
         if len(candidates) < self.cranes:
             raise InvalidScene(
                 f"candidates: {len(candidates)} given for plan.cranes = {self.cranes}: "
@@ -294,8 +303,8 @@ class PlanProblem:
         if sets > MAX_SETS and self.search == "exact":
             raise InvalidScene(
                 f"candidates: {len(candidates)} choose {self.cranes} = {sets} lug sets, more than "
-                f"{MAX_SETS} for search = \"exact\"; expected fewer candidates (group them by "
-                "bulkhead) or cranes, or search = \"local\""
+                f'{MAX_SETS} for search = "exact"; expected fewer candidates (group them by '
+                'bulkhead) or cranes, or search = "local"'
             )
         for name in ("heel_tolerance", "trim_tolerance"):
             value = finite(f"plan.tolerance.{name[:4]}", getattr(self, name))
@@ -319,12 +328,14 @@ class PlanProblem:
                 f"plan.min_tension = {self.min_tension:g} t: {self.cranes} ropes at that tension "
                 f"carry more than the weight {self.body.weight:g} t; expected a smaller value"
             )
-        _set(self, "outline", tuple((finite("plan.outline", x), finite("plan.outline", y))
-                                    for x, y, *_ in self.outline))
+        _set(
+            self,
+            "outline",
+            tuple((finite("plan.outline", x), finite("plan.outline", y)) for x, y, *_ in self.outline),
+        )
         value = finite("plan.gap", self.gap)
         if not 0.0 <= value < 1.0:
-            raise InvalidScene(f"plan.gap = {value!r}: expected a relative gap 0 <= gap < 1 "
-                               "(0.01 = 1 %)")
+            raise InvalidScene(f"plan.gap = {value!r}: expected a relative gap 0 <= gap < 1 (0.01 = 1 %)")
         _set(self, "gap", value)
         if self.time_limit is not None:
             value = finite("plan.time_limit", self.time_limit)
@@ -337,39 +348,55 @@ class PlanProblem:
         if len(self.hinges):
             rows = np.asarray(self.hinges, dtype=float)
             if rows.shape != (len(candidates), 8) or not np.all(np.isfinite(rows)):
-                raise InvalidScene(f"hinges: shape {rows.shape}: expected one row of 8 finite values "
-                                   f"(A, B, c, w) per candidate, ({len(candidates)}, 8)")
+                raise InvalidScene(
+                    f"hinges: shape {rows.shape}: expected one row of 8 finite values "
+                    f"(A, B, c, w) per candidate, ({len(candidates)}, 8)"
+                )
             from liftplan.model.statics import check_hinges
 
             # the sling planner's rule for its own pairs, for rows given from Python too
-            check_hinges(rows, self.heel_tolerance, self.trim_tolerance, self.yaw, names,
-                         zup_to_choi if self.frame == "choi" else tuple)
+            check_hinges(
+                rows,
+                self.heel_tolerance,
+                self.trim_tolerance,
+                self.yaw,
+                names,
+                zup_to_choi if self.frame == "choi" else tuple,
+            )
             _set(self, "hinges", tuple(tuple(float(v) for v in r) for r in rows))
 
     def _check_fleet(self):
         fleet = tuple(self.fleet)
         if all(c.from_defaults for c in fleet):  # none given, or made from [crane] before
             if self.crane is None:
-                raise InvalidScene("crane: missing, expected [crane] defaults or one [[cranes]] "
-                                   "table per crane")
+                raise InvalidScene(
+                    "crane: missing, expected [crane] defaults or one [[cranes]] table per crane"
+                )
             fleet = equal_fleet(self.crane, self.cranes)
         _set(self, "fleet", fleet)
         if len(fleet) != self.cranes:
-            raise InvalidScene(f"plan.cranes = {self.cranes}: {len(fleet)} [[cranes]] tables "
-                               "given; expected one table per crane")
+            raise InvalidScene(
+                f"plan.cranes = {self.cranes}: {len(fleet)} [[cranes]] tables "
+                "given; expected one table per crane"
+            )
         slings = [c.sling is not None for c in fleet]
         if self.cranes == 2 and not all(slings):
-            raise InvalidScene("plan.cranes = 2: expected a sling on both cranes (two cranes on "
-                               "single ropes cannot hold a body level; give each [[cranes]] a "
-                               "sling = { legs, length, diameter or EA }) or 3 cranes or more")
+            raise InvalidScene(
+                "plan.cranes = 2: expected a sling on both cranes (two cranes on "
+                "single ropes cannot hold a body level; give each [[cranes]] a "
+                "sling = { legs, length, diameter or EA }) or 3 cranes or more"
+            )
         if any(slings) and not all(slings):
             bare = next(c.name for c in fleet if c.sling is None)
-            raise InvalidScene(f"cranes[{bare}].sling: missing; expected a sling on every crane or "
-                               "on none (the planner places any crane on any lift point)")
+            raise InvalidScene(
+                f"cranes[{bare}].sling: missing; expected a sling on every crane or "
+                "on none (the planner places any crane on any lift point)"
+            )
         value = finite("rigging.min_sling_angle", self.min_sling_angle)
         if not 0.0 < value <= 90.0:
-            raise InvalidScene(f"rigging.min_sling_angle = {value!r}: expected 0 to 90 deg "
-                               "from the horizontal")
+            raise InvalidScene(
+                f"rigging.min_sling_angle = {value!r}: expected 0 to 90 deg from the horizontal"
+            )
         _set(self, "min_sling_angle", value)
         names = [c.name for c in fleet]
         for name in names:
@@ -379,8 +406,10 @@ class PlanProblem:
             equal = len(crane_classes(fleet)) == 1
             _set(self, "objective", "spread" if equal else "utilisation")
         if self.objective not in OBJECTIVES:
-            raise InvalidScene(f"plan.objective = {self.objective!r}: expected spread, utilisation, "
-                               "reserve, bending, shear or strength")
+            raise InvalidScene(
+                f"plan.objective = {self.objective!r}: expected spread, utilisation, "
+                "reserve, bending, shear or strength"
+            )
         self._check_strength(fleet)
         self._check_breakout(fleet)
         if not isinstance(self.rules, Rules):
@@ -388,15 +417,17 @@ class PlanProblem:
         if isinstance(self.rules.rigging_weight, dict):
             unknown = sorted(set(self.rules.rigging_weight) - set(names))
             if unknown:
-                raise InvalidScene(f"rules.rigging_weight.{unknown[0]}: no such crane, expected one of "
-                                   f"{', '.join(names)}")
+                raise InvalidScene(
+                    f"rules.rigging_weight.{unknown[0]}: no such crane, expected one of {', '.join(names)}"
+                )
         radius, swl = self.reach
         for j, crane in enumerate(fleet):
             if np.all(np.isnan(swl[:, j])):
                 i = int(np.argmin(radius[:, j]))
                 raise InvalidScene(
                     f"cranes[{crane.name}]: reaches no candidate (chart reach {crane.reach:g} m; "
-                    f"nearest candidate {self.names[i]} at radius {radius[i, j]:.2f} m)")
+                    f"nearest candidate {self.names[i]} at radius {radius[i, j]:.2f} m)"
+                )
             reachable = int(np.sum(~np.isnan(swl[:, j])))
             if reachable < 1:
                 raise InvalidScene(f"cranes[{crane.name}]: reaches no candidate")
@@ -407,8 +438,10 @@ class PlanProblem:
             if value not in CONTROLS:
                 raise InvalidScene(f"cranes[{name}].control = {value!r}: expected hoist or force")
         if len(set(controls)) > 1:
-            raise InvalidScene("cranes.control: hoist and force mixed; expected the same control on "
-                               "every crane (a mixed lift is not planned)")
+            raise InvalidScene(
+                "cranes.control: hoist and force mixed; expected the same control on "
+                "every crane (a mixed lift is not planned)"
+            )
         if len(controls) != len(fleet) and len(set(controls)) == 1:
             controls = controls[:1] * len(fleet)  # one control for all: a re-made fleet keeps it
         if len(controls) != len(fleet):
@@ -418,37 +451,50 @@ class PlanProblem:
             raise InvalidScene(f"strength = {self.strength!r}: expected a Strength ([strength])")
         weights = self.strength_weights
         if weights is not None and self.objective != "strength":
-            raise InvalidScene(f"plan.strength_weights: given with plan.objective = {self.objective!r}; "
-                               "expected objective = \"strength\"")
+            raise InvalidScene(
+                f"plan.strength_weights: given with plan.objective = {self.objective!r}; "
+                'expected objective = "strength"'
+            )
         if self.objective not in STRENGTH_OBJECTIVES:
             if controls[0] == "force":
-                raise InvalidScene(f"cranes.control = \"force\" with plan.objective = {self.objective!r}; "
-                                   "expected bending, shear or strength (force control is planned for "
-                                   "the hull girder)")
+                raise InvalidScene(
+                    f'cranes.control = "force" with plan.objective = {self.objective!r}; '
+                    "expected bending, shear or strength (force control is planned for "
+                    "the hull girder)"
+                )
             return
         if self.objective == "strength":
             weights = (1.0, 1.0) if weights is None else tuple(weights)
             if len(weights) != 2:
                 raise InvalidScene(f"plan.strength_weights = {weights!r}: expected {{ bending, shear }}")
-            weights = tuple(finite(f"plan.strength_weights.{k}", w)
-                            for k, w in zip(("bending", "shear"), weights))
+            weights = tuple(
+                finite(f"plan.strength_weights.{k}", w) for k, w in zip(("bending", "shear"), weights)
+            )
             if min(weights) < 0.0 or max(weights) <= 0.0:
-                raise InvalidScene(f"plan.strength_weights = {{ bending = {weights[0]:g}, shear = "
-                                   f"{weights[1]:g} }}: expected weights >= 0, not both 0")
+                raise InvalidScene(
+                    f"plan.strength_weights = {{ bending = {weights[0]:g}, shear = "
+                    f"{weights[1]:g} }}: expected weights >= 0, not both 0"
+                )
             _set(self, "strength_weights", weights)
         need = {"bending": ("bending_moment",), "shear": ("shear_force",)}.get(self.objective)
         if need is None:
             need = tuple(k for k, w in zip(("bending_moment", "shear_force"), self.strength_weights) if w > 0)
         if self.body.weight_curve is None:
-            raise InvalidScene(f"body.weight_curve: missing for plan.objective = {self.objective!r}; "
-                               "expected [[x m, t/m], ...]")
+            raise InvalidScene(
+                f"body.weight_curve: missing for plan.objective = {self.objective!r}; "
+                "expected [[x m, t/m], ...]"
+            )
         for key in need:
             if self.strength is None or getattr(self.strength, key) is None:
-                raise InvalidScene(f"strength.{key}: missing for plan.objective = {self.objective!r}; "
-                                   "expected the allowable envelope [[x m, value], ...]")
+                raise InvalidScene(
+                    f"strength.{key}: missing for plan.objective = {self.objective!r}; "
+                    "expected the allowable envelope [[x m, value], ...]"
+                )
         if len(crane_classes(fleet)) > 1 or any(c.sling is not None for c in fleet):
-            raise InvalidScene(f"plan.objective = {self.objective!r}: planned for equal cranes on single "
-                               "ropes (one [crane] class, no slings); expected [crane] with plan.cranes")
+            raise InvalidScene(
+                f"plan.objective = {self.objective!r}: planned for equal cranes on single "
+                "ropes (one [crane] class, no slings); expected [crane] with plan.cranes"
+            )
 
     def _check_breakout(self, fleet):
         """The breakout scene: a seabed scene of this body, for a held plan of single ropes."""
@@ -456,20 +502,26 @@ class PlanProblem:
         if scene is None:
             return
         if not isinstance(scene, Scene):
-            raise InvalidScene(f"{key} = {scene!r}: expected a Scene (a scene file with [hull], "
-                               "[water] and [ground])")
+            raise InvalidScene(
+                f"{key} = {scene!r}: expected a Scene (a scene file with [hull], [water] and [ground])"
+            )
         missing = [t for t in ("hull", "water", "ground") if getattr(scene, t) is None]
         if missing:
-            raise InvalidScene(f"{key}: the scene {scene.name!r} has no [{'], ['.join(missing)}]; "
-                               "expected the hull resting on the seabed with [hull], [water] and "
-                               "[ground]")
+            raise InvalidScene(
+                f"{key}: the scene {scene.name!r} has no [{'], ['.join(missing)}]; "
+                "expected the hull resting on the seabed with [hull], [water] and "
+                "[ground]"
+            )
         if any(c.sling is not None for c in fleet) or self.objective in STRENGTH_OBJECTIVES:
-            raise InvalidScene(f"{key}: given for a plan with slings or a strength objective; "
-                               "expected cranes on single ropes and objective spread, utilisation "
-                               "or reserve (the breakout case is carried into those plans only)")
+            raise InvalidScene(
+                f"{key}: given for a plan with slings or a strength objective; "
+                "expected cranes on single ropes and objective spread, utilisation "
+                "or reserve (the breakout case is carried into those plans only)"
+            )
         body, mine = scene.body, self.body
-        if (not math.isclose(body.weight, mine.weight, rel_tol=1e-9)
-                or not np.allclose(body.cog, mine.cog, rtol=0.0, atol=1e-9)):
+        if not math.isclose(body.weight, mine.weight, rel_tol=1e-9) or not np.allclose(
+            body.cog, mine.cog, rtol=0.0, atol=1e-9
+        ):
             shown = zup_to_choi if self.frame == "choi" else tuple
 
             def xyz(cog):
@@ -478,7 +530,8 @@ class PlanProblem:
             raise InvalidScene(
                 f"{key}: the scene's body (weight {body.weight:g} t, cog {xyz(body.cog)} m) is not "
                 f"the plan's (weight {mine.weight:g} t, cog {xyz(mine.cog)} m); expected the same "
-                "body in the same body frame (the breakout point is applied to the candidates)")
+                "body in the same body frame (the breakout point is applied to the candidates)"
+            )
         try:
             _ = self.breakout  # computed now: a scene with nothing to break out is bad input
         except EquilibriumNotFound as err:

@@ -43,7 +43,7 @@ class _Body(Table):
 
 class _Strength(Table):
     bending_moment: list[Pair] | None = None  # [x m, t m]
-    shear_force: list[Pair] | None = None     # [x m, t]
+    shear_force: list[Pair] | None = None  # [x m, t]
 
 
 class _StrengthWeights(Table):
@@ -77,7 +77,7 @@ class _Plan(Table):
     cog_envelope: Literal["box", "cross"] = "box"
     top: Count = 5
     outline: list[Point] = []
-    breakout_scene: Text | None = None   # scene file of the hull on the seabed, relative path
+    breakout_scene: Text | None = None  # scene file of the hull on the seabed, relative path
 
 
 class _Range(Table):
@@ -221,12 +221,10 @@ def _default_spec(data):
     if data.cranes and (crane.rope_length is None or crane.swl is None):
         return None
     if stiffness is None:
-        raise InvalidScene("crane.EA: missing, expected the rope stiffness EA in t "
-                           "(in [crane] or [ropes])")
+        raise InvalidScene("crane.EA: missing, expected the rope stiffness EA in t (in [crane] or [ropes])")
     for key in ("rope_length", "swl"):
         if getattr(crane, key) is None:
-            raise InvalidScene(f"crane.{key}: missing, expected a number "
-                               "(or one [[cranes]] table per crane)")
+            raise InvalidScene(f"crane.{key}: missing, expected a number (or one [[cranes]] table per crane)")
     boom = crane.boom_height
     length, length_range = _length(crane.rope_length)
     return CraneSpec(
@@ -252,6 +250,7 @@ def _fleet(data, to_zup):
     defaults = data.crane
     fleet = []
     for entry in data.cranes:
+
         def pick(key, entry=entry):
             value = getattr(entry, key)
             if value is None:
@@ -259,8 +258,9 @@ def _fleet(data, to_zup):
             if value is None and key == "EA":
                 value = data.ropes.EA
             if value is None:
-                raise InvalidScene(f"cranes[{entry.name}].{key}: missing, expected a number "
-                                   "(here or in [crane])")
+                raise InvalidScene(
+                    f"cranes[{entry.name}].{key}: missing, expected a number (here or in [crane])"
+                )
             return value
 
         boom = entry.boom_height or defaults.boom_height
@@ -269,30 +269,41 @@ def _fleet(data, to_zup):
         if chart is None and swl is None:
             swl = defaults.swl
         if chart is not None and swl is not None:
-            raise InvalidScene(f"cranes[{entry.name}]: both load_chart and swl given; "
-                               "expected one of them")
+            raise InvalidScene(f"cranes[{entry.name}]: both load_chart and swl given; expected one of them")
         if chart is None and swl is None:
-            raise InvalidScene(f"cranes[{entry.name}]: no load_chart or swl; expected one "
-                               "(here or swl in [crane])")
+            raise InvalidScene(
+                f"cranes[{entry.name}]: no load_chart or swl; expected one (here or swl in [crane])"
+            )
         length, length_range = _length(pick("rope_length"))
-        fleet.append(FleetCrane(
-            name=entry.name,
-            EA=pick("EA"),
-            rope_length=length,
-            rope_length_range=length_range,
-            position=None if entry.position is None else to_zup(entry.position)[:2],
-            load_chart=tuple(chart or ()),
-            swl=swl,
-            boom_min=boom.min if boom else float("-inf"),
-            boom_max=boom.max if boom else float("inf"),
-            hook_tolerance=entry.hook_tolerance,
-            sling=None if entry.sling is None else SlingSpec(
-                length=entry.sling.length, legs=entry.sling.legs, EA=entry.sling.EA,
-                diameter=entry.sling.diameter,
-                spreader=None if entry.sling.spreader is None else SpreaderSpec(
-                    length=entry.sling.spreader.length, top_length=entry.sling.spreader.top_length,
-                    weight=entry.sling.spreader.weight)),
-        ))
+        fleet.append(
+            FleetCrane(
+                name=entry.name,
+                EA=pick("EA"),
+                rope_length=length,
+                rope_length_range=length_range,
+                position=None if entry.position is None else to_zup(entry.position)[:2],
+                load_chart=tuple(chart or ()),
+                swl=swl,
+                boom_min=boom.min if boom else float("-inf"),
+                boom_max=boom.max if boom else float("inf"),
+                hook_tolerance=entry.hook_tolerance,
+                sling=None
+                if entry.sling is None
+                else SlingSpec(
+                    length=entry.sling.length,
+                    legs=entry.sling.legs,
+                    EA=entry.sling.EA,
+                    diameter=entry.sling.diameter,
+                    spreader=None
+                    if entry.sling.spreader is None
+                    else SpreaderSpec(
+                        length=entry.sling.spreader.length,
+                        top_length=entry.sling.spreader.top_length,
+                        weight=entry.sling.spreader.weight,
+                    ),
+                ),
+            )
+        )
     return tuple(fleet)
 
 
@@ -306,12 +317,12 @@ def _to_problem(data, base):
     cranes = data.plan.cranes
     if cranes is None:
         if not fleet:
-            raise InvalidScene("plan.cranes: missing, expected how many cranes (3 to 64) or one "
-                               "[[cranes]] table per crane")
+            raise InvalidScene(
+                "plan.cranes: missing, expected how many cranes (3 to 64) or one [[cranes]] table per crane"
+            )
         cranes = len(fleet)
     return PlanProblem(
-        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog),
-                  weight_curve=data.body.weight_curve),
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog), weight_curve=data.body.weight_curve),
         candidates=tuple(
             Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead, capacity=c.capacity)
             for c in data.candidates
@@ -338,8 +349,11 @@ def _to_problem(data, base):
         min_sling_angle=data.rigging.min_sling_angle,
         report=ReportInfo(**data.report.model_dump()),
         strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
-        strength_weights=(None if data.plan.strength_weights is None
-                          else (data.plan.strength_weights.bending, data.plan.strength_weights.shear)),
+        strength_weights=(
+            None
+            if data.plan.strength_weights is None
+            else (data.plan.strength_weights.bending, data.plan.strength_weights.shear)
+        ),
         controls=_controls(data, cranes),
         breakout_scene=_breakout_scene(data.plan.breakout_scene, base),
     )

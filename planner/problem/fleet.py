@@ -56,7 +56,8 @@ class SpreaderSpec:
         if self.top_length <= 0.5 * self.length:
             raise InvalidScene(
                 f"cranes.sling.spreader.top_length = {self.top_length:g} m: expected more than half "
-                f"the bar length {self.length:g} m (the top legs must meet above the bar)")
+                f"the bar length {self.length:g} m (the top legs must meet above the bar)"
+            )
 
 
 @dataclass(frozen=True)
@@ -101,11 +102,14 @@ class SlingSpec:
             _set(self, "EA", positive("cranes.sling.EA", self.EA))
         if self.spreader is not None:
             if not isinstance(self.spreader, SpreaderSpec):
-                raise InvalidScene(f"cranes.sling.spreader = {self.spreader!r}: expected "
-                                   "{ length, top_length, weight }")
+                raise InvalidScene(
+                    f"cranes.sling.spreader = {self.spreader!r}: expected {{ length, top_length, weight }}"
+                )
             if self.legs != 2:
-                raise InvalidScene(f"cranes.sling.legs = {self.legs}: with a spreader bar expected 2 "
-                                   "(one leg from each bar end down to a lug)")
+                raise InvalidScene(
+                    f"cranes.sling.legs = {self.legs}: with a spreader bar expected 2 "
+                    "(one leg from each bar end down to a lug)"
+                )
 
     @property
     def body_fixed(self):
@@ -166,8 +170,10 @@ class FleetCrane:
         if self.rope_length_range is not None:
             _set(self, "rope_length_range", length_range(f"{key}.rope_length", self.rope_length_range))
             if self.sling is not None:
-                raise InvalidScene(f"{key}.rope_length: a range with a sling; expected a number (the "
-                                   "sling planner does not choose rope lengths)")
+                raise InvalidScene(
+                    f"{key}.rope_length: a range with a sling; expected a number (the "
+                    "sling planner does not choose rope lengths)"
+                )
         if self.hook_tolerance is not None:
             value = finite(f"{key}.hook_tolerance", self.hook_tolerance)
             if value < 0.0:
@@ -180,26 +186,29 @@ class FleetCrane:
             _set(self, "position", (x, y))
         chart = tuple(tuple(p) for p in self.load_chart)
         if (self.swl is None) == (not chart):
-            raise InvalidScene(f"{key}: expected exactly one of load_chart = [[radius, swl], ...] "
-                               "or swl")
+            raise InvalidScene(f"{key}: expected exactly one of load_chart = [[radius, swl], ...] or swl")
         if self.swl is not None:
             _set(self, "swl", positive(f"{key}.swl", self.swl))
         if chart:
             if self.position is None:
-                raise InvalidScene(f"{key}.position: missing, expected the slew centre [x, y, z] "
-                                   "in m (a load chart needs it for the radius)")
+                raise InvalidScene(
+                    f"{key}.position: missing, expected the slew centre [x, y, z] "
+                    "in m (a load chart needs it for the radius)"
+                )
             points = []
             for pair in chart:
                 if len(pair) != 2:
-                    raise InvalidScene(f"{key}.load_chart = {list(map(list, chart))}: expected "
-                                       "[[radius m, SWL t], ...]")
+                    raise InvalidScene(
+                        f"{key}.load_chart = {list(map(list, chart))}: expected [[radius m, SWL t], ...]"
+                    )
                 radius = finite(f"{key}.load_chart radius", pair[0])
                 swl = finite(f"{key}.load_chart SWL", pair[1])
                 if radius < 0.0:
                     raise InvalidScene(f"{key}.load_chart radius {radius:g}: expected >= 0 m")
                 if swl <= 0.0:
-                    raise InvalidScene(f"{key}.load_chart SWL {swl:g} t at radius {radius:g} m: "
-                                       "expected > 0 t")
+                    raise InvalidScene(
+                        f"{key}.load_chart SWL {swl:g} t at radius {radius:g} m: expected > 0 t"
+                    )
                 points.append((radius, swl))
             radii = [p[0] for p in points]
             if any(b <= a for a, b in zip(radii, radii[1:])):
@@ -210,8 +219,10 @@ class FleetCrane:
             if not (isinstance(value, int | float) and math.isinf(value)):
                 _set(self, name, finite(f"{key}.boom_height.{name[5:]}", value))
         if self.boom_min > self.boom_max:
-            raise InvalidScene(f"{key}.boom_height = {{min = {self.boom_min:g}, max = "
-                               f"{self.boom_max:g}}}: expected min <= max")
+            raise InvalidScene(
+                f"{key}.boom_height = {{min = {self.boom_min:g}, max = "
+                f"{self.boom_max:g}}}: expected min <= max"
+            )
 
     @property
     def stiffness(self):
@@ -241,8 +252,18 @@ class FleetCrane:
 
     def same_as(self, other):
         """True when the two cranes are interchangeable (all but the name equal)."""
-        keys = ("EA", "rope_length", "position", "load_chart", "swl", "boom_min", "boom_max",
-                "sling", "hook_tolerance", "rope_length_range")
+        keys = (
+            "EA",
+            "rope_length",
+            "position",
+            "load_chart",
+            "swl",
+            "boom_min",
+            "boom_max",
+            "sling",
+            "hook_tolerance",
+            "rope_length_range",
+        )
         return all(getattr(self, k) == getattr(other, k) for k in keys)
 
 
@@ -263,9 +284,16 @@ def equal_fleet(spec, count):
     count : int
     """
     return tuple(
-        FleetCrane(name=f"crane {k + 1}", EA=spec.EA, rope_length=spec.rope_length, swl=spec.swl,
-                   boom_min=spec.boom_min, boom_max=spec.boom_max, from_defaults=True,
-                   rope_length_range=spec.rope_length_range)
+        FleetCrane(
+            name=f"crane {k + 1}",
+            EA=spec.EA,
+            rope_length=spec.rope_length,
+            swl=spec.swl,
+            boom_min=spec.boom_min,
+            boom_max=spec.boom_max,
+            from_defaults=True,
+            rope_length_range=spec.rope_length_range,
+        )
         for k in range(count)
     )
 

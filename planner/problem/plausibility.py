@@ -46,11 +46,15 @@ def problem_warnings(problem):
         *coordinate_warnings("candidates", [(c.name, c.at) for c in problem.candidates]),
     ]
     if problem.hook_tolerance > MAX_HOOK_TOLERANCE:
-        out.append(f"plan.hook_tolerance = {problem.hook_tolerance:g} m: more than "
-                   f"{MAX_HOOK_TOLERANCE:g} m of hook-height error; mm typed as m?")
+        out.append(
+            f"plan.hook_tolerance = {problem.hook_tolerance:g} m: more than "
+            f"{MAX_HOOK_TOLERANCE:g} m of hook-height error; mm typed as m?"
+        )
     for axis in ("heel", "trim"):
         value = getattr(problem, f"{axis}_tolerance")
         if value > MAX_TOLERANCE:
-            out.append(f"plan.tolerance.{axis} = {value:g} deg: a box wider than {MAX_TOLERANCE:g} deg "
-                       "each way; a slip (radians? a total instead of a half-width?)")
+            out.append(
+                f"plan.tolerance.{axis} = {value:g} deg: a box wider than {MAX_TOLERANCE:g} deg "
+                "each way; a slip (radians? a total instead of a half-width?)"
+            )
     return out

@@ -62,11 +62,14 @@ class ReportInfo:
             if not isinstance(value, str):
                 raise InvalidScene(f"report.{f.name} = {value!r}: expected a string")
             if len(value) > MAX_LENGTH:
-                raise InvalidScene(f"report.{f.name} = {value[:20]!r}... ({len(value)} characters): "
-                                   f"expected at most {MAX_LENGTH} characters")
+                raise InvalidScene(
+                    f"report.{f.name} = {value[:20]!r}... ({len(value)} characters): "
+                    f"expected at most {MAX_LENGTH} characters"
+                )
             if any(ord(c) < 32 for c in value):
-                raise InvalidScene(f"report.{f.name} = {value!r}: expected one line (no control "
-                                   "characters or line breaks)")
+                raise InvalidScene(
+                    f"report.{f.name} = {value!r}: expected one line (no control characters or line breaks)"
+                )
             object.__setattr__(self, f.name, value.strip())
 
     def rows(self, today=None):
@@ -78,5 +81,7 @@ class ReportInfo:
             Default: the current date.
         """
         day = (today or datetime.date.today()).isoformat()
-        return [(label, (getattr(self, name) or day) if name == "date" else getattr(self, name))
-                for name, label in LABELS.items()]
+        return [
+            (label, (getattr(self, name) or day) if name == "date" else getattr(self, name))
+            for name, label in LABELS.items()
+        ]

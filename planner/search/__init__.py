@@ -8,7 +8,7 @@ row at once; :mod:`.branch` evaluates rows best bound first with cutting planes 
 the plan's lower bound and gap.
 """
 
-from .branch import (
+from liftplan.planner.search.branch import (
     DENSE,
     Interrupted,
     SearchStats,
@@ -18,7 +18,17 @@ from .branch import (
     robust,
     search,
 )
-from .scenarios import LugSet, Scenario
+from liftplan.planner.search.scenarios import LugSet, Scenario
 
-__all__ = ["DENSE", "Interrupted", "LugSet", "Scenario", "SearchStats", "SetEvaluator",
-           "SetInfeasible", "SetResult", "robust", "search"]
+__all__ = [
+    "DENSE",
+    "Interrupted",
+    "LugSet",
+    "Scenario",
+    "SearchStats",
+    "SetEvaluator",
+    "SetInfeasible",
+    "SetResult",
+    "robust",
+    "search",
+]

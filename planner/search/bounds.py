@@ -318,8 +318,7 @@ class PreloadMinimax:
         self._nominal = (nominal_high, nominal_low)
         self._pairs = (first, second)
 
-    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range, scale=None,
-              hook=None):
+    def solve(self, gains, offsets, a_level, b_level, preload_range, tension_range, scale=None, hook=None):
         """Solve for the scenarios given.
 
         Parameters

@@ -166,9 +166,13 @@ class GapMixin:
         return self.gap / self.best if self.best > 0 else 0.0
 
 
-_ENDED = {"proved": "optimum proved", "gap": "within the gap target", "time_limit":
-          "stopped at the time limit", "interrupted": "interrupted",
-          "rounds": "stopped after its cutting-plane rounds"}
+_ENDED = {
+    "proved": "optimum proved",
+    "gap": "within the gap target",
+    "time_limit": "stopped at the time limit",
+    "interrupted": "interrupted",
+    "rounds": "stopped after its cutting-plane rounds",
+}
 
 
 @dataclass(frozen=True)
@@ -228,18 +232,25 @@ class SearchStats(GapMixin):
     def summary(self):
         """What the search did, in one line."""
         if self.method == "mip":
-            return (f"{self.sets} lug sets: one mixed-integer program over candidates, cranes and "
-                    f"scenarios (HiGHS), {self.refined} cutting-plane round"
-                    f"{'' if self.refined == 1 else 's'}, {self.evaluated} "
-                    f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)")
+            return (
+                f"{self.sets} lug sets: one mixed-integer program over candidates, cranes and "
+                f"scenarios (HiGHS), {self.refined} cutting-plane round"
+                f"{'' if self.refined == 1 else 's'}, {self.evaluated} "
+                f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)"
+            )
         if self.stopped == "local":
             gap = 100 * self.relative_gap
             text = f"{gap:.2f} %" if gap < 10 else f"{gap:.1f} %"
-            proved = (f"every set's worst is at least {self.lower_bound:.4g}: gap {text}"
-                      if self.lower_bound > 0 else "no gap proved")
+            proved = (
+                f"every set's worst is at least {self.lower_bound:.4g}: gap {text}"
+                if self.lower_bound > 0
+                else "no gap proved"
+            )
             swaps = "swap" if self.refined == 1 else "swaps"
-            return (f"{self.sets} lug sets: local search, {self.refined} {swaps} from its starts "
-                    f"to a local optimum ({proved}) ({self.seconds:.2f} s)")
+            return (
+                f"{self.sets} lug sets: local search, {self.refined} {swaps} from its starts "
+                f"to a local optimum ({proved}) ({self.seconds:.2f} s)"
+            )
         return None
 
 
@@ -333,8 +344,7 @@ class SetEvaluator:
     def __init__(self, problem):
         self.problem = problem
         hooks = problem.hook_tolerance > 0 or any(c.hook_tolerance for c in problem.fleet)
-        self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective,
-                                      separable=not hooks)
+        self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective, separable=not hooks)
         self.offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
         self.start = self._scenarios(3)
         self.dense = self._scenarios(DENSE)
@@ -376,13 +386,22 @@ class SetEvaluator:
         while True:
             rounds += 1
             gains, offsets = lugset.affine(scenarios)
-            hook = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) \
-                if lugset.hook_uncertain else None
+            hook = (
+                (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance)
+                if lugset.hook_uncertain
+                else None
+            )
             try:
-                result = self.minimax.solve(gains, offsets, a_level, b_level,
-                                            lugset.preload_range(),
-                                            _limits(len(scenarios), low_limit, high_limit),
-                                            scale=lugset.scale, hook=hook)
+                result = self.minimax.solve(
+                    gains,
+                    offsets,
+                    a_level,
+                    b_level,
+                    lugset.preload_range(),
+                    _limits(len(scenarios), low_limit, high_limit),
+                    scale=lugset.scale,
+                    hook=hook,
+                )
             except PlanInfeasible:
                 raise SetInfeasible(self.diagnose(lugset, scenarios)) from None
             found = self.dense_search(lugset, result.preload)
@@ -454,8 +473,9 @@ class SetEvaluator:
             highest=float(high.max()),
             rope_max=high.max(axis=0),
             spread=max(float(spread.max()), worst[0] if self.problem.objective == "spread" else 0.0),
-            utilisation_spread=max(float(util.max()),
-                                   worst[0] if self.problem.objective == "utilisation" else 0.0),
+            utilisation_spread=max(
+                float(util.max()), worst[0] if self.problem.objective == "utilisation" else 0.0
+            ),
         )
 
     def _around(self, scenario):
@@ -463,10 +483,16 @@ class SetEvaluator:
         problem = self.problem
         step_h = 2 * problem.heel_tolerance / (DENSE - 1)
         step_t = 2 * problem.trim_tolerance / (DENSE - 1)
-        heel = np.clip(np.linspace(scenario.heel - step_h, scenario.heel + step_h, ZOOM),
-                       -problem.heel_tolerance, problem.heel_tolerance)
-        trim = np.clip(np.linspace(scenario.trim - step_t, scenario.trim + step_t, ZOOM),
-                       -problem.trim_tolerance, problem.trim_tolerance)
+        heel = np.clip(
+            np.linspace(scenario.heel - step_h, scenario.heel + step_h, ZOOM),
+            -problem.heel_tolerance,
+            problem.heel_tolerance,
+        )
+        trim = np.clip(
+            np.linspace(scenario.trim - step_t, scenario.trim + step_t, ZOOM),
+            -problem.trim_tolerance,
+            problem.trim_tolerance,
+        )
         return [Scenario(float(h), float(t), scenario.cog_offset) for h in heel for t in trim]
 
     def diagnose(self, lugset, scenarios):
@@ -482,17 +508,20 @@ class SetEvaluator:
         steps = [
             (g_level, q_level, free, (0 * ones, inf), CG_OUTSIDE),
             (g_level, q_level, free, (0 * ones, swl * ones), LEVEL_SWL),
-            (g_level, q_level, free, (problem.min_tension * ones, swl * ones),
-             LEVEL_MIN_TENSION),
-            (g_level, q_level, free, (problem.min_tension * ones, lugset.share_limit * ones),
-             CODE_MARGIN),
-            (g_level, q_level, lugset.preload_range(),
-             (problem.min_tension * ones, swl * ones), BOOM_RANGE),
+            (g_level, q_level, free, (problem.min_tension * ones, swl * ones), LEVEL_MIN_TENSION),
+            (g_level, q_level, free, (problem.min_tension * ones, lugset.share_limit * ones), CODE_MARGIN),
+            (g_level, q_level, lugset.preload_range(), (problem.min_tension * ones, swl * ones), BOOM_RANGE),
         ]
         count = len(scenarios)
-        steps.append((gains, offsets, lugset.preload_range(),
-                      (np.full((count, lugset.n), problem.min_tension), np.full((count, lugset.n),
-                                                                               np.inf)), BOX_SLACK))
+        steps.append(
+            (
+                gains,
+                offsets,
+                lugset.preload_range(),
+                (np.full((count, lugset.n), problem.min_tension), np.full((count, lugset.n), np.inf)),
+                BOX_SLACK,
+            )
+        )
         for gain, offset, preload_range, limits, code in steps:
             try:
                 self.minimax.solve(gain, offset, a_level, b_level, preload_range, limits)
@@ -554,16 +583,25 @@ def search(problem, top=None, progress=None):
         from liftplan.planner.search.mip import search_mip
 
         return search_mip(problem, started, progress)
-    if problem.search == "local" or (problem.search == "auto" and
-                                     problem.set_count > auto_exact_limit(problem.cranes)):
+    if problem.search == "local" or (
+        problem.search == "auto" and problem.set_count > auto_exact_limit(problem.cranes)
+    ):
         return _local(problem, started, progress)
     sets, cranes, out_of_reach = set_rows(problem)
     if len(sets) == 0:
         raise PlanInfeasible(_unreachable(problem))
     screening = screen(problem, sets, cranes)
     evaluator = SetEvaluator(problem)
-    reasons = Counter(dict(zip(*(v.tolist() for v in np.unique(
-        screening.reason[screening.reason != FEASIBLE], return_counts=True)))))
+    reasons = Counter(
+        dict(
+            zip(
+                *(
+                    v.tolist()
+                    for v in np.unique(screening.reason[screening.reason != FEASIBLE], return_counts=True)
+                )
+            )
+        )
+    )
     bound = screening.bound.copy()
     # rows whose bound is refined before they are evaluated: from the coarse screening, or
     # (n >= 5) from the preload-free pair bound to the LP's dual bound
@@ -594,8 +632,12 @@ def search(problem, top=None, progress=None):
             out_of_reach=out_of_reach,
             refined=refine_count,
             # stopped early: the two-line bound may be the better of two valid bounds
-            lower_bound=min(lower_bound() if stopped == "proved" else
-                            max(lower_bound(), line_bound(problem, evaluator.dense)), best),
+            lower_bound=min(
+                lower_bound()
+                if stopped == "proved"
+                else max(lower_bound(), line_bound(problem, evaluator.dense)),
+                best,
+            ),
             best=best,
             stopped=stopped,
         )
@@ -625,20 +667,19 @@ def search(problem, top=None, progress=None):
                 if problem.gap > 0 and best - low <= problem.gap * best:
                     stopped = "gap"
                     break
-                if problem.time_limit is not None and \
-                        time.perf_counter() - started > problem.time_limit:
+                if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
                     stopped = "time_limit"
                     break
             value, coarse, k = heapq.heappop(heap)
             if done[k]:
                 continue
             if coarse:
-                batch = [k] + [heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap)))
-                               if heap and heap[0][1]]
+                batch = [k] + [
+                    heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap))) if heap and heap[0][1]
+                ]
                 # a bound past the k-th best found need not be tightened further
                 target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
-                full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual,
-                              target=target)
+                full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual, target=target)
                 refine_count += len(batch)
                 dive = None
                 for j, new_bound, reason in zip(batch, full.bound, full.reason):
@@ -707,9 +748,11 @@ def _local(problem, started, progress=None):
     try:
         result = evaluator.evaluate(indices)
     except SetInfeasible as err:
-        raise PlanInfeasible(f"the local search ended on {', '.join(problem.names[i] for i in indices)}"
-                             f" after {moves} swaps, which is infeasible over the box: "
-                             f"{REASONS[err.code]}") from None
+        raise PlanInfeasible(
+            f"the local search ended on {', '.join(problem.names[i] for i in indices)}"
+            f" after {moves} swaps, which is infeasible over the box: "
+            f"{REASONS[err.code]}"
+        ) from None
     if problem.objective == "reserve":  # every rope shares W: max T_i / SWL_i >= W / sum SWL
         bound = problem.body.weight / float(np.sum(result.swl))
     else:  # candidates on two lines: what each line carries is fixed by the statics
@@ -726,8 +769,10 @@ def _local(problem, started, progress=None):
             def tick(done, total, low):
                 if bar is not None:
                     bar.total, bar.n = total, done
-                    bar.set_postfix_str(f"best {best:.4g}, bound {low:.4g}, gap "
-                                        f"{100 * (best - low) / best:.2g} %", refresh=True)
+                    bar.set_postfix_str(
+                        f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %",
+                        refresh=True,
+                    )
 
             try:
                 cells = cell_bound(problem, evaluator.dense, target, deadline, tick)
@@ -736,17 +781,27 @@ def _local(problem, started, progress=None):
                     bar.close()
             bound = max(bound, cells.value)
             if cells.interrupted:  # Ctrl-C: the plan, with the bound so far
-                raise Interrupted([result], _local_stats(problem, started, moves, bound, result,
-                                                         "interrupted"))
+                raise Interrupted(
+                    [result], _local_stats(problem, started, moves, bound, result, "interrupted")
+                )
     return [result], _local_stats(problem, started, moves, bound, result, "local")
 
 
 def _local_stats(problem, started, moves, bound, result, stopped):
     """:class:`SearchStats` of a local search's plan."""
-    return SearchStats(sets=problem.set_count, screened_out=0, evaluated=1, pruned=0,
-                       seconds=time.perf_counter() - started, rows=problem.set_count,
-                       refined=moves, lower_bound=min(bound, result.worst_value),
-                       best=result.worst_value, stopped=stopped, method="local")
+    return SearchStats(
+        sets=problem.set_count,
+        screened_out=0,
+        evaluated=1,
+        pruned=0,
+        seconds=time.perf_counter() - started,
+        rows=problem.set_count,
+        refined=moves,
+        lower_bound=min(bound, result.worst_value),
+        best=result.worst_value,
+        stopped=stopped,
+        method="local",
+    )
 
 
 def _progress_bar(total, progress):
@@ -754,8 +809,9 @@ def _progress_bar(total, progress):
         return None
     from tqdm import tqdm
 
-    return tqdm(total=total, desc="plan", unit="set", file=sys.stderr, delay=1.0, leave=False,
-                dynamic_ncols=True)
+    return tqdm(
+        total=total, desc="plan", unit="set", file=sys.stderr, delay=1.0, leave=False, dynamic_ncols=True
+    )
 
 
 def _tick(bar, ranking, lower_bound):
@@ -764,8 +820,12 @@ def _tick(bar, ranking, lower_bound):
     bar.update(1)
     if ranking:
         best, low = ranking[0].worst_value, min(lower_bound(), ranking[0].worst_value)
-        bar.set_postfix_str(f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %"
-                            if best > 0 else f"best {best:.4g}", refresh=False)
+        bar.set_postfix_str(
+            f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %"
+            if best > 0
+            else f"best {best:.4g}",
+            refresh=False,
+        )
 
 
 def _coarse(screening, problem):
@@ -778,7 +838,9 @@ def _unreachable(problem):
     counts = np.sum(~np.isnan(swl), axis=0)
     worst = int(np.argmin(counts))
     crane = problem.fleet[worst]
-    return (f"no assignment puts every crane within reach of its own lug: crane "
-            f"{crane.name} reaches {int(counts[worst])} of {len(problem.candidates)} candidates "
-            f"(chart reach {crane.reach:g} m); expected cranes closer to the candidates or "
-            "longer charts")
+    return (
+        f"no assignment puts every crane within reach of its own lug: crane "
+        f"{crane.name} reaches {int(counts[worst])} of {len(problem.candidates)} candidates "
+        f"(chart reach {crane.reach:g} m); expected cranes closer to the candidates or "
+        "longer charts"
+    )

@@ -149,12 +149,12 @@ class PlaneLP:
         for k in range(m):
             block = np.zeros((3, size))
             block[:, :n] = rows.T
-            block[:, c0 + 3 * k:c0 + 3 * k + 3] = gram
+            block[:, c0 + 3 * k : c0 + 3 * k + 3] = gram
             eq_rows.append(block)
             eq_rhs.append(weight * np.r_[1.0, self.cogs[k]])
             tension = np.zeros((n, size))  # T_k = P + rows c_k
             tension[:, :n] = eye
-            tension[:, c0 + 3 * k:c0 + 3 * k + 3] = rows
+            tension[:, c0 + 3 * k : c0 + 3 * k + 3] = rows
             scaled = scale[:, None] * tension
             ub_blocks += [-tension, tension]
             ub_rhs += [-np.full(n, low_limit), high_limit]
@@ -176,7 +176,13 @@ class PlaneLP:
         bounds = [(float(a), float(b)) for a, b in zip(low, high)] + [(None, None)] * (size - n)
         cost = np.zeros(size)
         cost[zi] = 1.0
-        result = linprog(cost, A_ub=sparse.csr_array(np.vstack(ub_blocks)),
-                         b_ub=np.concatenate(ub_rhs), A_eq=sparse.csr_array(np.vstack(eq_rows)),
-                         b_eq=np.concatenate(eq_rhs), bounds=bounds, method="highs")
+        result = linprog(
+            cost,
+            A_ub=sparse.csr_array(np.vstack(ub_blocks)),
+            b_ub=np.concatenate(ub_rhs),
+            A_eq=sparse.csr_array(np.vstack(eq_rows)),
+            b_eq=np.concatenate(eq_rhs),
+            bounds=bounds,
+            method="highs",
+        )
         return float(result.fun) if result.status == 0 else np.inf

@@ -52,8 +52,7 @@ FIRST_ROWS = 4
 PENALTY = 10.0
 
 
-def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=False,
-                     target=np.inf):
+def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=False, target=np.inf):
     """Lower bounds on the preload LP of many sets (module docstring).
 
     Parameters
@@ -91,13 +90,25 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
     def some(v):
         return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
 
-    bound = _bound(particular, null, some(alpha), some(beta), low, high,
-                   tuple(some(v) for v in limits), reserve, target)
+    bound = _bound(
+        particular, null, some(alpha), some(beta), low, high, tuple(some(v) for v in limits), reserve, target
+    )
     short = np.flatnonzero(bound < target)
     if short.size:
-        bound[short] = np.maximum(bound[short], _bound(
-            particular[short], null[short], alpha[short], beta[short], low[short], high[short],
-            tuple(v[short] for v in limits), reserve, target))
+        bound[short] = np.maximum(
+            bound[short],
+            _bound(
+                particular[short],
+                null[short],
+                alpha[short],
+                beta[short],
+                low[short],
+                high[short],
+                tuple(v[short] for v in limits),
+                reserve,
+                target,
+            ),
+        )
     return bound
 
 
@@ -114,9 +125,19 @@ def _bound(particular, null, alpha, beta, low, high, limits, reserve, target):
     for stage in range(STAGES + 1):
         if open_.size == 0:
             break
-        open_ = _certify(y, open_, tau, ridge, (alpha, beta, limit_low, limit_high),
-                         (particular, null, low, high), reserve, STEPS if stage else FIRST_STEPS,
-                         MAX_STEPS, bound, target)
+        open_ = _certify(
+            y,
+            open_,
+            tau,
+            ridge,
+            (alpha, beta, limit_low, limit_high),
+            (particular, null, low, high),
+            reserve,
+            STEPS if stage else FIRST_STEPS,
+            MAX_STEPS,
+            bound,
+            target,
+        )
         tau = TAU_FACTOR * tau
     return bound
 
@@ -132,8 +153,9 @@ def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, targ
     values = parts[0] + np.einsum("kmid,kd->kmi", parts[1], y[k])
     weights = _Weights(values, tau[k], reserve, parts[2], parts[3])
     box_weights = _box_multipliers(y[k], box, tau[k])
-    bound[k] = np.maximum(bound[k], weights.certificate(box[0], box[1], parts[0], parts[1],
-                                                        box[2], box[3], box_weights))
+    bound[k] = np.maximum(
+        bound[k], weights.certificate(box[0], box[1], parts[0], parts[1], box[2], box[3], box_weights)
+    )
     return k[bound[k] < target]
 
 
@@ -168,8 +190,7 @@ def _newton_step(y, live, tau, ridge, parts, box, reserve):
     grad, hess = weights.derivatives(beta, flat)
     penalty, grad_box, hess_box = _box_penalty(x, box, tau)
     grad, hess = grad + grad_box, hess + hess_box
-    hess += (ridge / tau + 1e-10 * np.abs(hess).max(axis=(1, 2)) + 1e-300)[:, None, None] * \
-        np.eye(d)
+    hess += (ridge / tau + 1e-10 * np.abs(hess).max(axis=(1, 2)) + 1e-300)[:, None, None] * np.eye(d)
     try:
         step = -np.linalg.solve(hess, grad[..., None])[..., 0]
     except np.linalg.LinAlgError:  # a flat direction (weights on one rope): least squares
@@ -183,12 +204,12 @@ def _newton_step(y, live, tau, ridge, parts, box, reserve):
     for _ in range(BACKTRACK):
         trial = x[active] + size[active, None] * step[active]
         values = alpha[active] + np.einsum("kmid,kd->kmi", beta[active], trial)
-        value = _objective(values, tau[active], reserve, limit_low[active],
-                           limit_high[active]) + \
-            _box_penalty(trial, tuple(v[active] for v in box), tau[active])[0]
+        value = (
+            _objective(values, tau[active], reserve, limit_low[active], limit_high[active])
+            + _box_penalty(trial, tuple(v[active] for v in box), tau[active])[0]
+        )
         # (a rounding-level rise is no rise: near the minimum both sides agree)
-        worse = value > now[active] + 1e-4 * size[active] * slope[active] + \
-            1e-12 * np.abs(now[active])
+        worse = value > now[active] + 1e-4 * size[active] * slope[active] + 1e-12 * np.abs(now[active])
         size[active[worse]] *= 0.5
         active = active[worse]
         if active.size == 0:
@@ -307,12 +328,12 @@ class _Weights:
         # second moments of the rows' slopes under the weights, and the limits' curvature,
         # in one product: flat^T diag(w) flat
         share = self.p if self.reserve else self.p + self.q
-        weight = (self.pi[..., None] * share).reshape(count, m * n) / tau + \
-            self.curvature.reshape(count, m * n)
+        weight = (self.pi[..., None] * share).reshape(count, m * n) / tau + self.curvature.reshape(
+            count, m * n
+        )
         hess = (flat * weight[..., None]).transpose(0, 2, 1) @ flat
         cross = (b_up * self.pi[..., None]).transpose(0, 2, 1) @ b_down
-        hess -= (cross + cross.transpose(0, 2, 1) + grad[:, :, None] * grad[:, None, :]) / \
-            tau[..., None]
+        hess -= (cross + cross.transpose(0, 2, 1) + grad[:, :, None] * grad[:, None, :]) / tau[..., None]
         penalty = (self.over - self.under).reshape(count, m * n)
         grad = grad + np.einsum("kr,krd->kd", penalty, flat)
         return grad, hess
@@ -328,9 +349,11 @@ class _Weights:
         over = np.where(np.isfinite(self.limit_high), self.over, 0.0)
         under = np.where(np.isfinite(self.limit_low), self.under, 0.0)
         w = w + over - under
-        constant = (np.einsum("kmi,kmi->k", w, alpha)
-                    - np.einsum("kmi,kmi->k", over, np.where(over > 0, self.limit_high, 0.0))
-                    + np.einsum("kmi,kmi->k", under, np.where(under > 0, self.limit_low, 0.0)))
+        constant = (
+            np.einsum("kmi,kmi->k", w, alpha)
+            - np.einsum("kmi,kmi->k", over, np.where(over > 0, self.limit_high, 0.0))
+            + np.einsum("kmi,kmi->k", under, np.where(under > 0, self.limit_low, 0.0))
+        )
         slope = np.einsum("kmi,kmid->kd", w, beta)  # N^T c
         if box_weights is None:
             residual = np.einsum("kid,kd->ki", null, slope)  # r = N N^T c

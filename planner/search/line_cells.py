@@ -86,7 +86,7 @@ class Grid:
 
     def sums(self, n):
         """Least and largest index sum of n distinct stations."""
-        return int(self.index[:n].sum()), int(self.index[len(self.index) - n:].sum())
+        return int(self.index[:n].sum()), int(self.index[len(self.index) - n :].sum())
 
 
 @dataclass(frozen=True)
@@ -193,8 +193,13 @@ class _Cells:
     def means(self, sums):
         """Line means m_j of index sums (..., 2)  [m]."""
         sums = np.asarray(sums, dtype=float)
-        return np.stack([(self.grids[j].offset * self.n[j] + self.grids[j].spacing * sums[..., j])
-                         / self.n[j] for j in (0, 1)], axis=-1)
+        return np.stack(
+            [
+                (self.grids[j].offset * self.n[j] + self.grids[j].spacing * sums[..., j]) / self.n[j]
+                for j in (0, 1)
+            ],
+            axis=-1,
+        )
 
     def kappa_range(self, m, high):
         """Largest kappa >= 0 and |kappa| for kappa <= 0 keeping every station's weight >= 0
@@ -276,8 +281,15 @@ def _families(cells, m):
                 if not np.isfinite(kappa):
                     continue
                 for theta in THETAS:
-                    out.append(Same(high, float(kappa), theta, float(gamma),
-                                    theta * d_a + (1 - theta) * d_b - kappa * weight * e_r))
+                    out.append(
+                        Same(
+                            high,
+                            float(kappa),
+                            theta,
+                            float(gamma),
+                            theta * d_a + (1 - theta) * d_b - kappa * weight * e_r,
+                        )
+                    )
     for a in range(count):
         for b in range(count):
             if a == b:
@@ -285,8 +297,14 @@ def _families(cells, m):
             ga, gb = cells.g[a], cells.g[b]
             gamma = (ga[0] - gb[0]) - (ga[1] - gb[1]) * dm / h
             delta = (cells.shares(ga[1]) - cells.shares(gb[1])) / cells.n  # Delta mu per line
-            for p, q in (((0, 1), (1, 0)), ((0, 0), (1, 1)), ((0, 1), (0, 0)), ((1, 1), (1, 0)),
-                         ((1, 1), (0, 0)), ((1, 0), (0, 1))):  # (line, 1 = last / 0 = first)
+            for p, q in (
+                ((0, 1), (1, 0)),
+                ((0, 0), (1, 1)),
+                ((0, 1), (0, 0)),
+                ((1, 1), (1, 0)),
+                ((1, 1), (0, 0)),
+                ((1, 0), (0, 1)),
+            ):  # (line, 1 = last / 0 = first)
                 out.append(Pair(p, q, float(gamma), 0.5 * (delta[p[0]] - delta[q[0]])))
     return out
 
@@ -357,9 +375,9 @@ def _programme(cells, j, total, families, lam, target, m):
             continue
         u_s = s_s - m[j]
         for count in range(min(n - 1, step), -1, -1):
-            source = table[step, count, :width - k_s]
+            source = table[step, count, : width - k_s]
             value = source - c_total * u_s * u_s
-            partial = grid.offset * count + grid.spacing * sums[:width - k_s]  # sum of s so far
+            partial = grid.offset * count + grid.spacing * sums[: width - k_s]  # sum of s so far
             for scale, kappa, split in same:
                 w = 1.0 / n + kappa * u_s
                 if w < -1e-12:
@@ -404,10 +422,15 @@ class _Cell:
             first[0] = 1.0
             return first
         table = np.array(self.values) - target
-        found = linprog(np.r_[np.zeros(count), -1.0],
-                        A_ub=np.hstack([-table, np.ones((len(table), 1))]),
-                        b_ub=np.zeros(len(table)), A_eq=[np.r_[np.ones(count), 0.0]], b_eq=[1.0],
-                        bounds=[(0, None)] * count + [(None, None)], method="highs")
+        found = linprog(
+            np.r_[np.zeros(count), -1.0],
+            A_ub=np.hstack([-table, np.ones((len(table), 1))]),
+            b_ub=np.zeros(len(table)),
+            A_eq=[np.r_[np.ones(count), 0.0]],
+            b_eq=[1.0],
+            bounds=[(0, None)] * count + [(None, None)],
+            method="highs",
+        )
         return None if found.status != 0 or -found.fun < 0 else found.x[:count]
 
 
@@ -418,8 +441,7 @@ def _closes(cells, cell, target, tolerance):
         lam = cell.combination(target)
         if lam is None:
             return False  # some set found is below the target for every combination
-        parts = [_programme(cells, j, int(cell.sums[j]), cell.families, lam, target, cell.m)
-                 for j in (0, 1)]
+        parts = [_programme(cells, j, int(cell.sums[j]), cell.families, lam, target, cell.m) for j in (0, 1)]
         if any(p[1] is None and p[0] == -np.inf for p in parts):
             return False
         if any(p[0] == np.inf for p in parts) or sum(p[0] for p in parts) >= -tolerance:
@@ -438,8 +460,9 @@ def _open_cells(cells, lay, two_line, target):
     step = max(1, CHUNK // len(second))
     found, bounds = [], []
     for start in range(0, len(first), step):
-        block = np.stack(np.meshgrid(first[start:start + step], second, indexing="ij"),
-                         axis=-1).reshape(-1, 2)
+        block = np.stack(np.meshgrid(first[start : start + step], second, indexing="ij"), axis=-1).reshape(
+            -1, 2
+        )
         single = np.maximum(cells.one_scenario(block), two_line)
         below = single < target
         found.append(block[below])
@@ -487,7 +510,7 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
     n = problem.cranes
     value, total, searched, failed, complete, interrupted = np.inf, 0, 0, 0, True, False
     span = max(float(np.ptp(np.concatenate([grid.s for grid in lay.grids]))), 1.0)
-    tolerance = 1e-12 * float(problem.body.weight) * span ** 2
+    tolerance = 1e-12 * float(problem.body.weight) * span**2
     for n0 in range(1, n):
         if n0 > len(lay.grids[0].index) or n - n0 > len(lay.grids[1].index):
             continue
@@ -508,17 +531,24 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
                     low, high = float(open_single[k]), target
                     for _ in range(BISECTIONS):
                         middle = 0.5 * (low + high)
-                        low, high = ((middle, high) if _closes(cells, cell, middle, tolerance)
-                                     else (low, middle))
+                        low, high = (
+                            (middle, high) if _closes(cells, cell, middle, tolerance) else (low, middle)
+                        )
                     value = min(value, low)
             except (TimeoutError, KeyboardInterrupt) as err:  # open cells at their closed form
                 complete, interrupted = False, isinstance(err, KeyboardInterrupt)
                 value = min(value, float(open_single[k:].min()))
                 break
             if tick is not None:
-                rest = float(open_single[k + 1:].min()) if k + 1 < len(open_cells) else np.inf
+                rest = float(open_single[k + 1 :].min()) if k + 1 < len(open_cells) else np.inf
                 tick(k + 1, len(open_cells), min(value, target, rest) * unit)
         value = min(value, target)
-    return CellBound(value=float(value * unit), cells=total, searched=searched, failed=failed,
-                     seconds=time.perf_counter() - started, complete=complete,
-                     interrupted=interrupted)
+    return CellBound(
+        value=float(value * unit),
+        cells=total,
+        searched=searched,
+        failed=failed,
+        seconds=time.perf_counter() - started,
+        complete=complete,
+        interrupted=interrupted,
+    )

@@ -84,7 +84,7 @@ def line_starts(problem, spread=2):
     for line, count in ((0, n0), (1, problem.cranes - n0)):
         members = np.flatnonzero(lines.line == line)
         members = members[np.argsort(along[members], kind="stable")]
-        ends = [np.r_[members[:k], members[len(members) - count + k:]] for k in range(count + 1)]
+        ends = [np.r_[members[:k], members[len(members) - count + k :]] for k in range(count + 1)]
         best = min(range(count + 1), key=lambda k: abs(float(along[ends[k]].mean()) - target))
         options.append([ends[k] for k in range(max(0, best - spread), min(count, best + spread) + 1)])
     return [tuple(sorted(int(i) for i in np.r_[a, b])) for a in options[0] for b in options[1]]
@@ -133,8 +133,10 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
         Every start and every swap from them are infeasible.
     """
     if not problem.equal_cranes:
-        raise PlanInfeasible("the local search plans a fleet of equal cranes only; give the "
-                             "cranes one [crane] table, or fewer candidates for the exact search")
+        raise PlanInfeasible(
+            "the local search plans a fleet of equal cranes only; give the "
+            "cranes one [crane] table, or fewer candidates for the exact search"
+        )
     started = time.perf_counter()
     deadline = None if time_limit is None else started + time_limit
     count, n = len(problem.candidates), problem.cranes
@@ -149,8 +151,7 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     for _ in range(RESTARTS if restarts is None else restarts):
         kept = rng.choice(first, n - max(1, n // 3), replace=False)
         others = np.setdiff1d(np.arange(count), kept)
-        starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)]
-                                   .tolist())))
+        starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)].tolist())))
     best, moves, reason = (None, math.inf), 0, None
     for begin in dict.fromkeys(starts):  # a repeated start is run once
         if deadline is not None and time.perf_counter() > deadline and best[0] is not None:
@@ -161,8 +162,10 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
         if value < best[1]:
             best = (current, value)
     if best[0] is None:
-        raise PlanInfeasible(f"the local search found no feasible set one swap from its starts "
-                             f"({reason}); expected more candidates round the CG or fewer cranes")
+        raise PlanInfeasible(
+            f"the local search found no feasible set one swap from its starts "
+            f"({reason}); expected more candidates round the CG or fewer cranes"
+        )
     return best[0], moves, best[1]
 
 
@@ -170,12 +173,21 @@ def _plane_lp(problem):
     """:class:`PlaneLP` where the plane model is exact, else None. Its scenarios are the
     screening's (the 3 x 3 box grid at every CG vertex), so a swap's screening bound is a
     lower bound of its exact value and the swaps it rules out need no LP."""
-    if coplanar(problem) is None or problem.hook_tolerance > 0 or \
-            any(c.hook_tolerance for c in problem.fleet):
+    if (
+        coplanar(problem) is None
+        or problem.hook_tolerance > 0
+        or any(c.hook_tolerance for c in problem.fleet)
+    ):
         return None
     grid = box_attitudes(problem, 3, 3)
-    return PlaneLP(problem, [Scenario(float(h), float(t), tuple(float(v) for v in o))
-                             for o in problem.cog_envelope.offsets() for h, t in grid])
+    return PlaneLP(
+        problem,
+        [
+            Scenario(float(h), float(t), tuple(float(v) for v in o))
+            for o in problem.cog_envelope.offsets()
+            for h, t in grid
+        ],
+    )
 
 
 def _descend(problem, current, deadline, max_moves, plane=None):
@@ -205,8 +217,7 @@ def _descend(problem, current, deadline, max_moves, plane=None):
         else:  # exact values in order of the bound, until the bound passes the best found
             k, best = None, target
             for j in ok[np.argsort(found.bound[ok], kind="stable")]:
-                if found.bound[j] >= best or (deadline is not None and
-                                              time.perf_counter() > deadline):
+                if found.bound[j] >= best or (deadline is not None and time.perf_counter() > deadline):
                     break
                 exact = plane.value(near[j])
                 if exact < best:

@@ -97,8 +97,7 @@ def poses(problem, scenarios):
         a_mat.append(np.vstack([np.ones(len(points)), world[:, 0], world[:, 1]]))
         b_vec.append(problem.body.weight * np.array([1.0, g[0], g[1]]))
         rise.append(world[:, 2] - level[:, 2])
-    return Poses(list(scenarios), np.array(a_mat), np.array(b_vec), np.array(rise),
-                 level[:, :2].copy())
+    return Poses(list(scenarios), np.array(a_mat), np.array(b_vec), np.array(rise), level[:, :2].copy())
 
 
 @dataclass(frozen=True)
@@ -131,8 +130,7 @@ def worst_errors(lugset, preload, scenario, kind):
     values, scaled = tensions * scale, gain * scale[:, None]
     n = len(tensions)
     pairs = [(a, b) for a in range(n) for b in range(n) if a != b]
-    a, b = max(pairs, key=lambda p: values[p[0]] - values[p[1]]
-               + np.abs(scaled[p[0]] - scaled[p[1]]) @ delta)
+    a, b = max(pairs, key=lambda p: values[p[0]] - values[p[1]] + np.abs(scaled[p[0]] - scaled[p[1]]) @ delta)
     return delta * np.sign(scaled[a] - scaled[b])
 
 
@@ -170,9 +168,10 @@ class Classes:
 
 def crane_classes(problem):
     """One class for an equal fleet; otherwise one class per crane."""
-    fleet = problem.fleet[:problem.cranes]
-    members = [tuple(range(problem.cranes))] if problem.equal_cranes else \
-        [(j,) for j in range(problem.cranes)]
+    fleet = problem.fleet[: problem.cranes]
+    members = (
+        [tuple(range(problem.cranes))] if problem.equal_cranes else [(j,) for j in range(problem.cranes)]
+    )
     stiffness = np.array([fleet[m[0]].EA / fleet[m[0]].rope_length for m in members])
     return Classes(members, stiffness)
 
@@ -228,8 +227,11 @@ def least_width(problem, data, change):
         mid = 0.5 * (d_lug.max(axis=2) + d_lug.min(axis=2))
         half = 0.5 * (d_lug.max(axis=2) - d_lug.min(axis=2))
         best = np.maximum(best, (np.abs(d_cog - mid) - half).max(axis=0))
-        lipschitz = max(lipschitz, float(np.linalg.norm(cog[k] - cog[level], axis=1).max()) +
-                        2.0 * float(np.linalg.norm(plan[k][None] - plan[level], axis=1).max()))
+        lipschitz = max(
+            lipschitz,
+            float(np.linalg.norm(cog[k] - cog[level], axis=1).max())
+            + 2.0 * float(np.linalg.norm(plan[k][None] - plan[level], axis=1).max()),
+        )
     # between two sampled angles each term moves by at most its Lipschitz constant x half a step
     least = float(best.min()) - lipschitz * (math.pi / ANGLES) / 2.0
     return max(problem.body.weight * least / (0.5 * n * change), 0.0)
@@ -253,15 +255,15 @@ def hook_bounds(problem, data, change, stiffness, errors=0.0):
     width = least_width(problem, data, change)
     if width <= 0.0:
         raise PlanInfeasible(
-            "search = \"mip\" needs the CG envelope or the tilt tolerance to move the CG "
+            'search = "mip" needs the CG envelope or the tilt tolerance to move the CG '
             "against the lugs in every plan direction (it bounds the hook plane from that); "
-            "expected cog_tolerance or heel/trim tolerances, or search = \"exact\"")
+            'expected cog_tolerance or heel/trim tolerances, or search = "exact"'
+        )
     plan = data.level_plan
     basis = np.column_stack([np.ones(len(plan)), plan])
     coef, *_ = np.linalg.lstsq(basis, data.rise.T, rcond=None)
     centre = (basis @ coef).T  # (m, C)
-    bound = change / float(np.min(stiffness)) + errors + \
-        np.abs(data.rise - centre).max(axis=1, keepdims=True)
+    bound = change / float(np.min(stiffness)) + errors + np.abs(data.rise - centre).max(axis=1, keepdims=True)
     reach = np.sqrt(((plan[:, None, :] - plan[None, :, :]) ** 2).sum(axis=2)).max(axis=1)
     return centre, bound + 2.0 * bound / width * reach[None, :]
 
@@ -292,8 +294,7 @@ def mirror_side(problem):
     """+1 / -1 / 0: each candidate's side of the fore-and-aft plane through the CG (level)."""
     rot = rotation_matrix(0.0, 0.0, problem.yaw)
     lateral = (problem.points @ rot.T)[:, 1] - (rot @ np.array(problem.body.cog, dtype=float))[1]
-    return np.where(np.abs(lateral) < 1e-9 * max(1.0, float(np.abs(lateral).max())), 0.0,
-                    np.sign(lateral))
+    return np.where(np.abs(lateral) < 1e-9 * max(1.0, float(np.abs(lateral).max())), 0.0, np.sign(lateral))
 
 
 @dataclass(frozen=True)
@@ -340,8 +341,10 @@ class LugMip:
 
     def __init__(self, problem, cutoff, dense=None):
         if problem.hinge_rows is not None:
-            raise PlanInfeasible("search = \"mip\" takes body-fixed lugs; expected search = "
-                                 "\"exact\" or \"local\" for lift points hinged on slings")
+            raise PlanInfeasible(
+                'search = "mip" takes body-fixed lugs; expected search = '
+                '"exact" or "local" for lift points hinged on slings'
+            )
         self.problem = problem
         self.cutoff = float(cutoff)
         self.classes = crane_classes(problem)
@@ -353,8 +356,11 @@ class LugMip:
         reach_swl = np.where(np.isnan(self.swl), 1.0, self.swl)
         cranes = np.broadcast_to(np.array(first), self.swl.shape)
         self.limit, self.share = rule_limits(problem, reach_swl, cranes)
-        boom_zero = problem.lift_height + problem.points[:, 2][:, None] + \
-            np.array([fleet[j].rope_length for j in first])[None, :]
+        boom_zero = (
+            problem.lift_height
+            + problem.points[:, 2][:, None]
+            + np.array([fleet[j].rope_length for j in first])[None, :]
+        )
         kappa = self.classes.stiffness[None, :]
         low = kappa * (np.array([fleet[j].boom_min for j in first])[None, :] - boom_zero)
         high = kappa * (np.array([fleet[j].boom_max for j in first])[None, :] - boom_zero)
@@ -367,8 +373,10 @@ class LugMip:
         self.count = count
         # candidates on two lines: each count of lugs per line has a bound of its own
         self.lines = two_lines(problem)
-        if self.lines is not None and (problem.objective == "spread" or (
-                problem.objective == "utilisation" and np.nanmax(swl) == np.nanmin(swl))):
+        if self.lines is not None and (
+            problem.objective == "spread"
+            or (problem.objective == "utilisation" and np.nanmax(swl) == np.nanmin(swl))
+        ):
             if dense is None:
                 from liftplan.planner.search.branch import SetEvaluator
 
@@ -403,8 +411,9 @@ class LugMip:
         band_low, band_high = tension_band(problem, self.swl, self.cutoff)  # (C, K)
         band_low, band_high = (np.nan_to_num(v, nan=0.0) for v in (band_low, band_high))
         change = band_high - band_low
-        centre, off = hook_bounds(problem, data, float(change.max()), classes.stiffness,
-                                  float(np.abs(errors).max(initial=0.0)))
+        centre, off = hook_bounds(
+            problem, data, float(change.max()), classes.stiffness, float(np.abs(errors).max(initial=0.0))
+        )
         col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
         col_class = np.tile(np.arange(kinds), count)
         usable = self.usable.ravel()
@@ -422,8 +431,9 @@ class LugMip:
         on_hi = rise + (change.ravel() / kappa)[None, :]
         off_lo = centre[:, col_cand] - off[:, col_cand]
         off_hi = centre[:, col_cand] + off[:, col_cand]
-        tension = ones @ cp.reshape(preload, (1, count * kinds), order="C") + \
-            cp.multiply(kappa[None, :], product - cp.multiply(rise, chosen))
+        tension = ones @ cp.reshape(preload, (1, count * kinds), order="C") + cp.multiply(
+            kappa[None, :], product - cp.multiply(rise, chosen)
+        )
         weight = problem.body.weight
         scale = self.scale.ravel()[None, :]
         limit = self.limit.ravel()[None, :]
@@ -431,11 +441,11 @@ class LugMip:
             y <= usable.astype(float),
             cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=0) == classes.counts,
             cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1) <= 1,  # a lug, one crane
-            preload >= cp.multiply(np.where(usable, np.maximum(self.preload_low, band_low).ravel(),
-                                            0.0), y),
-            preload <= cp.multiply(np.where(usable, np.minimum(self.preload_high, band_high).ravel(),
-                                            0.0), y),
-            product <= cp.multiply(on_hi, chosen), product >= cp.multiply(on_lo, chosen),
+            preload >= cp.multiply(np.where(usable, np.maximum(self.preload_low, band_low).ravel(), 0.0), y),
+            preload
+            <= cp.multiply(np.where(usable, np.minimum(self.preload_high, band_high).ravel(), 0.0), y),
+            product <= cp.multiply(on_hi, chosen),
+            product >= cp.multiply(on_lo, chosen),
             product <= hooks - cp.multiply(off_lo, 1 - chosen),
             product >= hooks - cp.multiply(off_hi, 1 - chosen),
             tension >= cp.multiply(band_low.ravel()[None, :], chosen),
@@ -460,16 +470,20 @@ class LugMip:
         else:
             high, low = cp.Variable(m), cp.Variable(m)
             across = np.ones((1, count * kinds))
-            cons += [scaled + floor * (1 - chosen) <= high[:, None] @ across,
-                     low[:, None] @ across <= scaled + ceiling * (1 - chosen),
-                     z >= high - low]
+            cons += [
+                scaled + floor * (1 - chosen) <= high[:, None] @ across,
+                low[:, None] @ across <= scaled + ceiling * (1 - chosen),
+                z >= high - low,
+            ]
         per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
         if self.line_counts is not None:  # z >= B(n1): n1 lugs on line 0 (planner/search/lines)
             allowed = np.flatnonzero(np.isfinite(self.line_counts))
             pick = cp.Variable(len(allowed), boolean=True)
-            cons += [cp.sum(pick) == 1,
-                     allowed @ pick == cp.sum(per_set[np.flatnonzero(self.lines.line == 0)]),
-                     z >= self.line_counts[allowed] @ pick]
+            cons += [
+                cp.sum(pick) == 1,
+                allowed @ pick == cp.sum(per_set[np.flatnonzero(self.lines.line == 0)]),
+                z >= self.line_counts[allowed] @ pick,
+            ]
         for lugs in forbidden:
             cons.append(cp.sum(per_set[list(lugs)]) <= problem.cranes - 1)
         if self.mirror is not None:  # one of each mirror pair of sets
@@ -485,15 +499,17 @@ class LugMip:
         dual = float(getattr(info, "mip_dual_bound", -math.inf)) if info is not None else -math.inf
         infeasible = (cp.INFEASIBLE, cp.settings.INFEASIBLE_OR_UNBOUNDED)
         # at a time limit HiGHS may hand back a vector that is no solution (status 2: feasible)
-        found = y.value is not None and (mip.status == cp.OPTIMAL or
-                                         getattr(info, "primal_solution_status", 0) == 2)
+        found = y.value is not None and (
+            mip.status == cp.OPTIMAL or getattr(info, "primal_solution_status", 0) == 2
+        )
         if mip.status in infeasible or not found:
             if mip.status in infeasible or (mip.status == cp.USER_LIMIT and dual >= self.cutoff):
                 # every set is cut off: none beats the cutoff over these scenarios
                 return MipSolution(None, None, None, math.inf, self.cutoff, "cutoff", seconds)
             if mip.status == cp.USER_LIMIT:  # time limit before any set below the cutoff
-                return MipSolution(None, None, None, math.inf, min(max(dual, 0.0), self.cutoff),
-                                   "time_limit", seconds)
+                return MipSolution(
+                    None, None, None, math.inf, min(max(dual, 0.0), self.cutoff), "time_limit", seconds
+                )
             raise SolverFailed(f"lug-choice MIP: HiGHS ended with status {mip.status!r}")
         picked = np.flatnonzero(y.value > 0.5)
         value = float(z.value)
@@ -506,8 +522,15 @@ class LugMip:
         order = np.argsort(indices)
         members = [list(classes.members[c]) for c in range(kinds)]
         cranes = [members[c].pop(0) for c in col_class[picked][order]]
-        return MipSolution(tuple(int(i) for i in indices[order]), tuple(cranes),
-                           np.asarray(preload.value)[picked][order], value, bound, status, seconds)
+        return MipSolution(
+            tuple(int(i) for i in indices[order]),
+            tuple(cranes),
+            np.asarray(preload.value)[picked][order],
+            value,
+            bound,
+            status,
+            seconds,
+        )
 
 
 def search_mip(problem, started, progress=None):
@@ -551,12 +574,20 @@ def search_mip(problem, started, progress=None):
 
     def stats_now():
         best = ranking[0].worst_value
-        return SearchStats(sets=problem.set_count, screened_out=0, evaluated=len(ranking) + len(forbidden),
-                           pruned=0, infeasible={REASONS[c]: k for c, k in reasons.most_common()},
-                           seconds=time.perf_counter() - started, rows=problem.set_count,
-                           refined=rounds, lower_bound=min(lower, best),
-                           best=best, stopped=stopped,
-                           method="mip")
+        return SearchStats(
+            sets=problem.set_count,
+            screened_out=0,
+            evaluated=len(ranking) + len(forbidden),
+            pruned=0,
+            infeasible={REASONS[c]: k for c, k in reasons.most_common()},
+            seconds=time.perf_counter() - started,
+            rows=problem.set_count,
+            refined=rounds,
+            lower_bound=min(lower, best),
+            best=best,
+            stopped=stopped,
+            method="mip",
+        )
 
     try:
         while True:
@@ -595,10 +626,14 @@ def search_mip(problem, started, progress=None):
             if solution.status == "time_limit":
                 stopped = "time_limit"
                 break
-            tol = tolerance(problem) * (1.0 if problem.objective == "spread"
-                                        else 1.0 / float(np.max(result.swl)))
-            cuts = [_cut(mip, solution, lugset, found.worst[1], "value")] \
-                if found.worst[0] > solution.value + tol else []
+            tol = tolerance(problem) * (
+                1.0 if problem.objective == "spread" else 1.0 / float(np.max(result.swl))
+            )
+            cuts = (
+                [_cut(mip, solution, lugset, found.worst[1], "value")]
+                if found.worst[0] > solution.value + tol
+                else []
+            )
             if found.low[0] < problem.min_tension - tolerance(problem):
                 cuts.append(_cut(mip, solution, lugset, found.low[1], "low"))
             if found.over[0] > tolerance(problem):
@@ -625,9 +660,14 @@ def _cut(mip, solution, lugset, scenario, kind):
     errors = worst_errors(lugset, solution.preload, scenario, kind)
     kinds = len(mip.classes.members)
     crane_class = {j: c for c, members in enumerate(mip.classes.members) for j in members}
-    return Cut(scenario, tuple((int(i) * kinds + crane_class[j], float(e))
-                               for i, j, e in zip(solution.indices, solution.cranes, errors)
-                               if e != 0.0))
+    return Cut(
+        scenario,
+        tuple(
+            (int(i) * kinds + crane_class[j], float(e))
+            for i, j, e in zip(solution.indices, solution.cranes, errors)
+            if e != 0.0
+        ),
+    )
 
 
 def _incumbent(problem, started):

@@ -217,8 +217,9 @@ class LugSet:
         #: SWL of each crane at its radius [t] (NaN: the crane cannot reach its lug)
         self.swl = swl[list(self.indices), list(self.cranes)]
         #: each hook's height tolerance [m] (the crane's, else the plan's)
-        self.hook_tolerance = np.array([problem.hook_tolerance if c.hook_tolerance is None
-                                        else c.hook_tolerance for c in fleet])
+        self.hook_tolerance = np.array(
+            [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in fleet]
+        )
         #: tension limits from the rules' chain: anywhere in the box, and at level [t]
         self.limit, self.share_limit = rule_limits(problem, self.swl, self.cranes)
         #: what the objective's spread is taken of: s_i T_i
@@ -239,8 +240,15 @@ class LugSet:
         problem = self.problem
         if self.hinges is not None:  # hinged lift points: posed by the model itself
             x, _ = self._columns([scenario])
-            p = pack(problem, self.points, np.array(problem.body.cog) + scenario.cog_offset,
-                     self.boom_zero, rope_length=self.rope_length, EA=self.EA, hinges=self.hinges)
+            p = pack(
+                problem,
+                self.points,
+                np.array(problem.body.cog) + scenario.cog_offset,
+                self.boom_zero,
+                rope_length=self.rope_length,
+                EA=self.EA,
+                hinges=self.hinges,
+            )
             a_flat, b_vec, _, _ = self._model.statics_fast(x[0], p)
             return a_flat.reshape(self.n, 3).T, b_vec
         rot = rotation_matrix(scenario.heel, scenario.trim, problem.yaw)
@@ -261,11 +269,13 @@ class LugSet:
 
     def _columns(self, scenarios):
         attitudes = np.array([[s.heel, s.trim] for s in scenarios], dtype=float)
-        x = np.column_stack([
-            np.full(len(scenarios), self.problem.lift_height),
-            np.radians(attitudes[:, 0]),
-            np.radians(attitudes[:, 1]),
-        ])
+        x = np.column_stack(
+            [
+                np.full(len(scenarios), self.problem.lift_height),
+                np.radians(attitudes[:, 0]),
+                np.radians(attitudes[:, 1]),
+            ]
+        )
         offsets = np.array([s.cog_offset for s in scenarios], dtype=float)
         return x, offsets
 
@@ -279,8 +289,15 @@ class LugSet:
         cog = np.array(self.problem.body.cog)
         for offset in np.unique(offsets, axis=0):
             rows = np.all(offsets == offset, axis=1)
-            p = pack(self.problem, self.points, cog + offset, boom,
-                     rope_length=self.rope_length, EA=self.EA, hinges=self.hinges)
+            p = pack(
+                self.problem,
+                self.points,
+                cog + offset,
+                boom,
+                rope_length=self.rope_length,
+                EA=self.EA,
+                hinges=self.hinges,
+            )
             t, d, g = run_block(self._model.held_block, self.n, x[rows], p)
             tensions[rows], shift[rows], gain[rows] = t, d, g
         return tensions, shift, gain

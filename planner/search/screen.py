@@ -53,14 +53,14 @@ REASONS = {
     COLLINEAR: "the lugs are collinear in plan (the statics are singular)",
     CG_OUTSIDE: "the CG lies outside the lugs' polygon in plan",
     LEVEL_SWL: "level tensions need more than the crane SWL allows (chart SWL / DAF, less the "
-               "rigging, over the weight contingency)",
+    "rigging, over the weight contingency)",
     LEVEL_MIN_TENSION: "level tensions cannot all reach min_tension",
     CODE_MARGIN: "a level tension exceeds the crane's SWL / (1 + the multi-crane code margin), "
-                 "less the rigging, over the weight contingency",
+    "less the rigging, over the weight contingency",
     BOOM_RANGE: "the boom heights needed lie outside the crane's boom-height range",
     BOX_SLACK: "a rope falls below min_tension somewhere in the tolerance box",
     BOX_OVERLOAD: "a rope exceeds the crane SWL (with the rules' DAF, contingency and rigging) "
-                  "somewhere in the tolerance box",
+    "somewhere in the tolerance box",
 }
 
 CHUNK = 8192
@@ -111,8 +111,9 @@ def _combinations(count, n):
         # each row continues with every index above its last that leaves room for the rest
         reach = count - n + column + 1
         counts = reach - (last + 1)
-        nxt = np.repeat(last + 1, counts) + (np.arange(counts.sum()) -
-                                              np.repeat(np.cumsum(counts) - counts, counts))
+        nxt = np.repeat(last + 1, counts) + (
+            np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
+        )
         rows = np.column_stack([np.repeat(rows, counts, axis=0), nxt])
     return rows
 
@@ -238,10 +239,12 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
                 continue
         # collinear sets give singular statics (inf, nan): they are marked, not used
         with np.errstate(divide="ignore", invalid="ignore"):
-            bound[part], reason[part] = _screen_chunk(problem, sets[part], cranes[part], scenarios,
-                                                      dual, target)
-    return Screening(sets=sets, cranes=cranes, bound=bound, reason=reason,
-                     exact=problem.cranes <= 4 and not coarse)
+            bound[part], reason[part] = _screen_chunk(
+                problem, sets[part], cranes[part], scenarios, dual, target
+            )
+    return Screening(
+        sets=sets, cranes=cranes, bound=bound, reason=reason, exact=problem.cranes <= 4 and not coarse
+    )
 
 
 #: The dual bound's scenarios: the box corners and level (True) or the whole 3 x 3 grid,
@@ -261,13 +264,21 @@ def screening_scenarios(problem, coarse=False, corners=False):
         keep = np.all(np.abs(grid) == [problem.heel_tolerance, problem.trim_tolerance], axis=1)
         grid = grid[keep | np.all(grid == 0.0, axis=1)]
     if coarse:
-        corners = (np.abs(grid[:, 0]) == problem.heel_tolerance) & \
-            (np.abs(grid[:, 1]) == problem.trim_tolerance)
+        corners = (np.abs(grid[:, 0]) == problem.heel_tolerance) & (
+            np.abs(grid[:, 1]) == problem.trim_tolerance
+        )
         grid = grid[corners | np.all(grid == 0.0, axis=1)]
         offsets = offsets[:1]
-    x = np.tile(np.column_stack([
-        np.full(len(grid), problem.lift_height), np.radians(grid[:, 0]), np.radians(grid[:, 1]),
-    ]), (len(offsets), 1))
+    x = np.tile(
+        np.column_stack(
+            [
+                np.full(len(grid), problem.lift_height),
+                np.radians(grid[:, 0]),
+                np.radians(grid[:, 1]),
+            ]
+        ),
+        (len(offsets), 1),
+    )
     return x, np.repeat(offsets, len(grid), axis=0)
 
 
@@ -299,9 +310,15 @@ def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
     # the CG is in the parameter vector, one column per (row, scenario))
     x, offsets = scenarios
     m = len(x)
-    columns_p = pack(problem, points[:, None], (cog + offsets)[None], boom_zero[:, None],
-                     rope_length=rope_length[:, None], EA=rope_ea[:, None],
-                     hinges=None if hinges is None else hinges[:, None])
+    columns_p = pack(
+        problem,
+        points[:, None],
+        (cog + offsets)[None],
+        boom_zero[:, None],
+        rope_length=rope_length[:, None],
+        EA=rope_ea[:, None],
+        hinges=None if hinges is None else hinges[:, None],
+    )
     columns_p = columns_p.reshape(count * m, -1)
     columns_x = np.tile(x, (count, 1))
     q, _, gain = run_block(held_model(problem, n).held_columns, n, columns_x, columns_p)
@@ -324,15 +341,39 @@ def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
     particular = np.einsum("kji,kj->ki", a_level, np.linalg.solve(gram, rhs)[..., 0])
     reserve = problem.objective == "reserve"
     if n == 3:
-        bound, reason = _screen_fixed(particular, q, gain, inside, limits,
-                                      (preload_low, preload_high), scale, hook, reserve)
+        bound, reason = _screen_fixed(
+            particular, q, gain, inside, limits, (preload_low, preload_high), scale, hook, reserve
+        )
     elif n == 4:
-        bound, reason = _screen_line(particular, _null_vector(a_level), q, gain, inside, limits,
-                                     (preload_low, preload_high), scale, hook, reserve)
+        bound, reason = _screen_line(
+            particular,
+            _null_vector(a_level),
+            q,
+            gain,
+            inside,
+            limits,
+            (preload_low, preload_high),
+            scale,
+            hook,
+            reserve,
+        )
     else:
-        bound, reason = _screen_pairs(particular, a_level, points[..., 2], q, gain, inside,
-                                      limits, weight, scale, hook,
-                                      (preload_low, preload_high), reserve, dual, target)
+        bound, reason = _screen_pairs(
+            particular,
+            a_level,
+            points[..., 2],
+            q,
+            gain,
+            inside,
+            limits,
+            weight,
+            scale,
+            hook,
+            (preload_low, preload_high),
+            reserve,
+            dual,
+            target,
+        )
         if reserve:  # every scenario carries W on the ropes: max T_i / SWL_i >= W / sum SWL_i
             bound = np.where(np.isfinite(bound), np.maximum(bound, weight / swl.sum(axis=1)), bound)
     bound[collinear] = np.inf
@@ -351,8 +392,9 @@ def _hook_margins(problem, cranes, gain, scale):
     margin : (N, m, n)  [t]   sum_j |G_ij| delta_j
     pair : (N, m, n, n)  [t or -]   sum_j |s_a G_aj - s_b G_bj| delta_j for every pair (a, b)
     """
-    delta = np.array([problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
-                      for c in problem.fleet])[cranes]  # (N, n)
+    delta = np.array(
+        [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in problem.fleet]
+    )[cranes]  # (N, n)
     if not np.any(delta > 0.0):
         return None
     margin = np.einsum("kmij,kj->kmi", np.abs(gain), delta)
@@ -400,8 +442,9 @@ def _dual_bound(rows, reserve, shift, target):
         copies = 2 * patterns
         alpha = np.repeat(alpha, copies, axis=1) + shift
         beta = np.repeat(beta, copies, axis=1)
-        limits = tuple(np.repeat(np.broadcast_to(v, alpha.shape[:1] + (m, n)), copies, axis=1)
-                       + shift for v in limits)
+        limits = tuple(
+            np.repeat(np.broadcast_to(v, alpha.shape[:1] + (m, n)), copies, axis=1) + shift for v in limits
+        )
     return preload_lp_bound(part, null, alpha, beta, low, high, limits, reserve, target)
 
 
@@ -525,8 +568,7 @@ def _classify_point(preload, tensions, inside, limits, preload_range, margin=0.0
     return reason
 
 
-def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale, hook,
-                 reserve=False):
+def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale, hook, reserve=False):
     count, m, n = q.shape
     low, high, share = limits  # high, share: (N, n)
     box_high = np.tile(high, (1, m))
@@ -572,8 +614,22 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
     return bound, reason
 
 
-def _screen_pairs(particular, a_level, heights, q, gain, inside, limits, weight, scale, hook,
-                  preload_range, reserve=False, dual=False, target=np.inf):
+def _screen_pairs(
+    particular,
+    a_level,
+    heights,
+    q,
+    gain,
+    inside,
+    limits,
+    weight,
+    scale,
+    hook,
+    preload_range,
+    reserve=False,
+    dual=False,
+    target=np.inf,
+):
     count, m, n = q.shape
     reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
     reason = np.where(inside & (weight > limits[1].sum(axis=1)), LEVEL_SWL, reason)

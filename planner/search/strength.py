@@ -80,8 +80,9 @@ class GirderLoads:
         c0 = (body.weight - area) / length
         c1 = 12.0 * (body.weight * body.cog[0] - first - c0 * length * middle) / length**3
         h = np.diff(x)
-        self.base = Piecewise(x, np.stack([w[:-1] + c0 + c1 * (x[:-1] - middle),
-                                           (w[1:] - w[:-1]) / h + c1], axis=1))
+        self.base = Piecewise(
+            x, np.stack([w[:-1] + c0 + c1 * (x[:-1] - middle), (w[1:] - w[:-1]) / h + c1], axis=1)
+        )
         self.unit = Piecewise(x, np.stack([x[:-1] - middle, np.ones(len(h))], axis=1))
         self.per_offset = 12.0 * body.weight / length**3  # dc1 / ddx  [t/m^2 per m]
         self.span = (float(x[0]), float(x[-1]))
@@ -119,14 +120,18 @@ class Sections:
         """The weight curve's breakpoints, both sides of every station (lug candidates),
         the envelopes' breakpoints and ``grid`` equal steps over the span."""
         lo, hi = loads.span
-        plain = np.unique(np.concatenate(
-            [loads.breaks, np.linspace(lo, hi, grid + 1)]
-            + [np.array([p[0] for p in env]) for env in envelopes if env is not None]))
+        plain = np.unique(
+            np.concatenate(
+                [loads.breaks, np.linspace(lo, hi, grid + 1)]
+                + [np.array([p[0] for p in env]) for env in envelopes if env is not None]
+            )
+        )
         plain = plain[(plain >= lo) & (plain <= hi)]
         stations = np.unique(np.asarray(stations, dtype=float))
         x = np.concatenate([plain, stations, stations])
-        right = np.concatenate([np.ones(len(plain), bool), np.zeros(len(stations), bool),
-                                np.ones(len(stations), bool)])
+        right = np.concatenate(
+            [np.ones(len(plain), bool), np.zeros(len(stations), bool), np.ones(len(stations), bool)]
+        )
         return Sections(x, right)
 
     def add(self, x, right):
@@ -329,14 +334,21 @@ class StrengthLP:
         block = sparse.kron(sparse.eye(k), np.ones((n, 1)), format="csr")  # rope rows -> scenario
         constraints += [
             self.a0 @ preload == self.b0,
-            preload >= self.plo, preload <= self.phi,
-            tensions - self.tm >= self.low, tensions + self.tm <= self.high,
-            tensions + self.tm <= block @ hi, tensions - self.tm >= block @ lo,
+            preload >= self.plo,
+            preload <= self.phi,
+            tensions - self.tm >= self.low,
+            tensions + self.tm <= self.high,
+            tensions + self.tm <= block @ hi,
+            tensions - self.tm >= block @ lo,
             hi - lo <= spread,
             self.lift_row @ preload >= self.lift_low,
         ]
-        objective = (self.weights[0] * t["m"] + self.weights[1] * t["q"] + self.weights[2] * spread
-                     + TIE_BREAK * (t["m"] + t["q"]))
+        objective = (
+            self.weights[0] * t["m"]
+            + self.weights[1] * t["q"]
+            + self.weights[2] * spread
+            + TIE_BREAK * (t["m"] + t["q"])
+        )
         self.problem = _checked(cp.Problem(cp.Minimize(objective), constraints), "strength LP")
         self.blocks, self.t, self.preload, self.spread = blocks, t, preload, spread
 
@@ -382,8 +394,13 @@ class StrengthLP:
         self.lift_row.value, self.lift_low.value = np.asarray(row, float), float(floor)
         self.weights.value = np.asarray(weights, dtype=float)
         value = _run(self.problem, "strength LP")
-        return LPResult(preload=np.array(self.preload.value), bending=float(self.t["m"].value),
-                        shear=float(self.t["q"].value), spread=float(self.spread.value), value=value)
+        return LPResult(
+            preload=np.array(self.preload.value),
+            bending=float(self.t["m"].value),
+            shear=float(self.t["q"].value),
+            spread=float(self.spread.value),
+            value=value,
+        )
 
 
 _LPS = {}
@@ -453,14 +470,23 @@ class CandidateMIP:
         self.centre_row = cp.Parameter(c, name="centre_row")
         self.centre_low = cp.Parameter(name="centre_low")
         self.cuts = []
-        constraints = [cp.sum(z) == n, tensions[0] <= cp.multiply(self.level_high, z),
-                       self.centre_row @ tensions[0] >= self.centre_low]
+        constraints = [
+            cp.sum(z) == n,
+            tensions[0] <= cp.multiply(self.level_high, z),
+            self.centre_row @ tensions[0] >= self.centre_low,
+        ]
         for j in range(k):
             tj = tensions[j]
             a, b = self.statics[j]
             hi, lo = cp.Variable(name=f"hi{j}"), cp.Variable(name=f"lo{j}")
-            constraints += [a @ tj == b, tj >= cp.multiply(self.low, z), tj <= cp.multiply(self.high, z),
-                            tj <= hi, tj + self.big * (1 - z) >= lo, hi - lo <= spread]
+            constraints += [
+                a @ tj == b,
+                tj >= cp.multiply(self.low, z),
+                tj <= cp.multiply(self.high, z),
+                tj <= hi,
+                tj + self.big * (1 - z) >= lo,
+                hi - lo <= spread,
+            ]
             block = []
             for key, rows, t in (("m", rows_m, t_m), ("q", rows_q, t_q)):
                 g = cp.Parameter((rows, c), name=f"g_{key}{j}")
@@ -470,8 +496,9 @@ class CandidateMIP:
             self.rows.append(block)
             if shared:
                 break  # every scenario's rows act on the same tensions: stack them in block 0
-        objective = (self.weights[0] * t_m + self.weights[1] * t_q + self.weights[2] * spread
-                     + TIE_BREAK * (t_m + t_q))
+        objective = (
+            self.weights[0] * t_m + self.weights[1] * t_q + self.weights[2] * spread + TIE_BREAK * (t_m + t_q)
+        )
         self.constraints, self.objective = constraints, objective
         self.z, self.tensions = z, tensions
         self._problem = None
@@ -517,10 +544,12 @@ class CandidateMIP:
         if problem.status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE):
             raise PlanInfeasible("lug choice (MIP): no lug set and tensions satisfy the limits")
         complete = problem.status == cp.OPTIMAL
-        if self.z.value is None or problem.value is None or not (
-                complete or problem.status in (cp.OPTIMAL_INACCURATE, cp.USER_LIMIT)):
-            raise SolverFailed(f"lug choice (MIP): HiGHS ended with status {problem.status!r} and "
-                               "no lug set")
+        if (
+            self.z.value is None
+            or problem.value is None
+            or not (complete or problem.status in (cp.OPTIMAL_INACCURATE, cp.USER_LIMIT))
+        ):
+            raise SolverFailed(f"lug choice (MIP): HiGHS ended with status {problem.status!r} and no lug set")
         chosen = tuple(int(i) for i in np.nonzero(np.asarray(self.z.value) > 0.5)[0])
         value = float(problem.value)
         info = problem.solver_stats.extra_stats
@@ -530,5 +559,10 @@ class CandidateMIP:
             bound = min(bound, float(dual))
         elif not complete:
             bound = -math.inf  # stopped with no bound known: no gap is claimed
-        return MIPResult(chosen=chosen, forces=np.array(self.tensions[0].value), value=bound,
-                         incumbent=value, complete=complete)
+        return MIPResult(
+            chosen=chosen,
+            forces=np.array(self.tensions[0].value),
+            value=bound,
+            incumbent=value,
+            complete=complete,
+        )

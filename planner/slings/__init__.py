@@ -16,8 +16,15 @@ from __future__ import annotations
 
 from liftplan.planner.slings.two_crane import SlingOption, SlingPlan, plan_two_slings, uses_slings
 
-__all__ = ["ApexSlingPlan", "SlingOption", "SlingPlan", "is_sling_plan", "plan_slings",
-           "plan_two_slings", "uses_slings"]
+__all__ = [
+    "ApexSlingPlan",
+    "SlingOption",
+    "SlingPlan",
+    "is_sling_plan",
+    "plan_slings",
+    "plan_two_slings",
+    "uses_slings",
+]
 
 
 def plan_slings(problem, top=None):

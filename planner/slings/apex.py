@@ -78,28 +78,42 @@ def apex_problem(problem):
             raise InvalidScene(
                 f"cranes[{crane.name}].sling = {{ legs = {sling.legs}, length = {sling.length:g} }}: "
                 f"expected the same legs{bar} and length on every crane ({first.legs} legs of "
-                f"{first.length:g} m on {fleet[0].name}); any crane may take any rig")
+                f"{first.length:g} m on {fleet[0].name}); any crane may take any rig"
+            )
     hinged = not first.body_fixed
     rigs = crane_rigs(problem, fleet[0], problem.body.weight / len(fleet), parallel=hinged)
     what = "spreader" if first.spreader is not None else f"{first.legs}-leg sling"
     if len(rigs) < len(fleet):
         causes = "; ".join(f"{n} {text}" for text, n in rigs.ruled_out.items())
-        raise PlanInfeasible(f"{len(rigs)} {what} rigs among {len(problem.candidates)} "
-                             f"candidates for {len(fleet)} cranes "
-                             f"({causes or 'no tuples on adjacent groups'})")
+        raise PlanInfeasible(
+            f"{len(rigs)} {what} rigs among {len(problem.candidates)} "
+            f"candidates for {len(fleet)} cranes "
+            f"({causes or 'no tuples on adjacent groups'})"
+        )
     names = problem.names
-    candidates = tuple(Candidate(name="+".join(names[i] for i in lugs), at=tuple(map(float, hook)))
-                       for lugs, hook in zip(rigs.lugs, rigs.hook))
+    candidates = tuple(
+        Candidate(name="+".join(names[i] for i in lugs), at=tuple(map(float, hook)))
+        for lugs, hook in zip(rigs.lugs, rigs.hook)
+    )
     bare = tuple(dataclasses.replace(c, sling=None) for c in fleet)
     hinges = ()
     if hinged:
         bar = first.spreader
-        hinges = tuple(map(tuple, hinge_rows(
-            problem.points[rigs.lugs[:, 0]], problem.points[rigs.lugs[:, 1]],
-            0.0 if bar is None else first.length, 0.0 if bar is None else bar.weight)))
+        hinges = tuple(
+            map(
+                tuple,
+                hinge_rows(
+                    problem.points[rigs.lugs[:, 0]],
+                    problem.points[rigs.lugs[:, 1]],
+                    0.0 if bar is None else first.length,
+                    0.0 if bar is None else bar.weight,
+                ),
+            )
+        )
     try:
-        derived = dataclasses.replace(problem, candidates=candidates, fleet=bare, hinges=hinges,
-                                      rules=rules_with_bars(problem))
+        derived = dataclasses.replace(
+            problem, candidates=candidates, fleet=bare, hinges=hinges, rules=rules_with_bars(problem)
+        )
     except InvalidScene as err:
         raise PlanInfeasible(f"the slings' {len(rigs)} hooks as lift points: {err}") from None
     return derived, rigs
@@ -138,8 +152,9 @@ def plan_apex_slings(problem, top=None):
             break
         ask *= 4
     if not keep:
-        raise PlanInfeasible(f"every feasible set of apexes shares a lug between two slings "
-                             f"({len(ranking)} sets ranked)")
+        raise PlanInfeasible(
+            f"every feasible set of apexes shares a lug between two slings ({len(ranking)} sets ranked)"
+        )
     inner = Plan(problem=derived, ranking=keep[:top], stats=stats)
     ruled_out = {**rigs.ruled_out, "sets sharing a lug (dropped from the ranking)": shared}
     return ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out)
@@ -173,31 +188,43 @@ class ApexSlingPlan(SlingLift):
 
     @property
     def lift_text(self):
-        return {"fixed": "slings with body-fixed apexes",
-                "pair": "2-leg slings hinged about their lug pairs",
-                "spreader": "spreader bars hinged about their lug pairs"}[self.rigs.kind]
+        return {
+            "fixed": "slings with body-fixed apexes",
+            "pair": "2-leg slings hinged about their lug pairs",
+            "spreader": "spreader bars hinged about their lug pairs",
+        }[self.rigs.kind]
 
     @property
     def lift_points_text(self):
         """What the search's lift points are, for the console and the report."""
-        return "sling apexes (body-fixed lift points)" if not self.hinged else \
-            "sling hooks (lift points hinged about their lug pairs)"
+        return (
+            "sling apexes (body-fixed lift points)"
+            if not self.hinged
+            else "sling hooks (lift points hinged about their lug pairs)"
+        )
 
     @property
     def method_text(self):
         """How the plan's hook and leg loads were found, one sentence for the report."""
         if not self.hinged:
-            return ("Each 3/4-leg sling fixes its hook to the body (an apex); the hooks hold the level "
-                    "preload over the tolerance box (the held-preload search on the apexes), and the "
-                    "legs share each hook load by the apex's statics; checked on the rigging model with "
-                    "free hooks and elastic legs.")
-        rig = "2-leg sling" if self.rigs.kind == "pair" else \
-            "spreader bar (spanning its pair, bottom legs vertical)"
-        return (f"Each {rig} swings about its lug pair, so its hook hangs in the vertical plane "
-                "through the pair at every heel and trim; the held-preload search poses the hooks so "
-                "(the hinged lift points of the one casadi model), the hooks hold the level preload "
-                "over the tolerance box, and each sling's legs carry its hook load by its statics at "
-                "each attitude; checked on the rigging model with free hooks and elastic legs.")
+            return (
+                "Each 3/4-leg sling fixes its hook to the body (an apex); the hooks hold the level "
+                "preload over the tolerance box (the held-preload search on the apexes), and the "
+                "legs share each hook load by the apex's statics; checked on the rigging model with "
+                "free hooks and elastic legs."
+            )
+        rig = (
+            "2-leg sling"
+            if self.rigs.kind == "pair"
+            else "spreader bar (spanning its pair, bottom legs vertical)"
+        )
+        return (
+            f"Each {rig} swings about its lug pair, so its hook hangs in the vertical plane "
+            "through the pair at every heel and trim; the held-preload search poses the hooks so "
+            "(the hinged lift points of the one casadi model), the hooks hold the level preload "
+            "over the tolerance box, and each sling's legs carry its hook load by its statics at "
+            "each attitude; checked on the rigging model with free hooks and elastic legs."
+        )
 
     @property
     def hinged(self):
@@ -262,8 +289,10 @@ class ApexSlingPlan(SlingLift):
 
     @property
     def tilt_shares(self):
-        return [None if c.tilt is None else float(c.tilt.load)
-                for c in (self._design.cranes[k] for k in self._order)]
+        return [
+            None if c.tilt is None else float(c.tilt.load)
+            for c in (self._design.cranes[k] for k in self._order)
+        ]
 
     @property
     def tilt_note(self):
@@ -350,8 +379,16 @@ class ApexSlingPlan(SlingLift):
         agreement with the rigging model (1 % of W: the legs' stretch moves the apexes)."""
         out = self._lift_checks()
         for c, name in enumerate(self.crane_names):
-            out.append(Check.lower("leg_taut", name, self._legs[2][c], 0.0, "t",
-                                   note="least leg tension over the box and the CG envelope"))
+            out.append(
+                Check.lower(
+                    "leg_taut",
+                    name,
+                    self._legs[2][c],
+                    0.0,
+                    "t",
+                    note="least leg tension over the box and the CG envelope",
+                )
+            )
         return out
 
     def to_json(self):
@@ -360,11 +397,20 @@ class ApexSlingPlan(SlingLift):
             **self._lift_json(),
             "lower_bound": stats.lower_bound,
             "gap": stats.gap,
-            "search": {"stopped": stats.stopped, "rows": stats.rows, "evaluated": stats.evaluated,
-                       "apexes": len(self.rigs)},
-            "ranking": [{"lugs": [self.problem.names[i] for j in r.indices for i in self.rigs.lugs[j]],
-                         "cranes": list(r.crane_names), "worst": r.worst_value}
-                        for r in self.ranking],
+            "search": {
+                "stopped": stats.stopped,
+                "rows": stats.rows,
+                "evaluated": stats.evaluated,
+                "apexes": len(self.rigs),
+            },
+            "ranking": [
+                {
+                    "lugs": [self.problem.names[i] for j in r.indices for i in self.rigs.lugs[j]],
+                    "cranes": list(r.crane_names),
+                    "worst": r.worst_value,
+                }
+                for r in self.ranking
+            ],
             "ruled_out": self.ruled_out,
             "checks": [c.to_json() for c in self.checks],
         }

@@ -60,14 +60,19 @@ def tripod_apex(points, length):
     ab, ac = b - a, c - a
     n = np.cross(ab, ac)
     area2 = np.linalg.norm(n, axis=1)  # twice the triangle's area
-    longest = np.max(np.stack([np.linalg.norm(ab, axis=1), np.linalg.norm(ac, axis=1),
-                               np.linalg.norm(c - b, axis=1)], axis=1), axis=1)
+    longest = np.max(
+        np.stack(
+            [np.linalg.norm(ab, axis=1), np.linalg.norm(ac, axis=1), np.linalg.norm(c - b, axis=1)], axis=1
+        ),
+        axis=1,
+    )
     ok = area2 > COLLINEAR * longest
     with np.errstate(divide="ignore", invalid="ignore"):
         n2 = (n * n).sum(1)
         # circumcentre: a + (|ac|^2 (n x ab) + |ab|^2 (ac x n)) / (2 |n|^2)
-        centre = a + ((ac * ac).sum(1)[:, None] * np.cross(n, ab)
-                      + (ab * ab).sum(1)[:, None] * np.cross(ac, n)) / (2 * n2[:, None])
+        centre = a + (
+            (ac * ac).sum(1)[:, None] * np.cross(n, ab) + (ab * ab).sum(1)[:, None] * np.cross(ac, n)
+        ) / (2 * n2[:, None])
         rho2 = ((centre - a) ** 2).sum(1)
         unit = n / area2[:, None]
         unit = np.where(unit[:, 2:3] < 0.0, -unit, unit)  # the apex above the lugs' plane

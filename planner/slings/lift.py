@@ -80,8 +80,12 @@ class SlingLift:
     def crane_boom_heights(self):
         """Boom-tip height H per crane: hook height + hoist rope l0 + its stretch  [m]."""
         fleet = self.problem.fleet
-        return np.array([self.hook_heights[c] + fleet[c].rope_length
-                         + self.hook_nominal[c] / fleet[c].stiffness for c in range(len(fleet))])
+        return np.array(
+            [
+                self.hook_heights[c] + fleet[c].rope_length + self.hook_nominal[c] / fleet[c].stiffness
+                for c in range(len(fleet))
+            ]
+        )
 
     @property
     def boom_heights(self):
@@ -129,21 +133,37 @@ class SlingLift:
             group = self.groups[c]
             angles = np.asarray(self.leg_angles[c])
             worst_legs = np.asarray(self.legs_worst[c])
-            lugs = tuple(LugLoads(
-                name=problem.names[i], share=float(t * math.sin(math.radians(a))),
-                sling_angle=float(min(a, 90.0)), capacity=problem.candidates[i].capacity)
-                for i, a, t in zip(group, angles, worst_legs))
+            lugs = tuple(
+                LugLoads(
+                    name=problem.names[i],
+                    share=float(t * math.sin(math.radians(a))),
+                    sling_angle=float(min(a, 90.0)),
+                    capacity=problem.candidates[i].capacity,
+                )
+                for i, a, t in zip(group, angles, worst_legs)
+            )
             nominal = float(self.hook_nominal[c] - self.bar_weights[c])
             worst = max(float(self.hook_worst[c] - self.bar_weights[c]), nominal)
-            cranes.append(CraneLoads(name=name, nominal=nominal, worst=worst,
-                                     tilt=self.tilt_shares[c], swl=float(self.hook_swl[c]),
-                                     radius=float(self.hook_radius[c]), skew=self.hook_skews[c],
-                                     lugs=lugs))
+            cranes.append(
+                CraneLoads(
+                    name=name,
+                    nominal=nominal,
+                    worst=worst,
+                    tilt=self.tilt_shares[c],
+                    swl=float(self.hook_swl[c]),
+                    radius=float(self.hook_radius[c]),
+                    skew=self.hook_skews[c],
+                    lugs=lugs,
+                )
+            )
         try:
-            chain = DesignLoadChain(cranes=tuple(cranes), weight=problem.body.weight,
-                                    rules=rules_with_bars(problem),
-                                    cog_searched=any(w > 0 for w in problem.cog_envelope.half_widths),
-                                    tilt_note=self.tilt_note)
+            chain = DesignLoadChain(
+                cranes=tuple(cranes),
+                weight=problem.body.weight,
+                rules=rules_with_bars(problem),
+                cog_searched=any(w > 0 for w in problem.cog_envelope.half_widths),
+                tilt_note=self.tilt_note,
+            )
             chain.results  # noqa: B018 - builds (and validates) every factor now
         except InvalidScene as err:
             return str(err)
@@ -166,25 +186,56 @@ class SlingLift:
         problem = self.problem
         out = []
         if isinstance(self.design, str):
-            out.append(Check(name="design_chain", subject="plan", value=float("nan"), limit=0.0,
-                             unit="-", ok=False, note=self.design))
+            out.append(
+                Check(
+                    name="design_chain",
+                    subject="plan",
+                    value=float("nan"),
+                    limit=0.0,
+                    unit="-",
+                    ok=False,
+                    note=self.design,
+                )
+            )
         else:
             out += self.design.checks
         angles = [a for arr in self.leg_angles for a in np.ravel(arr)]
         for label, angle in zip(self.labels, angles):
-            out.append(Check.lower("sling_angle", f"{label} ({self.lugs[label]})", angle,
-                                   problem.min_sling_angle, "deg", note="from the horizontal"))
+            out.append(
+                Check.lower(
+                    "sling_angle",
+                    f"{label} ({self.lugs[label]})",
+                    angle,
+                    problem.min_sling_angle,
+                    "deg",
+                    note="from the horizontal",
+                )
+            )
         for c, top in enumerate(self.top_angles):
             if top is not None:
                 for j, angle in enumerate(np.ravel(top)):
-                    out.append(Check.lower("sling_angle", f"{self.crane_names[c]} top leg {j + 1}",
-                                           angle, problem.min_sling_angle, "deg",
-                                           note="spreader top leg, from the horizontal"))
+                    out.append(
+                        Check.lower(
+                            "sling_angle",
+                            f"{self.crane_names[c]} top leg {j + 1}",
+                            angle,
+                            problem.min_sling_angle,
+                            "deg",
+                            note="spreader top leg, from the horizontal",
+                        )
+                    )
         solved = self.verified.tensions
         for c, name in enumerate(self.crane_names):
-            out.append(Check.upper("model_agreement", name, abs(solved[name] - self.hook_nominal[c]),
-                                   self.AGREEMENT * problem.body.weight, "t",
-                                   note="rigging model hook load vs the plan's"))
+            out.append(
+                Check.upper(
+                    "model_agreement",
+                    name,
+                    abs(solved[name] - self.hook_nominal[c]),
+                    self.AGREEMENT * problem.body.weight,
+                    "t",
+                    note="rigging model hook load vs the plan's",
+                )
+            )
         return out
 
     # -- the rigging scene ---------------------------------------------------------------------
@@ -206,23 +257,34 @@ class SlingLift:
             legs = tuple(Leg(lug=n, length=sling.length, EA=sling.EA) for n in names)
             if sling.spreader is not None:
                 bar = sling.spreader
-                spreader = Spreader(length=bar.length, weight=bar.weight,
-                                    top=tuple(Leg(lug=None, length=bar.top_length, EA=sling.EA)
-                                              for _ in range(2)))
-                legs = tuple(Leg(lug=n, length=sling.length, EA=sling.EA, end=j + 1)
-                             for j, n in enumerate(names))
-            cranes.append(Crane(
-                name=crane.name, EA=crane.EA, rope_length=crane.rope_length,
-                boom_height=float(self.crane_boom_heights[c]), swl=float(self.hook_swl[c]),
-                tip=(float(tip_xy[0]), float(tip_xy[1]), float(self.crane_boom_heights[c])),
-                sling=Sling(legs=legs, spreader=spreader),
-            ))
-        return Scene(body=Body(problem.body.weight, problem.body.cog), lugs=tuple(lugs),
-                     cranes=tuple(cranes),
-                     attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
-                     analysis=Analysis(model="rigging"),
-                     rigging=RiggingLimits(min_sling_angle=problem.min_sling_angle),
-                     name=f"{problem.name or 'plan'}: chosen slings")
+                spreader = Spreader(
+                    length=bar.length,
+                    weight=bar.weight,
+                    top=tuple(Leg(lug=None, length=bar.top_length, EA=sling.EA) for _ in range(2)),
+                )
+                legs = tuple(
+                    Leg(lug=n, length=sling.length, EA=sling.EA, end=j + 1) for j, n in enumerate(names)
+                )
+            cranes.append(
+                Crane(
+                    name=crane.name,
+                    EA=crane.EA,
+                    rope_length=crane.rope_length,
+                    boom_height=float(self.crane_boom_heights[c]),
+                    swl=float(self.hook_swl[c]),
+                    tip=(float(tip_xy[0]), float(tip_xy[1]), float(self.crane_boom_heights[c])),
+                    sling=Sling(legs=legs, spreader=spreader),
+                )
+            )
+        return Scene(
+            body=Body(problem.body.weight, problem.body.cog),
+            lugs=tuple(lugs),
+            cranes=tuple(cranes),
+            attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
+            analysis=Analysis(model="rigging"),
+            rigging=RiggingLimits(min_sling_angle=problem.min_sling_angle),
+            name=f"{problem.name or 'plan'}: chosen slings",
+        )
 
     @cached_property
     def verified(self):
@@ -243,7 +305,10 @@ class SlingLift:
             "design_hook_loads": dict(zip(names, self.design_hook_loads.tolist())),
             "sling_angles": self._per_lug(self.leg_angles),
             "worst_leg_tensions": self._per_lug(self.legs_worst),
-            "spreader_top_legs": {names[c]: np.asarray(t, dtype=float).tolist()
-                                  for c, t in enumerate(self.top_legs) if t is not None},
+            "spreader_top_legs": {
+                names[c]: np.asarray(t, dtype=float).tolist()
+                for c, t in enumerate(self.top_legs)
+                if t is not None
+            },
             "design_loads": design,
         }

@@ -61,8 +61,14 @@ class Rigs:
         return len(self.lugs)
 
     def take(self, keep):
-        return Rigs(self.kind, self.lugs[keep], self.hook[keep], self.angles[keep],
-                    None if self.top_angles is None else self.top_angles[keep], self.ruled_out)
+        return Rigs(
+            self.kind,
+            self.lugs[keep],
+            self.hook[keep],
+            self.angles[keep],
+            None if self.top_angles is None else self.top_angles[keep],
+            self.ruled_out,
+        )
 
 
 def groups(problem):
@@ -71,8 +77,9 @@ def groups(problem):
     points = problem.points
     names = list(dict.fromkeys(labels))
     members = [np.array([i for i, lab in enumerate(labels) if lab == name]) for name in names]
-    order = sorted(range(len(names)), key=lambda g: (points[members[g], 0].mean(),
-                                                     points[members[g], 1].mean()))
+    order = sorted(
+        range(len(names)), key=lambda g: (points[members[g], 0].mean(), points[members[g], 1].mean())
+    )
     return tuple(members[g] for g in order)
 
 
@@ -87,8 +94,10 @@ def sling_tuples(problem, legs):
             if len(seen) > MAX_TUPLES:
                 from liftplan.model.errors import InvalidScene
 
-                raise InvalidScene(f"candidates: more than {MAX_TUPLES} {legs}-lug tuples on adjacent "
-                                   "groups; expected bulkhead labels that group the candidates")
+                raise InvalidScene(
+                    f"candidates: more than {MAX_TUPLES} {legs}-lug tuples on adjacent "
+                    "groups; expected bulkhead labels that group the candidates"
+                )
     return np.array(sorted(seen), dtype=np.int64).reshape(-1, legs)
 
 
@@ -122,8 +131,9 @@ def crane_rigs(problem, crane, load, parallel=False):
         a, b = points[pairs[:, 0]], points[pairs[:, 1]]
         if parallel:  # the hinge needs a pair that stays off plumb (its vertical plane)
             ok = ~plumb_in_box(a, b, problem.heel_tolerance, problem.trim_tolerance)
-            counts[f"the pair turns within {PLUMB_MARGIN:g} deg of plumb in the heel/trim box "
-                   "(no hinge plane)"] = int(np.sum(~ok))
+            counts[
+                f"the pair turns within {PLUMB_MARGIN:g} deg of plumb in the heel/trim box (no hinge plane)"
+            ] = int(np.sum(~ok))
             pairs, a, b = pairs[ok], a[ok], b[ok]
         if sling.spreader is None:
             ok = 0.5 * np.linalg.norm(b - a, axis=1) < sling.length
@@ -134,25 +144,28 @@ def crane_rigs(problem, crane, load, parallel=False):
         elif parallel:
             bar = sling.spreader
             ok = np.abs(np.linalg.norm(b - a, axis=1) - bar.length) <= FIT
-            counts[f"the pair's spacing is not the spreader bar's length (to {1000 * FIT:g} mm): "
-                   "a trapezoid rig sways with the tilt, planned for two cranes only"] = \
-                int(np.sum(~ok))
+            counts[
+                f"the pair's spacing is not the spreader bar's length (to {1000 * FIT:g} mm): "
+                "a trapezoid rig sways with the tilt, planned for two cranes only"
+            ] = int(np.sum(~ok))
             pairs, a, b = pairs[ok], a[ok], b[ok]
             e1, e2 = a + [0.0, 0.0, sling.length], b + [0.0, 0.0, sling.length]
             hook = pair_apex(e1, e2, bar.top_length)
             ends = np.stack([e1, e2], axis=1)
-            rigs = Rigs("spreader", pairs, hook, np.full((len(pairs), 2), 90.0),
-                        top_angles=leg_angles(hook, ends))
+            rigs = Rigs(
+                "spreader", pairs, hook, np.full((len(pairs), 2), 90.0), top_angles=leg_angles(hook, ends)
+            )
         else:
             bar = sling.spreader
-            hook, e1, e2 = spreader_hook(a, b, sling.length, bar.length, bar.top_length, load,
-                                         bar.weight)
+            hook, e1, e2 = spreader_hook(a, b, sling.length, bar.length, bar.top_length, load, bar.weight)
             ok = np.all(np.isfinite(hook), axis=1)
             counts["the spreader rig cannot close on the pair"] = int(np.sum(~ok))
             pairs, hook, e1, e2 = pairs[ok], hook[ok], e1[ok], e2[ok]
             ends = np.stack([e1, e2], axis=1)
-            bottom = np.stack([leg_angles(e1, points[pairs[:, :1]])[:, 0],
-                               leg_angles(e2, points[pairs[:, 1:]])[:, 0]], axis=1)
+            bottom = np.stack(
+                [leg_angles(e1, points[pairs[:, :1]])[:, 0], leg_angles(e2, points[pairs[:, 1:]])[:, 0]],
+                axis=1,
+            )
             rigs = Rigs("spreader", pairs, hook, bottom, top_angles=leg_angles(hook, ends))
         steep = np.all(rigs.angles >= limit, axis=1)
         if rigs.top_angles is not None:
@@ -165,15 +178,17 @@ def crane_rigs(problem, crane, load, parallel=False):
         counts["legs cannot meet above the lugs (collinear, or out of reach)"] = int(np.sum(~fits))
         tuples, hook, reach = tuples[fits], hook[fits], reach[fits]
         fit = np.all(np.abs(reach - sling.length) <= FIT, axis=1)
-        counts[f"a leg misses its lug by over {1000 * FIT:g} mm (lugs not concyclic)"] = \
-            int(np.sum(~fit))
+        counts[f"a leg misses its lug by over {1000 * FIT:g} mm (lugs not concyclic)"] = int(np.sum(~fit))
         rigs = Rigs("fixed", tuples[fit], hook[fit], leg_angles(hook[fit], points[tuples[fit]]))
         rigs = drop(np.all(rigs.angles >= limit, axis=1), "sling angle below the limit", rigs)
-        taut = np.array([leg_split(h, points[t], (0.0, 0.0, 1.0)).min() > 1e-9
-                         for h, t in zip(rigs.hook, rigs.lugs)], dtype=bool).reshape(-1)
+        taut = np.array(
+            [leg_split(h, points[t], (0.0, 0.0, 1.0)).min() > 1e-9 for h, t in zip(rigs.hook, rigs.lugs)],
+            dtype=bool,
+        ).reshape(-1)
         rigs = drop(taut, "a leg slack at level (the apex outside the lugs' polygon)", rigs)
-    return Rigs(rigs.kind, rigs.lugs, rigs.hook, rigs.angles, rigs.top_angles,
-                {k: v for k, v in counts.items() if v})
+    return Rigs(
+        rigs.kind, rigs.lugs, rigs.hook, rigs.angles, rigs.top_angles, {k: v for k, v in counts.items() if v}
+    )
 
 
 def turned_hooks(rigs, crane, points, turn, load):

@@ -126,8 +126,9 @@ def rig_legs(crane, hook, lugs, load):
     from liftplan.planner.slings.geometry import spreader_hook
 
     bar = crane.sling.spreader
-    _, e1, e2 = spreader_hook(lugs[:1], lugs[1:], crane.sling.length, bar.length, bar.top_length,
-                              load, bar.weight)
+    _, e1, e2 = spreader_hook(
+        lugs[:1], lugs[1:], crane.sling.length, bar.length, bar.top_length, load, bar.weight
+    )
     ends = np.vstack([e1, e2])
     top = leg_split(hook, ends, (0.0, 0.0, load))
     legs = []
@@ -175,11 +176,15 @@ def plan_two_slings(problem, top=None):
     yaw = rotation_matrix(0.0, 0.0, problem.yaw)
     bars = np.array([bar_weight(c) for c in fleet])
     limits_problem = dataclasses.replace(problem, rules=rules_with_bars(problem))
-    counts = {"beyond the crane's reach": 0, "lugs shared by both slings": 0,
-              "hook load over the rules' level limit (code margin)": 0,
-              "hook load over the rules' limit within the tolerance": 0,
-              "roll about the hook line beyond the tolerance": 0,
-              "the two hooks (nearly) coincide": 0, "a hook unloaded (the CG beyond a hook)": 0}
+    counts = {
+        "beyond the crane's reach": 0,
+        "lugs shared by both slings": 0,
+        "hook load over the rules' level limit (code margin)": 0,
+        "hook load over the rules' limit within the tolerance": 0,
+        "roll about the hook line beyond the tolerance": 0,
+        "the two hooks (nearly) coincide": 0,
+        "a hook unloaded (the CG beyond a hook)": 0,
+    }
     per_crane = []
     for crane in fleet:
         rigs = crane_rigs(problem, crane, 0.5 * weight)
@@ -221,9 +226,19 @@ def plan_two_slings(problem, top=None):
     loads = np.empty((len(i1), len(offsets), 3, 2))
     for k in range(3):
         angle = np.radians(tilts[:, k])
-        hooks = [(turned_hooks(rigs, crane, problem.points,
-                               lambda p, angle=angle: _turn(turn_axis, angle, p), 0.5 * weight) * e).sum(1)
-                 for rigs, crane in zip((r1g, r2g), fleet)]
+        hooks = [
+            (
+                turned_hooks(
+                    rigs,
+                    crane,
+                    problem.points,
+                    lambda p, angle=angle: _turn(turn_axis, angle, p),
+                    0.5 * weight,
+                )
+                * e
+            ).sum(1)
+            for rigs, crane in zip((r1g, r2g), fleet)
+        ]
         for m, offset in enumerate(offsets):
             g = (_turn(turn_axis, angle, np.broadcast_to(cog + offset, (len(i1), 3))) * e).sum(1)
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -242,15 +257,18 @@ def plan_two_slings(problem, top=None):
     scale = np.ones_like(swl) if problem.objective == "spread" else 1.0 / swl
     scaled = hook_loads * scale[:, None, None, :]
     # reserve: the larger hook load / SWL; otherwise the difference of the two
-    values = scaled.max(axis=-1) if problem.objective == "reserve" else \
-        np.abs(scaled[..., 0] - scaled[..., 1])
+    values = (
+        scaled.max(axis=-1) if problem.objective == "reserve" else np.abs(scaled[..., 0] - scaled[..., 1])
+    )
     worst_value = values.reshape(len(values), -1).max(axis=1)
     worst_share = loads.max(axis=(1, 2))
     in_box, level = rule_limits(limits_problem, swl, np.broadcast_to([0, 1], swl.shape))
     bad = np.zeros(len(values), dtype=np.int64)
     checks = [
-        ((length <= 1e-6 * span) | ~np.all(np.isfinite(loads), axis=(1, 2, 3)),
-         "the two hooks (nearly) coincide"),
+        (
+            (length <= 1e-6 * span) | ~np.all(np.isfinite(loads), axis=(1, 2, 3)),
+            "the two hooks (nearly) coincide",
+        ),
         (np.any(loads <= 0, axis=(1, 2, 3)), "a hook unloaded (the CG beyond a hook)"),
         (np.any(nominal > level, axis=1), "hook load over the rules' level limit (code margin)"),
         (np.any(worst_share > in_box, axis=1), "hook load over the rules' limit within the tolerance"),
@@ -272,34 +290,43 @@ def plan_two_slings(problem, top=None):
         cg_k, tilt_k = np.unravel_index(flat, values[k].shape)
         hooks = np.stack([rigs[0].hook[0], rigs[1].hook[0]])
         worst_hook = hook_loads[k].max(axis=(0, 1))
-        split = [[rig_legs(crane, hooks[c], problem.points[rig.lugs[0]], load)
-                  for load in (nominal_hooks[k, c], worst_hook[c])]
-                 for c, (crane, rig) in enumerate(zip(fleet, rigs))]
-        ranking.append(SlingOption(
-            pairs=tuple(tuple(int(v) for v in rig.lugs[0]) for rig in rigs),
-            apex=hooks,
-            radius=np.array([r1[i1[k]], r2[i2[k]]]),
-            swl=swl[k],
-            hook_nominal=nominal_hooks[k],
-            hook_worst=worst_hook,
-            sling_angles=tuple(rig.angles[0] for rig in rigs),
-            legs_nominal=tuple(s[0][0] for s in split),
-            legs_worst=tuple(s[1][0] for s in split),
-            roll=float(roll[k]),
-            worst_value=float(worst_value[k]),
-            worst_tilt=float(tilts[k, tilt_k]),
-            worst_cog_offset=tuple(float(v) for v in offsets[cg_k]),
-            top_legs=tuple(s[0][1] for s in split),
-            top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
-        ))
-    return SlingPlan(problem=problem, ranking=ranking, options=int(len(i1)),
-                     ruled_out={t: n for t, n in counts.items() if n})
+        split = [
+            [
+                rig_legs(crane, hooks[c], problem.points[rig.lugs[0]], load)
+                for load in (nominal_hooks[k, c], worst_hook[c])
+            ]
+            for c, (crane, rig) in enumerate(zip(fleet, rigs))
+        ]
+        ranking.append(
+            SlingOption(
+                pairs=tuple(tuple(int(v) for v in rig.lugs[0]) for rig in rigs),
+                apex=hooks,
+                radius=np.array([r1[i1[k]], r2[i2[k]]]),
+                swl=swl[k],
+                hook_nominal=nominal_hooks[k],
+                hook_worst=worst_hook,
+                sling_angles=tuple(rig.angles[0] for rig in rigs),
+                legs_nominal=tuple(s[0][0] for s in split),
+                legs_worst=tuple(s[1][0] for s in split),
+                roll=float(roll[k]),
+                worst_value=float(worst_value[k]),
+                worst_tilt=float(tilts[k, tilt_k]),
+                worst_cog_offset=tuple(float(v) for v in offsets[cg_k]),
+                top_legs=tuple(s[0][1] for s in split),
+                top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
+            )
+        )
+    return SlingPlan(
+        problem=problem,
+        ranking=ranking,
+        options=int(len(i1)),
+        ruled_out={t: n for t, n in counts.items() if n},
+    )
 
 
 def _no_plan(problem, counts):
     causes = "; ".join(f"{n} options: {text}" for text, n in counts.items() if n)
-    return (f"no two rigs among {len(problem.candidates)} candidates can take the two "
-            f"slings ({causes})")
+    return f"no two rigs among {len(problem.candidates)} candidates can take the two slings ({causes})"
 
 
 @dataclass(frozen=True)
@@ -399,8 +426,9 @@ class SlingPlan(SlingLift):
         names = self.crane_names
         offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
         vertices = offsets[1:] if len(offsets) > 1 else offsets
-        geometry = TiltGeometry({n: tuple(p) for n, p in zip(names, self.chosen.apex)},
-                                problem.body.cog, problem.body.weight)
+        geometry = TiltGeometry(
+            {n: tuple(p) for n, p in zip(names, self.chosen.apex)}, problem.body.cog, problem.body.weight
+        )
         design_tilt, elevation = problem.rules.design_tilt()
         spacing = geometry.least_spacing()
         try:
@@ -408,8 +436,10 @@ class SlingPlan(SlingLift):
             worst = geometry.worst(tilt, vertices)
         except (InvalidScene, EquilibriumNotFound) as err:
             return [None, None], f"rules' tilt not evaluated: {err}"
-        note = (f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m hook "
-                f"elevation difference over the hook spacing {spacing:.2f} m")
+        note = (
+            f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m hook "
+            f"elevation difference over the hook spacing {spacing:.2f} m"
+        )
         return [float(worst[n].load) for n in names], note
 
     @property
@@ -423,8 +453,7 @@ class SlingPlan(SlingLift):
     @property
     def worst_utilisation_spread(self):
         worst = self.chosen.hook_worst / self.chosen.swl
-        return self.chosen.worst_value if self.objective == "utilisation" else \
-            float(abs(worst[0] - worst[1]))
+        return self.chosen.worst_value if self.objective == "utilisation" else float(abs(worst[0] - worst[1]))
 
     @cached_property
     def checks(self):
@@ -432,8 +461,16 @@ class SlingPlan(SlingLift):
         and the rigging model's hook loads against the plan's (1 % of W: the plan's lever rule
         takes the hooks where the rig's geometry puts them, the model finds them)."""
         out = self._lift_checks()
-        out.append(Check.upper("roll", "hook line", self.chosen.roll, self.tolerances[1], "deg",
-                               note="the CG settles under the hook line"))
+        out.append(
+            Check.upper(
+                "roll",
+                "hook line",
+                self.chosen.roll,
+                self.tolerances[1],
+                "deg",
+                note="the CG settles under the hook line",
+            )
+        )
         return out
 
     def to_json(self):
@@ -442,11 +479,18 @@ class SlingPlan(SlingLift):
         return {
             **self._lift_json(),
             "roll": chosen.roll,
-            "worst_attitude": {"tilt_along_hook_line": chosen.worst_tilt,
-                               "cog_offset": list(chosen.worst_cog_offset)},
-            "ranking": [{"lugs": [self.problem.names[i] for p in r.pairs for i in p],
-                         "worst": r.worst_value, "hook_loads": r.hook_nominal.tolist()}
-                        for r in self.ranking],
+            "worst_attitude": {
+                "tilt_along_hook_line": chosen.worst_tilt,
+                "cog_offset": list(chosen.worst_cog_offset),
+            },
+            "ranking": [
+                {
+                    "lugs": [self.problem.names[i] for p in r.pairs for i in p],
+                    "worst": r.worst_value,
+                    "hook_loads": r.hook_nominal.tolist(),
+                }
+                for r in self.ranking
+            ],
             "options": self.options,
             "ruled_out": self.ruled_out,
             "checks": [c.to_json() for c in self.checks],

@@ -15,32 +15,84 @@ import mpmath as mp
 mp.mp.dps = 50
 
 CASES = [
-    {"name": "tanker upright level", "heel": 0, "trim": 0, "yaw": 0, "lift": 1,
-     "weight": 904, "cog": [35.86, -6, 2.5],
-     "lugs": [[16.2, -12, 6], [65.6, -12, 6], [65.6, 0, 6], [16.2, 0, 6]],
-     "EA": [50000] * 4, "H": [40] * 4, "held": {"3": 272.0}},
-    {"name": "tanker upright heel 3 trim -2", "heel": 3, "trim": -2, "yaw": 0, "lift": 1,
-     "weight": 904, "cog": [35.86, -6, 2.5],
-     "lugs": [[16.2, -12, 6], [65.6, -12, 6], [65.6, 0, 6], [16.2, 0, 6]],
-     "EA": [50000] * 4, "H": [40] * 4, "held": {"3": 260.0}},
-    {"name": "tanker upright heel -10 trim 10", "heel": -10, "trim": 10, "yaw": 0, "lift": 2,
-     "weight": 904, "cog": [35.86, -6, 2.5],
-     "lugs": [[16.2, -12, 6], [65.6, -12, 6], [65.6, 0, 6], [16.2, 0, 6]],
-     "EA": [50000, 40000, 60000, 50000], "H": [40, 41, 39, 40.5], "held": {"3": 300.0}},
-    {"name": "tanker capsized heel -2 trim 1", "heel": -2, "trim": 1, "yaw": 0, "lift": 1,
-     "weight": 904, "cog": [35.86, -2.5, 6],
-     "lugs": [[16.2, -4.78, 12], [65.6, -4.78, 12], [65.6, -1.22, 12], [16.2, -1.22, 12]],
-     "EA": [50000] * 4, "H": [46] * 4, "held": {"3": 335.0}},
-    {"name": "five lugs, yaw 10", "heel": 4, "trim": -3, "yaw": 10, "lift": 0.5,
-     "weight": 500, "cog": [1, 0.5, 1.5],
-     "lugs": [[10, 6, 4], [12, -5, 3], [-8, -6, 5], [-11, 4, 4], [0, 8, 2]],
-     "EA": [30000, 35000, 30000, 25000, 40000], "H": [30, 31, 29, 30, 32],
-     "held": {"2": 100.0, "4": 90.0}},
-    {"name": "six lugs, uneven", "heel": -7, "trim": 6, "yaw": -15, "lift": 3,
-     "weight": 1200, "cog": [2, -1, 2],
-     "lugs": [[20, 8, 6], [20, -8, 6], [0, -9, 7], [-20, -8, 6], [-20, 8, 6], [0, 9, 5]],
-     "EA": [60000] * 6, "H": [45, 45.5, 44, 46, 45, 44.5],
-     "held": {"1": 200.0, "2": 210.0, "5": 190.0}},
+    {
+        "name": "tanker upright level",
+        "heel": 0,
+        "trim": 0,
+        "yaw": 0,
+        "lift": 1,
+        "weight": 904,
+        "cog": [35.86, -6, 2.5],
+        "lugs": [[16.2, -12, 6], [65.6, -12, 6], [65.6, 0, 6], [16.2, 0, 6]],
+        "EA": [50000] * 4,
+        "H": [40] * 4,
+        "held": {"3": 272.0},
+    },
+    {
+        "name": "tanker upright heel 3 trim -2",
+        "heel": 3,
+        "trim": -2,
+        "yaw": 0,
+        "lift": 1,
+        "weight": 904,
+        "cog": [35.86, -6, 2.5],
+        "lugs": [[16.2, -12, 6], [65.6, -12, 6], [65.6, 0, 6], [16.2, 0, 6]],
+        "EA": [50000] * 4,
+        "H": [40] * 4,
+        "held": {"3": 260.0},
+    },
+    {
+        "name": "tanker upright heel -10 trim 10",
+        "heel": -10,
+        "trim": 10,
+        "yaw": 0,
+        "lift": 2,
+        "weight": 904,
+        "cog": [35.86, -6, 2.5],
+        "lugs": [[16.2, -12, 6], [65.6, -12, 6], [65.6, 0, 6], [16.2, 0, 6]],
+        "EA": [50000, 40000, 60000, 50000],
+        "H": [40, 41, 39, 40.5],
+        "held": {"3": 300.0},
+    },
+    {
+        "name": "tanker capsized heel -2 trim 1",
+        "heel": -2,
+        "trim": 1,
+        "yaw": 0,
+        "lift": 1,
+        "weight": 904,
+        "cog": [35.86, -2.5, 6],
+        "lugs": [[16.2, -4.78, 12], [65.6, -4.78, 12], [65.6, -1.22, 12], [16.2, -1.22, 12]],
+        "EA": [50000] * 4,
+        "H": [46] * 4,
+        "held": {"3": 335.0},
+    },
+    {
+        "name": "five lugs, yaw 10",
+        "heel": 4,
+        "trim": -3,
+        "yaw": 10,
+        "lift": 0.5,
+        "weight": 500,
+        "cog": [1, 0.5, 1.5],
+        "lugs": [[10, 6, 4], [12, -5, 3], [-8, -6, 5], [-11, 4, 4], [0, 8, 2]],
+        "EA": [30000, 35000, 30000, 25000, 40000],
+        "H": [30, 31, 29, 30, 32],
+        "held": {"2": 100.0, "4": 90.0},
+    },
+    {
+        "name": "six lugs, uneven",
+        "heel": -7,
+        "trim": 6,
+        "yaw": -15,
+        "lift": 3,
+        "weight": 1200,
+        "cog": [2, -1, 2],
+        "lugs": [[20, 8, 6], [20, -8, 6], [0, -9, 7], [-20, -8, 6], [-20, 8, 6], [0, 9, 5]],
+        "EA": [60000] * 6,
+        "H": [45, 45.5, 44, 46, 45, 44.5],
+        "held": {"1": 200.0, "2": 210.0, "5": 190.0},
+    },
 ]
 
 
@@ -97,11 +149,13 @@ def main():
     out = []
     for case in CASES:
         n = len(case["lugs"])
-        out.append({
-            **case,
-            "rigid": [mp.nstr(v, 30) for v in rigid(case)],
-            "paper_elastic": [mp.nstr(paper_elastic(case)[i], 30) for i in range(n)],
-        })
+        out.append(
+            {
+                **case,
+                "rigid": [mp.nstr(v, 30) for v in rigid(case)],
+                "paper_elastic": [mp.nstr(paper_elastic(case)[i], 30) for i in range(n)],
+            }
+        )
     path = Path(__file__).with_name("linear_reference.json")
     path.write_text(json.dumps(out, indent=1) + "\n")
     print(f"wrote {len(out)} cases to {path}")
