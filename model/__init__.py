@@ -20,30 +20,25 @@ _EXPORTS = {
         ("EquilibriumNotFound", "InvalidScene", "LiftPlanError", "PlanInfeasible", "SolverFailed"), "errors"
     ),
     **dict.fromkeys(("choi_to_zup", "rotation_matrix", "zup_to_choi"), "frames"),
-    **dict.fromkeys(("Compartment", "Hull"), "hull"),
+    **dict.fromkeys(("Compartment", "Hull"), "scene.hull"),
     **dict.fromkeys(("LoadCurve", "load_curve"), "lift"),
     **dict.fromkeys(("BreakoutLoad", "breakout_load"), "water.breakout"),
     **dict.fromkeys(("Equilibrium", "Pose", "SolverInfo"), "results"),
     **dict.fromkeys(
-        ("Analysis", "Attitude", "Body", "Crane", "Ground", "Lug", "Redundant", "Scene", "Water"), "scene"
+        ("Analysis", "Attitude", "Body", "Crane", "Ground", "Lug", "Redundant", "Scene", "Water"),
+        "scene.objects",
     ),
-    **dict.fromkeys(("load_scene", "loads_scene"), "scenefile"),
+    **dict.fromkeys(("load_scene", "loads_scene"), "scene.file"),
+    **dict.fromkeys(("pick_model", "solve"), "solve"),
     **dict.fromkeys(
-        (
-            "paper_elastic_tensions",
-            "pick_model",
-            "solve",
-            "solve_elastic",
-            "solve_paper_elastic",
-            "solve_rigid",
-        ),
-        "solve",
+        ("paper_elastic_tensions", "solve_elastic", "solve_paper_elastic", "solve_rigid"),
+        "statics.vertical",
     ),
-    **dict.fromkeys(("rigging_checks", "solve_rigging"), "rigging"),
-    **dict.fromkeys(("Leg", "RiggingLimits", "Sling", "Spreader", "sling_ea"), "rigging_gear"),
+    **dict.fromkeys(("rigging_checks", "solve_rigging"), "statics.rigging"),
+    **dict.fromkeys(("Leg", "RiggingLimits", "Sling", "Spreader", "sling_ea"), "scene.rigging_gear"),
     "RiggingState": "results",
     **dict.fromkeys(("hull_girder", "strength_checks"), "strength"),
-    **dict.fromkeys(("HullForm", "Particulars", "fitted_hull"), "hullfit"),
+    **dict.fromkeys(("HullForm", "Particulars", "fitted_hull"), "scene.hullfit"),
 }
 
 __all__ = sorted(_EXPORTS)

@@ -39,6 +39,11 @@ import numpy as np
 
 #: Frames a scene file may be written in.
 FRAMES = ("z-up", "choi")
+#: How each file frame is named in every output a person reads.
+FRAME_TEXT = {
+    "z-up": "z-up (x forward, y to port, z up)",
+    "choi": "choi, the papers' frame (x forward, y up, z to starboard)",
+}
 
 
 def choi_to_zup(point):

@@ -41,6 +41,7 @@ import numpy as np
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.water import WaterSetup, hull_heights, settle
+from liftplan.model.water.draining import RTOL, Drainage, TankSummary, integrate
 
 # Bracket width [m] at which an event's bisection stops (the event is reported at the
 # bracket's middle, to +-half of it). Hooks are set to centimetres; 0.1 mm costs about a
@@ -340,7 +341,6 @@ class _Lift:
     """Solves at any hoist from a given pose (one built model)."""
 
     def __init__(self, scene, speed=None):
-        from liftplan.model.water.draining import Drainage
 
         self.scene = scene
         self.setup = WaterSetup(scene)
@@ -427,8 +427,6 @@ def _events(lift, points, failed):
             hoist, tol = 0.5 * (a + b), 0.5 * (b - a)
         out.append(Event(name, hoist, tol))
     if lift.history is not None:
-        from liftplan.model.water.draining import RTOL
-
         for tank, t in lift.history.drain_times.items():
             hoist = t * lift.speed / 60.0
             out.append(Event("drained", hoist, RTOL * hoist, subject=tank))
@@ -506,8 +504,6 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
                 "the conservative bound)"
             )
         elif drainage.timed:
-            from liftplan.model.water.draining import integrate
-
             seconds = hoists[-1] * 60.0 / speed
             lift.history = integrate(drainage, seconds, step * 60.0 / speed) if seconds > 0 else None
             note = f"drained by orifice flow at {speed:g} m/min"
@@ -576,7 +572,6 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
 
 
 def _summaries(lift, compartments, hoist):
-    from liftplan.model.water.draining import TankSummary
 
     history = lift.history
     out = []

@@ -14,10 +14,12 @@ from liftplan.model.lazy import lazy_package
 
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
-    **dict.fromkeys(("CraneCapacity", "GuidanceStep", "Plan", "SkewLoad", "plan"), "plan"),
+    **dict.fromkeys(("CraneCapacity", "GuidanceStep", "Plan", "SkewLoad"), "plans.held"),
+    **dict.fromkeys(("LiftPlan",), "plans.protocol"),
+    **dict.fromkeys(("KINDS", "plan", "plan_kind"), "plan"),
     **dict.fromkeys(("Candidate", "CogEnvelope", "CraneSpec", "PlanProblem"), "problem.definition"),
     **dict.fromkeys(("load_problem", "loads_problem"), "problem.file"),
-    "write_report": "output.report",
+    "write_report": "output.report.write",
 }
 
 __all__ = sorted(_EXPORTS)

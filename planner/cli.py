@@ -150,12 +150,12 @@ def _verdict(checks, table, strict=True):
 
 
 def _solve(args):
-    from liftplan.model.plausibility import equilibrium_warnings, scene_warnings
-    from liftplan.model.rigging import rigging_checks
-    from liftplan.model.scenefile import load_scene
+    from liftplan.model.scene.file import load_scene
+    from liftplan.model.scene.plausibility import equilibrium_warnings, scene_warnings
     from liftplan.model.solve import solve
     from liftplan.model.solve_checks import equilibrium_checks
-    from liftplan.planner.output.console import equilibrium_table
+    from liftplan.model.statics.rigging import rigging_checks
+    from liftplan.planner.output.console.tables import equilibrium_table
 
     figure = None
     if args.strength_figure is not None:
@@ -198,8 +198,8 @@ def _solve(args):
 
 def _strength_figure(scene, eq, girder, figure):
     """Save the strength figure; the reason it could not be written, or None."""
+    from liftplan.planner.output.figures.strength import strength_figure
     from liftplan.planner.output.paths import make_parent
-    from liftplan.planner.output.strength_figure import strength_figure
 
     try:
         make_parent(figure)
@@ -227,7 +227,7 @@ def _plan(args):
         )
     _warn(problem_warnings(problem))
     from liftplan.planner.plan import plan
-    from liftplan.planner.search.branch import Interrupted
+    from liftplan.planner.search.evaluator import Interrupted
 
     try:
         result = plan(problem, top=args.top)
@@ -242,12 +242,8 @@ def _plan(args):
         return INTERRUPTED
     unwritten = None
     if report is not None:
-        from liftplan.planner.slings import is_sling_plan
-
-        if is_sling_plan(result):  # slings on any number of cranes: their own report
-            from liftplan.planner.output.sling_report import write_report
-        else:  # matplotlib only when a report is asked for (strength plans dispatched there)
-            from liftplan.planner.output.report import write_report
+        # start-up: matplotlib only when a report is asked for
+        from liftplan.planner.output.report.write import write_report
 
         try:
             files = write_report(result, report)
@@ -270,14 +266,7 @@ def _unwritten(message):
 
 
 def _print_plan(result, args, interrupted=False):
-    from liftplan.planner.slings import is_sling_plan
-
-    if is_sling_plan(result):  # slings on any number of cranes: their own table
-        from liftplan.planner.output.sling_console import sling_table as plan_table
-    elif type(result).__name__ == "StrengthPlan":  # the hull girder's objectives
-        from liftplan.planner.output.strength_console import strength_table as plan_table
-    else:
-        from liftplan.planner.output.console import plan_table
+    from liftplan.planner.output.console.summary import summary as plan_table
 
     if args.json:
         out = {**result.to_json(), "checks": [c.to_json() for c in result.checks]}
@@ -302,10 +291,10 @@ def _lift(args):
     scene_path = Path(args.scene)
     figure = output_file(args.figure or f"{scene_path.stem}_load_curve.png", "--figure", FIGURE_TYPES)
     from liftplan.model.lift import load_curve
-    from liftplan.model.plausibility import scene_warnings
-    from liftplan.model.scenefile import load_scene
-    from liftplan.planner.output.lift_console import lift_table
-    from liftplan.planner.output.lift_figure import lift_figure as draw
+    from liftplan.model.scene.file import load_scene
+    from liftplan.model.scene.plausibility import scene_warnings
+    from liftplan.planner.output.console.lift import lift_table
+    from liftplan.planner.output.figures.lift import lift_figure as draw
 
     scene = load_scene(scene_path)
     _warn(scene_warnings(scene))
@@ -329,7 +318,7 @@ def _lift(args):
 def _batch(args):
     from liftplan.planner.batch.run import run_study
     from liftplan.planner.batch.study import load_study
-    from liftplan.planner.output.console import batch_table
+    from liftplan.planner.output.console.tables import batch_table
     from liftplan.planner.output.paths import output_file
 
     if args.workers is not None and args.workers < 1:

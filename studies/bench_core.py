@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model import load_scene, paper_elastic_tensions, solve
-from liftplan.model.statics import rope_model
+from liftplan.model.statics.model import rope_model
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE.parent / "tests"))

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.planner.problem.definition import Candidate
-from liftplan.planner.search.branch import SetEvaluator, SetInfeasible
+from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
 from liftplan.planner.search.scenarios import LugSet
 from liftplan.planner.search.screen import screen
 

@@ -93,8 +93,8 @@ def median_time(function, repeats, warm=1):
 def single_solve():
     from scipy.optimize import root
 
-    from liftplan.model.solve import pack_params
-    from liftplan.model.statics import FastCall, rope_model
+    from liftplan.model.statics.model import FastCall, rope_model
+    from liftplan.model.statics.vertical import pack_params
 
     scenes = varied_scenes()
     ours = time_elastic(scenes, repeats=50)
@@ -159,7 +159,7 @@ def plans():
 
 
 def fleet():
-    from liftplan.planner.search.branch import tolerance
+    from liftplan.planner.search.evaluator import tolerance
 
     problem = load_problem(EXAMPLES / "tanker_fleet.toml")
     ours = median_time(lambda: plan(problem), 9)
@@ -215,7 +215,7 @@ def stranded():
     newton = median_time(lambda: solve_in_water(barge, method="newton", setup=setup), 20)
     paper = median_time(lambda: solve_in_water(barge, method="paper-newton", setup=setup), 20)
     # scipy on the same casadi residual (grounded: two tilts about the contact)
-    from liftplan.model.statics import FastCall
+    from liftplan.model.statics.model import FastCall
 
     residual = FastCall(setup.model.grounded)
     params = setup.params(setup.start.rotation)

@@ -24,7 +24,7 @@ STEP = 0.5  # m
 
 
 def scene_with(area):
-    from liftplan.model.scenefile import loads_scene
+    from liftplan.model.scene.file import loads_scene
 
     text = (ROOT / "examples" / "sunken_block_lift.toml").read_text()
     text = text.replace(

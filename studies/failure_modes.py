@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model import LiftPlanError, load_scene, rotation_matrix, solve
-from liftplan.model.scene import Analysis, Attitude, Crane, Lug, Redundant, Scene
+from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redundant, Scene
 
 HERE = Path(__file__).parent
 OUT = HERE / "out"
@@ -202,8 +202,8 @@ def cases():
 
 def water_cases():
     from liftplan.model.frames import rotation_matrix as rot
-    from liftplan.model.hull import Hull
-    from liftplan.model.scene import Body, Ground, Water
+    from liftplan.model.scene.hull import Hull
+    from liftplan.model.scene.objects import Body, Ground, Water
     from liftplan.model.water import Start, WaterSetup, solve_in_water
 
     out = {}

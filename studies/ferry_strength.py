@@ -58,7 +58,7 @@ def summary(s):
 
 def run():
     from liftplan.planner import load_problem
-    from liftplan.planner.strength_plan import (
+    from liftplan.planner.plans.strength import (
         SPREAD_WEIGHTS,
         SetEvaluator,
         StrengthContext,

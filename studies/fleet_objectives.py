@@ -57,8 +57,8 @@ import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.frames import choi_to_zup
-from liftplan.planner.design_loads import design_loads
 from liftplan.planner.plan import plan
+from liftplan.planner.plans.design_loads import design_loads
 from liftplan.planner.problem.file import load_problem
 
 HERE = Path(__file__).parent

@@ -39,7 +39,7 @@ SCALES = [0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0]
 
 
 def scene(ei):
-    from liftplan.model.scenefile import loads_scene
+    from liftplan.model.scene.file import loads_scene
 
     text = (EXAMPLES / "stranded_barge.toml").read_text()
     text = text.replace(

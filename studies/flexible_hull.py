@@ -13,7 +13,7 @@ each hook moved by +-1 mm (central differences, exact to ~1e-9 here: the tension
 in the hook heights while every rope is taut):
 
 * the largest tension change flexibility makes with level hooks, |T_flex - T_rigid| / T_rigid;
-* the computed skew load factor, as the planner computes it (``planner/design_loads.py``):
+* the computed skew load factor, as the planner computes it (``planner/plans/design_loads.py``):
   SKL_i = (T_i + delta sum_j |dT_i / dH_j|) / T_i with the hook tolerance delta = 0.02 m of
   ``examples/tanker_plan.toml``; the largest over the ropes is reported;
 * the stiffness scale at which the rigid hull is within 1 % (tensions, and skew loads
@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model import load_scene
-from liftplan.model.scene import Crane, GirderStiffness, Lug
+from liftplan.model.scene.objects import Crane, GirderStiffness, Lug
 from liftplan.model.solve import solve_hull_on_ropes
 
 HERE = Path(__file__).parent

@@ -1,4 +1,4 @@
-"""What the compile cache saves (liftplan.model.compiled): the first process compiles the
+"""What the compile cache saves (liftplan.model.statics.compiled): the first process compiles the
 batched casadi maps to C, every later process loads the library.
 
 Measured in fresh processes, each with its own cache, temporary and working folder:
@@ -46,19 +46,19 @@ REPEAT = 5
 BUILD = textwrap.dedent("""
     import json, time
     import casadi as ca
-    from liftplan.model.statics import rope_model
+    from liftplan.model.statics.model import rope_model
     begin = time.perf_counter()
     model = rope_model(4)
     model.held_block, model.held_columns, model.paper_elastic_block
     print(json.dumps({"seconds": time.perf_counter() - begin, "backend": model.batch_backend}), flush=True)
 """)
 
-# The former path (model/statics.py before the cache): casadi's JIT compiles each column in
+# The former path (model/statics/model.py before the cache): casadi's JIT compiles each column in
 # every process, sources and libraries in a folder of the temporary folder.
 CASADI_JIT = textwrap.dedent("""
     import json, tempfile, time
     import casadi as ca
-    from liftplan.model.statics import BLOCK, rope_model
+    from liftplan.model.statics.model import BLOCK, rope_model
     begin = time.perf_counter()
     model = rope_model(4)
     folder = tempfile.mkdtemp(prefix="liftplan-jit-") + "/"

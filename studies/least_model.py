@@ -24,8 +24,8 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model import load_scene, rotation_matrix, solve_elastic
-from liftplan.model.inclined import solve_inclined
-from liftplan.model.scene import Water
+from liftplan.model.scene.objects import Water
+from liftplan.model.statics.inclined import solve_inclined
 from liftplan.model.water import WaterSetup, solve_in_water, submerged_scene
 
 HERE = Path(__file__).parent

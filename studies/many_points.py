@@ -64,7 +64,7 @@ from many_points_peer import (  # noqa: E402
 )
 
 from liftplan.model import paper_elastic_tensions, solve  # noqa: E402
-from liftplan.model.statics import BLOCK, rope_model  # noqa: E402
+from liftplan.model.statics.model import BLOCK, rope_model  # noqa: E402
 
 COUNTS = [4, 8, 12, 26, 64]
 MODELS = ["elastic", "paper-elastic", "rigid"]

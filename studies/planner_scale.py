@@ -103,16 +103,17 @@ METHODS = {
 
 
 def run(problem, method):
-    import liftplan.planner.search.branch as branch
+    import liftplan.planner.search.exact as exact
+    import liftplan.planner.search.methods as methods
 
-    branch.DUAL_BOUND = method != "exact, pair bound"
+    exact.DUAL_BOUND = method != "exact, pair bound"
     changes = dict(METHODS[method])
     if method.startswith("mip"):
         changes["time_limit"] = HULL_LIMIT if problem.cranes > 20 else MIP_LIMIT
     if method.startswith("local") and problem.cranes > 20:
         changes["time_limit"] = HULL_LIMIT
     started = time.perf_counter()
-    ranking, stats = branch.search(dataclasses.replace(problem, **changes), 1)
+    ranking, stats = methods.search(dataclasses.replace(problem, **changes), 1)
     return dict(
         method=method,
         seconds=time.perf_counter() - started,

@@ -16,7 +16,7 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from liftplan.planner.output.report import write_report
+from liftplan.planner.output.report.write import write_report
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.file import load_problem
 

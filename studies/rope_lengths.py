@@ -23,8 +23,8 @@ OUT = ROOT / "studies" / "out"
 def run():
     from liftplan.model.errors import PlanInfeasible
     from liftplan.planner import load_problem, plan
-    from liftplan.planner.lengths import with_lengths
-    from liftplan.planner.plan import Plan
+    from liftplan.planner.plans.held import Plan
+    from liftplan.planner.plans.lengths import with_lengths
 
     problem = load_problem(ROOT / "examples" / "tanker_lengths.toml")
     chosen = plan(problem)

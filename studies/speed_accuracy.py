@@ -41,9 +41,9 @@ import numpy as np
 from scipy.optimize import root
 
 from liftplan.model import EquilibriumNotFound, solve
-from liftplan.model.scene import Analysis, Attitude, Body, Crane, Lug, Scene
-from liftplan.model.solve import pack_params, solve_elastic
-from liftplan.model.statics import FastCall, rope_model
+from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Scene
+from liftplan.model.statics.model import FastCall, rope_model
+from liftplan.model.statics.vertical import pack_params, solve_elastic
 
 HERE = Path(__file__).parent
 OUT = HERE / "out"

@@ -21,8 +21,8 @@ from pathlib import Path
 
 from liftplan.model import EquilibriumNotFound
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.hull import Hull
-from liftplan.model.scene import Attitude, Body, Ground, Scene, Water
+from liftplan.model.scene.hull import Hull
+from liftplan.model.scene.objects import Attitude, Body, Ground, Scene, Water
 from liftplan.model.water import Start, WaterSetup, solve_in_water
 
 OUT = Path(__file__).parent / "out"

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model import load_scene, solve
-from liftplan.model.scene import curve_totals
+from liftplan.model.scene.objects import curve_totals
 from liftplan.model.strength import hull_girder
 
 ROOT = Path(__file__).resolve().parents[1]

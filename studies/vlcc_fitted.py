@@ -4,7 +4,7 @@ The paper does not publish the VLCC's offsets, only its particulars (L 300, B 54
 CG (20, 0, 5), contact on the keel at z = -15) and the first iteration's hydrostatics
 (buoyancy 224 317 t at (7.4, 0, -7.2), volume 218 356 m3, waterplane 16 017 m2 centred at
 x 0.28, I_T 4 026 532 m4, I_L 105 830 806 m4). The hull used here is NOT the paper's: it
-is liftplan's parametric form (:mod:`liftplan.model.hullfit`: box sections with a round
+is liftplan's parametric form (:mod:`liftplan.model.scene.hullfit`: box sections with a round
 bilge, fined waterlines, a cut-away run, wall-sided above water, deck 10 m above the
 waterline: Table 8's "depth 10 m" read as the freeboard, the keel being at -15) fitted by
 least squares to those particulars, twice:
@@ -38,11 +38,11 @@ import numpy as np
 
 from liftplan.model import EquilibriumNotFound, solve
 from liftplan.model.frames import attitude_angles
-from liftplan.model.hull import Hull
-from liftplan.model.hullfit import Particulars, fitted_hull, write_stl
-from liftplan.model.hydrostatics import MeshHydrostatics
-from liftplan.model.scene import Attitude, Body, Ground, Scene, Water
-from liftplan.model.water import WaterSetup, _root, _rotation
+from liftplan.model.scene.hull import Hull
+from liftplan.model.scene.hullfit import Particulars, fitted_hull, write_stl
+from liftplan.model.scene.objects import Attitude, Body, Ground, Scene, Water
+from liftplan.model.water.equilibrium import WaterSetup, _root, _rotation
+from liftplan.model.water.hydrostatics import MeshHydrostatics
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "studies" / "out"
@@ -232,7 +232,7 @@ def table(data):
         "**The hull is fitted, not the paper's**: the paper publishes particulars, not offsets. "
         "liftplan's parametric form (box sections with a round bilge, fined waterlines, cut-away run, "
         f"wall-sided, deck {FREEBOARD:g} m above the waterline) is fitted by least squares "
-        "(`liftplan.model.hullfit.fitted_hull`). Written by `python studies/vlcc_fitted.py`.",
+        "(`liftplan.model.scene.hullfit.fitted_hull`). Written by `python studies/vlcc_fitted.py`.",
         "",
         "## Fit: residual per particular (fitted - published) / scale",
         "",

@@ -31,7 +31,7 @@ def stl_box(tmp_path_factory):
     """The paper's barge as a subdivided STL mesh (a different triangulation than the box's)."""
     import trimesh
 
-    from liftplan.model.hull import Hull
+    from liftplan.model.scene.hull import Hull
 
     mesh = trimesh.creation.box(extents=(100.0, 30.0, 10.0)).subdivide().subdivide()
     path = tmp_path_factory.mktemp("hull") / "barge.stl"

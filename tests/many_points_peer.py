@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from liftplan.model.scene import Body, Crane, Lug, Redundant, Scene
+from liftplan.model.scene.objects import Body, Crane, Lug, Redundant, Scene
 
 WEIGHT = 9000.0  # t
 COG = (-4.0, 0.3, 7.5)  # m

@@ -26,7 +26,7 @@ import pytest
 
 from liftplan.model import breakout_load, load_curve
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scenefile import loads_scene
+from liftplan.model.scene.file import loads_scene
 
 G = 9.80665
 

@@ -2,7 +2,7 @@
 
 ``[plan] breakout_scene`` names the seabed scene of the same body; its breakout load (peak total
 hook load at a body point) is held by each crane of every ranked lug set at the level attitude
-with the plan's preload held (planner/breakout.py). Shown here:
+with the plan's preload held (planner/plans/breakout.py). Shown here:
 
 * those tensions equal the forward ``elastic`` solve of the plan's scene with the breakout
   weight and CG and the hooks moved by the reported hook shift, to 1e-6 t, and they meet the
@@ -32,10 +32,10 @@ from test_report_pdf import _missing as _pdf_missing
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import zup_to_choi
-from liftplan.model.scene import Analysis, Attitude, Body, Crane, Lug, Scene
-from liftplan.planner.output.plan_console import plan_table
-from liftplan.planner.output.report import render_html
-from liftplan.planner.output.report_page import MARGINS_MM
+from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Scene
+from liftplan.planner.output.console.summary import summary as plan_table
+from liftplan.planner.output.report.held import render_html
+from liftplan.planner.output.report.page import MARGINS_MM
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.file import load_problem, loads_problem
 from liftplan.planner.search.scenarios import LugSet
@@ -283,7 +283,7 @@ def test_slings_refuse_a_breakout_scene(tmp_path):
 
 @pytest.mark.skipif(_pdf_missing() is not None, reason=_pdf_missing() or "")
 def test_the_report_prints_the_breakout_within_the_text_width(block, tmp_path):
-    from liftplan.planner.output.report import write_report
+    from liftplan.planner.output.report.write import write_report
 
     files = write_report(block, tmp_path)
     images, texts = render(files.pdf, tmp_path)

@@ -1,4 +1,4 @@
-"""The compile cache (liftplan.model.compiled): compile once per machine, reuse everywhere.
+"""The compile cache (liftplan.model.statics.compiled): compile once per machine, reuse everywhere.
 
 Processes are real subprocesses with their own cache, temporary and working folders
 (``LIFTPLAN_CACHE``, ``TMPDIR``, cwd), and a compiler wrapper that logs every call, so
@@ -21,16 +21,16 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from liftplan.model import compiled
-from liftplan.model.compiled import compile_cached, library_path
-from liftplan.model.statics import BLOCK, FastCall, rope_model
+from liftplan.model.statics import compiled
+from liftplan.model.statics.compiled import compile_cached, library_path
+from liftplan.model.statics.model import BLOCK, FastCall, rope_model
 
 ROOT = Path(__file__).resolve().parents[1]
 needs_compiler = pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler on this machine")
 
 # Builds the three batched maps of the 4-rope model, as `plan` and `batch` do.
 BUILD = textwrap.dedent("""
-    from liftplan.model.statics import rope_model
+    from liftplan.model.statics.model import rope_model
     m = rope_model(4)
     m.held_block, m.held_columns, m.paper_elastic_block
     print(m.batch_backend)

@@ -19,11 +19,11 @@ from test_cli import run
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import Rules
-from liftplan.model.scenefile import loads_scene
-from liftplan.planner.design_loads import DesignBuilder
-from liftplan.planner.output.plan_console import plan_table
-from liftplan.planner.output.report import render_html
+from liftplan.model.scene.file import loads_scene
+from liftplan.planner.output.console.summary import summary as plan_table
+from liftplan.planner.output.report.held import render_html
 from liftplan.planner.plan import plan
+from liftplan.planner.plans.design_loads import DesignBuilder
 from liftplan.planner.problem.definition import CogEnvelope
 from liftplan.planner.problem.file import load_problem, loads_problem
 from liftplan.planner.search.scenarios import Scenario

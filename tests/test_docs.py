@@ -1,7 +1,7 @@
 """docs/scene-files.md against the validation schemas, so the key reference cannot drift.
 
 The schemas are the pydantic tables that read the files (``Table`` subclasses in
-model/scenefile.py, planner/problemfile.py, planner/study.py and the tables they nest).
+model/scene/file.py, planner/problemfile.py, planner/study.py and the tables they nest).
 Walking them gives every key path: ``plan.tolerance.heel`` for a nested table,
 ``lugs[].name`` for a key of each table of an array of tables (``[[lugs]]``), and
 ``x.*.key`` for a table of tables whose names the user chooses. The doc has one section per
@@ -26,7 +26,7 @@ from pathlib import Path
 import pytest
 from pydantic import BaseModel
 
-from liftplan.model.scenefile import _SceneFile, loads_scene
+from liftplan.model.scene.file import _SceneFile, loads_scene
 from liftplan.planner.batch.study import _StudyFile, loads_study
 from liftplan.planner.problem.file import _PlanFile, loads_problem
 

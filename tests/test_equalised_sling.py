@@ -1,4 +1,4 @@
-"""Equalised 2-leg slings: one rope over a sheave at the hook (model/rigging.py).
+"""Equalised 2-leg slings: one rope over a sheave at the hook (model/statics/rigging.py).
 
 A 200 t body on four lugs (a rectangle 12 m x 8 m, lugs and CG at one height), lifted by
 three cranes: FWD with a 2-leg sling to the two forward lugs, A-P and A-S with one rope each
@@ -17,8 +17,8 @@ import pytest
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.rigging_gear import Leg, Sling
-from liftplan.model.scene import Analysis, Attitude, Body, Crane, Lug, Scene
+from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Scene
+from liftplan.model.scene.rigging_gear import Leg, Sling
 from liftplan.planner.cli import main
 
 A, B, W = 6.0, 4.0, 200.0

@@ -14,12 +14,12 @@ from scipy.optimize import linprog
 
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.model.frames import choi_to_zup
-from liftplan.model.scene import Body
+from liftplan.model.scene.objects import Body
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
 from liftplan.planner.problem.file import load_problem, loads_problem
 from liftplan.planner.problem.fleet import FleetCrane
-from liftplan.planner.search.branch import search
+from liftplan.planner.search.methods import search
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -319,7 +319,7 @@ def test_file_errors(text, message):
 
 
 def test_collinear_set_is_refused_with_its_cause():
-    from liftplan.planner.search.branch import SetEvaluator, SetInfeasible
+    from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
 
     problem = load_problem(EXAMPLES / "tanker_fleet.toml")
     # BH1-S, BH2-S, BH5-S and BH6-S all lie on the starboard deck edge

@@ -28,7 +28,7 @@ from numpy.testing import assert_allclose
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scenefile import loads_scene
+from liftplan.model.scene.file import loads_scene
 from liftplan.model.strength import hull_girder
 from liftplan.planner.cli import main
 
@@ -196,7 +196,7 @@ def test_agrees_with_pynite_on_a_grounded_hull_to_1e_6():
     ropes: station loads, the ground reaction and the deflection from the chord against PyNite.
     PyNite is level; the model trims by theta (< 2e-4 rad here): cos(theta) - 1 < 2e-8."""
     pytest.importorskip("Pynite")
-    from liftplan.model.scene import curve_totals
+    from liftplan.model.scene.objects import curve_totals
     from liftplan.model.strength.beam import girder_mesh
 
     curve = ((0.0, 14.0), (15.0, 14.0), (20.0, 9.0), (70.0, 9.0), (80.0, 4.0))

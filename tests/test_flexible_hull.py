@@ -26,7 +26,8 @@ from numpy.testing import assert_allclose
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scene import (
+from liftplan.model.scene.file import load_scene, loads_scene
+from liftplan.model.scene.objects import (
     Analysis,
     Attitude,
     Body,
@@ -35,7 +36,6 @@ from liftplan.model.scene import (
     Lug,
     Scene,
 )
-from liftplan.model.scenefile import load_scene, loads_scene
 from liftplan.model.solve import solve_hull_on_ropes
 from liftplan.model.strength import hull_girder
 from liftplan.model.strength.beam import girder_mesh
@@ -215,7 +215,7 @@ def test_tapered_stiffness_converges_with_the_elements():
     scene = tanker_six_lugs(1e7)
     tapered = GirderStiffness(EI=((0.0, 2e6), (41.0, 2e7), (82.05, 2e6)))
     scene = dataclasses.replace(scene, girder=tapered)
-    from liftplan.model.solve import pack_params
+    from liftplan.model.statics.vertical import pack_params
     from liftplan.model.strength.flexible import flexible_state
 
     x0 = [solve(scene).pose.lift_height, 0.0, 0.0]
@@ -268,7 +268,7 @@ def test_agrees_with_pynite_to_1e_6():
     springs), which changes the normal loads by cos(theta) - 1 ~ 5e-8: both well inside the
     1e-6 relative asked (and round-off of PyNite's solve, ~1e-12)."""
     curve = ((-40.0, 14.0), (-25.0, 14.0), (-20.0, 9.0), (30.0, 9.0), (40.0, 4.0))
-    from liftplan.model.scene import curve_totals
+    from liftplan.model.scene.objects import curve_totals
 
     weight, moment = curve_totals(*zip(*curve))
     stations = [-36.0, -12.0, 10.0, 34.0]

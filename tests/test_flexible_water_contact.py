@@ -16,7 +16,7 @@ import pytest
 
 from liftplan.model import solve
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.scenefile import loads_scene
+from liftplan.model.scene.file import loads_scene
 from liftplan.model.strength import hull_girder
 
 SIZE = 100.0
@@ -213,7 +213,7 @@ def test_state_is_classified_from_the_deflected_hull_not_its_chord():
     """Four ropes at x = +-45 m hold the chord's keel 78 mm over the water; a soft girder sags
     the middle 177 mm, so the keel amidships is in the water and carries buoyancy: the state is
     "piercing the surface" (it was "clear", from the chord's heights, with 140 t of buoyancy)."""
-    from liftplan.model.water.equilibrium import hull_heights
+    from liftplan.model.water.state import hull_heights
 
     text = _CLEAR_TEXT
     for k, (x, y) in enumerate(((-45.0, 10.0), (45.0, 10.0), (45.0, -10.0), (-45.0, -10.0))):

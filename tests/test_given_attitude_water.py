@@ -15,8 +15,8 @@ from numpy.testing import assert_allclose
 from liftplan.model import solve
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.hull import Compartment, Hull
-from liftplan.model.scene import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, Water
+from liftplan.model.scene.hull import Compartment, Hull
+from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, Water
 
 RHO = 1.025
 THREE = (("A", (10.0, 5.0, 6.0)), ("B", (50.0, 4.0, 6.0)), ("C", (28.0, -5.0, 6.0)))

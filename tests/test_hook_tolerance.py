@@ -18,7 +18,7 @@ from test_planner import small_problem
 from liftplan.model import solve
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.file import load_problem
-from liftplan.planner.search.branch import SetEvaluator, robust
+from liftplan.planner.search.evaluator import SetEvaluator, robust
 from liftplan.planner.search.scenarios import LugSet, Scenario
 
 TANKER = EXAMPLES / "tanker_plan.toml"

@@ -11,11 +11,18 @@ from numpy.testing import assert_allclose
 from liftplan.model import EquilibriumNotFound, solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import attitude_angles
-from liftplan.model.hull import Hull
-from liftplan.model.hullfit import HullForm, Particulars, fitted_hull, hull_triangles, particulars, write_stl
-from liftplan.model.hydrostatics import MeshHydrostatics
-from liftplan.model.scene import Body, Ground, Scene, Water
-from liftplan.model.water import WaterSetup, _root, _rotation
+from liftplan.model.scene.hull import Hull
+from liftplan.model.scene.hullfit import (
+    HullForm,
+    Particulars,
+    fitted_hull,
+    hull_triangles,
+    particulars,
+    write_stl,
+)
+from liftplan.model.scene.objects import Body, Ground, Scene, Water
+from liftplan.model.water.equilibrium import WaterSetup, _root, _rotation
+from liftplan.model.water.hydrostatics import MeshHydrostatics
 
 VLCC = Particulars(
     length=300.0,

@@ -7,8 +7,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from liftplan.model import InvalidScene, rotation_matrix
-from liftplan.model.hull import Hull, box_triangles
-from liftplan.model.hydrostatics import MeshHydrostatics
+from liftplan.model.scene.hull import Hull, box_triangles
+from liftplan.model.water.hydrostatics import MeshHydrostatics
 
 L, B, D = 100.0, 30.0, 10.0  # the paper's barge; body origin at mid-depth
 BOX = Hull.box([-L / 2, -B / 2, -D / 2], [L / 2, B / 2, D / 2])

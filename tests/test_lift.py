@@ -11,9 +11,9 @@ from helpers import EXAMPLES, example
 from numpy.testing import assert_allclose
 
 from liftplan.model import solve
-from liftplan.model.hull import Hull
 from liftplan.model.lift import load_curve
-from liftplan.model.scene import Body, Scene, Water
+from liftplan.model.scene.hull import Hull
+from liftplan.model.scene.objects import Body, Scene, Water
 from liftplan.model.water import solve_in_water
 
 RHO = 1.025

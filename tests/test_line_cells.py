@@ -15,8 +15,8 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.planner.problem.file import load_problem
-from liftplan.planner.search.branch import SetEvaluator
 from liftplan.planner.search.coplanar import PlaneLP, coplanar, corner_scenarios, effective_cogs
+from liftplan.planner.search.evaluator import SetEvaluator
 from liftplan.planner.search.line_cells import (
     Same,
     _Cells,
@@ -207,7 +207,8 @@ def test_ctrl_c_keeps_a_valid_bound_and_the_plan(small, small_values, monkeypatc
     form, below the optimum, flagged interrupted); the local search's plan is kept with that
     bound (Interrupted, stopped "interrupted")."""
     import liftplan.planner.search.line_cells as line_cells
-    from liftplan.planner.search.branch import Interrupted, search
+    from liftplan.planner.search.evaluator import Interrupted
+    from liftplan.planner.search.methods import search
 
     evaluator, values = small_values
     optimum = min(values.values())
@@ -242,8 +243,8 @@ def test_local_plan_bound_against_a_proved_optimum():
 
     from helpers import ROOT
 
-    from liftplan.planner.search.branch import search
     from liftplan.planner.search.lines import line_bound
+    from liftplan.planner.search.methods import search
 
     sys.path.insert(0, str(ROOT / "studies"))
     from planner_scale import tanker_with
@@ -263,7 +264,7 @@ def test_local_plan_bound_against_a_proved_optimum():
 def test_hull_plan_is_certified_within_one_percent(hull):
     """The 154 m hull's 26 of 80 with gap = 0.01 and no time limit (deterministic): a plan
     whose certified gap is at most 1 %."""
-    from liftplan.planner.search.branch import search
+    from liftplan.planner.search.methods import search
 
     ranking, stats = search(dataclasses.replace(hull, gap=0.01, time_limit=None), 1)
     assert stats.stopped == "local" and 0.0 < stats.relative_gap <= 0.01

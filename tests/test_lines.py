@@ -11,8 +11,9 @@ from helpers import EXAMPLES, ROOT
 from test_planner import linprog_minimax
 
 from liftplan.planner.problem.file import load_problem
-from liftplan.planner.search.branch import SetEvaluator, search
+from liftplan.planner.search.evaluator import SetEvaluator
 from liftplan.planner.search.lines import count_bounds, line_bound, two_lines
+from liftplan.planner.search.methods import search
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
 sys.path.insert(0, str(ROOT / "studies"))

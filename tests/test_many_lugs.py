@@ -10,8 +10,9 @@ from helpers import EXAMPLES
 from liftplan.model import PlanInfeasible
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.search.bounds import PreloadMinimax
-from liftplan.planner.search.branch import SetEvaluator, SetInfeasible, search
+from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
 from liftplan.planner.search.local import _plane_lp, local_search, spread_start, swaps
+from liftplan.planner.search.methods import search
 from liftplan.planner.search.scenarios import LugSet, Scenario
 from liftplan.planner.search.screen import FEASIBLE, all_sets, screen, screening_scenarios
 

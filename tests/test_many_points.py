@@ -28,9 +28,9 @@ from many_points_peer import (
 from numpy.testing import assert_allclose
 
 from liftplan.model import Body, InvalidScene, Lug, Redundant, load_scene, paper_elastic_tensions, solve
-from liftplan.model.solve import solve_elastic
-from liftplan.model.statics import rope_model
-from liftplan.planner.output.rope_table import rope_rows, stations
+from liftplan.model.statics.model import rope_model
+from liftplan.model.statics.vertical import solve_elastic
+from liftplan.planner.output.console.rope_table import rope_rows, stations
 
 EXAMPLE = EXAMPLES / "hull154_26_points.toml"
 
@@ -336,8 +336,8 @@ def test_rope_rows_refuses_hook_loads(hull26):
 def test_held_tensions_is_held_without_the_jacobian(hull26):
     """The check's map (no n x n sensitivities) gives the planner's held tensions, bit for bit
     uncompiled at n = 26, and through the compiled column maps at n = 4."""
-    from liftplan.model.solve import pack_params
-    from liftplan.model.statics import BLOCK
+    from liftplan.model.statics.model import BLOCK
+    from liftplan.model.statics.vertical import pack_params
 
     p = pack_params(hull26, "elastic")
     x = np.array([0.1, np.radians(1.0), np.radians(-0.5)])

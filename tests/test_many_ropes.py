@@ -226,7 +226,7 @@ def printed_report(name, tmp_path):
     from test_report_pdf import render
 
     from liftplan.planner import load_problem, plan
-    from liftplan.planner.output.report import write_report
+    from liftplan.planner.output.report.write import write_report
 
     result = plan(load_problem(EXAMPLES / f"hull154_{name}_given.toml"))
     files = write_report(result, tmp_path)
@@ -276,7 +276,7 @@ def test_report_26_ropes_within_the_page(tmp_path):
     text = (tmp_path / "report.html").read_text(encoding="utf-8")
     assert "crane 1 to crane 26 (26 alike)" in text  # the fleet in one row
     assert "(25 to 26 of 26)" in text  # per-rope tables split in parts of 8
-    from liftplan.planner.output import figures
+    from liftplan.planner.output.figures import plan as figures
 
     assert labels_overlap(figures.plan_view(result)) == []
     assert labels_overlap(figures.tension_curves(result)) == []
@@ -292,7 +292,7 @@ def test_report_64_ropes_builds_within_the_page(tmp_path):
     assert "crane 1 to crane 64 (64 alike)" in text
     assert "(57 to 64 of 64)" in text
     assert len(images) <= 32  # measured 28; was 30 with the fleet at one row per crane
-    from liftplan.planner.output import figures
+    from liftplan.planner.output.figures import plan as figures
 
     view = figures.plan_view(result)
     assert labels_overlap(view) == []

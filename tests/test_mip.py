@@ -16,7 +16,8 @@ from liftplan.model import PlanInfeasible
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.definition import CogEnvelope
 from liftplan.planner.problem.file import load_problem
-from liftplan.planner.search.branch import SetEvaluator, search
+from liftplan.planner.search.evaluator import SetEvaluator
+from liftplan.planner.search.methods import search
 from liftplan.planner.search.mip import (
     first_scenarios,
     hook_bounds,

@@ -13,12 +13,13 @@ from scipy.optimize import linprog
 
 from liftplan.model import InvalidScene, PlanInfeasible, solve
 from liftplan.model.frames import choi_to_zup
-from liftplan.model.scene import Body
+from liftplan.model.scene.objects import Body
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.search.bounds import AdmissibleTensions, PreloadMinimax
-from liftplan.planner.search.branch import SetEvaluator, SetInfeasible, search
+from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
+from liftplan.planner.search.methods import search
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.screen import all_sets, screen
 

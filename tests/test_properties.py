@@ -143,8 +143,8 @@ def stable(scene, state):
     """The energy Hessian's leading minors are > 0 at the state: a stable equilibrium."""
     import casadi as ca
 
-    from liftplan.model.solve import pack_params
-    from liftplan.model.statics import rope_model
+    from liftplan.model.statics.model import rope_model
+    from liftplan.model.statics.vertical import pack_params
 
     model = rope_model(scene.n)
     x = [state.pose.lift_height, math.radians(state.pose.heel), math.radians(state.pose.trim)]

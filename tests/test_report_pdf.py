@@ -20,7 +20,7 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.model.errors import InvalidScene
-from liftplan.planner.output.report_page import MARGINS_MM, document, table
+from liftplan.planner.output.report.page import MARGINS_MM, document, table
 from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.problem.report_info import ReportInfo
 
@@ -95,7 +95,7 @@ CASES = {
 
 @pytest.fixture(scope="module", params=list(CASES))
 def printed(request, tmp_path_factory):
-    from liftplan.planner.output.report import write_report
+    from liftplan.planner.output.report.write import write_report
     from liftplan.planner.plan import plan
 
     if _missing():

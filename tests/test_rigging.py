@@ -22,8 +22,8 @@ from liftplan.model import (
     solve,
     zup_to_choi,
 )
-from liftplan.model.rigging import rigging_checks
-from liftplan.model.rigging_gear import Leg, RiggingLimits, Sling, Spreader, sling_ea
+from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader, sling_ea
+from liftplan.model.statics.rigging import rigging_checks
 
 STIFF = 1e7  # t: legs that stretch by ~1e-5 of their length, for closed forms on the drawn geometry
 W = 200.0

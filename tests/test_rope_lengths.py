@@ -1,4 +1,4 @@
-"""The planner choosing rope lengths (issue 16, item 2; planner/lengths.py).
+"""The planner choosing rope lengths (issue 16, item 2; planner/plans/lengths.py).
 
 The tanker with +-0.05 m hook errors and a 25 to 55 m payout range
 (examples/tanker_lengths.toml) against today's fixed 30 m plan (examples/tanker_plan.toml).
@@ -17,8 +17,8 @@ from numpy.testing import assert_allclose
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.planner import load_problem, plan
-from liftplan.planner.lengths import LENGTH_STEPS, REFINE_ROUNDS, with_lengths
-from liftplan.planner.plan import Plan
+from liftplan.planner.plans.held import Plan
+from liftplan.planner.plans.lengths import LENGTH_STEPS, REFINE_ROUNDS, with_lengths
 from liftplan.planner.problem.file import loads_problem
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -31,7 +31,7 @@ from liftplan.model.rules import (
     yaw_factor,
 )
 from liftplan.model.rules.tilt import rotation_about
-from liftplan.model.statics import Layout, rope_model
+from liftplan.model.statics.model import Layout, rope_model
 
 # Closed forms and lever-rule sums below are a handful of float64 operations: they agree with
 # the library to a few ulp of the loads (~1e-13 t), so 1e-9 leaves ample margin and still

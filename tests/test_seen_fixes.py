@@ -65,7 +65,7 @@ def test_tilt_note_without_a_cg_envelope_says_the_box_only():
 
 def test_chain_docstrings_do_not_say_worst_searched():
     import liftplan.model.rules.chain as chain
-    from liftplan.planner.design_loads import PlanChain
+    from liftplan.planner.plans.design_loads import PlanChain
 
     for text in (chain.__doc__, chain.CraneLoads.__doc__, PlanChain.__doc__):
         assert "worst searched" not in text and "searched share" not in text
@@ -74,7 +74,7 @@ def test_chain_docstrings_do_not_say_worst_searched():
 def test_plan_chain_uses_the_public_notes_hook_not_the_private_crane():
     """PlanChain overrides the documented :meth:`DesignLoadChain.factor_notes` (its own notes
     where it has a planner's load) and leaves the chain's private per-crane sums alone."""
-    from liftplan.planner.design_loads import PlanChain
+    from liftplan.planner.plans.design_loads import PlanChain
 
     assert "_crane" not in vars(PlanChain)
     assert "factor_notes" in vars(PlanChain)
@@ -121,7 +121,7 @@ def _steep_file(tmp_path):
 
 def test_file_path_rules_the_steep_pair_out_and_its_derived_problem_passes_the_guard(tmp_path):
     from liftplan.planner import load_problem
-    from liftplan.planner.slings.apex import apex_problem
+    from liftplan.planner.plans.slings.apex import apex_problem
 
     problem = load_problem(_steep_file(tmp_path))
     derived, rigs = apex_problem(problem)  # builds PlanProblem(..., hinges=...) itself
@@ -141,7 +141,7 @@ def test_python_hinges_with_a_pair_near_plumb_are_refused_in_one_line(tmp_path):
 
     from liftplan.model.errors import InvalidScene
     from liftplan.planner import load_problem
-    from liftplan.planner.slings.apex import apex_problem
+    from liftplan.planner.plans.slings.apex import apex_problem
 
     problem = load_problem(_steep_file(tmp_path))
     derived, _ = apex_problem(problem)
@@ -176,7 +176,7 @@ def test_python_guard_names_the_pair_in_the_files_frame():
     import dataclasses
 
     from liftplan.model.errors import InvalidScene
-    from liftplan.model.statics import fixed_hinges
+    from liftplan.model.statics.model import fixed_hinges
     from liftplan.planner import load_problem
 
     problem = load_problem(EXAMPLES / "tanker_plan.toml")  # frame = "choi"
@@ -195,8 +195,8 @@ def test_python_guard_is_the_sling_planners_rule(heel, trim):
     box's tilt against 90 deg - the margin, checked on 20 000 random pairs (seeded)."""
     import numpy as np
 
-    from liftplan.model.statics import PLUMB_MARGIN, near_plumb
-    from liftplan.planner.slings.rigs import plumb_in_box
+    from liftplan.model.statics.model import PLUMB_MARGIN, near_plumb
+    from liftplan.planner.plans.slings.rigs import plumb_in_box
 
     assert plumb_in_box is near_plumb
     rng = np.random.default_rng(14)
@@ -232,7 +232,7 @@ def test_flexible_water_imports_no_private_helpers():
 def _bow_lift(ei, boom=40.0):
     """The stranded barge grounded at the stern, lifted at the bow by four cranes (the scene of
     studies/flexible_ground.py), hooks at ``boom``."""
-    from liftplan.model.scenefile import loads_scene
+    from liftplan.model.scene.file import loads_scene
 
     text = (EXAMPLES / "stranded_barge.toml").read_text()
     text = text.replace(
@@ -284,7 +284,7 @@ def test_flexible_hull_in_water_builds_its_model_once_per_discretisation():
 
 # -- 4. the console at many ropes: 100 columns, long tables in groups ------------------------
 def test_fold_and_grouped():
-    from liftplan.planner.output.console_text import fold, grouped
+    from liftplan.planner.output.console.text import fold, grouped
 
     rows = [f"row {k}" for k in range(20)]
     out = grouped(rows)
@@ -321,7 +321,7 @@ def _check_console(text, n):
 
 def test_plan_console_at_26_ropes_fits_100_columns_in_groups():
     from liftplan.planner import load_problem, plan
-    from liftplan.planner.output.plan_console import plan_table
+    from liftplan.planner.output.console.summary import summary as plan_table
 
     _check_console(plan_table(plan(load_problem(EXAMPLES / "hull154_26_given.toml"))), 26)
 
@@ -341,7 +341,7 @@ def test_plan_and_solve_consoles_at_64_ropes(capsys):
 
 def test_sling_console_fits_100_columns():
     from liftplan.planner import load_problem, plan
-    from liftplan.planner.output.plan_console import plan_table
+    from liftplan.planner.output.console.summary import summary as plan_table
 
     text = plan_table(plan(load_problem(EXAMPLES / "block_sling_plan.toml")))
     assert max(len(line) for line in text.splitlines()) <= 100

@@ -19,7 +19,7 @@ from helpers import EXAMPLES
 from test_cli import run
 
 from liftplan.model import Equilibrium, LiftPlanError, Pose, SolverInfo, load_scene
-from liftplan.model.plausibility import equilibrium_warnings, scene_warnings
+from liftplan.model.scene.plausibility import equilibrium_warnings, scene_warnings
 from liftplan.model.solve_checks import equilibrium_checks
 from liftplan.planner import load_problem
 from liftplan.planner.batch.run import probe_scheduler
@@ -192,7 +192,7 @@ def interrupt(args, ready, tmp_path, after=0.5, loop=None):
 @pytest.mark.parametrize(
     ("args", "loop"),
     [
-        (["plan", TANKER_PLAN], ("liftplan.planner.plan", "search", True)),
+        (["plan", TANKER_PLAN], ("liftplan.planner.plans.held", "search", True)),
         (["lift", LIFT, "--step", "0.25"], ("liftplan.model.lift", "load_curve", False)),
     ],
     ids=["plan", "lift"],
@@ -209,7 +209,7 @@ def test_interrupted_plan_prints_the_best_so_far_marked_as_such(capsys, monkeypa
     import importlib
 
     from liftplan.planner import plan
-    from liftplan.planner.search.branch import Interrupted
+    from liftplan.planner.search.evaluator import Interrupted
 
     # (``import liftplan.planner.plan as m`` gives the function, as the package exports it)
     planning = importlib.import_module("liftplan.planner.plan")
@@ -314,7 +314,7 @@ def test_figure_into_a_missing_folder_creates_it_and_defaults_to_the_current_fol
 def test_figure_on_a_full_disk_keeps_the_table_and_exits_2(tmp_path, capsys, monkeypatch):
     import errno
 
-    import liftplan.planner.output.figures as figures
+    import liftplan.planner.output.figures.plan as figures
 
     class FullDisk:
         def savefig(self, path, **options):

@@ -229,7 +229,7 @@ LONG_NAMES = {
 
 def test_solve_tables_fit_long_crane_lug_and_leg_names(tmp_path):
     from liftplan.model import load_scene, solve
-    from liftplan.planner.output.console import equilibrium_table
+    from liftplan.planner.output.console.tables import equilibrium_table
 
     text = (EXAMPLES / "block_two_slings.toml").read_text(encoding="utf-8")
     for short, long in LONG_NAMES.items():
@@ -265,8 +265,8 @@ def test_solve_tables_fit_long_crane_lug_and_leg_names(tmp_path):
 
 def _lift_lines(stop, step, speed):
     from liftplan.model.lift import load_curve
-    from liftplan.model.scenefile import load_scene
-    from liftplan.planner.output.lift_console import lift_table
+    from liftplan.model.scene.file import load_scene
+    from liftplan.planner.output.console.lift import lift_table
 
     scene = load_scene(SEABED)
     curve = load_curve(scene, stop=stop, step=step, speed=speed)
@@ -352,8 +352,8 @@ def test_strength_figure_labels_never_overlap(tmp_path, stations):
     and every station's names and force are in the key."""
     from liftplan.model import load_scene, solve
     from liftplan.model.strength import hull_girder
-    from liftplan.planner.output.strength_figure import strength_figure
-    from liftplan.planner.output.strength_report import _print_width
+    from liftplan.planner.output.figures.strength import strength_figure
+    from liftplan.planner.output.report.strength import _print_width
 
     path = tmp_path / "barge.toml"
     path.write_text(_barge(stations), encoding="utf-8")
@@ -375,8 +375,8 @@ def test_strength_figure_labels_never_overlap(tmp_path, stations):
 def test_strength_figure_keeps_names_at_the_stems_where_they_fit(tmp_path):
     from liftplan.model import load_scene, solve
     from liftplan.model.strength import hull_girder
-    from liftplan.planner.output.strength_figure import strength_figure
-    from liftplan.planner.output.strength_report import _print_width
+    from liftplan.planner.output.figures.strength import strength_figure
+    from liftplan.planner.output.report.strength import _print_width
 
     path = tmp_path / "barge.toml"
     path.write_text(_barge(3, spacing=30.0), encoding="utf-8")
@@ -413,9 +413,9 @@ def test_strength_report_small_force_case_has_no_nearly_empty_page(tmp_path):
     from test_report_pdf import _missing, render
     from test_strength_report import small_text
 
-    from liftplan.planner.output.report import write_report
-    from liftplan.planner.output.report_page import MARGINS_MM
-    from liftplan.planner.strength_plan import plan_strength
+    from liftplan.planner.output.report.page import MARGINS_MM
+    from liftplan.planner.output.report.write import write_report
+    from liftplan.planner.plans.strength import plan_strength
 
     if _missing() is not None:
         pytest.skip(_missing())

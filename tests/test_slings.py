@@ -15,14 +15,14 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.model.errors import InvalidScene, PlanInfeasible
-from liftplan.model.rigging import solve_rigging
-from liftplan.model.scene import Body
+from liftplan.model.scene.objects import Body
+from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner.cli import main
 from liftplan.planner.plan import plan
+from liftplan.planner.plans.slings import SlingPlan
 from liftplan.planner.problem.definition import Candidate, PlanProblem
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec
-from liftplan.planner.slings import SlingPlan
 
 BLOCK = Path(EXAMPLES) / "block_sling_plan.toml"
 
@@ -174,7 +174,7 @@ def test_block_example_plans_and_solves(capsys, tmp_path):
 
 def test_sling_report_and_scene_file(tmp_path):
     from liftplan.model import load_scene, solve
-    from liftplan.planner.output.sling_report import render_html, scene_toml
+    from liftplan.planner.output.report.slings import render_html, scene_toml
 
     result = plan(load_problem(BLOCK))
     page = render_html(result)

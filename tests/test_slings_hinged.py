@@ -24,17 +24,17 @@ from helpers import EXAMPLES
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.rigging import solve_rigging
-from liftplan.model.scene import Body
-from liftplan.model.statics import fixed_hinges, hinged_model, rope_model
+from liftplan.model.scene.objects import Body
+from liftplan.model.statics.model import fixed_hinges, hinged_model, rope_model
+from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner.cli import main
 from liftplan.planner.plan import plan
+from liftplan.planner.plans.slings.apex import ApexSlingPlan, apex_problem
+from liftplan.planner.plans.slings.geometry import hinge_rows, hinged_hooks, pair_apex, spreader_hook
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
 from liftplan.planner.search.scenarios import Scenario
-from liftplan.planner.slings.apex import ApexSlingPlan, apex_problem
-from liftplan.planner.slings.geometry import hinge_rows, hinged_hooks, pair_apex, spreader_hook
 
 EXAMPLE = Path(EXAMPLES) / "block_three_slings_plan.toml"
 #: The rigging model stretches the legs (EA of the wire) and finds the hooks itself; the plan
@@ -345,7 +345,7 @@ def test_report_labels_each_hook_column_with_its_frame_and_the_legend_prints_swl
     import matplotlib
 
     matplotlib.use("Agg")
-    from liftplan.planner.output.sling_report import plan_view, render_html
+    from liftplan.planner.output.report.slings import plan_view, render_html
 
     result = plan(load_problem(EXAMPLE))
     assert 142.5 in [float(v) for v in result.hook_swl]
@@ -368,8 +368,8 @@ def test_a_pair_that_turns_plumb_in_the_box_is_not_a_hinged_rig():
     are built, counted under its reason (it passed the level-only test before); every rig kept
     poses to finite hooks at the box's corners."""
     from liftplan.model.frames import rotation_matrix
-    from liftplan.planner.slings.geometry import hinge_rows, hinged_hooks
-    from liftplan.planner.slings.rigs import crane_rigs
+    from liftplan.planner.plans.slings.geometry import hinge_rows, hinged_hooks
+    from liftplan.planner.plans.slings.rigs import crane_rigs
 
     base = _three_crane_problem()
     candidates = list(base.candidates)

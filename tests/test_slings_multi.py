@@ -19,15 +19,15 @@ from helpers import EXAMPLES
 
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.scene import Body
+from liftplan.model.scene.objects import Body
 from liftplan.planner.cli import main
 from liftplan.planner.plan import plan
+from liftplan.planner.plans.slings import SlingPlan
+from liftplan.planner.plans.slings.apex import ApexSlingPlan, apex_problem
+from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook, tripod_apex
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
-from liftplan.planner.slings import SlingPlan, is_sling_plan
-from liftplan.planner.slings.apex import ApexSlingPlan, apex_problem
-from liftplan.planner.slings.geometry import leg_split, spreader_hook, tripod_apex
 
 FOUR_LEG = Path(EXAMPLES) / "block_four_leg_plan.toml"
 #: The rigging model stretches the legs (EA of 56 mm wire) and finds the hooks itself; the plan
@@ -256,5 +256,5 @@ def test_bad_multi_sling_input():
         plan(_block([_crane(n, 300.0, short) for n in "ABC"]))
 
 
-def test_is_sling_plan():
-    assert is_sling_plan(plan(load_problem(FOUR_LEG)))
+def test_four_leg_slings_are_a_sling_plan():
+    assert plan(load_problem(FOUR_LEG)).kind == "slings"

@@ -10,8 +10,8 @@ from helpers import EXAMPLES
 from numpy.testing import assert_allclose
 
 from liftplan.model import solve
-from liftplan.model.hull import Hull
-from liftplan.model.scene import Attitude, Body, Ground, Scene, Water
+from liftplan.model.scene.hull import Hull
+from liftplan.model.scene.objects import Attitude, Body, Ground, Scene, Water
 
 BARGE = dict(
     body=Body(20000.0, (5.0, 0.0, 2.0)),
@@ -104,7 +104,7 @@ def test_floats_free_when_ground_reaction_would_be_negative():
 def test_intact_hull_names_its_forces():
     """Intact: the displaced volume is the envelope below the water, nothing is trapped,
     B = density x displaced volume, and the console balances the ground reaction."""
-    from liftplan.planner.output.console import equilibrium_table
+    from liftplan.planner.output.console.tables import equilibrium_table
 
     scene = barge((30.0, -2.0, -5.0))
     eq = solve(scene)

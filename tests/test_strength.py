@@ -21,13 +21,13 @@ from numpy.testing import assert_allclose
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.hull import Hull
-from liftplan.model.hydrostatics import MeshHydrostatics
-from liftplan.model.scene import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, Strength
-from liftplan.model.scenefile import load_scene, loads_scene
+from liftplan.model.scene.file import load_scene, loads_scene
+from liftplan.model.scene.hull import Hull
+from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, Strength
 from liftplan.model.strength import hull_girder, strength_checks
 from liftplan.model.strength.girder import attitude_matrix
 from liftplan.model.strength.sections import immersed_sections, sectional_buoyancy
+from liftplan.model.water.hydrostatics import MeshHydrostatics
 from liftplan.planner.cli import main
 
 W, L = 800.0, 80.0
@@ -443,7 +443,7 @@ def test_strength_figure_written_and_refused_without_a_curve(tmp_path, capsys):
 
 def test_console_summary():
     scene = load_scene(EXAMPLES / "tanker_strength.toml")
-    from liftplan.planner.output.console import equilibrium_table
+    from liftplan.planner.output.console.tables import equilibrium_table
 
     eq = solve(scene)
     g = hull_girder(scene, eq)

@@ -1,4 +1,4 @@
-"""Lift forces chosen for the hull girder (issue 12 item 3): planner/strength_plan.py and
+"""Lift forces chosen for the hull girder (issue 12 item 3): planner/plans/strength.py and
 planner/search/strength.py.
 
 Tolerances: the LPs are solved by Clarabel / HiGHS to ~1e-8 relative, so two formulations of
@@ -21,6 +21,12 @@ from liftplan.model import load_scene, solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.strength import hull_girder
 from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.plans.strength import (
+    SPREAD_WEIGHTS,
+    StrengthContext,
+    StrengthEvaluator,
+    search_strength,
+)
 from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.search.strength import (
     GirderLoads,
@@ -29,12 +35,6 @@ from liftplan.planner.search.strength import (
     exact_curves,
     section_rows,
     strength_lp,
-)
-from liftplan.planner.strength_plan import (
-    SPREAD_WEIGHTS,
-    SetEvaluator,
-    StrengthContext,
-    search_strength,
 )
 
 FERRY = "examples/ferry_strength_plan.toml"
@@ -66,7 +66,7 @@ rope_length = 25.0
 
 
 def _cog_x():
-    from liftplan.model.scene import curve_totals
+    from liftplan.model.scene.objects import curve_totals
 
     area, first = curve_totals([0, 15, 40, 60], [10, 30, 20, 14])
     return first / area
@@ -224,7 +224,7 @@ def test_strength_lp_equals_linprog():
 # -- the search against brute force ------------------------------------------------------------------
 def _brute(problem, weights):
     ctx = StrengthContext(problem)
-    ev = SetEvaluator(ctx)
+    ev = StrengthEvaluator(ctx)
     best = None
     for subset in itertools.combinations(range(len(problem.candidates)), problem.cranes):
         try:
@@ -265,7 +265,7 @@ def test_hoist_set_holds_its_limits_on_the_dense_grid():
     and the CG vertices, and its worst ratio no lower than the LP's (the bound)."""
     problem = small_problem(control="hoist", cranes=4, stations=(4, 20, 36, 52))
     ctx = StrengthContext(problem)
-    result = SetEvaluator(ctx).evaluate((0, 1, 6, 7), (1.0, 0.0, 0.0))
+    result = StrengthEvaluator(ctx).evaluate((0, 1, 6, 7), (1.0, 0.0, 0.0))
     assert result.tension_range[0] >= problem.min_tension - 1e-6
     assert result.tension_range[1] <= ctx.limit[0] + 1e-6
     assert result.bending.ratio >= result.bound - 1e-9

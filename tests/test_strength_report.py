@@ -1,4 +1,4 @@
-"""The report of a plan chosen for the hull girder (issue 12 item 3): planner/output/strength_report.py.
+"""The report of a plan chosen for the hull girder (issue 12 item 3): planner/output/report/strength.py.
 
 Written for a small pontoon (the default suite) and the 146 m ferry (slow). Checked: every
 section, the comparison of the strength-optimal and the spread-optimal plans, every check with
@@ -22,7 +22,7 @@ import pytest
 from test_report_pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm, needs_pdf, render
 from test_strength_plan import SMALL, _cog_x
 
-from liftplan.planner.output.report_page import MARGINS_MM
+from liftplan.planner.output.report.page import MARGINS_MM
 from liftplan.planner.problem.file import loads_problem
 
 FERRY = "examples/ferry_strength_plan.toml"
@@ -192,8 +192,8 @@ def test_scene_file_solves_to_the_planned_forces(force_report):
 def test_hoist_scene_solves_to_the_preload_at_level(tmp_path):
     """Hoist control: the elastic model at the planned boom heights gives T* and a level pose."""
     from liftplan.model import load_scene, solve
-    from liftplan.planner.output.report import write_report
-    from liftplan.planner.strength_plan import plan_strength
+    from liftplan.planner.output.report.write import write_report
+    from liftplan.planner.plans.strength import plan_strength
 
     p = plan_strength(loads_problem(small_text(control="hoist", cranes=4)))
     files = write_report(p, tmp_path)
@@ -208,8 +208,8 @@ def test_hoist_scene_solves_to_the_preload_at_level(tmp_path):
 def test_a_failed_envelope_is_flagged(tmp_path):
     """Allowables far below the girder's moments: the bending check FAILs in the table and the
     status line says not to lift."""
-    from liftplan.planner.output.report import write_report
-    from liftplan.planner.strength_plan import plan_strength
+    from liftplan.planner.output.report.write import write_report
+    from liftplan.planner.plans.strength import plan_strength
 
     p = plan_strength(loads_problem(small_text(bending="[[0.0, 50.0], [60.0, 50.0]]")))
     assert not all(c.ok for c in p.checks)

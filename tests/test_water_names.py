@@ -15,11 +15,11 @@ from numpy.testing import assert_allclose
 
 from liftplan.model import solve
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.hull import Compartment, Hull
 from liftplan.model.lift import EVENT_TOL, PLATEAU_REL, load_curve
-from liftplan.model.scene import Body, Crane, Lug, Scene, Water
+from liftplan.model.scene.hull import Compartment, Hull
+from liftplan.model.scene.objects import Body, Crane, Lug, Scene, Water
 from liftplan.model.water import hull_heights, solve_in_water
-from liftplan.planner.output.console import equilibrium_table, load_curve_table
+from liftplan.planner.output.console.tables import equilibrium_table, load_curve_table
 
 RHO = 1.025
 STEEL = 600.0 / 7.85  # m3: the flooded blocks' steel
@@ -235,7 +235,7 @@ def test_figure_has_a_title_events_and_plateau(curves):
     """Every event is a vertical line on every panel and named on the loads panel; the
     title names the scene; the phases are written on the strip; the plateau is in the
     legend with its range."""
-    from liftplan.planner.output.figures import load_curve as draw
+    from liftplan.planner.output.figures.plan import load_curve as draw
 
     curve = curves[0.25]
     fig = draw(curve, swl=400.0)

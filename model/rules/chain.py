@@ -34,9 +34,8 @@ from functools import cached_property
 
 from liftplan.model.checks import Check
 from liftplan.model.errors import InvalidScene
-from liftplan.model.rules import factors
 from liftplan.model.rules.settings import Rules
-from liftplan.model.scene import finite, positive
+from liftplan.model.scene.objects import finite, positive
 
 
 @dataclass(frozen=True)
@@ -278,7 +277,8 @@ class DesignLoadChain:
                         f"cranes[{crane.name}].tilt: missing; a multi-hook lift needs each crane's share at "
                         "the rules' tilt (0027/ND 5.4): expected a load in t (TiltGeometry.worst)"
                     )
-        factors.cog_factor(self.cog_searched, self.rules.cog_factor)  # refuses a missing factor now
+        # refuses a missing factor now
+        self.rules.factors.cog_factor(self.cog_searched, self.rules.cog_factor)
 
     @property
     def design_weight(self):
@@ -324,7 +324,7 @@ class DesignLoadChain:
 
         The public hook for a caller whose static input is not the crane's worst tension over
         the tolerance box and the CG envelope (the planner's breakout tension,
-        :class:`liftplan.planner.design_loads.PlanChain`): override it to name that input,
+        :class:`liftplan.planner.plans.design_loads.PlanChain`): override it to name that input,
         calling this one for the notes it keeps. The factors' values never depend on the notes.
 
         Parameters
@@ -365,22 +365,23 @@ class DesignLoadChain:
     # -- one crane ------------------------------------------------------------------------------
     def _crane(self, crane):
         rules, hooks = self.rules, len(self.cranes)
+        code = rules.factors  # the rules code's factors ([rules] code)
         wc = rules.weight_contingency
-        cog = factors.cog_factor(self.cog_searched, rules.cog_factor)
+        cog = code.cog_factor(self.cog_searched, rules.cog_factor)
         base = crane.worst
         static = max(base, crane.tilt) if crane.tilt is not None else base
         tilt = static / base if base > 0.0 else 1.0
         many_slings = len(crane.lugs) >= 4
-        skew, how = factors.skew_factor(hooks >= 4 or many_slings, crane.skew, rules.skew_factor)
+        skew, how = code.skew_factor(hooks >= 4 or many_slings, crane.skew, rules.skew_factor)
         skew_on_hook = hooks >= 4  # skew between hooks; within one hook's slings it is lug-only
-        yaw = factors.yaw_factor(len(crane.lugs), hooks, rules.yaw_factor)
+        yaw = code.yaw_factor(len(crane.lugs), hooks, rules.yaw_factor)
         rigging = rules.rigging_for(crane.name)
         share_design = static * wc * cog
         if rules.daf is not None:
             daf, daf_note = rules.daf, "[rules] daf"
         else:
             shl_for_table = share_design * (skew if skew_on_hook else 1.0) + rigging
-            daf = factors.dynamic_amplification(self.design_weight, rules.location, shl_for_table)
+            daf = code.dynamic_amplification(self.design_weight, rules.location, shl_for_table)
             daf_note = f"Table 5-1, {rules.location}, gross weight {self.design_weight:.1f} t"
 
         hook_skew = skew if skew_on_hook else 1.0
@@ -397,7 +398,7 @@ class DesignLoadChain:
             "t",
             note=f"{kind} hook load / chart SWL{where}",
         )
-        margin = factors.code_margin(hooks, rules.code_margin)
+        margin = code.code_margin(hooks, rules.code_margin)
         margin_check = None
         if margin > 0.0:
             share = crane.nominal * wc + rigging
@@ -410,42 +411,42 @@ class DesignLoadChain:
                 note=f"calculated share {share:.4g} t x {1.0 + margin:.2f} ({hooks} cranes)",
             )
 
-        skew_note = f"{how}; rules' default {factors.DEFAULT_SKEW_FACTOR:g}"
+        skew_note = f"{how}; rules' default {code.DEFAULT_SKEW_FACTOR:g}"
         if crane.skew is not None and how != "computed":
             skew_note += f", computed {crane.skew:.4g}"
         own = self.factor_notes(crane)
         cog_note, tilt_note = own["cog"], own["tilt"]
         table = (
-            Factor("weight_contingency", wc, factors.SOURCES["weight_contingency"], "hook and lug"),
+            Factor("weight_contingency", wc, code.SOURCES["weight_contingency"], "hook and lug"),
             Factor(
                 "cog",
                 cog,
-                factors.SOURCES["cog_envelope" if self.cog_searched else "cog_factor"],
+                code.SOURCES["cog_envelope" if self.cog_searched else "cog_factor"],
                 "hook and lug",
                 cog_note,
             ),
             Factor(
                 "tilt",
                 tilt,
-                factors.SOURCES["tilt"],
+                code.SOURCES["tilt"],
                 "hook and lug" if crane.tilt is not None else "none",
                 tilt_note,
             ),
             Factor(
                 "skew",
                 skew,
-                factors.SOURCES["skew"],
+                code.SOURCES["skew"],
                 "hook and lug" if skew_on_hook else "lug" if skew > 1.0 else "none",
                 skew_note,
             ),
             Factor(
                 "yaw",
                 yaw,
-                factors.SOURCES["yaw"],
+                code.SOURCES["yaw"],
                 "lug" if yaw > 1.0 else "none",
                 "more than one sling on the hook" if yaw > 1.0 else "one sling on the hook, or one hook",
             ),
-            Factor("daf", daf, factors.SOURCES["daf"], "hook and lug", daf_note),
+            Factor("daf", daf, code.SOURCES["daf"], "hook and lug", daf_note),
         )
         product = tilt * wc * cog * hook_skew * daf
         lugs = tuple(self._lug(crane, lug, tilt, cog, daf, yaw, skew) for lug in crane.lugs)

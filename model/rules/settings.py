@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.rules import factors
+from liftplan.model.rules.codes import CODES, DEFAULT_CODE
 
 
 def _set(obj, name, value):
@@ -73,6 +74,9 @@ class Rules:
         compared with it instead of the dynamic one.
     code_margin : float or None  [-]
         Replaces the crane-code margin 20 / 33 / 50 % (0 switches the check off).
+    code : str
+        The rules code the factors come from (:data:`~liftplan.model.rules.codes.CODES`);
+        default ``"0027/ND"``, the only one implemented.
     """
 
     location: str = "offshore"
@@ -90,8 +94,11 @@ class Rules:
     lateral_fraction: float = factors.LATERAL_FRACTION
     chart_includes_dynamics: bool = False
     code_margin: float | None = field(default=None)
+    code: str = DEFAULT_CODE
 
     def __post_init__(self):
+        if self.code not in CODES:
+            raise InvalidScene(f"rules.code = {self.code!r}: expected one of {', '.join(CODES)}")
         if self.location not in factors.LOCATIONS:
             raise InvalidScene(
                 f"rules.location = {self.location!r}: expected one of {', '.join(factors.LOCATIONS)}"
@@ -155,3 +162,13 @@ class Rules:
             self.tilt if self.tilt is not None else tilt,
             self.hook_elevation if self.hook_elevation is not None else elevation,
         )
+
+    @property
+    def factors(self):
+        """The module of the rules code's factors (:data:`~liftplan.model.rules.codes.INTERFACE`)."""
+        return CODES[self.code][1]
+
+    @property
+    def code_title(self):
+        """The rules code in words (for the basis of a plan)."""
+        return CODES[self.code][0]

@@ -17,6 +17,7 @@ consequence_factor = 1.30       # lift points (Table 11-1)
 lateral_fraction = 0.05         # lateral lift point load / factored load
 chart_includes_dynamics = false # compare the static hook load with the chart (10.3.2)
 # code_margin = 0.5             # replaces 20 / 33 / 50 %; 0 switches the check off
+code = "0027/ND"                # the rules code the factors come from (the only one implemented)
 ```
 
 The shape is checked by pydantic (unknown keys, wrong types), the values by :class:`Rules`;
@@ -31,8 +32,9 @@ from typing import Annotated, Literal
 from pydantic import Strict, ValidationError
 
 from liftplan.model.errors import InvalidScene
+from liftplan.model.rules.codes import CODES, DEFAULT_CODE
 from liftplan.model.rules.settings import Rules
-from liftplan.model.scenefile import Num, Table, Text, one_line
+from liftplan.model.scene.file import Num, Table, Text, one_line
 
 Flag = Annotated[bool, Strict()]
 
@@ -55,6 +57,7 @@ class RulesTable(Table):
     lateral_fraction: Num = 0.05
     chart_includes_dynamics: Flag = False
     code_margin: Num | None = None
+    code: Literal[tuple(CODES)] = DEFAULT_CODE
 
 
 class _RulesFile(Table):

@@ -28,7 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
-from liftplan.model.scene import finite, point, positive
+from liftplan.model.rules.factors import governing_tilt
+from liftplan.model.scene.objects import finite, point, positive
 
 _DIRECTIONS = 72  # first sweep of tilt directions (5 deg steps), then golden-section refined
 _GOLDEN_STEPS = 48  # bracket of 10 deg shrunk to ~1e-9 deg
@@ -136,7 +137,6 @@ class TiltGeometry:
         InvalidScene
             The elevation difference is not less than the spacing along that direction.
         """
-        from liftplan.model.rules.factors import governing_tilt
 
         return governing_tilt(tilt, hook_elevation, self.spacing_along(direction))
 
@@ -248,7 +248,6 @@ class TiltGeometry:
         dict of str -> TiltLoad   (``tilt`` of each: the tilt about its worst direction)
         """
         out = {}
-        from liftplan.model.rules.factors import governing_tilt
 
         if self.n > 2:
 

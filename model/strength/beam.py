@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
+from liftplan.model.strength.girder import _weight
 
 #: At least this many elements over the girder's length (more where the data have points).
 ELEMENTS = 40
@@ -197,7 +198,6 @@ def girder_mesh(scene, elements=ELEMENTS, extra=()):
     -------
     GirderMesh
     """
-    from liftplan.model.strength.girder import _weight
 
     stiffness = scene.girder
     if stiffness is None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from liftplan.model.checks import Check
+from liftplan.model.strength.girder import hull_girder
 
 
 def strength_checks(scene, eq, girder=None):
@@ -26,8 +27,6 @@ def strength_checks(scene, eq, girder=None):
     if scene.strength is None or scene.body.weight_curve is None:
         return []
     if girder is None:
-        from liftplan.model.strength.girder import hull_girder
-
         girder = hull_girder(scene, eq)
     checks = []
     for name, curve, unit in (

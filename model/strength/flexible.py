@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from liftplan.model.acceptance import RESIDUAL_TOL, schur_positive_definite
+from liftplan.model.statics.acceptance import RESIDUAL_TOL, schur_positive_definite
 from liftplan.model.strength.beam import ELEMENTS, girder_mesh
 from liftplan.model.strength.flexible_model import flexible_model
 from liftplan.model.strength.piecewise import Extreme
@@ -168,7 +168,7 @@ def flexible_state(scene, p, x_start, elements=ELEMENTS):
     scene : Scene
         With ``girder`` and ``body.weight_curve``.
     p : numpy.ndarray
-        The rope model's parameters (:func:`liftplan.model.solve.pack_params`, ``elastic``).
+        The rope model's parameters (:func:`liftplan.model.statics.vertical.pack_params`, ``elastic``).
     x_start : array_like, shape (3,)  [m, rad, rad]
         Start pose (the rigid hull's).
     elements : int

@@ -1,7 +1,7 @@
 """The flexible hull's casadi model: the body as an elastic beam on the elastic ropes.
 
-Kept apart from :mod:`liftplan.model.statics` (the rigid-body rope models), whose layout of
-the rope parameter vector (:class:`~liftplan.model.statics.Layout`) it shares.
+Kept apart from :mod:`liftplan.model.statics.model` (the rigid-body rope models), whose layout of
+the rope parameter vector (:class:`~liftplan.model.statics.model.Layout`) it shares.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from functools import cache, cached_property
 import casadi as ca
 
 from liftplan.model.frames import rotation
-from liftplan.model.statics import Layout, pose_points, rope_tensions, statics_system
+from liftplan.model.statics.model import Layout, pose_points, rope_tensions, statics_system
 
 
 # -- flexible hull: the body as an elastic beam on the elastic ropes -------------------------

@@ -1,7 +1,7 @@
 """The flexible hull in water: the hull girder as an elastic beam on its ropes, the water and
 the ground contact, in one casadi Newton system.
 
-The rigid hull in water (:class:`liftplan.model.afloat.AfloatModel`) has the pose as its
+The rigid hull in water (:class:`liftplan.model.water.afloat.AfloatModel`) has the pose as its
 unknowns: grounded, the tilts (a, b) about the world's horizontal axes with the body origin's
 height zo following from the contact staying on the ground; hanging or afloat, zo as well.
 Here the free beam unknowns d (Hermite deflections w and slopes w', :mod:`.beam`, the gauge
@@ -51,17 +51,19 @@ from functools import cache, cached_property, lru_cache
 import casadi as ca
 import numpy as np
 
-from liftplan.model.acceptance import schur_positive_definite
-from liftplan.model.afloat import buoyancy_weights
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix, tilt
+from liftplan.model.results import SolverInfo
+from liftplan.model.statics.acceptance import RESIDUAL_TOL, schur_positive_definite
 from liftplan.model.strength.beam import _GAUSS3, ELEMENTS, girder_mesh, hermite, hermite_slope, node_of
+from liftplan.model.strength.flexible import TENSION_CHANGE, RigidHullNote, hull_report, tension_change
 from liftplan.model.strength.piecewise import Piecewise
-from liftplan.model.strength.sections import cut_segments
+from liftplan.model.strength.sections import cut_segments, immersed_sections, section_breaks
+from liftplan.model.water import solve_hydrostatic
+from liftplan.model.water.afloat import buoyancy_weights
+from liftplan.model.water.equilibrium import WaterSetup, equilibrium_result, tilted_rotation
+from liftplan.model.water.state import water_state
 
-#: Accepted when the scaled residuals (forces / W, moments / (W L)) are below this (as the
-#: rigid water model, :data:`liftplan.model.water.equilibrium.RESIDUAL_TOL`).
-RESIDUAL_TOL = 1e-9
 #: Rebuilds of the beam mesh at the solved pose, at most (the section breaks on nodes). A
 #: solve whose quadrature is still not the clipped hull's exact buoyancy after these is refused
 #: (:attr:`WaterBeamState.accepted`); measured: every case of the tests and of the
@@ -781,9 +783,6 @@ def water_beam_state(scene, rotation, zo, grounded, elements=ELEMENTS, gauge="ch
         Not accepted (:attr:`WaterBeamState.accepted`) when the quadrature is still not exact
         after :data:`REMESH` meshes: the caller refuses it (:meth:`WaterBeamState.refusal`).
     """
-    from liftplan.model.afloat import buoyancy_weights
-    from liftplan.model.strength.sections import section_breaks
-    from liftplan.model.water.equilibrium import WaterSetup, tilted_rotation
 
     check_span(scene)
     setup = WaterSetup(scene)
@@ -901,7 +900,6 @@ def _quadrature_error(setup, tris, kappa, rotation, zo, stations, weights):
     """The Gauss quadrature of the sections (:func:`.sections.immersed_sections`) less the
     clipped hull's exact buoyancy [t] and the largest error of its first moments [t m] at this
     chord pose: a kink of the buoyancy per length inside an element leaves one."""
-    from liftplan.model.strength.sections import immersed_sections
 
     up = rotation[2]
     per_length, moment = immersed_sections(tris, kappa, up, zo, stations)
@@ -985,10 +983,6 @@ def solve_hull_in_water(scene, method="newton", hull=None):
     EquilibriumNotFound
         Either solve was not accepted, with the reason.
     """
-    from liftplan.model.results import SolverInfo
-    from liftplan.model.strength.flexible import TENSION_CHANGE, RigidHullNote, hull_report, tension_change
-    from liftplan.model.water import solve_hydrostatic
-    from liftplan.model.water.equilibrium import WaterSetup, equilibrium_result, water_state
 
     hull = hull or scene.analysis.hull
     rigid_scene = dataclasses.replace(

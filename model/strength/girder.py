@@ -31,7 +31,7 @@ close to its residual (1e-13 W for the given-attitude models, at most 1e-9 W for
 ones, tested).
 
 A weight curve agrees with ``body.weight`` and the CG's x only to the tolerance the scene
-accepts (:data:`~liftplan.model.scene.WEIGHT_CURVE_REL`, ``WEIGHT_CURVE_CENTROID``), while
+accepts (:data:`~liftplan.model.scene.objects.WEIGHT_CURVE_REL`, ``WEIGHT_CURVE_CENTROID``), while
 the equilibrium holds W at G exactly. The difference is spread over the curve's length as
 the linear load c0 + c1 (x - x_mid) that restores the integral and the first moment exactly
 (reported as ``correction``), so the curves close whatever the rounding of the curve.
@@ -44,8 +44,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scene import curve_totals
+from liftplan.model.scene.objects import curve_totals
 from liftplan.model.strength.piecewise import Extreme, Piecewise, on_breaks
+from liftplan.model.strength.sections import sectional_buoyancy
+from liftplan.model.water.afloat import buoyancy_weights
 
 #: Output stations: the breakpoints and this many equal steps over the loaded length.
 GRID = 200
@@ -251,8 +253,6 @@ def _weight(body):
 
 def _buoyancy(scene, pose, up):
     """Buoyancy per length and its moment about body z = 0, at the solved pose."""
-    from liftplan.model.afloat import buoyancy_weights
-    from liftplan.model.strength.sections import sectional_buoyancy
 
     tris, kappa, _ = buoyancy_weights(scene.hull, scene.body.weight, scene.water.density)
     zo = pose.lift_height - scene.water.level

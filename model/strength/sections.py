@@ -11,8 +11,8 @@ The section area comes from the triangles the plane x = s cuts: each gives a seg
 section's boundary, oriented along e_x x n (n the outward normal, so the section lies on its
 left), clipped to the wet side. With the reference point on the waterline of the section
 plane, the waterline's own closing segments add nothing (Green's theorem, as
-:mod:`liftplan.model.hydrostatics` does for the waterplane), so the cap is never built.
-A triangle's kappa (t/m3, :func:`liftplan.model.afloat.buoyancy_weights`) weights its
+:mod:`liftplan.model.water.hydrostatics` does for the waterplane), so the cap is never built.
+A triangle's kappa (t/m3, :func:`liftplan.model.water.afloat.buoyancy_weights`) weights its
 segments: the sum is buoyancy per length, density x immersed area for an intact hull.
 """
 

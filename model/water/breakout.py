@@ -2,7 +2,7 @@
 
 A wreck lying in soft soil does not come up at its submerged weight: the soil holds it
 down (suction under the base, adhesion and the shear of the soil around it) until it breaks
-out. Two models (``[ground] breakout``, :class:`~liftplan.model.scene.Breakout`):
+out. Two models (``[ground] breakout``, :class:`~liftplan.model.scene.objects.Breakout`):
 
 * **factor** on the submerged weight at rest, F_b = k (W + trapped water - B). A measured
   salvage lift of a small vessel (Ocean Engineering, 2016) peaked at twice its initial
@@ -16,7 +16,7 @@ out. Two models (``[ground] breakout``, :class:`~liftplan.model.scene.Breakout`)
   NCEL R-635: the mean holding strength over the static soil resistance F_r, with T the
   time allowed for the pull and T_e the time the object has lain embedded, fitted to the
   Gulf of Mexico field tests and a model study over that range of T / T_e (outside it the
-  scene is refused, ``liftplan.model.scene.LIU_RANGE``). R-635 builds F_r from the
+  scene is refused, ``liftplan.model.scene.objects.LIU_RANGE``). R-635 builds F_r from the
   soil's cohesion and the object's geometry; its own formula is not in the copy we could
   read, so here F_r is the reverse undrained bearing capacity with full suction under the
   base, F_r = N_c s_u A (N_c = 5.14, Prandtl, for a long footing; about 6.2 for a square or
@@ -35,7 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
+from liftplan.model.water.held import held_loads
 
 #: kPa in one t/m2 (a tonne-force per square metre, g = 9.80665 m/s2).
 KPA_PER_T_M2 = 9.80665
@@ -124,7 +126,6 @@ def breakout_force(scene):
     EquilibriumNotFound
         The hull would float up at rest (nothing to break out).
     """
-    from liftplan.model.water_loads import held_loads  # the water forces at the scene's pose
 
     spec = scene.ground.breakout
     net = held_loads(scene).net_weight
@@ -182,7 +183,7 @@ def breakout_load(scene):
 
     The hull rests at the scene's attitude and lift height, compartments full. At the
     breakout instant the ropes carry the submerged weight W + trapped water - B at its
-    point P (:func:`~liftplan.model.water_loads.held_loads`) and F_b at the contact c, so
+    point P (:func:`~liftplan.model.water.held.held_loads`) and F_b at the contact c, so
     ``total`` = (W + T_w - B) + F_b on the line through (net P + F_b c) / total. A plan's
     capacity check takes it as a load case with weight ``total`` at ``point``.
 
@@ -196,8 +197,6 @@ def breakout_load(scene):
     -------
     BreakoutLoad
     """
-    from liftplan.model.errors import InvalidScene
-    from liftplan.model.water_loads import held_loads
 
     if scene.ground is None or scene.hull is None:
         raise InvalidScene("breakout: expected a scene with [hull], [water] and [ground]")

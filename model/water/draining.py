@@ -1,7 +1,7 @@
 """Water draining from a hull's compartments as it rises: orifice flow in time.
 
 A compartment that holds water (``contents = "water"``) may have openings
-(:class:`~liftplan.model.scene.Opening`: area A, body point, discharge coefficient C_d).
+(:class:`~liftplan.model.scene.objects.Opening`: area A, body point, discharge coefficient C_d).
 The compartment is taken as vented (air enters above its water at atmospheric pressure),
 so its water has a free surface at the inside level h_in, a horizontal plane cutting the
 compartment's box at the hull's attitude; the water is the part of the box below it. Each
@@ -38,8 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import EquilibriumNotFound
-from liftplan.model.hydrostatics import MeshHydrostatics
 from liftplan.model.water.equilibrium import BodyLoads, settle
+from liftplan.model.water.hydrostatics import MeshHydrostatics
 
 G = 9.80665  # m/s2
 RTOL = 1e-10  # the integrator's relative tolerance on the volumes
@@ -56,7 +56,7 @@ class Tank:
 
     Parameters
     ----------
-    compartment : liftplan.model.hull.Compartment
+    compartment : liftplan.model.scene.hull.Compartment
     openings : sequence of Opening
         Its openings.
     """

@@ -4,7 +4,7 @@ vertical crane ropes, with exact (clipped-mesh) buoyancy.
 Two methods for the stranded ship:
 
 * ``"newton"`` (default): casadi's Newton root-finder on the exact residual of
-  :class:`~liftplan.model.afloat.AfloatModel`; its Jacobian is the exact derivative of the
+  :class:`~liftplan.model.water.afloat.AfloatModel`; its Jacobian is the exact derivative of the
   clipped-mesh sums, so it converges quadratically.
 * ``"paper-newton"``: the stranded-ship paper's iteration. The hydrostatic derivative
   matrix D of (F, M_T, M_L) with respect to (immersion, heel, trim) about the body origin
@@ -37,15 +37,16 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from liftplan.model.afloat import AfloatModel, Layout, buoyancy_weights
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import attitude_angles, rotation_matrix, tilt
-from liftplan.model.hydrostatics import MeshHydrostatics
 from liftplan.model.results import Afloat, Equilibrium, Pose, SolverInfo
+from liftplan.model.statics.acceptance import RESIDUAL_TOL
+from liftplan.model.statics.vertical import solve_elastic
+from liftplan.model.water.afloat import AfloatModel, Layout, buoyancy_weights
+from liftplan.model.water.breakout import breakout_force
+from liftplan.model.water.hydrostatics import MeshHydrostatics
+from liftplan.model.water.state import hull_heights, water_state
 
-# Accepted when the scaled residual (force / W, moments / (W L)) is below this: 1e-9 of a
-# 20 000 t barge is 20 g; round-off of the clipped sums is ~1e-13.
-RESIDUAL_TOL = 1e-9
 # The paper's stopping tolerance: 1 t and 1 t m.
 PAPER_TOL = 1.0
 PAPER_MAX_ITER = 500
@@ -140,8 +141,6 @@ class WaterSetup:
         self.loads = BodyLoads(self.trapped, self.trapped_centre)
         self.breakout = None
         if ground is not None and ground.breakout is not None and scene.n:
-            from liftplan.model.water.breakout import breakout_force  # only for a bedded hull with ropes
-
             self.breakout = breakout_force(scene)
         self.base = np.concatenate(
             [
@@ -537,44 +536,6 @@ def unyaw(rot, yaw):
     return turned[best]
 
 
-def hull_heights(hull, rot, zo):
-    """Lowest and highest point of the hull envelope above the water plane  [m].
-
-    Parameters
-    ----------
-    hull : Hull
-    rot : numpy.ndarray, shape (3, 3)
-        Attitude.
-    zo : float  [m]
-        Height of the body-frame origin above the water plane.
-    """
-    z = (np.asarray(rot) @ hull.vertices.T)[2] + zo
-    return float(z.min()), float(z.max())
-
-
-def water_state(grounded, bottom, top, crane_load, weight):
-    """The state word of a hull in water (:attr:`Afloat.STATES`).
-
-    Parameters
-    ----------
-    grounded : bool
-        The ground contact carries load.
-    bottom, top : float  [m]
-        Lowest and highest point of the envelope above the water plane.
-    crane_load : float  [t]
-        Sum of the rope tensions.
-    weight : float  [t]
-        Scale: a crane load below 1e-9 of it is none (a slack rope carries exactly 0).
-    """
-    if grounded:
-        return "grounded"
-    if bottom >= 0.0:
-        return "clear"
-    if crane_load <= 1e-9 * weight:
-        return "afloat"
-    return "hanging submerged" if top < 0.0 else "piercing the surface"
-
-
 def equilibrium_result(setup, zo, rot, hoist, solver, grounded, loads=None):
     """Assemble the Equilibrium (world frame) of a converged pose of a hull in water.
 
@@ -706,7 +667,6 @@ def solve_hydrostatic(scene, method="newton"):
     Equilibrium
         ``model`` is ``"submerged"`` or ``"hydrostatic"``.
     """
-    from liftplan.model.solve import solve_elastic  # solve imports this module
 
     setup = WaterSetup(scene)
     start = None

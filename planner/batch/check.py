@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from liftplan.model.scene import _convex_hull
-from liftplan.model.statics import rope_model
+from liftplan.model.scene.objects import _convex_hull
+from liftplan.model.statics.model import rope_model
 from liftplan.planner.search.scenarios import LugSet, pack, run_block
 
 #: Outcomes of a checked case.

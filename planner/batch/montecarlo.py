@@ -4,7 +4,7 @@ Each draw moves every hook off its planned height by an independent error (unifo
 the tolerance, or normal with the tolerance as its standard deviation) and solves the full
 elastic model (the body finds its own pose; slack ropes carry nothing): Newton mapped over
 blocks of 4096 draws in one casadi call, each answer accepted by the same test as every
-elastic answer (:mod:`liftplan.model.acceptance`). The planner's worst case holds every
+elastic answer (:mod:`liftplan.model.statics.acceptance`). The planner's worst case holds every
 error within the tolerance box exactly, so no uniform draw may exceed the plan's worst
 spread or any rope's largest load (``tests/test_montecarlo.py``); the draws show how likely
 the crew is to see what, and what happens when they are worse than assumed. The same
@@ -19,8 +19,8 @@ from functools import cache
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
-from liftplan.model.solve import elastic_verdict, pack_params
-from liftplan.model.statics import BLOCK, FastCall, Layout, rope_model
+from liftplan.model.statics.model import BLOCK, FastCall, Layout, rope_model
+from liftplan.model.statics.vertical import elastic_verdict, pack_params
 
 DISTRIBUTIONS = ("uniform", "normal")
 
@@ -49,7 +49,7 @@ class HookMonteCarlo:
         Each crane's design hook load and chart SWL.
     design_tension : numpy.ndarray, shape (n,) or None  [t]
         Each rope's largest static tension the design hook load covers
-        (:attr:`~liftplan.planner.design_loads.CraneDesign.design_tension`): what a drawn
+        (:attr:`~liftplan.planner.plans.design_loads.CraneDesign.design_tension`): what a drawn
         static tension is compared with (NaN where no design load was computed).
     """
 
@@ -181,7 +181,7 @@ def solve_draws(scene, errors):
     -------
     tensions : numpy.ndarray, shape (draws, n)  [t]
         NaN where the draw has no accepted equilibrium (solve's own acceptance,
-        :func:`~liftplan.model.solve.elastic_verdict`: residual, stability, upright).
+        :func:`~liftplan.model.statics.vertical.elastic_verdict`: residual, stability, upright).
     heel, trim : numpy.ndarray, shape (draws,)  [deg]
     """
     errors = np.atleast_2d(np.asarray(errors, dtype=float))

@@ -27,6 +27,7 @@ import numpy as np
 
 from liftplan.model.errors import InvalidScene, LiftPlanError, PlanInfeasible
 from liftplan.model.frames import choi_to_zup
+from liftplan.model.statics.model import rope_model
 from liftplan.planner.batch.check import CheckCases, check_plan
 from liftplan.planner.batch.montecarlo import block_solver, draw_units, solve_draws
 from liftplan.planner.plan import plan
@@ -476,8 +477,8 @@ def _rows(study, cases, result, base=None):
 def warm_up(cranes=None, elastic=False):
     """Import the planner on a worker, and compile the batched model of ``cranes`` ropes
     (``elastic``: the mapped elastic solve of a Monte-Carlo study instead)."""
-    import liftplan.planner.plan  # noqa: F401
-    from liftplan.model.statics import rope_model
+    # start-up of a worker: the planner is loaded before its first case, not during it
+    import liftplan.planner.plans.held  # noqa: F401
 
     if cranes is not None and elastic:
         block_solver(cranes)

@@ -51,7 +51,7 @@ import numpy as np
 from pydantic import Field, Strict, ValidationError
 
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scenefile import Num, Point, Table, Text, load_with, one_line, parse_toml
+from liftplan.model.scene.file import Num, Point, Table, Text, load_with, one_line, parse_toml
 from liftplan.planner.problem.file import problem_from_dict
 
 Count = Annotated[int, Strict(), Field(ge=1)]

@@ -17,7 +17,9 @@ import numpy as np
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix, zup_to_choi
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
-from liftplan.model.scene import Body, Scene, Strength, finite, point, positive
+from liftplan.model.scene.objects import Body, Scene, Strength, finite, point, positive
+from liftplan.model.statics.model import check_hinges
+from liftplan.model.water.breakout import breakout_load
 from liftplan.planner.problem.fleet import (
     FleetCrane,
     crane_classes,
@@ -25,6 +27,7 @@ from liftplan.planner.problem.fleet import (
     length_range,
     reach_table,
 )
+from liftplan.planner.problem.objectives import OBJECTIVES, STRENGTH_OBJECTIVES
 from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
@@ -40,10 +43,6 @@ __all__ = [
 ]
 
 MAX_CRANES = 64
-#: The hull girder's objectives (planner/strength_plan.py): worst |M| / allowable, |Q| /
-#: allowable, or strength_weights x both.
-STRENGTH_OBJECTIVES = ("bending", "shear", "strength")
-OBJECTIVES = ("spread", "utilisation", "reserve", *STRENGTH_OBJECTIVES)
 #: How a lifting point is controlled: by its hoist (boom height, rope length) or by its force
 #: (a strand jack holds its force whatever the attitude).
 CONTROLS = ("hoist", "force")
@@ -245,9 +244,9 @@ class PlanProblem:
     hinges : tuple of tuple of 8 float
         Empty (every candidate a body-fixed lift point), or per candidate how its lift point
         hangs from the body: the lugs A, B [m], drop c [m] and bar weight w [t] of
-        :class:`~liftplan.model.statics.HingedLayout` (a 2-leg sling or spreader bar hinged
+        :class:`~liftplan.model.statics.model.HingedLayout` (a 2-leg sling or spreader bar hinged
         about its pair; ``at`` is then its hook at level). Set by the sling planner on its
-        derived problem (``planner/slings/apex.py``), not read from files.
+        derived problem (``planner/plans/slings/apex.py``), not read from files.
     """
 
     body: Body
@@ -352,7 +351,6 @@ class PlanProblem:
                     f"hinges: shape {rows.shape}: expected one row of 8 finite values "
                     f"(A, B, c, w) per candidate, ({len(candidates)}, 8)"
                 )
-            from liftplan.model.statics import check_hinges
 
             # the sling planner's rule for its own pairs, for rows given from Python too
             check_hinges(
@@ -407,8 +405,7 @@ class PlanProblem:
             _set(self, "objective", "spread" if equal else "utilisation")
         if self.objective not in OBJECTIVES:
             raise InvalidScene(
-                f"plan.objective = {self.objective!r}: expected spread, utilisation, "
-                "reserve, bending, shear or strength"
+                f"plan.objective = {self.objective!r}: expected one of {', '.join(OBJECTIVES)}"
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
@@ -543,9 +540,14 @@ class PlanProblem:
         BreakoutLoad`: peak total hook load [t] and a z-up body point on its line), or None."""
         if self.breakout_scene is None:
             return None
-        from liftplan.model.water.breakout import breakout_load
 
         return breakout_load(self.breakout_scene)
+
+    @property
+    def goal(self):
+        """The objective (:class:`~liftplan.planner.problem.objectives.Objective`) the plan keeps
+        small: its shape and scaling, for the search."""
+        return OBJECTIVES[self.objective]
 
     @property
     def control(self):

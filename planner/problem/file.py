@@ -16,8 +16,7 @@ from pydantic import Field, Strict, ValidationError
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import RulesTable, rules_from_table
-from liftplan.model.scene import Body, Strength
-from liftplan.model.scenefile import (
+from liftplan.model.scene.file import (
     Num,
     Pair,
     Point,
@@ -28,8 +27,10 @@ from liftplan.model.scenefile import (
     one_line,
     parse_toml,
 )
+from liftplan.model.scene.objects import Body, Strength
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
+from liftplan.planner.problem.objectives import OBJECTIVES
 from liftplan.planner.problem.report_info import ReportInfo
 
 Count = Annotated[int, Strict(), Field(ge=1)]
@@ -65,7 +66,7 @@ class _Tolerance(Table):
 
 class _Plan(Table):
     cranes: Count | None = None
-    objective: Literal["spread", "utilisation", "reserve", "bending", "shear", "strength"] | None = None
+    objective: Literal[tuple(OBJECTIVES)] | None = None
     strength_weights: _StrengthWeights | None = None
     gap: Num = 0.0
     time_limit: Num | None = None
@@ -239,7 +240,7 @@ def _default_spec(data):
 
 def _length(value):
     """A rope_length number, or a { min, max } range: (length, range or None); a range's
-    length is its max until the planner chooses (:mod:`liftplan.planner.lengths`)."""
+    length is its max until the planner chooses (:mod:`liftplan.planner.plans.lengths`)."""
     if isinstance(value, _Range):
         return value.max, (value.min, value.max)
     return value, None

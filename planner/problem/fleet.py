@@ -18,7 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scene import finite, positive
+from liftplan.model.rules import code_margin, dynamic_amplification
+from liftplan.model.scene.objects import finite, positive
+from liftplan.model.scene.rigging_gear import sling_ea
 
 
 def _set(obj, name, value):
@@ -88,7 +90,6 @@ class SlingSpec:
     spreader: SpreaderSpec | None = None
 
     def __post_init__(self):
-        from liftplan.model.rigging_gear import sling_ea
 
         _set(self, "length", positive("cranes.sling.length", self.length))
         if isinstance(self.legs, bool) or not isinstance(self.legs, int) or not 2 <= self.legs <= 4:
@@ -147,7 +148,7 @@ class FleetCrane:
         This hook's height tolerance, overriding ``[plan] hook_tolerance``.
     rope_length_range : tuple of 2 float or None  [m]
         (min, max) payout the planner may choose from (``rope_length = { min, max }``;
-        :mod:`liftplan.planner.lengths`); ``rope_length`` is then its max until chosen.
+        :mod:`liftplan.planner.plans.lengths`); ``rope_length`` is then its max until chosen.
     """
 
     name: str
@@ -354,7 +355,6 @@ def rule_limits(problem, swl, cranes):
     in_box : numpy.ndarray  [t]   the largest tension allowed anywhere in the box
     share : numpy.ndarray  [t]   the largest level (nominal) tension the code margin allows
     """
-    from liftplan.model.rules import code_margin, dynamic_amplification
 
     rules = problem.rules
     swl = np.asarray(swl, dtype=float)

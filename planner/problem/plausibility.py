@@ -1,13 +1,13 @@
 """Implausible magnitudes in a planning problem: warnings, not errors.
 
-The same idea as :mod:`liftplan.model.plausibility` (whose weight and height rules are
+The same idea as :mod:`liftplan.model.scene.plausibility` (whose weight and height rules are
 reused), plus the planning keys a unit slip hits most: the hook-height tolerance (mm typed
 as m) and the heel/trim tolerance box.
 """
 
 from __future__ import annotations
 
-from liftplan.model.plausibility import coordinate_warnings, height_warnings, weight_warnings
+from liftplan.model.scene.plausibility import coordinate_warnings, height_warnings, weight_warnings
 
 #: A hook-height tolerance above this is likely in mm  [m].
 MAX_HOOK_TOLERANCE = 0.5

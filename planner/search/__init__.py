@@ -8,7 +8,7 @@ row at once; :mod:`.branch` evaluates rows best bound first with cutting planes 
 the plan's lower bound and gap.
 """
 
-from liftplan.planner.search.branch import (
+from liftplan.planner.search.evaluator import (
     DENSE,
     Interrupted,
     SearchStats,
@@ -16,8 +16,8 @@ from liftplan.planner.search.branch import (
     SetInfeasible,
     SetResult,
     robust,
-    search,
 )
+from liftplan.planner.search.methods import search
 from liftplan.planner.search.scenarios import LugSet, Scenario
 
 __all__ = [

@@ -32,6 +32,7 @@ import numpy as np
 from scipy import sparse
 
 from liftplan.model.errors import PlanInfeasible, SolverFailed
+from liftplan.planner.problem.objectives import OBJECTIVES
 
 SOLVER = cp.CLARABEL
 FALLBACK = cp.HIGHS
@@ -201,12 +202,13 @@ def hook_margins(count, n, scale, hook, objective="spread"):
         objective (count, n): s_i sum_m |G_im| delta_m
     """
     first, second = np.nonzero(~np.eye(n, dtype=bool))
-    rows = n if objective == "reserve" else len(first)
+    peak = OBJECTIVES[objective].peak
+    rows = n if peak else len(first)
     if hook is None:
         return np.zeros((count, n)), np.zeros((count, rows))
     gain, delta = np.asarray(hook[0], dtype=float), np.asarray(hook[1], dtype=float)
     margin = np.abs(gain) @ delta
-    if objective == "reserve":
+    if peak:
         return margin, margin * scale
     scaled = gain * scale[None, :, None]
     pair_margin = np.abs(scaled[:, first] - scaled[:, second]) @ delta
@@ -263,10 +265,11 @@ class PreloadMinimax:
         m = slots
         # separable (no hook errors): each scenario's spread as its highest minus its lowest
         # value, O(n) rows; the hook errors' pair terms need every ordered pair, O(n^2)
-        self.separable = separable and objective != "reserve"
+        peak = OBJECTIVES[objective].peak
+        self.separable = separable and not peak
         first, second = np.nonzero(~np.eye(n, dtype=bool))  # ordered pairs i != j
         # reserve: the largest s_i T_i itself, one row per rope; otherwise every ordered pair
-        pairs = n if objective == "reserve" or self.separable else len(first)
+        pairs = n if peak or self.separable else len(first)
         self.gain = cp.Parameter((m * n, n), name="P")
         self.offset = cp.Parameter(m * n, name="q")
         # the objective's rows: s_i T_i (s = 1 for the spread, 1 / SWL_i for utilisation)
@@ -288,7 +291,7 @@ class PreloadMinimax:
         worst = cp.Variable(name="worst")
         nominal_high, nominal_low = cp.Variable(), cp.Variable()
         difference = np.zeros((pairs, n))
-        if objective == "reserve" or self.separable:
+        if peak or self.separable:
             difference[np.arange(n), np.arange(n)] = 1.0
         else:
             difference[np.arange(pairs), first] = 1.0

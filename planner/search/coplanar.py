@@ -104,7 +104,7 @@ class PlaneLP:
     ``utilisation``), or for ``reserve`` the largest T_i / SWL_i, over the corners, with
     every tension within [min_tension, the rules' limit] there and the level tensions within
     the boom-height range, as
-    :class:`~liftplan.planner.search.branch.SetEvaluator` does over its scenario list.
+    :class:`~liftplan.planner.search.evaluator.SetEvaluator` does over its scenario list.
 
     Parameters
     ----------
@@ -158,7 +158,7 @@ class PlaneLP:
             scaled = scale[:, None] * tension
             ub_blocks += [-tension, tension]
             ub_rhs += [-np.full(n, low_limit), high_limit]
-            if problem.objective == "reserve":  # z >= T_i / SWL_i
+            if problem.goal.peak:  # z >= T_i / SWL_i
                 upper = scaled.copy()
                 upper[:, zi] = -1.0
                 ub_blocks.append(upper)

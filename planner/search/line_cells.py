@@ -169,10 +169,10 @@ def layout(problem):
 
 def applies(problem):
     """True when :func:`cell_bound` can run (the spread, or utilisation with one SWL)."""
-    if problem.objective == "reserve" or layout(problem) is None:
+    if problem.goal.peak or layout(problem) is None:
         return False
     swl = problem.reach[1]
-    return problem.objective == "spread" or float(np.nanmax(swl)) == float(np.nanmin(swl))
+    return not problem.goal.per_swl or float(np.nanmax(swl)) == float(np.nanmin(swl))
 
 
 class _Cells:
@@ -502,7 +502,7 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
     plane = coplanar(problem)
     corners = corner_scenarios(problem, plane, scenarios)
     g = effective_cogs(problem, plane, corners) @ lay.axes.T
-    unit = 1.0 if problem.objective == "spread" else 1.0 / float(np.nanmax(problem.reach[1]))
+    unit = 1.0 if not problem.goal.per_swl else 1.0 / float(np.nanmax(problem.reach[1]))
     target = target / unit
     lines = two_lines(problem)
     # the two-line bound of each count, over the same corners (in the problem's line order)

@@ -109,7 +109,7 @@ def count_bounds(problem, lines, scenarios):
     counts = lines.counts
     for n1 in range(max(1, n - counts[1]), min(n - 1, counts[0]) + 1):
         out[n1] = float(np.max(np.abs(share / n1 - (weight - share) / (n - n1))))
-    if problem.objective == "utilisation":  # equal SWL on every candidate (line_bound)
+    if problem.goal.per_swl:  # a width of T / SWL: equal SWL on every candidate (line_bound)
         out = out / float(np.nanmax(problem.reach[1]))
     return out
 
@@ -119,10 +119,10 @@ def line_bound(problem, scenarios):
     :func:`count_bounds` over the counts the candidates allow; 0 where it does not apply (no
     two lines; the ``reserve`` objective; ``utilisation`` with unequal SWLs)."""
     lines = two_lines(problem)
-    if lines is None or problem.objective == "reserve":
+    if lines is None or problem.goal.peak:
         return 0.0
     swl = problem.reach[1]
-    if problem.objective == "utilisation" and np.nanmax(swl) != np.nanmin(swl):
+    if problem.goal.per_swl and np.nanmax(swl) != np.nanmin(swl):
         return 0.0
     bounds = count_bounds(problem, lines, scenarios)
     return float(np.min(bounds)) if np.any(np.isfinite(bounds)) else 0.0

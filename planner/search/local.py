@@ -7,7 +7,7 @@ candidate for one unchosen) while that lowers the preload LP over the box corner
 vertices, bounded through its dual for all the swaps at once
 (:func:`~liftplan.planner.search.screen.screen` with ``dual=True``; a swap whose bound cannot
 beat the current set stops early). The set it ends on is then evaluated exactly
-(:class:`~liftplan.planner.search.branch.SetEvaluator`: the LP on a growing scenario list and
+(:class:`~liftplan.planner.search.evaluator.SetEvaluator`: the LP on a growing scenario list and
 the dense check of the whole box).
 
 It does so from the even spread and from RESTARTS perturbations of it (a third of the
@@ -33,9 +33,16 @@ import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.search.coplanar import PlaneLP, coplanar
-from liftplan.planner.search.lines import count_bounds, two_lines
-from liftplan.planner.search.mip import first_scenarios
-from liftplan.planner.search.scenarios import Scenario, box_attitudes
+from liftplan.planner.search.evaluator import (
+    Interrupted,
+    SearchStats,
+    SetEvaluator,
+    SetInfeasible,
+    progress_bar,
+)
+from liftplan.planner.search.line_cells import applies, cell_bound
+from liftplan.planner.search.lines import count_bounds, line_bound, two_lines
+from liftplan.planner.search.scenarios import Scenario, box_attitudes, first_scenarios
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
 #: Improvement below which a swap is not taken (relative to the current value).
@@ -227,3 +234,73 @@ def _descend(problem, current, deadline, max_moves, plane=None):
         current, value = tuple(int(i) for i in near[k]), best
         moves += 1
     return current, value, moves, why
+
+
+def search_local(problem, started, top=1, progress=None):
+    """:func:`~liftplan.planner.search.local.local_search`, its set evaluated exactly, and the
+    lower bound that holds for every set: the two-line bound, refined cell by cell where the
+    lugs are stations on two lines in one plane (:mod:`~liftplan.planner.search.line_cells`)
+    towards the plan's value less the gap aimed at. With a time limit the search takes half of
+    it and the bound the rest; Ctrl-C during the bound keeps the plan with the bound so far
+    (:class:`Interrupted`). One plan: ``top`` is not used."""
+
+    limit = problem.time_limit
+    indices, moves, _ = local_search(problem, time_limit=None if limit is None else 0.5 * limit)
+    evaluator = SetEvaluator(problem)
+    try:
+        result = evaluator.evaluate(indices)
+    except SetInfeasible as err:
+        raise PlanInfeasible(
+            f"the local search ended on {', '.join(problem.names[i] for i in indices)}"
+            f" after {moves} swaps, which is infeasible over the box: "
+            f"{REASONS[err.code]}"
+        ) from None
+    if problem.goal.peak:  # every rope shares W: max T_i / SWL_i >= W / sum SWL
+        bound = problem.body.weight / float(np.sum(result.swl))
+    else:  # candidates on two lines: what each line carries is fixed by the statics
+        bound = line_bound(problem, evaluator.dense)
+        if applies(problem) and bound < result.worst_value:
+            deadline = None if limit is None else started + limit
+            target = result.worst_value * (1.0 - problem.gap * (1.0 - 1e-9))  # gap <= target
+            bar = progress_bar(None, progress)
+            best = result.worst_value
+            if bar is not None:
+                bar.set_description("bound: cells")
+                bar.unit = "cell"
+
+            def tick(done, total, low):
+                if bar is not None:
+                    bar.total, bar.n = total, done
+                    bar.set_postfix_str(
+                        f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %",
+                        refresh=True,
+                    )
+
+            try:
+                cells = cell_bound(problem, evaluator.dense, target, deadline, tick)
+            finally:
+                if bar is not None:
+                    bar.close()
+            bound = max(bound, cells.value)
+            if cells.interrupted:  # Ctrl-C: the plan, with the bound so far
+                raise Interrupted(
+                    [result], _local_stats(problem, started, moves, bound, result, "interrupted")
+                )
+    return [result], _local_stats(problem, started, moves, bound, result, "local")
+
+
+def _local_stats(problem, started, moves, bound, result, stopped):
+    """:class:`SearchStats` of a local search's plan."""
+    return SearchStats(
+        sets=problem.set_count,
+        screened_out=0,
+        evaluated=1,
+        pruned=0,
+        seconds=time.perf_counter() - started,
+        rows=problem.set_count,
+        refined=moves,
+        lower_bound=min(bound, result.worst_value),
+        best=result.worst_value,
+        stopped=stopped,
+        method="local",
+    )

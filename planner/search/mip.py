@@ -21,7 +21,7 @@ unchosen candidate's tensions are zero:
 
 (s = 1 for ``spread``, 1 / SWL for ``utilisation``; ``reserve``: z >= T_k / SWL). It is solved
 by HiGHS through cvxpy over a scenario list that grows by cutting planes: the chosen set is
-evaluated exactly over the dense box (:class:`~liftplan.planner.search.branch.SetEvaluator`)
+evaluated exactly over the dense box (:class:`~liftplan.planner.search.evaluator.SetEvaluator`)
 and its worst scenario is added until the MIP's value reaches the dense worst. HiGHS's dual
 bound over a scenario list is a certified lower bound for every set over the whole box (the
 list is part of the box).
@@ -51,8 +51,20 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.frames import rotation_matrix
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.bounds import run_highs
+from liftplan.planner.search.evaluator import (
+    Interrupted,
+    SearchStats,
+    SetEvaluator,
+    SetInfeasible,
+    progress_bar,
+    tolerance,
+)
+from liftplan.planner.search.exact import search_exact
 from liftplan.planner.search.lines import count_bounds, two_lines
-from liftplan.planner.search.scenarios import LugSet, Scenario
+from liftplan.planner.search.local import search_local
+from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
+from liftplan.planner.search.screen import REASONS
 
 #: Angles at which the sets' least width is bounded (:func:`least_width`).
 ANGLES = 720
@@ -122,8 +134,7 @@ def worst_errors(lugset, preload, scenario, kind):
     if kind == "over":
         rope = int(np.argmax(tensions + np.abs(gain) @ delta - lugset.limit))
         return delta * np.sign(gain[rope])
-    objective = lugset.problem.objective
-    if objective == "reserve":
+    if lugset.problem.goal.peak:
         rope = int(np.argmax((tensions + np.abs(gain) @ delta) / lugset.swl))
         return delta * np.sign(gain[rope])
     scale = lugset.scale
@@ -132,19 +143,6 @@ def worst_errors(lugset, preload, scenario, kind):
     pairs = [(a, b) for a in range(n) for b in range(n) if a != b]
     a, b = max(pairs, key=lambda p: values[p[0]] - values[p[1]] + np.abs(scaled[p[0]] - scaled[p[1]]) @ delta)
     return delta * np.sign(scaled[a] - scaled[b])
-
-
-def first_scenarios(problem):
-    """Level at the nominal CG, then each CG vertex at level and at the box's four corners."""
-    h, t = problem.heel_tolerance, problem.trim_tolerance
-    tilts = [(0.0, 0.0)] + sorted({(a, b) for a in (-h, h) for b in (-t, t)} - {(0.0, 0.0)})
-    out = [Scenario(0.0, 0.0)]
-    for offset in problem.cog_envelope.offsets():
-        for a, b in tilts:
-            s = Scenario(float(a), float(b), tuple(float(v) for v in offset))
-            if s not in out:
-                out.append(s)
-    return out
 
 
 @dataclass(frozen=True)
@@ -190,9 +188,10 @@ def tension_band(problem, swl, cutoff):
     """
     swl = np.asarray(swl, dtype=float)
     weight, n = problem.body.weight, problem.cranes
-    if problem.objective == "spread":
+    goal = problem.goal
+    if not goal.peak and not goal.per_swl:  # the width of the tensions
         low, high = weight / n - cutoff, weight / n + cutoff
-    elif problem.objective == "utilisation":
+    elif not goal.peak:  # the width of T / SWL
         low = swl * (weight / (n * np.nanmax(swl)) - cutoff)
         high = swl * (weight / (n * np.nanmin(swl)) + cutoff)
     else:
@@ -367,19 +366,16 @@ class LugMip:
         self.preload_low = np.maximum(low, problem.min_tension)
         self.preload_high = np.minimum(high, self.share)
         self.usable = ~np.isnan(self.swl) & (self.preload_low <= self.preload_high)
-        self.scale = np.ones_like(reach_swl) if problem.objective == "spread" else 1.0 / reach_swl
+        self.scale = problem.goal.scale(reach_swl)
         self.reach_swl = reach_swl
         self.mirror = mirror_map(problem)
         self.count = count
         # candidates on two lines: each count of lugs per line has a bound of its own
         self.lines = two_lines(problem)
         if self.lines is not None and (
-            problem.objective == "spread"
-            or (problem.objective == "utilisation" and np.nanmax(swl) == np.nanmin(swl))
+            not problem.goal.peak and (not problem.goal.per_swl or np.nanmax(swl) == np.nanmin(swl))
         ):
             if dense is None:
-                from liftplan.planner.search.branch import SetEvaluator
-
                 dense = SetEvaluator(problem).dense
             self.line_counts = count_bounds(problem, self.lines, dense)
         else:
@@ -397,8 +393,6 @@ class LugMip:
             Lug sets not to choose again (found infeasible over the dense box).
         """
         import cvxpy as cp
-
-        from liftplan.planner.search.bounds import run_highs
 
         problem, classes = self.problem, self.classes
         cuts = [c if isinstance(c, Cut) else Cut(c) for c in scenarios]
@@ -465,7 +459,7 @@ class LugMip:
         # (the perspective of max / min over the chosen; tighter than a plain big M)
         floor = weight / problem.cranes * float(np.min(scale[:, usable]))
         ceiling = weight / problem.cranes * float(np.max(scale[:, usable]))
-        if problem.objective == "reserve":
+        if problem.goal.peak:
             cons.append(scaled + floor * (1 - chosen) <= z)
         else:
             high, low = cp.Variable(m), cp.Variable(m)
@@ -533,7 +527,7 @@ class LugMip:
         )
 
 
-def search_mip(problem, started, progress=None):
+def search_mip(problem, started, top=1, progress=None):
     """Plan by the lug-choice MIP with cutting planes (module docstring).
 
     A first plan gives the cutoff: the local search's (equal cranes) or the exact search's
@@ -553,16 +547,6 @@ def search_mip(problem, started, progress=None):
     """
     from collections import Counter
 
-    from liftplan.planner.search.branch import (
-        REASONS,
-        Interrupted,
-        SearchStats,
-        SetEvaluator,
-        SetInfeasible,
-        _progress_bar,
-        tolerance,
-    )
-
     ranking, first = _incumbent(problem, started)
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
@@ -570,7 +554,7 @@ def search_mip(problem, started, progress=None):
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
-    bar = _progress_bar(MAX_ROUNDS, progress)
+    bar = progress_bar(MAX_ROUNDS, progress)
 
     def stats_now():
         best = ranking[0].worst_value
@@ -626,9 +610,7 @@ def search_mip(problem, started, progress=None):
             if solution.status == "time_limit":
                 stopped = "time_limit"
                 break
-            tol = tolerance(problem) * (
-                1.0 if problem.objective == "spread" else 1.0 / float(np.max(result.swl))
-            )
+            tol = tolerance(problem) * (1.0 if not problem.goal.per_swl else 1.0 / float(np.max(result.swl)))
             cuts = (
                 [_cut(mip, solution, lugset, found.worst[1], "value")]
                 if found.worst[0] > solution.value + tol
@@ -675,8 +657,6 @@ def _incumbent(problem, started):
     the exact search's first evaluated (set, assignment) for a fleet."""
     import dataclasses
 
-    from liftplan.planner.search.branch import _local, search
-
     if problem.equal_cranes:
-        return _local(problem, started)
-    return search(dataclasses.replace(problem, search="exact", gap=0.0, time_limit=1e-9), 1)
+        return search_local(problem, started)
+    return search_exact(dataclasses.replace(problem, gap=0.0, time_limit=1e-9), time.perf_counter(), 1)

@@ -10,7 +10,7 @@ admissible set T* at the level attitude can be dialled in, through boom heights
 (a the lift height, z_i the lug's height in the body frame). A heel or trim deviation then
 comes from hook motions that move the level hook pattern as a rigid body,
 dH_i = c0 + c1 x_i + c2 y_i: they leave the twist (the preload) alone. At any pose the
-statics fix c (a 3x3 linear solve: ``held`` in :class:`liftplan.model.statics.RopeModel`),
+statics fix c (a 3x3 linear solve: ``held`` in :class:`liftplan.model.statics.model.RopeModel`),
 so with every rope taut the tensions at scenario k (attitude, CG position) are exactly
 
     T_k = P_k T* + q_k.
@@ -29,7 +29,7 @@ from functools import cached_property
 import numpy as np
 
 from liftplan.model.frames import rotation_matrix
-from liftplan.model.statics import BLOCK, hinged_model, rope_model
+from liftplan.model.statics.model import BLOCK, hinged_model, rope_model
 from liftplan.planner.problem.fleet import rule_limits
 
 
@@ -78,8 +78,8 @@ def run_block(block, n, attitudes, params):
 
 
 def held_model(problem, n):
-    """The rope model the problem's lift points need: :func:`~liftplan.model.statics.rope_model`
-    for body-fixed candidates, :func:`~liftplan.model.statics.hinged_model` when the problem
+    """The rope model the problem's lift points need: :func:`~liftplan.model.statics.model.rope_model`
+    for body-fixed candidates, :func:`~liftplan.model.statics.model.hinged_model` when the problem
     carries hinges (``PlanProblem.hinges``: slings hinged about a lug pair)."""
     return rope_model(n) if problem.hinge_rows is None else hinged_model(n)
 
@@ -92,7 +92,7 @@ def set_hinges(problem, sets):
 
 def level_bar_moment(problem, points, hinges):
     """Level-pose bar-weight moment, world plan (..., 2) [t m]: sum_i w_i (P_i - bar_i)_plan
-    (zero without hinges or bars); see :func:`~liftplan.model.statics.hinged_points`.
+    (zero without hinges or bars); see :func:`~liftplan.model.statics.model.hinged_points`.
 
     points : (..., n, 3) lift points at level (the hooks) [m]; hinges : (..., n, 8) or None.
     """
@@ -107,7 +107,7 @@ def level_bar_moment(problem, points, hinges):
 
 
 def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None, hinges=None):
-    """Parameter vectors (:class:`~liftplan.model.statics.Layout`) of lug sets.
+    """Parameter vectors (:class:`~liftplan.model.statics.model.Layout`) of lug sets.
 
     Parameters
     ----------
@@ -119,8 +119,8 @@ def pack(problem, points, cog, boom, weight=None, rope_length=None, EA=None, hin
     rope_length, EA : (..., n)  [m, t], optional
         Each rope's l0 and EA (default the first n cranes of the fleet, in fleet order).
     hinges : (..., n, 8), optional
-        Hinge rows (:class:`~liftplan.model.statics.HingedLayout`; :func:`set_hinges`),
-        appended for :func:`~liftplan.model.statics.hinged_model`.
+        Hinge rows (:class:`~liftplan.model.statics.model.HingedLayout`; :func:`set_hinges`),
+        appended for :func:`~liftplan.model.statics.model.hinged_model`.
 
     Returns
     -------
@@ -223,7 +223,7 @@ class LugSet:
         #: tension limits from the rules' chain: anywhere in the box, and at level [t]
         self.limit, self.share_limit = rule_limits(problem, self.swl, self.cranes)
         #: what the objective's spread is taken of: s_i T_i
-        self.scale = np.ones(self.n) if problem.objective == "spread" else 1.0 / self.swl
+        self.scale = problem.goal.scale(self.swl)
         # boom heights with every rope just unstretched at the level pose
         self.boom_zero = problem.lift_height + self.points[:, 2] + self.rope_length
         #: hinge rows of the lift points (None: body-fixed), see ``PlanProblem.hinges``
@@ -339,3 +339,16 @@ class LugSet:
     def twist_gain(self, preload):
         """dT/dH at the level pose with the pose held  [t/m]: the twist (skew) response."""
         return self._evaluate([Scenario(0.0, 0.0)], self.boom_heights(preload))[2][0]
+
+
+def first_scenarios(problem):
+    """Level at the nominal CG, then each CG vertex at level and at the box's four corners."""
+    h, t = problem.heel_tolerance, problem.trim_tolerance
+    tilts = [(0.0, 0.0)] + sorted({(a, b) for a in (-h, h) for b in (-t, t)} - {(0.0, 0.0)})
+    out = [Scenario(0.0, 0.0)]
+    for offset in problem.cog_envelope.offsets():
+        for a, b in tilts:
+            s = Scenario(float(a), float(b), tuple(float(v) for v in offset))
+            if s not in out:
+                out.append(s)
+    return out

@@ -294,7 +294,7 @@ def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
     stiffness = rope_ea / rope_length
     boom_zero = problem.lift_height + points[..., 2] + rope_length
     swl = problem.reach[1][sets, cranes]  # (N, n)
-    scale = np.ones_like(swl) if problem.objective == "spread" else 1.0 / swl
+    scale = problem.goal.scale(swl)
 
     # level statics (yaw only)
     c, s = math.cos(yaw), math.sin(yaw)
@@ -339,7 +339,7 @@ def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
     gram[collinear] = np.eye(3)  # placeholder: these sets are ruled out below
     rhs = np.broadcast_to(b_level, (count, 3))[..., None]
     particular = np.einsum("kji,kj->ki", a_level, np.linalg.solve(gram, rhs)[..., 0])
-    reserve = problem.objective == "reserve"
+    reserve = problem.goal.peak
     if n == 3:
         bound, reason = _screen_fixed(
             particular, q, gain, inside, limits, (preload_low, preload_high), scale, hook, reserve

@@ -23,7 +23,7 @@ finitely many scenarios and sections is a linear program, :class:`StrengthLP`, b
 size from ``cp.Parameter`` objects (DPP, checked at build) and re-solved. The candidates'
 choice is the mixed-integer version :class:`CandidateMIP` (HiGHS): exact for force control;
 for hoist control a relaxation (each scenario's tensions only statically admissible) that
-gives the valid lower bound of the search in :mod:`liftplan.planner.strength_plan`.
+gives the valid lower bound of the search in :mod:`liftplan.planner.plans.strength`.
 
 Sections: finitely many in an LP; between loads M is a cubic, so the exact maxima of a
 solution are found with :mod:`liftplan.model.strength.piecewise` and added as cutting planes.
@@ -39,7 +39,7 @@ import numpy as np
 from scipy import sparse
 
 from liftplan.model.errors import PlanInfeasible, SolverFailed
-from liftplan.model.scene import curve_totals
+from liftplan.model.scene.objects import curve_totals
 from liftplan.model.strength.piecewise import Piecewise, on_breaks
 from liftplan.planner.search.bounds import _checked, _run, run_highs
 

@@ -1,0 +1,50 @@
+"""The load curve on the console with what issue 15 added: the breakout, the water in
+compartments with openings, and time when the lift has a hoist speed.
+
+Builds on :func:`liftplan.planner.output.console.tables.load_curve_table`.
+"""
+
+from __future__ import annotations
+
+from liftplan.planner.output.console.tables import load_curve_table
+
+
+def lift_table(scene, curve, rows=25):
+    """The load curve's table and summary lines (str)."""
+    lines = [load_curve_table(scene, curve, rows=rows)]
+    if curve.speed is not None:
+        end = curve.time[-1]
+        lines.append(
+            f"hoist speed {curve.speed:g} m/min: time = hoist / speed, {end:.0f} s to the last hoist"
+        )
+        timed = [e for e in curve.events if e.time is not None]
+        if timed:
+            lines.append(
+                "  events in time: "
+                + ", ".join(f"{e.name}{' ' + e.subject if e.subject else ''} {e.time:.1f} s" for e in timed)
+            )
+    b = curve.breakout
+    if b is not None:
+        how = (
+            f"{b.time_factor:.3f} x F_r = N_c s_u A = {b.static_resistance:.1f} t over {b.area:.1f} m2 "
+            "(Liu 1969: 1.5 (T / T_e)^-0.07)"
+            if b.model == "soil"
+            else f"{b.force / b.submerged_weight if b.submerged_weight else 0.0:g} x the submerged weight"
+        )
+        lines.append(
+            f"breakout force F_b = {b.force:.1f} t ({how}); submerged weight at rest "
+            f"{b.submerged_weight:.1f} t; held until the contact is {b.clear:g} m off its bed"
+        )
+        peak, at = curve.peak_crane_load
+        event = curve.event("breakout")
+        where = f" (breakout at {event.hoist:.4f} m)" if event else " (no breakout within the range)"
+        lines.append(f"breakout peak: sum of rope tensions {peak:.1f} t at hoist {at:.4f} m{where}")
+    if curve.drainage or curve.drainage_note:
+        lines.append(f"compartments with openings: {curve.drainage_note}")
+        for t in curve.drainage:
+            drain = f"drained at {t.drain_time:.1f} s" if t.drain_time is not None else "not drained"
+            lines.append(
+                f"  {t.name}: {t.initial:.1f} t -> {t.final:.1f} t, {drain}"
+                + (f", water balance error {t.mass_error:.1e}" if t.mass_error else "")
+            )
+    return "\n".join(lines)

@@ -1,0 +1,144 @@
+"""Console summary of a sling lift plan (``liftplan plan`` without ``--json``).
+
+Two cranes (:class:`~liftplan.planner.plans.slings.SlingPlan`) or three and more, on body-fixed apexes
+or hooks hinged about their pairs (:class:`~liftplan.planner.plans.slings.apex.ApexSlingPlan`): per
+crane its lugs, radius, chart SWL, hook loads and the rules' design hook load; per lug its leg's
+sling angle and tension, and the lug's design load from the rules' chain.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from liftplan.planner.output.console.text import fold, grouped
+
+OBJECTIVES = {
+    "reserve": "the largest hook load / SWL",
+    "utilisation": "max - min of hook load / SWL",
+    "spread": "max - min hook load",
+}
+
+
+def _search_lines(plan):
+    problem = plan.problem
+    causes = ", ".join(f"{n} {text}" for text, n in plan.ruled_out.items()) or "none"
+    if hasattr(plan, "inner"):  # three or more cranes: the held search on the apexes
+        stats = plan.stats
+        sling = problem.fleet[0].sling
+        rig = "spreader bars" if sling.spreader is not None else f"{sling.legs}-leg slings"
+        return [
+            f"{problem.cranes} cranes on {rig}: {len(plan.rigs)} {plan.lift_points_text} "
+            f"among {len(problem.candidates)} candidates; {stats.rows} (set, crane "
+            f"assignment) rows, {stats.evaluated} evaluated, search {stats.stopped}, lower bound "
+            f"{stats.lower_bound:.4g}; ruled out: {causes}",
+            f"tolerance box heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g} "
+            f"deg, CG envelope; hooks held at the level preload; objective: "
+            + OBJECTIVES.get(plan.objective, plan.objective),
+        ]
+    return [
+        f"two cranes on slings: {plan.options} pairs of rigs considered (both assignments); "
+        f"ruled out: {causes}",
+        "tilt along the hook line within the tolerance, CG envelope; objective: "
+        + OBJECTIVES.get(plan.objective, plan.objective),
+    ]
+
+
+def sling_table(plan):
+    """A readable summary of a sling plan.
+
+    Returns
+    -------
+    str
+    """
+    problem = plan.problem
+    names = plan.crane_names
+    design = plan.design_hook_loads
+    lines = [
+        problem.name or "lift plan",
+        *_search_lines(plan),
+        "",
+        f"{'crane':<13}{'lugs (below)':<17}{'R [m]':>7}{'SWL [t]':>8}{'H [m]':>8}"
+        f"{'hook [t]':>9}{'worst [t]':>10}{'design [t]':>11}{'util. [%]':>10}  check",
+    ]
+    chain = None if isinstance(plan.design, str) else plan.design
+    rows = []
+    for c, name in enumerate(names):
+        lugs = ",".join(label for label in plan.labels if plan.cranes[label] == name)
+        ok = chain is not None and chain.results[c].check.ok
+        rows.append(
+            f"{name[:12]:<13}{lugs[:16]:<17}{plan.hook_radius[c]:>7.1f}{plan.hook_swl[c]:>8.1f}"
+            f"{plan.crane_boom_heights[c]:>8.3f}{plan.hook_nominal[c]:>9.2f}"
+            f"{plan.hook_worst[c]:>10.2f}{design[c]:>11.2f}{100 * design[c] / plan.hook_swl[c]:>10.1f}"
+            f"  {'ok' if ok else 'FAIL'}"
+        )
+    lines += grouped(rows)
+    lines.append(
+        "(hook = level, nominal CG; worst = largest over the tolerance and the CG envelope; "
+        "design = the rules' chain, docs/design-loads.md; util. = design / chart SWL)"
+    )
+    if chain is None:
+        lines.append(f"design loads not computed: {plan.design}")
+    lug_design = {} if chain is None else {lug.lug: lug for r in chain.results for lug in r.lugs}
+    lines += [
+        "",
+        f"{'lug':<5}{'candidate':<12}{'crane':<14}{'angle [deg]':>12}{'leg, level [t]':>15}"
+        f"{'leg, worst [t]':>15}{'lug design [t]':>15}",
+    ]
+    angles, level, worst = (
+        np.concatenate([np.ravel(a) for a in v])
+        for v in (plan.leg_angles, plan.legs_nominal, plan.legs_worst)
+    )
+    rows = []
+    for k, label in enumerate(plan.labels):
+        lug = plan.lugs[label]
+        value = lug_design[lug].design_load if lug in lug_design else float("nan")
+        rows.append(
+            f"{label:<5}{lug[:11]:<12}{plan.cranes[label][:13]:<14}{angles[k]:>12.1f}"
+            f"{level[k]:>15.2f}{worst[k]:>15.2f}{value:>15.2f}"
+        )
+    lines += grouped(rows)
+    for c, top in enumerate(plan.top_legs):
+        if top is not None:
+            lines.append(
+                f"{names[c]}: spreader bar {plan.bar_weights[c]:g} t on the hook; top legs "
+                + ", ".join(f"{t:.2f} t at {a:.1f} deg" for t, a in zip(top, plan.top_angles[c]))
+            )
+    solved = plan.verified
+    lines += [
+        "",
+        "rigging model (free hooks, elastic legs) at level: hook loads "
+        + ", ".join(f"{n} {solved.tensions[n]:.2f} t" for n in names),
+    ]
+    if hasattr(plan, "chosen"):
+        chosen = plan.chosen
+        dx, dy, dz = chosen.worst_cog_offset
+        lines += [
+            f"roll about the hook line (CG under it): up to {chosen.roll:.2f} deg over the CG envelope",
+            f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
+            f"({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m",
+        ]
+    unit, scale = ("[t]", 1.0) if plan.objective == "spread" else ("[%]", 100.0)
+    lines += ["", f"{'rank':<6}{'worst ' + unit:>12}  slings (crane)"]
+    for k, slings, value in _ranking(plan):
+        lines.append(f"{k:<6}{scale * value:>12.2f}  {slings[0]}")
+        lines += [f"{'':<20}{text}" for text in slings[1:]]
+    return "\n".join(folded for line in lines for folded in fold(line))
+
+
+def _ranking(plan):
+    """(rank, one text per sling, worst value) of each ranked option."""
+    problem, names = plan.problem, plan.crane_names
+    if hasattr(plan, "inner"):
+        for k, r in enumerate(plan.ranking):
+            texts = [
+                f"{'+'.join(problem.names[i] for i in plan.rigs.lugs[j])} ({crane})"
+                for j, crane in zip(r.indices, r.crane_names)
+            ]
+            yield k + 1, texts, r.worst_value
+        return
+    for k, option in enumerate(plan.ranking):
+        texts = [
+            f"{'+'.join(problem.names[i] for i in group)} ({name})"
+            for group, name in zip(option.pairs, names)
+        ]
+        yield k + 1, texts, option.worst_value

@@ -1,0 +1,861 @@
+"""The recommendation report: one self-contained HTML file (and a PDF when WeasyPrint is
+installed), plus the chosen plan as a scene file that ``liftplan solve`` reads back.
+
+Figures are embedded as base64 PNG, so the HTML file can be mailed on its own. Every
+table states its units in its header; every coordinate is in the frame of the planning file,
+named once at the top; ``plan_scene.toml`` keeps that frame and the candidate names.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+
+import numpy as np
+
+from liftplan.model.frames import FRAME_TEXT, zup_to_choi
+from liftplan.planner.batch.montecarlo import hook_monte_carlo
+from liftplan.planner.output.figures import plan as figures
+from liftplan.planner.output.report import page as report_page
+from liftplan.planner.plans.common import OBJECTIVE_TEXT
+from liftplan.planner.search.scenarios import Scenario
+
+ASSUMPTIONS = (
+    "Ropes hang vertically (each hook above its lug) and the body is rigid.",
+    "With four or more cranes the differential hoist dials in any admissible level preload; "
+    "a heel or trim deviation comes from hook motions that move the level hook pattern "
+    "rigidly, so the twist (preload) is held and the tensions follow the elastic model.",
+    "Rope stiffness is EA / l0 (unstretched length); a rope never goes slack inside the "
+    "tolerance box (every tension stays above min_tension, checked densely).",
+    "The worst spread is searched on a 21 x 21 heel-trim grid for every CG-envelope vertex, "
+    "then on finer grids around the worst point; the CG envelope is exact at its vertices "
+    "(the spread is convex in the CG position).",
+    "Hook heights: every hook within +-hook_tolerance of its planned height, independently, "
+    "is part of the worst case and of every limit (exact: the tensions are affine in the hook "
+    "heights at a given attitude while every rope is taut); a rigid body (hull flexibility, "
+    "which lowers skew loads, is ignored). With hook_tolerance = 0 no hook error is assumed.",
+    "Design load: the design hook load of the lifting rules' chain (GL Noble Denton 0027/ND "
+    "Rev 11, docs/design-loads.md): the larger of the worst tension in the box (over the CG "
+    "envelope and the hook errors) and the load at the rules' tilt, x weight contingency "
+    "(skew 1: the hook errors are in the worst) + rigging weight, x the dynamic amplification "
+    "factor; checked against the chart SWL at the crane's radius. Utilisation = design hook "
+    "load / chart SWL. Code margin (a separate check): (level share x contingency + rigging) "
+    "x (1 + 20 / 33 / 50 % for 2 / 3 / 4+ cranes) <= SWL.",
+)
+
+
+# -- HTML ---------------------------------------------------------------------------------
+def _png(fig, alt, caption=""):
+    return report_page.figure(fig, alt, caption)
+
+
+def _table(headers, rows, caption, **options):
+    return report_page.table(headers, rows, caption, **options)
+
+
+def _shown(problem, point):
+    """A body-frame point as the scene file wrote it."""
+    return zup_to_choi(point) if problem.frame == "choi" else tuple(point)
+
+
+def _xyz(problem, point):
+    return ", ".join(f"{v:.2f}" for v in _shown(problem, point))
+
+
+def _where(plan, scenario):
+    return (
+        f"{scenario.heel:+.2f}, {scenario.trim:+.2f}",
+        ", ".join(f"{v:.2f}" for v in plan.cog_at(scenario)),
+    )
+
+
+def render_html(plan, today=None):
+    """The report as one HTML string, laid out for A4 print.
+
+    Client-facing part first (title block, recommendation, basis, checks, figures,
+    alternatives, assumptions), then the engineering appendix (the optimisation's bounds
+    and the search) on its own pages: the sections of :data:`SECTIONS`, in order.
+
+    Parameters
+    ----------
+    plan : Plan
+    today : datetime.date, optional
+        The date printed when ``[report] date`` is not given (default: today).
+    """
+    problem = plan.problem
+    name = problem.name or "Lift plan"
+    info = problem.report
+    head = [
+        report_page.title_block(
+            info,
+            name,
+            f"Lift plan: {problem.cranes} cranes, lugs chosen by liftplan, preload held by the boom heights",
+            today,
+        ),
+        f"<p>All coordinates are in the planning file's frame: {html.escape(FRAME_TEXT[plan.frame])}. "
+        "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
+        "lengths in m.</p>",
+        report_page.status(plan.checks),
+    ]
+    body = "\n".join(head + [part for section in SECTIONS for part in section(plan)])
+    return report_page.document(
+        name, body, report_page.running_header(info, name), report_page.running_footer(info)
+    )
+
+
+# -- the sections ------------------------------------------------------------------------------
+def _recommendation(plan):
+    """1: the lugs, cranes and boom heights, and the plan's summary."""
+    problem, chosen = plan.problem, plan.chosen
+    candidates = dict(zip(problem.names, problem.candidates))
+    worst = chosen.worst
+    positions = {c.name: c.position for c in problem.fleet}
+    lugs = _table(
+        [
+            "lug",
+            "candidate (bulkhead)",
+            "position x, y, z [m]",
+            "crane",
+            "radius [m]",
+            "chart SWL [t]",
+            "boom height H [m]",
+            "level tension [t]",
+            "level T / chart SWL [%]",
+        ],
+        [
+            (
+                label,
+                f"{name} ({candidates[name].bulkhead})" if candidates[name].bulkhead else name,
+                _xyz(problem, candidates[name].at),
+                plan.cranes[label],
+                "-" if positions[plan.cranes[label]] is None else f"{plan.radius[label]:.1f}",
+                f"{plan.swl[label]:.1f}",
+                f"{plan.boom_heights[label]:.3f}",
+                f"{plan.tensions[label]:.2f}",
+                f"{100 * plan.utilisation[label]:.1f}",
+            )
+            for label, name in plan.lugs.items()
+        ],
+        "Recommended lugs, cranes and boom heights",
+        text_columns=(1, 3),
+    )
+    summary = _table(
+        ["quantity", "value", "unit"],
+        [
+            ("tension spread, level with the nominal CG", f"{plan.spread:.2f}", "t"),
+            ("worst tension spread over the tolerance box", f"{plan.worst_spread:.2f}", "t"),
+            ("... at heel, trim", f"{worst.heel:+.2f}, {worst.trim:+.2f}", "deg"),
+            ("... with the CG at (x, y, z)", _where(plan, worst)[1], "m"),
+            (
+                "... that is, CG offset (x, y, z)",
+                ", ".join(f"{v:+.2f}" for v in _shown(problem, worst.cog_offset)),
+                "m",
+            ),
+            (
+                "worst utilisation spread (max - min of T / SWL)",
+                f"{100 * plan.worst_utilisation_spread:.1f}",
+                "%",
+            ),
+            (
+                "tension range over the box",
+                f"{chosen.tension_range[0]:.2f} to {chosen.tension_range[1]:.2f}",
+                "t",
+            ),
+            (
+                "highest design utilisation (design hook load / chart SWL)",
+                "n/a"
+                if plan.design_loads.chain is None
+                else f"{100 * max(c.design.utilisation for c in plan.capacity):.1f}",
+                "%",
+            ),
+        ],
+        "Plan summary",
+        full=False,
+        text_columns=(0,),
+    )
+    return ["<h2>1 Recommendation</h2>", lugs, summary]
+
+
+def _basis(plan):
+    """2: the inputs and the crane fleet."""
+    problem = plan.problem
+    inputs = _table(
+        ["quantity", "value", "unit"],
+        [
+            ("weight W", f"{problem.body.weight:.2f}", "t"),
+            ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
+            (
+                "CG envelope half-widths (x, y, z)",
+                ", ".join(f"{abs(v):.2f}" for v in _shown(problem, problem.cog_envelope.half_widths)),
+                "m",
+            ),
+            ("CG envelope shape", problem.cog_envelope.shape, "-"),
+            ("cranes", problem.cranes, "-"),
+            ("the plan keeps small", OBJECTIVE_TEXT[plan.objective], "-"),
+            ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
+            ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
+            ("min tension", f"{problem.min_tension:g}", "t"),
+            ("hook-height tolerance", f"+-{problem.hook_tolerance:g}", "m"),
+            ("lift height (body origin above datum)", f"{problem.lift_height:g}", "m"),
+            ("candidate lug points", len(problem.candidates), "-"),
+        ],
+        "Inputs",
+        full=False,
+        text_columns=(0,),
+    )
+    fleet = _table(
+        [
+            "crane",
+            "slew centre x, y, z [m]",
+            "load chart (radius m: SWL t)",
+            "rope EA [t]",
+            "rope length l0 [m]",
+            "boom height range [m]",
+        ],
+        _fleet_rows(problem),
+        "Crane fleet",
+        text_columns=(0, 2),
+    )
+    return ["<h2>2 Basis of the plan</h2>", inputs, fleet]
+
+
+def _checks(plan):
+    """3: every check, the design loads, the breakout, the crew's hook accuracy and guidance."""
+    problem = plan.problem
+    skew = _table(
+        [
+            "rope or diagonal pair",
+            "nominal load [t]",
+            "skewed load [t]",
+            "skew load factor [-]",
+            "Noble Denton default [-]",
+        ],
+        [
+            (
+                " + ".join(s.lugs),
+                f"{s.nominal:.2f}",
+                f"{s.skewed:.2f}",
+                f"{s.factor:.3f}",
+                f"{plan.default_skew_factor:.2f}" if len(s.lugs) == 2 else "-",
+            )
+            for s in plan.skew
+        ],
+        f"Skew loads for hook heights within +-{problem.hook_tolerance:g} m",
+    )
+    own = np.diag(plan.hook_sensitivity)
+    crew = plan.crew_margin((1.0, 2.0, 5.0)) if np.any(plan.lugset.hook_tolerance > 0) else []
+    hooks = (
+        _table(
+            [
+                "hooks",
+                "tolerance [m]",
+                "worst spread [t]",
+                *(f"{label} largest [t]" for label in plan.labels),
+                "lowest [t]",
+                "result",
+            ],
+            [
+                (
+                    f"{c.factor:g} x as planned",
+                    f"+-{c.tolerance.max():g}",
+                    f"{c.worst_spread:.1f}",
+                    *(f"{v:.1f}" for v in c.rope_max),
+                    f"{c.lowest:.1f}",
+                    "within limits" if c.within_limits else "EXCEEDS",
+                )
+                for c in crew
+            ],
+            "Hook accuracy: the plan held, the hooks as planned and worse (limits: chart SWL / DAF, "
+            "less rigging, over contingency)",
+            text_columns=(0, 4 + len(plan.labels)),
+            ropes=(3, len(plan.labels)),
+        )
+        if crew
+        else "<p>No hook-height error was assumed (hook_tolerance = 0).</p>"
+    )
+    needed = plan.hook_accuracy_needed
+    hooks += (
+        "<p>The crew must hold every hook within "
+        + (f"+-{needed:.3f} m" if np.isfinite(needed) else "any error")
+        + " of its planned height for every rope to stay within its limits (the plan's "
+        f"preload held); the worst combination of 1 cm errors moves a rope by "
+        f"{plan.twist_stiffness:.2f} t.</p>"
+    )
+    hooks += _monte_carlo_table(plan)
+    sensitivity = _table(
+        ["rope", *(f"{label} [t/cm]" for label in plan.labels)],
+        [("tension change per cm of its own hook", *(f"{v:+.2f}" for v in own))],
+        f"Load-cell guidance: each rope's change per centimetre of its own hook off its height "
+        f"(pose held); the worst combination of 1 cm errors moves a rope by "
+        f"{plan.twist_stiffness:.2f} t",
+        text_columns=(0,),
+        ropes=(1, len(plan.labels)),
+    )
+    guidance = _table(
+        ["step", "from [deg]", "to [deg]", *(f"dT {label} [t]" for label in plan.labels), "note"],
+        [
+            (
+                g.angle,
+                f"{g.start:+.0f}",
+                f"{g.end:+.0f}",
+                *(f"{v:+.2f}" for v in g.change.values()),
+                "" if g.within_model else "a rope goes slack: beyond the model",
+            )
+            for g in plan.guidance
+        ],
+        "Operator guidance: tension change per step of heel (trim 0) and of trim (heel 0)",
+        text_columns=(0, 3 + len(plan.labels)),
+        ropes=(3, len(plan.labels)),
+    )
+    checks = _table(
+        ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
+        [
+            (c.name, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL", c.note)
+            for c in plan.checks
+        ],
+        "Every check of the plan",
+        text_columns=(0, 1, 6),
+    )
+    return [
+        "<h2>3 Checks to hand over</h2>",
+        checks,
+        _design_table(plan),
+        *_design_details(plan),
+        *_breakout_section(plan),
+        hooks,
+        sensitivity,
+        skew,
+        guidance,
+    ]
+
+
+def _figures(plan):
+    """4: plan view, tensions against heel and trim, the spread over the box."""
+    problem = plan.problem
+    figs = [
+        _png(
+            figures.plan_view(plan),
+            "plan view",
+            "Plan view, seen from above: the chosen lugs (L1...), the cranes and the CG."
+            if any(c.position is not None for c in problem.fleet)
+            else "Plan view, seen from above: the chosen lugs (L1...) and the CG; the boom heights "
+            "are in the table of section 1.",
+        ),
+        _png(
+            figures.tension_curves(plan),
+            "tension against heel and trim",
+            "Rope tensions with the plan's preload held, against heel (left) and trim (right); "
+            "the tolerance box shaded.",
+        ),
+        _png(
+            figures.spread_map(plan),
+            "spread over the tolerance box",
+            "The plan's spread over the heel/trim tolerance box, at each point the worst CG "
+            "position of the envelope; the star marks the worst case.",
+        ),
+    ]
+    return ["<h2>4 Figures</h2>", *figs]
+
+
+def _alternatives(plan):
+    """5: the ranking of lug sets."""
+    unequal = not plan.problem.equal_cranes
+    ranking = _table(
+        [
+            "rank",
+            "lugs (crane)" if unequal else "lugs",
+            "nominal spread [t]",
+            "worst spread [t]",
+            "worst utilisation spread [%]",
+            "worst at heel, trim [deg]",
+            "... with the CG at x, y, z [m]",
+            "highest in-box load / SWL [%]",
+            "design utilisation [%]",
+            "design checks",
+            "boom heights H [m]",
+        ],
+        [
+            (
+                k + 1,
+                ", ".join(
+                    f"{lug} ({crane})" if unequal else lug for lug, crane in zip(r.lugs, r.crane_names)
+                ),
+                f"{r.nominal_spread:.2f}",
+                f"{r.worst_spread:.2f}",
+                f"{100 * r.worst_utilisation_spread:.1f}",
+                *_where(plan, r.worst),
+                f"{100 * r.max_utilisation:.1f}",
+                "n/a" if d.chain is None else f"{100 * d.max_utilisation:.1f}",
+                "ok" if d.ok else "FAIL",
+                " ".join(f"{h:.3f}" for h in r.boom_heights),
+            )
+            for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design))
+        ],
+        f"Ranking of lug sets (the best {len(plan.ranking)} of {plan.stats.sets}; rank 1 is the "
+        "recommendation)",
+        text_columns=(1,),
+    )
+    return ["<h2>5 Alternatives</h2>", ranking]
+
+
+def _assumptions(plan):
+    """6: what the plan assumes."""
+    return [
+        "<h2>6 Assumptions</h2>",
+        "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in ASSUMPTIONS) + "</ul>",
+    ]
+
+
+def _fleet_rows(problem):
+    """One row per crane; a run of cranes alike in everything but the name is one row
+    ("crane 1 to crane 64 (64 alike)": a fleet of strand jacks is one line, not two pages)."""
+    rows = []
+    for c in problem.fleet:
+        values = (
+            "-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
+            f"{c.swl:g} t at any radius"
+            if c.swl is not None
+            else ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
+            f"{c.EA:.0f}",
+            f"{c.rope_length:.2f}",
+            f"{c.boom_min:g} to {c.boom_max:g}",
+        )
+        if rows and rows[-1][1] == values and values[0] == "-":
+            rows[-1][0].append(c.name)
+        else:
+            rows.append(([c.name], values))
+    return [
+        (names[0] if len(names) == 1 else f"{names[0]} to {names[-1]} ({len(names)} alike)", *values)
+        for names, values in rows
+    ]
+
+
+#: Monte-Carlo draws per row of the report's hook table (seeded: the report is reproducible).
+MONTE_CARLO_DRAWS = 2000
+
+
+def _monte_carlo_table(plan):
+    """Random hook errors solved on the forward elastic model beside the worst case: the
+    plan's tolerance and 2x and 5x it (uniform, seeded)."""
+
+    if not np.any(plan.lugset.hook_tolerance > 0):
+        return ""
+    rows = []
+    for factor in (1.0, 2.0, 5.0):
+        mc = hook_monte_carlo(
+            plan, draws=MONTE_CARLO_DRAWS, tolerance=plan.lugset.hook_tolerance * factor, seed=1
+        )
+        s = mc.summary()
+        rows.append(
+            (
+                f"{factor:g} x as planned",
+                f"{s['spread_p50']:.1f}",
+                f"{s['spread_p95']:.1f}",
+                f"{s['spread_max']:.1f}",
+                f"{100 * s['p_spread_above_plan_worst']:.1f}",
+                _percent(s["p_above_design_tension"]),
+                _percent(s["p_above_design_load"]),
+                f"{100 * s['p_above_swl']:.1f}",
+                str(mc.failed),
+            )
+        )
+    return _table(
+        [
+            "hooks",
+            "spread p50 [t]",
+            "p95 [t]",
+            "max [t]",
+            "above the plan's worst [%]",
+            "a rope above its design tension [%]",
+            "a rope above its design hook load [%]",
+            "a rope above its SWL [%]",
+            "no equilibrium [-]",
+        ],
+        rows,
+        f"Monte-Carlo check: {MONTE_CARLO_DRAWS} draws of independent hook errors (uniform "
+        f"within the tolerance, seed 1), each solved on the forward elastic model; the plan's "
+        f"worst spread is {plan.worst_spread:.1f} t. Design tension: the static tension each "
+        "crane's design load was built from (like for like with a drawn static tension); the "
+        "design hook load carries the contingency and the DAF on top, so exceeding it is rarer "
+        "(docs/design-loads.md)",
+        text_columns=(0,),
+    )
+
+
+def _percent(share):
+    """A share as a percentage; '-' where it is not known (no design load computed)."""
+    return "-" if not np.isfinite(share) else f"{100 * share:.1f}"
+
+
+def _appendix(plan):
+    """The engineering appendix: how good the plan is proved to be, the admissible tension
+    bounds, and what the search did."""
+    stats, chosen = plan.stats, plan.chosen
+    unit = "t" if plan.objective == "spread" else "-"
+    fmt = "{:.4f}" if unit == "-" else "{:.2f}"
+    optimality = _table(
+        ["quantity", "value", "unit"],
+        [
+            ("worst value of the plan over the box (the objective)", fmt.format(stats.best), unit),
+            (
+                "lower bound from the optimisation: no lug set and crane assignment does better",
+                fmt.format(stats.lower_bound),
+                unit,
+            ),
+            ("gap between the two", fmt.format(stats.gap), unit),
+            ("relative gap", f"{100 * stats.relative_gap:.2f}", "%"),
+            ("why the search ended", stats.stopped, "-"),
+            ("how the lug sets were searched (plan.search)", stats.method, "-"),
+            (
+                "least worst spread for the recommended lugs (linear programme over the preloads)",
+                f"{chosen.bound:.2f}",
+                "t",
+            ),
+        ],
+        "Optimality: how far the recommendation can be from the best plan",
+        full=False,
+        text_columns=(0,),
+    )
+    admissible = _table(
+        ["heel [deg]", "trim [deg]", "least spread [t]", *(f"{label} range [t]" for label in plan.labels)],
+        [
+            (
+                f"{s.heel:+.2f}",
+                f"{s.trim:+.2f}",
+                *(
+                    (f"{b.least_spread:.2f}", *(f"{lo:.1f} to {hi:.1f}" for lo, hi in zip(b.lower, b.upper)))
+                    if b is not None
+                    else ["no admissible set"] + [""] * len(plan.labels)
+                ),
+            )
+            for s, b in plan.admissible
+        ],
+        "Admissible tensions of the recommended lugs: the range of each tension over every "
+        "statically admissible set within min_tension and SWL (nominal CG)",
+        ropes=(3, len(plan.labels)),
+    )
+    search = _table(
+        ["quantity", "value", "unit"],
+        [
+            ("lug sets", stats.sets, "-"),
+            ("(set, crane assignment) pairs in reach", stats.rows, "-"),
+            ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
+            *(
+                (
+                    ("the MIP's cutting-plane rounds (no set enumerated)", stats.refined, "-"),
+                    ("sets evaluated (the first plan's and the MIP's choices)", stats.evaluated, "-"),
+                )
+                if stats.method == "mip"
+                else (
+                    ("ruled out by screening", stats.screened_out, "-"),
+                    ("evaluated (linear programme + dense search of the box)", stats.evaluated, "-"),
+                    ("not evaluated: their bound could not beat the ranked sets", stats.pruned, "-"),
+                )
+            ),
+            *((f"infeasible: {text}", n, "sets") for text, n in stats.infeasible.items()),
+            ("search time", f"{stats.seconds:.2f}", "s"),
+        ],
+        "Search",
+        full=False,
+        text_columns=(0,),
+    )
+    return [
+        '<h2 class="appendix">Engineering appendix</h2>',
+        "<p>For the engineer checking the plan: how close the recommendation is proved to be "
+        "to the best possible plan, the statically admissible tensions of the recommended "
+        "lugs, and what the search did.</p>",
+        optimality,
+        admissible,
+        search,
+    ]
+
+
+def _design_table(plan):
+    """The rules' chain per crane, one column per crane (a calculation read top down)."""
+    design = plan.design_loads
+    if design.chain is None:
+        return f"<p><b>Design loads not computed:</b> {html.escape(design.missing)}</p>"
+    columns = []
+    for c in plan.capacity:
+        r = c.design
+        factor = {f.name: f for f in r.factors}
+        skew = factor["skew"].value if factor["skew"].applies_to.startswith("hook") else 1.0
+        margin = (
+            "-"
+            if r.code_margin is None
+            else (f"{r.code_margin.value:.1f} {'<=' if r.code_margin.ok else '>'} {r.code_margin.limit:.1f}")
+        )
+        ok = r.check.ok and (r.code_margin is None or r.code_margin.ok)
+        breakout = [] if design.breakout is None else [f"{c.breakout:.2f}", c.governs]
+        columns.append(
+            [
+                c.crane,
+                "-" if c.radius is None else f"{c.radius:.1f}",
+                f"{c.swl:.1f}",
+                f"{c.nominal:.2f}",
+                f"{c.worst:.2f}",
+                *breakout,
+                f"{c.tilt.load:.2f}",
+                f"{factor['weight_contingency'].value:.3f}",
+                f"{skew:.4f}",
+                f"{r.rigging_weight:.2f}",
+                f"{r.static_hook_load:.2f}",
+                f"{factor['daf'].value:.3f}",
+                f"{r.design_hook_load:.2f}",
+                f"{100 * r.utilisation:.1f}",
+                margin,
+                "ok" if ok else "FAIL",
+            ]
+        )
+    breakout = (
+        []
+        if design.breakout is None
+        else ["at breakout, held level [t]", "static input: box worst or breakout"]
+    )
+    quantities = [
+        "crane",
+        "radius [m]",
+        "chart SWL [t]",
+        "level tension [t]",
+        "worst in the box [t]",
+        *breakout,
+        "at the rules' tilt [t]",
+        "x weight contingency [-]",
+        "x skew on the hook [-]",
+        "+ rigging [t]",
+        "= static hook load [t]",
+        "x DAF [-]",
+        "= design hook load [t]",
+        "utilisation: design / chart SWL [%]",
+        "code margin: share x (1 + margin) vs SWL [t]",
+        "check",
+    ]
+    rows = [(q, *(col[k] for col in columns)) for k, q in enumerate(quantities[1:], start=1)]
+    return _table(
+        ["quantity", *(f"{c.label} ({col[0]})" for c, col in zip(plan.capacity, columns))],
+        rows,
+        "Design loads per crane (0027/ND chain; utilisation = design hook load / chart SWL; "
+        f"tilt {design.tilt_note})",
+        text_columns=(0,),
+        ropes=(1, len(columns)),
+    )
+
+
+def _breakout_section(plan):
+    """The breakout case: the peak load from the seabed scene and each crane's held share."""
+    design = plan.design_loads
+    case = design.breakout
+    if case is None:
+        return []
+    load, force = case.load, case.load.breakout
+    problem = plan.problem
+    model = {
+        "soil": (
+            f"soil model: 1.5 (T/T_e)^-0.07 = {force.time_factor:.3f} x N_c s_u A = "
+            f"{force.static_resistance:.2f} t over {force.area:.1f} m2"
+            if force.model == "soil"
+            else ""
+        ),
+        "factor": f"a factor {force.force / force.submerged_weight:.3g} on the submerged weight"
+        if force.submerged_weight > 0
+        else "a factor on the submerged weight",
+        "none": "no breakout model in the scene",
+    }[force.model]
+    text = (
+        f"<p>The hull rests on the seabed as in the scene &ldquo;"
+        f"{html.escape(problem.breakout_scene.name)}&rdquo;. Breaking it out takes a peak total "
+        f"hook load of <b>{load.total:.2f} t</b> ({load.weight_factor:.3f} x W): the submerged "
+        f"weight {force.submerged_weight:.2f} t (weight, trapped water, less buoyancy) and the "
+        f"breakout force {force.force:.2f} t ({html.escape(model)}), held until the hull is "
+        f"{force.clear:g} m clear of its bed, on a line through ({_xyz(problem, load.point)}) m. "
+        "Each crane's share is its tension with the plan's preload held and the body level, "
+        "the hooks moved together as a rigid pattern by the hook shift below; the larger of it "
+        "and the worst in the box is the crane's static input to the design-load chain above. "
+        "The breakout hook load (tension + rigging, no dynamic factor) is checked against the "
+        "chart SWL.</p>"
+    )
+    rows = [
+        (
+            c.label,
+            c.crane,
+            f"{c.breakout:.2f}",
+            f"{r:.2f}",
+            f"{h:.2f}",
+            f"{c.swl:.1f}",
+            f"{100 * h / c.swl:.1f}",
+            f"{d:+.3f}",
+            f"{max(c.worst, c.nominal):.2f}",
+            c.governs,
+            "ok" if check.ok else "FAIL",
+        )
+        for c, r, h, d, check in zip(
+            design.cranes, case.rigging, case.hook_loads, case.hook_shift, case.checks
+        )
+    ]
+    table = _table(
+        [
+            "lug",
+            "crane",
+            "tension at breakout [t]",
+            "rigging [t]",
+            "breakout hook load [t]",
+            "chart SWL [t]",
+            "hook load / SWL [%]",
+            "hook shift [m]",
+            "worst in the box [t]",
+            "static input",
+            "check",
+        ],
+        rows,
+        "Breakout from the seabed: each crane's held share of the peak load",
+        text_columns=(1, 9, 10),
+    )
+    return ["<h3>Breakout from the seabed</h3>", text, table]
+
+
+def _design_details(plan):
+    """Where each crane's worst cases occur, the chain's factors with their sources, lug loads."""
+    design = plan.design_loads
+    if design.chain is None:
+        return []
+    worst = _table(
+        [
+            "lug",
+            "crane",
+            "worst in box [t]",
+            "heel, trim [deg]",
+            "CG x, y, z [m]",
+            "at the rules' tilt [t]",
+            "tilt [deg]",
+            "tilt axis x, y, z [-]",
+            "CG at tilt x, y, z [m]",
+        ],
+        [
+            (
+                c.label,
+                c.crane,
+                f"{c.worst:.2f}",
+                *_where(plan, c.worst_at),
+                f"{c.tilt.load:.2f}",
+                f"{c.tilt.tilt:.2f}",
+                ", ".join(f"{v:+.3f}" for v in plan.in_file_frame(c.tilt.axis)),
+                _where(plan, Scenario(0.0, 0.0, c.tilt.cog_offset))[1],
+            )
+            for c in plan.capacity
+        ],
+        "Where each crane's worst static load occurs (CG position in the file's frame)",
+        text_columns=(1,),
+    )
+    results = [c.design for c in plan.capacity]
+    factors = _table(
+        ["factor", *(f"{r.crane} [-]" for r in results), "applies to", "source"],
+        [
+            (
+                f.name.replace("_", " "),
+                *(f"{r.factors[k].value:.4f}" for r in results),
+                f.applies_to,
+                f.source,
+            )
+            for k, f in enumerate(results[0].factors)
+        ],
+        "Design-load factors and where they come from",
+        text_columns=(0, len(results) + 1, len(results) + 2),
+        ropes=(1, len(results)),
+    )
+    lugs = _table(
+        [
+            "lug",
+            "crane",
+            "static share [t]",
+            "vertical design [t]",
+            "sling angle [deg]",
+            "leg load [t]",
+            "lug design load [t]",
+            "lug capacity [t]",
+            "check",
+        ],
+        [
+            (
+                lug.lug,
+                lug.crane,
+                f"{lug.share:.2f}",
+                f"{lug.vertical:.2f}",
+                f"{lug.sling_angle:.1f}",
+                f"{lug.leg_load:.2f}",
+                f"{lug.design_load:.2f}",
+                "-" if lug.check is None else f"{lug.check.limit:.1f}",
+                "not given" if lug.check is None else ("ok" if lug.check.ok else "FAIL"),
+            )
+            for r in results
+            for lug in r.lugs
+        ],
+        "Lug design loads (leg load x consequence factor; checked where the candidate gives a capacity)",
+        text_columns=(1,),
+    )
+    return [worst, factors, lugs]
+
+
+# -- scene file of the chosen plan ---------------------------------------------------------
+def scene_toml(plan):
+    """The chosen plan as a scene file for ``liftplan solve``, in the planning file's frame.
+
+    Lugs carry their candidate names and each crane table names its crane; ``liftplan solve``
+    on it gives the plan's level tensions (keyed by candidate name).
+    """
+    scene, problem = plan.scene, plan.problem
+    names = plan.lugs  # label -> candidate
+
+    def vec(values):
+        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
+
+    lines = [
+        f"# Written by liftplan plan: the chosen lugs of {json.dumps(problem.name)}.",
+        "# `liftplan solve` on this file gives the plan's level tensions.",
+        f"# Coordinates in the planning file's frame: {FRAME_TEXT[plan.frame]}.",
+        f"name = {json.dumps(scene.name)}",
+        f"frame = {json.dumps(plan.frame)}",
+        "",
+        "[body]",
+        f"weight = {scene.body.weight!r}",
+        f"cog = {vec(plan.in_file_frame(scene.body.cog))}",
+    ]
+    for lug in scene.lugs:
+        lines += [
+            "",
+            "[[lugs]]",
+            f"name = {json.dumps(names[lug.name])}",
+            f"at = {vec(plan.in_file_frame(lug.at))}",
+        ]
+    for crane in scene.cranes:
+        lines += [
+            "",
+            f"[[cranes]]                   # {plan.cranes[crane.lug]} (planned lug {crane.lug})",
+            f"name = {json.dumps(plan.cranes[crane.lug])}",
+            f"lug = {json.dumps(names[crane.lug])}",
+            f"boom_height = {crane.boom_height!r}",
+            f"rope_length = {crane.rope_length!r}",
+            f"EA = {crane.EA!r}",
+            f"swl = {crane.swl!r}",
+        ]
+    att = scene.attitude
+    lines += [
+        "",
+        "[attitude]",
+        f"lift_height = {att.lift_height!r}",
+        f"yaw = {att.yaw!r}",
+        "",
+        "[analysis]",
+        'model = "elastic"',
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def render(plan):
+    """The report page and the plan's scene file of a held-preload plan: (HTML, TOML) text."""
+    return render_html(plan), scene_toml(plan)
+
+
+#: The held plan's report, section by section (after the title block and the status line):
+#: each ``section(plan) -> list of HTML``. A new section is one function and one row here.
+SECTIONS = (_recommendation, _basis, _checks, _figures, _alternatives, _assumptions, _appendix)

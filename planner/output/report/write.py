@@ -1,0 +1,74 @@
+"""The one report writer: report.html (and report.pdf), plan_scene.toml and plan.json.
+
+The page and the scene file come from the plan's kind (:data:`PAGES`, keyed by ``plan.kind``);
+what is written, where, and how (the PDF only with the ``[pdf]`` extra) is decided here for
+every kind.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from liftplan.planner.output.report import held, slings, strength
+
+#: plan kind (:data:`liftplan.planner.plan.KINDS`) -> ``render(plan) -> (html, scene toml)``.
+PAGES = {
+    "held": held.render,
+    "lengths": held.render,
+    "slings": slings.render,
+    "strength": strength.render,
+}
+
+
+@dataclass(frozen=True)
+class ReportFiles:
+    """Files written by :func:`write_report`.
+
+    Parameters
+    ----------
+    html : Path
+    pdf : Path or None
+        None when WeasyPrint is not installed.
+    scene : Path
+        The chosen plan as a scene file (``liftplan solve`` reproduces the tensions).
+    json : Path
+    """
+
+    html: Path
+    pdf: Path | None
+    scene: Path
+    json: Path
+
+
+def write_report(plan, directory):
+    """Write the report of any plan into ``directory`` (created if needed).
+
+    Parameters
+    ----------
+    plan : LiftPlan
+    directory : str or os.PathLike
+
+    Returns
+    -------
+    ReportFiles
+    """
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    page, scene_text = PAGES[plan.kind](plan)
+    html_path = out / "report.html"
+    html_path.write_text(page, encoding="utf-8")
+    scene_path = out / "plan_scene.toml"
+    scene_path.write_text(scene_text, encoding="utf-8")
+    json_path = out / "plan.json"
+    json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
+    pdf_path = None
+    try:
+        import weasyprint  # optional (pip install "liftplan[pdf]"), and heavy: only here
+    except (ImportError, OSError):  # OSError: installed, but the system's Pango is missing
+        pass
+    else:
+        pdf_path = out / "report.pdf"
+        weasyprint.HTML(string=page).write_pdf(pdf_path)
+    return ReportFiles(html=html_path, pdf=pdf_path, scene=scene_path, json=json_path)

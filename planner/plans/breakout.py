@@ -1,0 +1,189 @@
+"""The breakout case of a plan: each crane's load when a bedded hull breaks out of the seabed.
+
+A planning file's ``[plan] breakout_scene`` names a scene file of the hull resting on the
+seabed (``[hull]``, ``[water]``, ``[ground]`` with its breakout model). Its
+:func:`~liftplan.model.water.breakout.breakout_load` is computed once: the peak total hook
+load ``total`` (submerged weight + breakout force, t) and a body-frame point on its line of
+action. For a lug set, each crane's share of that load follows from the held-preload model
+the planner uses everywhere (:class:`~liftplan.planner.search.scenarios.LugSet`): the boom
+heights that dial in the plan's level preload T*, then hook motions that are a rigid motion of
+the level hook pattern (c0 + c1 x + c2 y, the twist held), fixed by the statics at the level
+attitude with the weight ``total`` acting at the breakout point. Three statics rows and the
+held compatibility make it exact and linear; it equals the ``elastic`` solve of the plan's
+scene with that weight and CG and the hooks moved by :attr:`BreakoutCase.hook_shift`.
+
+Each crane's static input to the rules' chain becomes the larger of its worst in the box and
+its breakout tension (:mod:`liftplan.planner.plans.design_loads`), and a check per crane compares
+the breakout hook load (tension + the rules' rigging weight, no dynamic factor) with the chart
+SWL at its radius.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.statics.model import rope_model
+from liftplan.planner.search.scenarios import pack, run_block
+
+
+@dataclass(frozen=True)
+class BreakoutCase:
+    """Each crane's load at breakout for one lug set.
+
+    Parameters
+    ----------
+    load : BreakoutLoad
+        The scene's breakout case (z-up body frame).
+    cranes : tuple of str
+        Crane names, in the lug set's order.
+    lugs : tuple of str
+        Candidate names, in the lug set's order.
+    tensions : numpy.ndarray, shape (n,)  [t]
+        Held tension of each rope at breakout (level attitude, preload held); below 0 a rope
+        would go slack and the held model no longer holds.
+    hook_shift : numpy.ndarray, shape (n,)  [m]
+        Each hook's motion from its planned height that holds the body level under the
+        breakout load (a rigid motion of the level hook pattern).
+    swl : numpy.ndarray, shape (n,)  [t]
+        Chart SWL at each crane's radius.
+    rigging : numpy.ndarray, shape (n,)  [t]
+        The rules' rigging weight on each hook.
+    """
+
+    load: object
+    cranes: tuple[str, ...]
+    lugs: tuple[str, ...]
+    tensions: np.ndarray
+    hook_shift: np.ndarray
+    swl: np.ndarray
+    rigging: np.ndarray
+
+    @property
+    def hook_loads(self):
+        """Breakout tension + rigging weight per hook  [t]."""
+        return self.tensions + self.rigging
+
+    @property
+    def checks(self):
+        """Per crane the breakout hook load against the chart SWL; the lowest tension >= 0."""
+        out = [
+            Check.upper(
+                "breakout_hook_load",
+                crane,
+                hook,
+                swl,
+                "t",
+                note=f"held tension at breakout {t:.4g} t + rigging {r:.4g} t / chart SWL "
+                "(static peak, no DAF)",
+            )
+            for crane, hook, swl, t, r in zip(
+                self.cranes, self.hook_loads, self.swl, self.tensions, self.rigging
+            )
+        ]
+        out.append(
+            Check.lower(
+                "breakout_min_tension",
+                "all ropes",
+                float(self.tensions.min()),
+                0.0,
+                "t",
+                note="lowest held tension at breakout; below 0 a rope goes "
+                "slack and the held model no longer holds",
+            )
+        )
+        return out
+
+    @property
+    def ok(self):
+        return all(c.ok for c in self.checks)
+
+
+def breakout_case(problem, lugset, preload):
+    """Each crane's held tension at breakout for one lug set.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        With ``breakout_scene`` (``problem.breakout`` is its :class:`BreakoutLoad`).
+    lugset : LugSet
+    preload : array_like, shape (n,)  [t]
+        The level preload T* the boom heights dial in.
+
+    Returns
+    -------
+    BreakoutCase
+    """
+    load = problem.breakout
+    boom = lugset.boom_heights(np.asarray(preload, dtype=float))
+    params = pack(
+        problem,
+        lugset.points,
+        np.asarray(load.point, dtype=float),
+        boom,
+        weight=load.total,
+        rope_length=lugset.rope_length,
+        EA=lugset.EA,
+    )
+    level = np.array([[problem.lift_height, 0.0, 0.0]])
+    tensions, shift, _ = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
+    rigging = np.array([problem.rules.rigging_for(name) for name in lugset.crane_names], dtype=float)
+    return BreakoutCase(
+        load=load,
+        cranes=lugset.crane_names,
+        lugs=lugset.names,
+        tensions=tensions[0],
+        hook_shift=shift[0],
+        swl=np.asarray(lugset.swl, dtype=float),
+        rigging=rigging,
+    )
+
+
+def breakout_json(plan):
+    """``{"breakout": {...}}`` for the plan JSON, or ``{}`` without a breakout case.
+
+    The scene's :meth:`~liftplan.model.water.breakout.BreakoutLoad.to_json` with ``point`` in
+    the planning file's frame, then per crane of the chosen set its breakout tension, hook
+    load, chart SWL, box worst and which of the two is the chain's static input, the breakout
+    checks, and each ranked set's tensions.
+    """
+    design = plan.design_loads
+    case = design.breakout
+    if case is None:
+        return {}
+    out = case.load.to_json()
+    out["point"] = list(plan.in_file_frame(case.load.point))
+    out["frame"] = plan.frame
+    out["scene"] = plan.problem.breakout_scene.name
+    out["tensions"] = dict(zip(plan.labels, case.tensions.tolist()))
+    out["cranes"] = [
+        {
+            "lug": c.label,
+            "candidate": c.lug,
+            "crane": c.crane,
+            "tension": c.breakout,
+            "rigging": float(r),
+            "hook_load": float(h),
+            "swl": c.swl,
+            "hook_shift": float(d),
+            "box_worst": max(c.worst, c.nominal),
+            "static_input": c.static_input,
+            "governs": c.governs,
+            "note": c.static_note,
+        }
+        for c, r, h, d in zip(design.cranes, case.rigging, case.hook_loads, case.hook_shift)
+    ]
+    out["checks"] = [c.to_json() for c in case.checks]
+    out["ok"] = case.ok
+    out["ranking"] = [
+        {
+            "lugs": list(d.breakout.lugs),
+            "cranes": list(d.breakout.cranes),
+            "tensions": d.breakout.tensions.tolist(),
+            "ok": d.breakout.ok,
+        }
+        for d in plan.ranked_design
+    ]
+    return {"breakout": out}

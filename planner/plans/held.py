@@ -1,0 +1,643 @@
+"""The held-preload plan: single ropes, a level preload the crews dial in (``plan_held``).
+
+A :class:`Plan` holds the chosen lug set (labelled L1..Ln), the boom heights that dial in
+its level preload, the ranking of the best sets, and what an engineer hands over with it:
+each crane's design load by the rules' chain (:mod:`.design_loads`, ``docs/design-loads.md``)
+against its chart SWL, skew load factors from the hook-height tolerance, and the operators'
+guidance table (tension change per step of heel and of trim). Coordinates a person reads
+(JSON, console, report) are in the frame of the planning file (:meth:`Plan.in_file_frame`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.errors import PlanInfeasible
+from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
+from liftplan.planner.plans.breakout import breakout_json
+from liftplan.planner.plans.common import InFileFrame, contract_json
+from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
+from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
+from liftplan.planner.search.bounds import AdmissibleTensions
+from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
+from liftplan.planner.search.methods import search
+from liftplan.planner.search.scenarios import LugSet, Scenario
+
+#: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
+GUIDANCE_STEP = 5.0
+GUIDANCE_STEPS = 2
+
+#: One crane's loads against its chart (the README's ``p.capacity[0].utilisation``).
+CraneCapacity = CraneDesign
+
+
+@dataclass(frozen=True)
+class SkewLoad:
+    """Skew load factor of a rope or a diagonal pair from the hook-height tolerance.
+
+    Parameters
+    ----------
+    lugs : tuple of str
+        One label (a rope) or two (a diagonal pair).
+    nominal : float  [t]
+    skewed : float  [t]   largest load with every hook within +-hook_tolerance
+    """
+
+    lugs: tuple[str, ...]
+    nominal: float
+    skewed: float
+
+    @property
+    def factor(self):
+        """Skewed over nominal load  [-] (Noble Denton's default is 1.25)."""
+        return self.skewed / self.nominal
+
+
+@dataclass(frozen=True)
+class GuidanceStep:
+    """Tension change for one step of heel or trim (the 2003 paper's Table 3).
+
+    Parameters
+    ----------
+    angle : str  ``"heel"`` or ``"trim"``
+    start, end : float  [deg]
+    change : dict of str to float  [t]   by lug label
+    within_model : bool
+        False where a rope would go slack inside the step (the numbers then no longer hold).
+    """
+
+    angle: str
+    start: float
+    end: float
+    change: dict[str, float]
+    within_model: bool
+
+
+@dataclass(frozen=True)
+class CrewMargin:
+    """The plan held (lugs, boom heights) with the hooks worse than assumed.
+
+    Parameters
+    ----------
+    factor : float  [-]   the hook tolerance multiplied by this
+    tolerance : numpy.ndarray  [m]   each hook's tolerance at that factor
+    worst_spread : float  [t]   over the box, the CG envelope and the hook errors
+    rope_max : numpy.ndarray  [t]   each rope's largest tension
+    lowest : float  [t]   the lowest tension (below 0: a rope would go slack, the affine
+        form no longer holds, and the figures are only an estimate)
+    limit : numpy.ndarray  [t]   the search's limit of each rope (chart SWL / DAF, less
+        rigging, over contingency)
+    swl : numpy.ndarray  [t]
+    """
+
+    factor: float
+    tolerance: np.ndarray
+    worst_spread: float
+    rope_max: np.ndarray
+    lowest: float
+    limit: np.ndarray
+    swl: np.ndarray
+
+    @property
+    def within_limits(self):
+        """Every rope within its limit and above zero."""
+        return bool(np.all(self.rope_max <= self.limit + 1e-9) and self.lowest > 0.0)
+
+
+@dataclass(frozen=True)
+class Plan(InFileFrame):
+    """A lift plan: chosen lugs, boom heights and the checks that go with them.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    ranking : list of SetResult
+        Best first; ``ranking[0]`` is the plan.
+    stats : SearchStats
+    lengths : LengthSearch or None
+        How the rope lengths were chosen (:mod:`liftplan.planner.plans.lengths`); None when every
+        crane's length was given. With it, ``problem`` is the problem at the chosen lengths.
+    """
+
+    problem: PlanProblem
+    ranking: list[SetResult]
+    stats: SearchStats
+    lengths: object = None
+
+    # -- the chosen set ------------------------------------------------------------------
+    @property
+    def kind(self):
+        """``"lengths"`` when the rope lengths were chosen too, else ``"held"``."""
+        return "lengths" if self.lengths is not None else "held"
+
+    @property
+    def chosen(self):
+        return self.ranking[0]
+
+    @cached_property
+    def labels(self):
+        """Planned lug labels L1..Ln, in candidate order."""
+        return tuple(f"L{i + 1}" for i in range(len(self.chosen.lugs)))
+
+    @property
+    def lugs(self):
+        """Planned label -> candidate name."""
+        return dict(zip(self.labels, self.chosen.lugs))
+
+    @property
+    def boom_heights(self):
+        """Planned label -> boom-tip height H  [m]."""
+        return dict(zip(self.labels, self.chosen.boom_heights.tolist()))
+
+    @property
+    def tensions(self):
+        """Planned label -> level tension with the nominal CG  [t]."""
+        return dict(zip(self.labels, self.chosen.preload.tolist()))
+
+    @property
+    def rope_lengths(self):
+        """Planned label -> unstretched rope length l0 of the crane on that lug  [m]."""
+        return {label: self.problem.fleet[j].rope_length for label, j in zip(self.labels, self.chosen.cranes)}
+
+    @property
+    def spread(self):
+        """Max - min of the level tensions  [t]."""
+        return float(np.ptp(self.chosen.preload))
+
+    @property
+    def worst_spread(self):
+        """Largest max - min tension over the tolerance box and CG envelope  [t]."""
+        return self.chosen.worst_spread
+
+    @property
+    def objective(self):
+        """``"spread"`` or ``"utilisation"``: what the plan keeps small."""
+        return self.problem.objective
+
+    @property
+    def cranes(self):
+        """Planned label -> name of the crane on that lug."""
+        return dict(zip(self.labels, self.chosen.crane_names))
+
+    @property
+    def radius(self):
+        """Planned label -> the crane's radius to its lug  [m]."""
+        return dict(zip(self.labels, self.chosen.radius.tolist()))
+
+    @property
+    def swl(self):
+        """Planned label -> the crane's SWL at that radius  [t]."""
+        return dict(zip(self.labels, self.chosen.swl.tolist()))
+
+    @property
+    def utilisation(self):
+        """Planned label -> nominal (level) tension over the crane's SWL there  [-]."""
+        return dict(zip(self.labels, (self.chosen.preload / self.chosen.swl).tolist()))
+
+    @property
+    def worst_utilisation_spread(self):
+        """Largest max - min of T_i / SWL_i over the tolerance box and CG envelope  [-]."""
+        return self.chosen.worst_utilisation_spread
+
+    @cached_property
+    def lugset(self):
+        return LugSet(self.problem, self.chosen.indices, self.chosen.cranes)
+
+    def tensions_at(self, heel, trim, cog_offset=(0.0, 0.0, 0.0)):
+        """Tensions with the plan's preload held, at many attitudes.
+
+        Parameters
+        ----------
+        heel, trim : array_like  [deg]
+        cog_offset : tuple of 3 float  [m]
+
+        Returns
+        -------
+        numpy.ndarray, shape (m, n)  [t]
+            Negative values mean the rope went slack (the linear model no longer holds).
+        """
+        heel, trim = np.broadcast_arrays(np.atleast_1d(heel), np.atleast_1d(trim))
+        scenarios = [Scenario(float(h), float(t), tuple(cog_offset)) for h, t in zip(heel, trim)]
+        return self.lugset.tensions(self.chosen.preload, scenarios)
+
+    @cached_property
+    def scene(self):
+        """The chosen plan as a :class:`~liftplan.model.scene.objects.Scene` for ``solve``.
+
+        Its ``elastic`` solve gives the plan's level tensions at the plan's lift height.
+        """
+        problem, chosen = self.problem, self.chosen
+        lugs = tuple(
+            Lug(name=label, at=tuple(problem.points[i])) for label, i in zip(self.labels, chosen.indices)
+        )
+        cranes = tuple(
+            Crane(
+                lug=label,
+                EA=problem.fleet[j].EA,
+                boom_height=float(h),
+                rope_length=problem.fleet[j].rope_length,
+                swl=float(swl),
+            )
+            for label, j, h, swl in zip(self.labels, chosen.cranes, chosen.boom_heights, chosen.swl)
+        )
+        return Scene(
+            body=problem.body,
+            lugs=lugs,
+            cranes=cranes,
+            attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
+            analysis=Analysis(model="elastic"),
+            name=f"{problem.name or 'plan'}: chosen lugs",
+        )
+
+    def cog_at(self, scenario):
+        """The CG position of a scenario (nominal CG + its offset) in the file's frame  [m]."""
+        cog = np.asarray(self.problem.body.cog) + np.asarray(scenario.cog_offset)
+        return self.in_file_frame(cog)
+
+    def scenario_json(self, scenario):
+        """A scenario as JSON: heel, trim [deg], CG offset and CG position [m] in the file's frame."""
+        return {
+            "heel": scenario.heel,
+            "trim": scenario.trim,
+            "cog_offset": list(self.in_file_frame(scenario.cog_offset)),
+            "cog": list(self.cog_at(scenario)),
+            "frame": self.frame,
+        }
+
+    # -- checks to hand over ------------------------------------------------------------
+    @cached_property
+    def _twist_gain(self):
+        return self.lugset.twist_gain(self.chosen.preload)
+
+    @cached_property
+    def _design_builder(self):
+        return DesignBuilder(self.problem)
+
+    @cached_property
+    def design_loads(self):
+        """The rules' design loads of the chosen set (:class:`~.design_loads.DesignLoads`)."""
+        return self._design_builder.build(self.chosen, self.labels)
+
+    @cached_property
+    def ranked_design(self):
+        """The same design loads for every ranked set, best first (``ranked_design[0]`` is
+        :attr:`design_loads`)."""
+        return [self.design_loads] + [self._design_builder.build(r, self.labels) for r in self.ranking[1:]]
+
+    @property
+    def capacity(self):
+        """Per crane (L1..Ln): static loads, where they occur, and the design hook load against
+        the chart SWL (:class:`~.design_loads.CraneDesign`; ``utilisation`` = design / SWL)."""
+        return list(self.design_loads.cranes)
+
+    @cached_property
+    def checks(self):
+        """Every check of the plan that can fail, as :class:`~liftplan.model.checks.Check`.
+
+        The rules' chain: per crane the design hook load against the chart SWL at its radius
+        and the crane code's margin over the calculated share, per lug with a ``capacity`` its
+        design load, with a breakout case each crane's breakout hook load; per plan: the lowest
+        tension in the box against min_tension.
+        """
+        out = list(self.design_loads.checks)
+        out.append(
+            Check.lower(
+                "min_tension",
+                "all ropes",
+                self.chosen.tension_range[0],
+                self.problem.min_tension,
+                "t",
+                note="lowest tension in the box",
+            )
+        )
+        return out
+
+    @cached_property
+    def skew(self):
+        """Skew loads: each rope, and for four lugs each diagonal pair (plan order)."""
+        delta = self.problem.hook_tolerance
+        gain, preload = self._twist_gain, self.chosen.preload
+        skewed = rope_skew(self.lugset, preload, delta)
+        out = [SkewLoad((label,), float(t), float(ts)) for label, t, ts in zip(self.labels, preload, skewed)]
+        for i, j in self.diagonals:
+            out.append(
+                SkewLoad(
+                    (self.labels[i], self.labels[j]),
+                    float(preload[i] + preload[j]),
+                    float(preload[i] + preload[j] + delta * np.abs(gain[i] + gain[j]).sum()),
+                )
+            )
+        return out
+
+    @cached_property
+    def hook_sensitivity(self):
+        """dT_i / dH_j at level, nominal CG, the pose held  [t per cm]: what a load-cell
+        watcher sees for each centimetre of one hook off its height, (n, n), row = rope."""
+        return self._twist_gain / 100.0
+
+    @cached_property
+    def twist_stiffness(self):
+        """Largest tension change of any rope per centimetre of every hook off its height in
+        the worst combination (the hooks' errors all 1 cm, signs the worst)  [t/cm]."""
+        return float(np.abs(self.hook_sensitivity).sum(axis=1).max())
+
+    @cached_property
+    def _dense_held(self):
+        """Tensions and dT/dH with the preload held on the search's dense grid of the box for
+        every CG vertex (the design loads' grid): (m, n) [t], (m, n, n) [t/m]."""
+        return self.lugset.tensions_and_gain(self.chosen.preload, self._design_builder.dense)
+
+    def crew_margin(self, factors=(1.0, 2.0, 5.0)):
+        """The plan as it stands (lugs, boom heights, preload) with the hook tolerance
+        multiplied by each factor: what a crew worse than assumed would see.
+
+        Returns
+        -------
+        list of CrewMargin
+        """
+        tensions, gain = self._dense_held
+        out = []
+        for factor in factors:
+            delta = self.lugset.hook_tolerance * factor
+            _, low, high, spread, _ = robust(tensions, gain, self.lugset, delta)
+            out.append(
+                CrewMargin(
+                    factor=float(factor),
+                    tolerance=delta,
+                    worst_spread=float(spread.max()),
+                    rope_max=high.max(axis=0),
+                    lowest=float(low.min()),
+                    limit=self.lugset.limit,
+                    swl=self.lugset.swl,
+                )
+            )
+        return out
+
+    @cached_property
+    def hook_accuracy_needed(self):
+        """The largest hook-height error (the same on every hook) the plan holds with every
+        rope within its limits and above zero, its preload held  [m]; inf when no hook
+        error can break it (to 10 m)."""
+        problem = self.problem
+        tensions, gain = self._dense_held
+        reach = np.abs(gain).sum(axis=2)  # per 1 m of error on every hook, the worst signs
+        limit = self.lugset.limit
+        low = problem.min_tension
+        # each constraint T + reach e <= limit and T - reach e >= low is linear in e
+        with np.errstate(divide="ignore", invalid="ignore"):
+            up = np.where(reach > 0, (limit - tensions) / reach, np.inf)
+            down = np.where(reach > 0, (tensions - max(low, 0.0)) / reach, np.inf)
+        value = float(min(up.min(), down.min()))
+        return value if value < 10.0 else float("inf")
+
+    @cached_property
+    def diagonals(self):
+        """Index pairs of the diagonals of a four-lug plan (lugs ordered round the CG)."""
+        if len(self.labels) != 4:
+            return []
+        plan = self.lugset.points[:, :2] - np.array(self.problem.body.cog[:2])
+        order = np.argsort(np.arctan2(plan[:, 1], plan[:, 0]))
+        return [tuple(sorted((int(order[0]), int(order[2])))), tuple(sorted((int(order[1]), int(order[3]))))]
+
+    @cached_property
+    def admissible(self):
+        """Convex sub-study at level and at the box corners (nominal CG): for each, the
+        bounds of every tension over all statically admissible sets within
+        [min_tension, SWL], and the least spread any of them achieves.
+
+        Returns
+        -------
+        list of (Scenario, TensionBounds or None)
+            None where no admissible set exists at that attitude.
+        """
+        problem = self.problem
+        lp = AdmissibleTensions(len(self.labels))
+        lower = np.full(len(self.labels), problem.min_tension)
+        upper = np.asarray(self.chosen.swl, dtype=float)
+        out = []
+        for heel, trim in [(0.0, 0.0)] + [(h, t) for h in (-1, 1) for t in (-1, 1)]:
+            scenario = Scenario(heel * problem.heel_tolerance + 0.0, trim * problem.trim_tolerance + 0.0)
+            a_mat, b_vec = self.lugset.statics_at(scenario)
+            try:
+                out.append((scenario, lp.bounds(a_mat, b_vec, lower, upper)))
+            except PlanInfeasible:
+                out.append((scenario, None))
+        return out
+
+    @property
+    def default_skew_factor(self):
+        return DEFAULT_SKEW_FACTOR
+
+    @cached_property
+    def guidance(self):
+        """Tension change per :data:`GUIDANCE_STEP` of heel (trim 0) and of trim (heel 0)."""
+        edges = GUIDANCE_STEP * np.arange(-GUIDANCE_STEPS, GUIDANCE_STEPS + 1)
+        fine = np.linspace(edges[0], edges[-1], 8 * len(edges) + 1)
+        rows = []
+        for angle in ("heel", "trim"):
+            heel, trim = (edges, 0 * edges) if angle == "heel" else (0 * edges, edges)
+            tensions = self.tensions_at(heel, trim)
+            heel_f, trim_f = (fine, 0 * fine) if angle == "heel" else (0 * fine, fine)
+            slack_at = fine[np.any(self.tensions_at(heel_f, trim_f) < 0.0, axis=1)]
+            for k in range(len(edges) - 1):
+                lo, hi = edges[k], edges[k + 1]
+                rows.append(
+                    GuidanceStep(
+                        angle=angle,
+                        start=float(lo),
+                        end=float(hi),
+                        change=dict(zip(self.labels, (tensions[k + 1] - tensions[k]).tolist())),
+                        within_model=not np.any((slack_at >= lo) & (slack_at <= hi)),
+                    )
+                )
+        return rows
+
+    def spread_map(self, count=41, utilisation=False, largest=False):
+        """Spread over a heel x trim grid, worst over the CG envelope (hooks as planned).
+
+        Parameters
+        ----------
+        count : int
+        utilisation : bool
+            Map max - min of T_i / SWL_i instead of the tension spread.
+        largest : bool
+            Map the largest T_i / SWL_i instead (the ``reserve`` objective).
+
+        Returns
+        -------
+        heel : (count,)  [deg]
+        trim : (count,)  [deg]
+        spread : (count, count)  [t or -], indexed [heel, trim]
+        """
+        heel = np.linspace(-self.problem.heel_tolerance, self.problem.heel_tolerance, count)
+        trim = np.linspace(-self.problem.trim_tolerance, self.problem.trim_tolerance, count)
+        hh, tt = np.meshgrid(heel, trim, indexing="ij")
+        spread = np.zeros(hh.size)
+        for offset in self.problem.cog_envelope.offsets():
+            tensions = self.tensions_at(hh.ravel(), tt.ravel(), offset)
+            if utilisation or largest:
+                tensions = tensions / self.chosen.swl
+            values = tensions.max(axis=1) if largest else np.ptp(tensions, axis=1)
+            spread = np.maximum(spread, values)
+        return heel, trim, spread.reshape(hh.shape)
+
+    # -- output -------------------------------------------------------------------------
+    def to_json(self):
+        """The JSON object of ``liftplan plan --json`` (keys fixed by CONTRACT.md first).
+
+        ``utilisation`` is the contract's nominal T / SWL; the plan's design utilisation
+        (design hook load / chart SWL) is ``capacity[].utilisation`` and
+        ``design_loads.cranes[].utilisation``. Coordinates are in the file's ``frame``.
+        """
+        design = self.design_loads
+        return (
+            contract_json(self)
+            | {
+                "ranking": [self._ranking_entry(r, d) for r, d in zip(self.ranking, self.ranked_design)],
+                "frame": self.frame,
+                "worst_attitude": self.scenario_json(self.chosen.worst),
+                "bound": self.chosen.bound,
+                "capacity": [self._capacity_entry(c) for c in self.capacity],
+                "design_loads": design.to_json(),
+                "skew": [
+                    {"lugs": list(s.lugs), "nominal": s.nominal, "skewed": s.skewed, "factor": s.factor}
+                    for s in self.skew
+                ],
+                "guidance": [
+                    {
+                        "angle": g.angle,
+                        "from": g.start,
+                        "to": g.end,
+                        "change": g.change,
+                        "within_model": g.within_model,
+                    }
+                    for g in self.guidance
+                ],
+                "hooks": {
+                    "tolerance": dict(zip(self.labels, self.lugset.hook_tolerance.tolist())),
+                    "accuracy_needed": (
+                        self.hook_accuracy_needed if np.isfinite(self.hook_accuracy_needed) else None
+                    ),
+                    "twist_stiffness": self.twist_stiffness,
+                    "per_cm": {
+                        a: dict(zip(self.labels, row.tolist()))
+                        for a, row in zip(self.labels, self.hook_sensitivity)
+                    },
+                },
+                "lower_bound": self.stats.lower_bound,
+                "gap": self.stats.gap,
+                "relative_gap": self.stats.relative_gap,
+                "search": {
+                    "sets": self.stats.sets,
+                    "rows": self.stats.rows,
+                    "stopped": self.stats.stopped,
+                    "method": self.stats.method,
+                    "out_of_reach": self.stats.out_of_reach,
+                    "screened_out": self.stats.screened_out,
+                    "evaluated": self.stats.evaluated,
+                    "pruned": self.stats.pruned,
+                    "infeasible": self.stats.infeasible,
+                    "seconds": self.stats.seconds,
+                },
+                "checks": [c.to_json() for c in self.checks],
+            }
+            | (
+                {}
+                if self.lengths is None
+                else {"rope_lengths": self.rope_lengths, "rope_length_search": self.lengths.to_json()}
+            )
+            | breakout_json(self)
+        )
+
+    def _capacity_entry(self, c):
+        tilt = None
+        if c.tilt is not None:
+            tilt = {
+                "load": c.tilt.load,
+                "tilt": c.tilt.tilt,
+                "axis": list(self.in_file_frame(c.tilt.axis)),
+                "cog_offset": list(self.in_file_frame(c.tilt.cog_offset)),
+                "cog": list(self.cog_at(Scenario(0.0, 0.0, c.tilt.cog_offset))),
+                "frame": self.frame,
+            }
+        ok = (
+            c.design is not None
+            and c.design.check.ok
+            and (c.design.code_margin is None or c.design.code_margin.ok)
+        )
+        return {
+            "lug": c.label,
+            "candidate": c.lug,
+            "crane": c.crane,
+            "radius": c.radius,
+            "swl": c.swl,
+            "nominal": c.nominal,
+            "worst": c.worst,
+            "worst_at": self.scenario_json(c.worst_at),
+            "tilt_share": c.tilt.load if c.tilt is not None else None,
+            "tilt_at": tilt,
+            "skewed": c.skewed,
+            "skew": c.skew,
+            "design_hook_load": c.design_hook_load if c.design is not None else None,
+            "utilisation": c.utilisation if c.design is not None else None,
+            "ok": ok,
+        }
+
+    def _ranking_entry(self, result, design):
+        return {
+            "lugs": list(result.lugs),
+            "cranes": list(result.crane_names),
+            "nominal_spread": result.nominal_spread,
+            "worst_spread": result.worst_spread,
+            "worst_utilisation_spread": result.worst_utilisation_spread,
+            "worst_attitude": self.scenario_json(result.worst),
+            "bound": result.bound,
+            "highest_in_box_load_over_swl": result.max_utilisation,
+            "design_utilisation": design.max_utilisation if design.chain is not None else None,
+            "design_ok": design.ok,
+            "boom_heights": result.boom_heights.tolist(),
+            "preload": result.preload.tolist(),
+            "twist_stiffness": _twist_stiffness(self.problem, result),
+            "converged": result.converged,
+        }
+
+
+def _twist_stiffness(problem, result):
+    """A ranked set's largest tension change per cm of every hook off (worst signs)  [t/cm]."""
+    gain = LugSet(problem, result.indices, result.cranes).twist_gain(result.preload)
+    return float(np.abs(gain).sum(axis=1).max() / 100.0)
+
+
+def plan_held(problem, top=None):
+    """Plan a lift on single ropes with a held level preload: lugs among the candidates (and
+    the crane on each, for a fleet) and boom heights, by the search ``problem.search`` names.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    top : int, optional
+        How many lug sets to rank (default ``problem.top``).
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    PlanInfeasible
+        No lug set can hold the body within the tolerances and limits; the message names
+        the causes and how many sets each ruled out.
+    Interrupted
+        Ctrl-C: ``plan`` holds the best plan found so far (None when none was).
+    """
+    try:
+        ranking, stats = search(problem, top)
+    except Interrupted as stop:
+        if stop.ranking:
+            stop.plan = Plan(problem=problem, ranking=stop.ranking, stats=stop.stats)
+        raise
+    return Plan(problem=problem, ranking=ranking, stats=stats)

@@ -1,0 +1,262 @@
+"""The planner choosing rope lengths (payout) within each crane's range (issue 16, item 2).
+
+A longer rope is softer: the twist stiffness (t per cm of diagonal hook error), and with it
+the spread a hook-height tolerance adds, falls as EA / l0; but every metre of payout is a
+metre more boom height, and the boom range ends somewhere. A crane given
+``rope_length = { min, max }`` lets the planner choose.
+
+Method: an outer search over lengths around the exact lug search. Each trial copies the
+problem with fixed lengths and calls :func:`liftplan.planner.plan.plan` on it, which is
+exact and certified for those lengths (lugs, crane assignment, preload). The cranes of one
+class (interchangeable: :func:`~liftplan.planner.problem.fleet.crane_classes`) share one
+length: that keeps them interchangeable, so the inner search still enumerates one crane
+assignment per lug set instead of every permutation (24 x the rows for four equal cranes).
+
+The trials: :data:`LENGTH_STEPS` evenly spaced lengths per class with a range (ends
+included; fewer when several classes have ranges, at most :data:`MAX_GRID` combinations),
+then :data:`REFINE_ROUNDS` rounds that halve the step about the best trial, one class at a
+time. On the tanker (one class, 25 to 55 m, boom tips at most 60 m) the worst spread falls
+monotonically with the length until the boom range makes the plan infeasible, so the
+choice is the longest payout the boom range allows, which the halvings place to within
+1/16 of the range. The plan's certified lower bound is the least of the trials' bounds:
+certified over the lengths tried, not over the continuous range between them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.plans.held import plan_held
+
+LENGTH_STEPS = 5
+#: Largest number of length combinations in the first pass (several classes with ranges).
+MAX_GRID = 27
+#: Halvings of the step about the best trial, per class.
+REFINE_ROUNDS = 2
+
+
+@dataclass(frozen=True)
+class LengthTrial:
+    """One set of lengths tried.
+
+    Parameters
+    ----------
+    lengths : tuple of float  [m]
+        One length per varying crane class (:attr:`LengthSearch.classes` order).
+    value : float or None  [t or -]
+        The plan's worst value of the objective at these lengths; None: no feasible plan.
+    lower_bound : float  [t or -]
+        The inner search's certified bound (inf when infeasible).
+    lugs : tuple of str
+        The lugs chosen at these lengths (empty when infeasible).
+    reason : str
+        Why no plan exists at these lengths ("" when one does).
+    """
+
+    lengths: tuple[float, ...]
+    value: float | None
+    lower_bound: float
+    lugs: tuple[str, ...] = ()
+    reason: str = ""
+
+
+@dataclass(frozen=True)
+class LengthSearch:
+    """How the rope lengths were chosen.
+
+    Parameters
+    ----------
+    classes : tuple of tuple of str
+        Names of the cranes that share each chosen length (one class each).
+    ranges : tuple of (float, float)  [m]
+        Each class's payout range.
+    trials : tuple of LengthTrial
+        Every length set tried, in the order tried.
+    chosen : tuple of float  [m]
+        The lengths of the plan.
+    """
+
+    classes: tuple[tuple[str, ...], ...]
+    ranges: tuple[tuple[float, float], ...]
+    trials: tuple[LengthTrial, ...]
+    chosen: tuple[float, ...]
+
+    @property
+    def lower_bound(self):
+        """Least certified bound over the lengths tried  [t or -]."""
+        return min(t.lower_bound for t in self.trials)
+
+    def to_json(self):
+        return {
+            "classes": [
+                {"cranes": list(names), "min": lo, "max": hi, "chosen": length}
+                for names, (lo, hi), length in zip(self.classes, self.ranges, self.chosen)
+            ],
+            "trials": [
+                {"lengths": list(t.lengths), "worst": t.value, "lugs": list(t.lugs), "reason": t.reason}
+                for t in self.trials
+            ],
+        }
+
+
+def varying_classes(problem):
+    """Crane classes whose cranes have a length range, as tuples of fleet indices."""
+    return tuple(
+        group for group in problem.crane_classes if problem.fleet[group[0]].rope_length_range is not None
+    )
+
+
+def with_lengths(problem, classes, lengths):
+    """A copy of the problem with each class's cranes at a fixed rope length.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    classes : tuple of tuple of int
+        Fleet indices per class.
+    lengths : sequence of float  [m]
+        One per class.
+
+    Returns
+    -------
+    PlanProblem
+        No ranges left; the objective is the original problem's (cranes of different
+        lengths would otherwise make a default objective change to ``utilisation``).
+    """
+    fleet = list(problem.fleet)
+    for group, length in zip(classes, lengths):
+        for j in group:
+            fleet[j] = dataclasses.replace(
+                fleet[j], rope_length=float(length), rope_length_range=None, from_defaults=False
+            )
+    crane = problem.crane
+    if crane is not None and crane.rope_length_range is not None:
+        low, high = crane.rope_length_range
+        crane = dataclasses.replace(crane, rope_length=high, rope_length_range=None)
+    return dataclasses.replace(problem, fleet=tuple(fleet), crane=crane, objective=problem.objective)
+
+
+def first_pass(ranges):
+    """The first pass's lengths per class  [m] (see the module docstring)."""
+    varying = sum(1 for lo, hi in ranges if hi > lo)
+    steps = LENGTH_STEPS
+    while varying and steps > 2 and steps**varying > MAX_GRID:
+        steps -= 1
+    return [np.linspace(lo, hi, steps) if hi > lo else np.array([lo]) for lo, hi in ranges]
+
+
+def plan_lengths(problem, top=None):
+    """Plan lugs, boom heights and rope lengths (cranes with a ``rope_length`` range).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        At least one crane with ``rope_length_range``.
+    top : int, optional
+
+    Returns
+    -------
+    Plan
+        Planned at the chosen lengths (its ``problem`` is the copy with them fixed, so its
+        scene, boom heights and design loads follow), with ``lengths`` the
+        :class:`LengthSearch` and ``stats`` over every trial (the lower bound the least of
+        theirs, the sets evaluated and seconds summed).
+
+    Raises
+    ------
+    PlanInfeasible
+        No length tried gives a feasible plan (the reason at the longest lengths).
+    """
+
+    start = time.perf_counter()
+    classes = varying_classes(problem)
+    ranges = tuple(problem.fleet[g[0]].rope_length_range for g in classes)
+    results = {}
+    trials = []
+
+    def run(lengths):
+        key = tuple(round(float(v), 9) for v in lengths)
+        if key in results:
+            return results[key]
+        try:
+            result = plan_held(with_lengths(problem, classes, key), top)
+        except PlanInfeasible as err:
+            result = None
+            trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
+        else:
+            trials.append(
+                LengthTrial(
+                    key,
+                    float(result.chosen.worst_value),
+                    float(result.stats.lower_bound),
+                    tuple(result.chosen.lugs),
+                )
+            )
+        results[key] = result
+        return result
+
+    def value(key):
+        result = results[key]
+        return math.inf if result is None else float(result.chosen.worst_value)
+
+    grids = first_pass(ranges)
+    for lengths in _product(grids):
+        run(lengths)
+    best = min(results, key=value)  # first (shortest) of equals: dicts keep insertion order
+    steps = [(hi - lo) / max(len(g) - 1, 1) for (lo, hi), g in zip(ranges, grids)]
+    for _ in range(REFINE_ROUNDS):
+        for i, (lo, hi) in enumerate(ranges):
+            steps[i] /= 2.0
+            if steps[i] <= 0.0:
+                continue
+            for sign in (-1.0, 1.0):
+                trial = list(best)
+                trial[i] = best[i] + sign * steps[i]
+                if lo - 1e-9 <= trial[i] <= hi + 1e-9:
+                    run(trial)
+            best = min(results, key=value)
+    chosen = results[best]
+    if chosen is None:
+        longest = max(trials, key=lambda t: sum(t.lengths))
+        raise PlanInfeasible(
+            f"rope lengths: no feasible plan at any of {len(trials)} length sets tried within "
+            f"{_ranges_text(problem, classes, ranges)}; at the longest ({_lengths_text(longest.lengths)}): "
+            f"{longest.reason}"
+        )
+    search = LengthSearch(
+        classes=tuple(tuple(problem.fleet[j].name for j in g) for g in classes),
+        ranges=ranges,
+        trials=tuple(trials),
+        chosen=best,
+    )
+    finished = [r for r in results.values() if r is not None]
+    stats = dataclasses.replace(
+        chosen.stats,
+        lower_bound=min(search.lower_bound, chosen.stats.lower_bound),
+        evaluated=sum(r.stats.evaluated for r in finished),
+        seconds=time.perf_counter() - start,
+    )
+    return dataclasses.replace(chosen, stats=stats, lengths=search)
+
+
+def _product(grids):
+    import itertools
+
+    return [tuple(float(v) for v in combo) for combo in itertools.product(*grids)]
+
+
+def _lengths_text(lengths):
+    return ", ".join(f"{v:.2f} m" for v in lengths)
+
+
+def _ranges_text(problem, classes, ranges):
+    return "; ".join(
+        f"{', '.join(problem.fleet[j].name for j in g)} {lo:g} to {hi:g} m"
+        for g, (lo, hi) in zip(classes, ranges)
+    )

@@ -1,0 +1,416 @@
+"""Three or more cranes on slings: each hook a lift point of the held-preload search.
+
+The held-preload search (:mod:`liftplan.planner.search`) plans a vertical hoist line above each
+lift point. A sling's hook is such a point:
+
+* a 3-leg sling of given leg lengths fixes its apex to the body (trilateration), and so does a
+  4-leg sling whose legs all reach one apex as made (:mod:`.geometry`): a **body-fixed** point;
+* a 2-leg sling, and a spreader bar that spans its pair (bottom legs parallel and vertical),
+  swing freely about the lug pair: under the vertical hoist line the hook hangs in the vertical
+  plane through the pair whatever the body's attitude (hook = A' + c e_z + s u + h n). That is
+  a **hinged** lift point, which the one casadi model poses exactly
+  (:class:`~liftplan.model.statics.model.HingedRopeModel`); the derived problem carries each rig's
+  hinge (``PlanProblem.hinges``) and the search uses the hinged model throughout.
+
+So:
+
+1. every rig the slings can take (:func:`.rigs.crane_rigs`) becomes a candidate lift point at
+   its hook at level (named ``LUG+LUG+...``);
+2. a derived :class:`PlanProblem` on those hooks, the same cranes without slings (each hoist
+   rope now ends at its hook; reach and chart SWL at the hook's radius; a spreader bar's weight
+   as rigging on its hook), is searched by the public
+   :func:`~liftplan.planner.search.methods.search` (sets x crane assignments, exact, certified
+   gap);
+3. sets whose slings would **share a lug** are dropped from the ranking: the search is asked for
+   a longer ranking (x 4 each round) until ``top`` sets with disjoint slings are found or the
+   ranking runs out. The search's ranking is exact to its length, so the first disjoint set in
+   it is the best disjoint set; its certified lower bound holds over all sets, so also over the
+   disjoint ones;
+4. mapped back: which crane takes which lugs, hook loads (a bar's weight added), each leg's
+   tension (each sling's statics under the hook load along the world vertical, the hook where
+   the rig puts it at each attitude, over the tolerance box and the CG envelope), sling angles
+   and the rules' lug design loads.
+
+All slings must be the same (leg count, length, spreader): any crane may take any rig. A
+spreader on three cranes or more takes only pairs it spans (lug spacing = bar length to 1 mm):
+a bar of another length is a trapezoid linkage whose sway changes with the tilt, which the held
+model does not pose; those pairs are counted as ruled out (two cranes plan any pair).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.errors import InvalidScene, PlanInfeasible
+from liftplan.model.frames import rotation_matrix
+from liftplan.planner.plans.held import Plan
+from liftplan.planner.plans.slings.geometry import hinge_rows, hinged_hooks, leg_split, parallel_spreader_legs
+from liftplan.planner.plans.slings.lift import SlingLift, rules_with_bars
+from liftplan.planner.plans.slings.rigs import crane_rigs
+from liftplan.planner.problem.definition import Candidate
+from liftplan.planner.search.evaluator import Interrupted
+from liftplan.planner.search.methods import search
+
+#: Heel x trim points per axis of the grid the leg tensions are taken over (with the CG vertices).
+LEG_GRID = 9
+
+
+def apex_problem(problem):
+    """The derived problem whose candidates are the slings' hooks.
+
+    Returns
+    -------
+    derived : PlanProblem
+        With ``hinges`` when the slings hinge about their pairs (2 legs, spreader bars).
+    rigs : Rigs
+        Candidate j of ``derived`` is rig j (its lugs ``rigs.lugs[j]``).
+    """
+
+    fleet = problem.fleet
+    first = fleet[0].sling
+    for crane in fleet:
+        sling = crane.sling
+        if (sling.legs, sling.length, sling.spreader) != (first.legs, first.length, first.spreader):
+            bar = "" if first.spreader is None else " and spreader"
+            raise InvalidScene(
+                f"cranes[{crane.name}].sling = {{ legs = {sling.legs}, length = {sling.length:g} }}: "
+                f"expected the same legs{bar} and length on every crane ({first.legs} legs of "
+                f"{first.length:g} m on {fleet[0].name}); any crane may take any rig"
+            )
+    hinged = not first.body_fixed
+    rigs = crane_rigs(problem, fleet[0], problem.body.weight / len(fleet), parallel=hinged)
+    what = "spreader" if first.spreader is not None else f"{first.legs}-leg sling"
+    if len(rigs) < len(fleet):
+        causes = "; ".join(f"{n} {text}" for text, n in rigs.ruled_out.items())
+        raise PlanInfeasible(
+            f"{len(rigs)} {what} rigs among {len(problem.candidates)} "
+            f"candidates for {len(fleet)} cranes "
+            f"({causes or 'no tuples on adjacent groups'})"
+        )
+    names = problem.names
+    candidates = tuple(
+        Candidate(name="+".join(names[i] for i in lugs), at=tuple(map(float, hook)))
+        for lugs, hook in zip(rigs.lugs, rigs.hook)
+    )
+    bare = tuple(dataclasses.replace(c, sling=None) for c in fleet)
+    hinges = ()
+    if hinged:
+        bar = first.spreader
+        hinges = tuple(
+            map(
+                tuple,
+                hinge_rows(
+                    problem.points[rigs.lugs[:, 0]],
+                    problem.points[rigs.lugs[:, 1]],
+                    0.0 if bar is None else first.length,
+                    0.0 if bar is None else bar.weight,
+                ),
+            )
+        )
+    try:
+        derived = dataclasses.replace(
+            problem, candidates=candidates, fleet=bare, hinges=hinges, rules=rules_with_bars(problem)
+        )
+    except InvalidScene as err:
+        raise PlanInfeasible(f"the slings' {len(rigs)} hooks as lift points: {err}") from None
+    return derived, rigs
+
+
+def plan_apex_slings(problem, top=None):
+    """Plan three or more cranes on 3- or 4-leg slings (see the module docstring).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    top : int, optional
+
+    Returns
+    -------
+    ApexSlingPlan
+
+    Raises
+    ------
+    PlanInfeasible
+    """
+
+    top = top or problem.top
+    derived, rigs = apex_problem(problem)
+    ask, shared = max(top, 10), 0
+    while True:
+        try:
+            ranking, stats = search(derived, ask)
+        except Interrupted:
+            raise
+        keep = [r for r in ranking if _disjoint(rigs, r.indices)]
+        shared = len(ranking) - len(keep)
+        if len(keep) >= top or len(ranking) < ask or ask >= stats.rows:
+            break
+        ask *= 4
+    if not keep:
+        raise PlanInfeasible(
+            f"every feasible set of apexes shares a lug between two slings ({len(ranking)} sets ranked)"
+        )
+    inner = Plan(problem=derived, ranking=keep[:top], stats=stats)
+    ruled_out = {**rigs.ruled_out, "sets sharing a lug (dropped from the ranking)": shared}
+    return ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out)
+
+
+def _disjoint(rigs, indices):
+    lugs = np.concatenate([rigs.lugs[i] for i in indices])
+    return len(np.unique(lugs)) == len(lugs)
+
+
+@dataclass(frozen=True)
+class ApexSlingPlan(SlingLift):
+    """Three or more cranes on slings (3/4-leg apexes, or 2-leg slings / spreaders hinged
+    about their pairs).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        As the user wrote it (candidates are lugs).
+    inner : Plan
+        The held-preload plan on the apexes (``inner.problem`` is the derived problem).
+    rigs : Rigs
+        Rig j is the derived problem's candidate j.
+    ruled_out : dict of str to int
+    """
+
+    problem: object
+    inner: object
+    rigs: object
+    ruled_out: dict
+
+    @property
+    def lift_text(self):
+        return {
+            "fixed": "slings with body-fixed apexes",
+            "pair": "2-leg slings hinged about their lug pairs",
+            "spreader": "spreader bars hinged about their lug pairs",
+        }[self.rigs.kind]
+
+    @property
+    def lift_points_text(self):
+        """What the search's lift points are, for the console and the report."""
+        return (
+            "sling apexes (body-fixed lift points)"
+            if not self.hinged
+            else "sling hooks (lift points hinged about their lug pairs)"
+        )
+
+    @property
+    def method_text(self):
+        """How the plan's hook and leg loads were found, one sentence for the report."""
+        if not self.hinged:
+            return (
+                "Each 3/4-leg sling fixes its hook to the body (an apex); the hooks hold the level "
+                "preload over the tolerance box (the held-preload search on the apexes), and the "
+                "legs share each hook load by the apex's statics; checked on the rigging model with "
+                "free hooks and elastic legs."
+            )
+        rig = (
+            "2-leg sling"
+            if self.rigs.kind == "pair"
+            else "spreader bar (spanning its pair, bottom legs vertical)"
+        )
+        return (
+            f"Each {rig} swings about its lug pair, so its hook hangs in the vertical plane "
+            "through the pair at every heel and trim; the held-preload search poses the hooks so "
+            "(the hinged lift points of the one casadi model), the hooks hold the level preload "
+            "over the tolerance box, and each sling's legs carry its hook load by its statics at "
+            "each attitude; checked on the rigging model with free hooks and elastic legs."
+        )
+
+    @property
+    def hinged(self):
+        """True when the hooks swing about their lug pairs (2-leg slings, spreader bars)."""
+        return self.rigs.kind != "fixed"
+
+    @property
+    def objective(self):
+        return self.problem.objective
+
+    @property
+    def stats(self):
+        return self.inner.stats
+
+    @property
+    def ranking(self):
+        return self.inner.ranking
+
+    @cached_property
+    def _order(self):
+        """Position in the chosen set of each fleet crane."""
+        cranes = list(self.inner.chosen.cranes)
+        return [cranes.index(j) for j in range(len(self.problem.fleet))]
+
+    def _per_crane(self, values):
+        return np.asarray(values, dtype=float)[self._order]
+
+    @property
+    def groups(self):
+        chosen = self.inner.chosen
+        return tuple(tuple(int(v) for v in self.rigs.lugs[chosen.indices[k]]) for k in self._order)
+
+    @property
+    def hooks(self):
+        return self.rigs.hook[[self.inner.chosen.indices[k] for k in self._order]]
+
+    @property
+    def leg_angles(self):
+        return tuple(self.rigs.angles[self.inner.chosen.indices[k]] for k in self._order)
+
+    @property
+    def hook_radius(self):
+        return self._per_crane(self.inner.chosen.radius)
+
+    @property
+    def hook_swl(self):
+        return self._per_crane(self.inner.chosen.swl)
+
+    @property
+    def hook_nominal(self):
+        """Hook load at level, nominal CG: the body's share and a spreader bar  [t]."""
+        return self._per_crane(self.inner.chosen.preload) + self.bar_weights
+
+    @cached_property
+    def _design(self):
+        return self.inner.design_loads
+
+    @property
+    def hook_worst(self):
+        """Largest hook load over the box, the CG envelope and the hook errors  [t]."""
+        return self._per_crane([c.worst for c in self._design.cranes]) + self.bar_weights
+
+    @property
+    def tilt_shares(self):
+        return [
+            None if c.tilt is None else float(c.tilt.load)
+            for c in (self._design.cranes[k] for k in self._order)
+        ]
+
+    @property
+    def tilt_note(self):
+        return self._design.tilt_note
+
+    @property
+    def hook_skews(self):
+        return [self._design.cranes[k].skew for k in self._order]
+
+    @property
+    def top_legs(self):
+        """A spreader's two top legs at level, per crane  [t] (None without a bar)."""
+        return self._legs[3]
+
+    @property
+    def top_angles(self):
+        """A spreader's two top legs' angles from the horizontal at level  [deg]."""
+        if self.rigs.top_angles is None:
+            return (None,) * len(self.problem.fleet)
+        return tuple(self.rigs.top_angles[self.inner.chosen.indices[k]] for k in self._order)
+
+    @cached_property
+    def _legs(self):
+        """(level legs, worst legs, least leg, level top legs) per crane, from the hook loads on
+        the box grid: each sling's statics under its hook load along the world vertical, the
+        hook where the rig puts it at that attitude."""
+        problem = self.problem
+        heel = np.linspace(-problem.heel_tolerance, problem.heel_tolerance, LEG_GRID)
+        trim = np.linspace(-problem.trim_tolerance, problem.trim_tolerance, LEG_GRID)
+        hh, tt = (v.ravel() for v in np.meshgrid(heel, trim, indexing="ij"))
+        offsets = problem.cog_envelope.offsets()
+        shares = np.vstack([self.inner.tensions_at(hh, tt, tuple(o)) for o in offsets])[:, self._order]
+        rots = [rotation_matrix(h, t, problem.yaw) for h, t in zip(hh, tt)] * len(offsets)
+        level_rot = rotation_matrix(0.0, 0.0, problem.yaw)
+        level, worst, least, tops = [], [], [], []
+        for c in range(len(problem.fleet)):
+            hooks = shares[:, c] + self.bar_weights[c]
+
+            def split(load, rot, c=c):
+                return self.sling_legs(c, load, rot)
+
+            nominal, top = split(self.hook_nominal[c], level_rot)
+            grid = np.array([split(load, rot)[0] for load, rot in zip(hooks, rots)])
+            level.append(nominal)
+            tops.append(top)
+            # the hook errors raise the hook's worst above the grid's: the legs in proportion
+            ratio = max(1.0, self.hook_worst[c] / max(hooks.max(), 1e-12))
+            worst.append(grid.max(axis=0) * ratio)
+            least.append(float(grid.min()))
+        return tuple(level), tuple(worst), least, tuple(tops)
+
+    def sling_legs(self, c, load, rot):
+        """Crane c's lug legs (and a spreader's top legs, else None) under a vertical hook load
+        ``load`` [t] (the body's share and a bar) with the body at attitude ``rot`` (3 x 3)  [t].
+        """
+        crane = self.problem.fleet[c]
+        lugs = self.problem.points[list(self.groups[c])]
+        if not self.hinged:  # body-fixed apex: the load along the vertical seen from the body
+            stiff = np.full(len(lugs), crane.sling.EA / crane.sling.length)
+            return leg_split(self.hooks[c], lugs, load * (rot.T @ [0.0, 0.0, 1.0]), stiff), None
+        j = self.inner.chosen.indices[self._order[c]]
+        hook = hinged_hooks(self.inner.problem.hinge_rows[[j]], self.rigs.hook[[j]], rot)[0]
+        posed = lugs @ rot.T
+        bar = crane.sling.spreader
+        if bar is None:
+            return leg_split(hook, posed, (0.0, 0.0, load)), None
+        return parallel_spreader_legs(hook, posed, crane.sling.length, load, bar.weight)
+
+    @property
+    def legs_nominal(self):
+        return self._legs[0]
+
+    @property
+    def legs_worst(self):
+        return self._legs[1]
+
+    @property
+    def worst_utilisation_spread(self):
+        return float(self.inner.worst_utilisation_spread)
+
+    @cached_property
+    def checks(self):
+        """The rules' chain per crane and lug, sling angles, every leg taut over the box, and
+        agreement with the rigging model (1 % of W: the legs' stretch moves the apexes)."""
+        out = self._lift_checks()
+        for c, name in enumerate(self.crane_names):
+            out.append(
+                Check.lower(
+                    "leg_taut",
+                    name,
+                    self._legs[2][c],
+                    0.0,
+                    "t",
+                    note="least leg tension over the box and the CG envelope",
+                )
+            )
+        return out
+
+    def to_json(self):
+        stats = self.stats
+        return {
+            **self._lift_json(),
+            "lower_bound": stats.lower_bound,
+            "gap": stats.gap,
+            "search": {
+                "stopped": stats.stopped,
+                "rows": stats.rows,
+                "evaluated": stats.evaluated,
+                "apexes": len(self.rigs),
+            },
+            "ranking": [
+                {
+                    "lugs": [self.problem.names[i] for j in r.indices for i in self.rigs.lugs[j]],
+                    "cranes": list(r.crane_names),
+                    "worst": r.worst_value,
+                }
+                for r in self.ranking
+            ],
+            "ruled_out": self.ruled_out,
+            "checks": [c.to_json() for c in self.checks],
+        }

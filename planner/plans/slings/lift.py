@@ -1,0 +1,330 @@
+"""What every sling-lift plan has in common: labels, the rules' chain, checks and outputs.
+
+A sling plan (two cranes: :class:`~.two_crane.SlingPlan`; three or more with body-fixed apexes:
+:class:`~.apex.ApexSlingPlan`) gives per crane the candidates its sling takes, its hook (level,
+body frame), radius and chart SWL, hook loads and leg tensions. From those this base class
+builds the labels, the rules' design-load chain per crane and per lug (the leg's sling angle
+in the lug's design load; a spreader bar's weight as rigging on its hook), the checks, the
+rigging scene that ``liftplan solve`` re-checks, and the contract's JSON keys.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.errors import InvalidScene
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
+from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Scene
+from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.statics.rigging import solve_rigging
+from liftplan.planner.plans.common import InFileFrame, contract_json
+
+
+def bar_weight(crane):
+    """Weight of the spreader bar on ``crane``'s hook  [t] (0 without one)."""
+    sling = crane.sling
+    return 0.0 if sling is None or sling.spreader is None else sling.spreader.weight
+
+
+def rules_with_bars(problem):
+    """The problem's rules with each spreader bar's weight added to its crane's rigging weight."""
+    rules = problem.rules
+    if not any(bar_weight(c) for c in problem.fleet):
+        return rules
+    weights = {c.name: rules.rigging_for(c.name) + bar_weight(c) for c in problem.fleet}
+    return dataclasses.replace(rules, rigging_weight=weights)
+
+
+class SlingLift(InFileFrame):
+    """Shared outputs of a sling plan; subclasses set ``problem`` and the per-crane arrays.
+
+    Subclasses provide ``groups`` (candidate indices per crane), ``hooks`` (n, 3) [m],
+    ``hook_radius``, ``hook_swl``, ``hook_nominal``, ``hook_worst`` (n,) [m, t, t, t],
+    ``leg_angles``, ``legs_nominal``, ``legs_worst`` (tuples of (k,) arrays [deg, t, t]),
+    ``top_legs``/``top_angles`` (per crane, None without a spreader), ``tilt_shares`` and
+    ``tilt_note`` (each crane's body share at the rules' tilt) and ``lift_text``.
+    """
+
+    kind = "slings"
+
+    #: Agreement of the plan's hook loads with the rigging model, as a fraction of W.
+    AGREEMENT = 0.01
+
+    @property
+    def hook_skews(self):
+        """Computed skew factor per crane (None: the rules' default where it applies)."""
+        return [None] * len(self.problem.fleet)
+
+    @property
+    def crane_names(self):
+        return [c.name for c in self.problem.fleet]
+
+    @cached_property
+    def labels(self):
+        """Planned lug labels L1, L2, ...: crane 1's lugs, then crane 2's, ..."""
+        count = sum(len(g) for g in self.groups)
+        return tuple(f"L{i + 1}" for i in range(count))
+
+    def _per_lug(self, per_crane_arrays):
+        values = [float(v) for arr in per_crane_arrays for v in np.ravel(arr)]
+        return dict(zip(self.labels, values))
+
+    def _repeat(self, per_crane):
+        return self._per_lug([np.full(len(g), v) for g, v in zip(self.groups, per_crane)])
+
+    @property
+    def lugs(self):
+        names = self.problem.names
+        return dict(zip(self.labels, [names[i] for g in self.groups for i in g]))
+
+    @property
+    def cranes(self):
+        """Planned label -> the crane whose sling takes that lug."""
+        names = self.crane_names
+        return dict(zip(self.labels, [names[c] for c, g in enumerate(self.groups) for _ in g]))
+
+    @cached_property
+    def bar_weights(self):
+
+        return np.array([bar_weight(c) for c in self.problem.fleet])
+
+    @cached_property
+    def hook_heights(self):
+        """Hook height above the datum at level, per crane  [m]."""
+        return self.problem.lift_height + np.asarray(self.hooks)[:, 2]
+
+    @cached_property
+    def crane_boom_heights(self):
+        """Boom-tip height H per crane: hook height + hoist rope l0 + its stretch  [m]."""
+        fleet = self.problem.fleet
+        return np.array(
+            [
+                self.hook_heights[c] + fleet[c].rope_length + self.hook_nominal[c] / fleet[c].stiffness
+                for c in range(len(fleet))
+            ]
+        )
+
+    @property
+    def boom_heights(self):
+        return self._repeat(self.crane_boom_heights)
+
+    @property
+    def tensions(self):
+        """Planned label -> leg tension at level, nominal CG  [t]."""
+        return self._per_lug(self.legs_nominal)
+
+    @property
+    def spread(self):
+        return float(np.ptp(np.concatenate(self.legs_nominal)))
+
+    @property
+    def worst_spread(self):
+        """Largest max - min leg tension found over the tolerance and CG envelope  [t]."""
+        return float(np.ptp(np.concatenate(self.legs_worst)))
+
+    @property
+    def radius(self):
+        return self._repeat(self.hook_radius)
+
+    @property
+    def swl(self):
+        return self._repeat(self.hook_swl)
+
+    @property
+    def utilisation(self):
+        """Planned label -> the crane's nominal hook load over its SWL  [-]."""
+        return self._repeat(np.asarray(self.hook_nominal) / np.asarray(self.hook_swl))
+
+    # -- the rules' chain ----------------------------------------------------------------------
+    @cached_property
+    def design(self):
+        """The rules' design-load chain per crane and per lug (``DesignLoadChain``), or the
+        reason it could not be built (str)."""
+
+        problem = self.problem
+        cranes = []
+        for c, name in enumerate(self.crane_names):
+            group = self.groups[c]
+            angles = np.asarray(self.leg_angles[c])
+            worst_legs = np.asarray(self.legs_worst[c])
+            lugs = tuple(
+                LugLoads(
+                    name=problem.names[i],
+                    share=float(t * math.sin(math.radians(a))),
+                    sling_angle=float(min(a, 90.0)),
+                    capacity=problem.candidates[i].capacity,
+                )
+                for i, a, t in zip(group, angles, worst_legs)
+            )
+            nominal = float(self.hook_nominal[c] - self.bar_weights[c])
+            worst = max(float(self.hook_worst[c] - self.bar_weights[c]), nominal)
+            cranes.append(
+                CraneLoads(
+                    name=name,
+                    nominal=nominal,
+                    worst=worst,
+                    tilt=self.tilt_shares[c],
+                    swl=float(self.hook_swl[c]),
+                    radius=float(self.hook_radius[c]),
+                    skew=self.hook_skews[c],
+                    lugs=lugs,
+                )
+            )
+        try:
+            chain = DesignLoadChain(
+                cranes=tuple(cranes),
+                weight=problem.body.weight,
+                rules=rules_with_bars(problem),
+                cog_searched=any(w > 0 for w in problem.cog_envelope.half_widths),
+                tilt_note=self.tilt_note,
+            )
+            chain.results  # noqa: B018 - builds (and validates) every factor now
+        except InvalidScene as err:
+            return str(err)
+        return chain
+
+    @property
+    def design_hook_loads(self):
+        """Per crane the rules' design hook load  [t] (NaN when the chain could not be built)."""
+        if isinstance(self.design, str):
+            return np.full(len(self.crane_names), np.nan)
+        return np.array([r.design_hook_load for r in self.design.results])
+
+    @property
+    def design_utilisation(self):
+        return self.design_hook_loads / np.asarray(self.hook_swl)
+
+    def _lift_checks(self):
+        """Checks common to every sling plan: the chain's, the sling angles, taut legs and
+        agreement with the rigging model."""
+        problem = self.problem
+        out = []
+        if isinstance(self.design, str):
+            out.append(
+                Check(
+                    name="design_chain",
+                    subject="plan",
+                    value=float("nan"),
+                    limit=0.0,
+                    unit="-",
+                    ok=False,
+                    note=self.design,
+                )
+            )
+        else:
+            out += self.design.checks
+        angles = [a for arr in self.leg_angles for a in np.ravel(arr)]
+        for label, angle in zip(self.labels, angles):
+            out.append(
+                Check.lower(
+                    "sling_angle",
+                    f"{label} ({self.lugs[label]})",
+                    angle,
+                    problem.min_sling_angle,
+                    "deg",
+                    note="from the horizontal",
+                )
+            )
+        for c, top in enumerate(self.top_angles):
+            if top is not None:
+                for j, angle in enumerate(np.ravel(top)):
+                    out.append(
+                        Check.lower(
+                            "sling_angle",
+                            f"{self.crane_names[c]} top leg {j + 1}",
+                            angle,
+                            problem.min_sling_angle,
+                            "deg",
+                            note="spreader top leg, from the horizontal",
+                        )
+                    )
+        solved = self.verified.tensions
+        for c, name in enumerate(self.crane_names):
+            out.append(
+                Check.upper(
+                    "model_agreement",
+                    name,
+                    abs(solved[name] - self.hook_nominal[c]),
+                    self.AGREEMENT * problem.body.weight,
+                    "t",
+                    note="rigging model hook load vs the plan's",
+                )
+            )
+        return out
+
+    # -- the rigging scene ---------------------------------------------------------------------
+    @cached_property
+    def scene(self):
+        """The plan as a rigging scene (hooks free, legs inclined) for ``liftplan solve``."""
+
+        problem = self.problem
+        yaw = rotation_matrix(0.0, 0.0, problem.yaw)
+        lugs, cranes = [], []
+        for c, (crane, group) in enumerate(zip(problem.fleet, self.groups)):
+            names = [problem.names[i] for i in group]
+            lugs += [Lug(name=n, at=tuple(problem.points[i])) for n, i in zip(names, group)]
+            tip_xy = (yaw @ self.hooks[c])[:2]
+            sling = crane.sling
+            spreader = None
+            legs = tuple(Leg(lug=n, length=sling.length, EA=sling.EA) for n in names)
+            if sling.spreader is not None:
+                bar = sling.spreader
+                spreader = Spreader(
+                    length=bar.length,
+                    weight=bar.weight,
+                    top=tuple(Leg(lug=None, length=bar.top_length, EA=sling.EA) for _ in range(2)),
+                )
+                legs = tuple(
+                    Leg(lug=n, length=sling.length, EA=sling.EA, end=j + 1) for j, n in enumerate(names)
+                )
+            cranes.append(
+                Crane(
+                    name=crane.name,
+                    EA=crane.EA,
+                    rope_length=crane.rope_length,
+                    boom_height=float(self.crane_boom_heights[c]),
+                    swl=float(self.hook_swl[c]),
+                    tip=(float(tip_xy[0]), float(tip_xy[1]), float(self.crane_boom_heights[c])),
+                    sling=Sling(legs=legs, spreader=spreader),
+                )
+            )
+        return Scene(
+            body=Body(problem.body.weight, problem.body.cog),
+            lugs=tuple(lugs),
+            cranes=tuple(cranes),
+            attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
+            analysis=Analysis(model="rigging"),
+            rigging=RiggingLimits(min_sling_angle=problem.min_sling_angle),
+            name=f"{problem.name or 'plan'}: chosen slings",
+        )
+
+    @cached_property
+    def verified(self):
+        """The plan solved on the rigging model (free hooks, elastic legs): Equilibrium."""
+
+        return solve_rigging(self.scene)
+
+    def _lift_json(self):
+        names = self.crane_names
+        design = None if isinstance(self.design, str) else self.design.to_json()
+
+        return contract_json(self) | {
+            "lift": self.lift_text,
+            "hook_loads": dict(zip(names, np.asarray(self.hook_nominal, dtype=float).tolist())),
+            "worst_hook_loads": dict(zip(names, np.asarray(self.hook_worst, dtype=float).tolist())),
+            "design_hook_loads": dict(zip(names, self.design_hook_loads.tolist())),
+            "sling_angles": self._per_lug(self.leg_angles),
+            "worst_leg_tensions": self._per_lug(self.legs_worst),
+            "spreader_top_legs": {
+                names[c]: np.asarray(t, dtype=float).tolist()
+                for c, t in enumerate(self.top_legs)
+                if t is not None
+            },
+            "design_loads": design,
+        }

@@ -1,0 +1,479 @@
+"""Two-crane sling lifts: each crane's hook carries a sling set (2-4 legs, or a spreader bar).
+
+The shipyard's common block lift (README "Sling lifts"). The planner chooses, for each crane,
+the candidates its sling takes (:mod:`.rigs`), and which crane takes which.
+
+Physics (statically determinate; checked afterwards on the one casadi rigging model)
+------------------------------------------------------------------------------------
+* A 2-leg sling of equal legs L on lugs a, b hangs in the vertical plane through a and b:
+  the hook is the apex P above the pair's midpoint at h = sqrt(L^2 - (|ab| / 2)^2). A spreader
+  rig hangs in the same plane, its sway found from its potential (:func:`.geometry.spreader_hook`).
+  A 3- or 4-leg sling fixes its hook to the body (:func:`.geometry.tripod_apex`). The crane
+  tip is placed above P, so the hook load is vertical.
+* With two hooks the body hangs from the hook line P1 P2. The operators set the tilt along
+  that line by the hoist (the design tilt is the tolerance of the body axis nearest to it);
+  about the hook line itself the body settles by gravity: the roll that brings the CG under
+  the line, which the plan reports and checks against the other tolerance.
+* Hook loads by the lever rule along the hook line at each tilt, for every vertex of the CG
+  envelope (0027/ND Appendix B's two-crane tilt model); leg tensions from the statics of
+  each sling (:func:`.geometry.leg_split`). A spreader bar's weight hangs on its hook: it is
+  added to the hook load (and is the hook's rigging weight in the rules' chain).
+
+The search is exhaustive over rigs x rigs x the two assignments, vectorised, so it is exact.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene, PlanInfeasible
+from liftplan.model.frames import rotation_matrix
+from liftplan.model.rules import TiltGeometry, governing_tilt
+from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
+from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
+from liftplan.planner.plans.slings.rigs import crane_rigs, turned_hooks
+from liftplan.planner.problem.fleet import rule_limits
+
+
+@dataclass(frozen=True)
+class SlingOption:
+    """One way to rig the lift: the lugs of each crane's sling.
+
+    Parameters
+    ----------
+    pairs : tuple of tuple of int
+        Candidate indices of each crane's sling (2, 3 or 4), in fleet order.
+    apex : numpy.ndarray, shape (2, 3)  [m]
+        Each hook at the level attitude, body frame.
+    radius, swl : numpy.ndarray, shape (2,)  [m, t]
+        Each crane's radius to its hook and its chart SWL there.
+    hook_nominal : numpy.ndarray, shape (2,)  [t]
+        Hook loads, level, nominal CG (with a spreader bar's weight).
+    hook_worst : numpy.ndarray, shape (2,)  [t]
+        Largest hook load over the tilt tolerance and the CG envelope.
+    sling_angles : tuple of numpy.ndarray  [deg]
+        Each crane's lug legs' angles from the horizontal at level.
+    legs_nominal, legs_worst : tuple of numpy.ndarray  [t]
+        Each crane's lug-leg tensions, level / the largest over the tolerance and CG envelope.
+    roll : float  [deg]
+        Largest roll about the hook line to bring the CG under it (over the CG envelope).
+    worst_value : float  [t or -]
+        The objective's worst value: max - min of hook load (spread) or of hook load / SWL.
+    worst_tilt : float  [deg]
+        The tilt along the hook line where it occurs.
+    worst_cog_offset : tuple of 3 float  [m]
+        The CG offset (body frame, z-up) where it occurs.
+    top_legs : tuple of (numpy.ndarray or None)  [t]
+        A spreader's two top legs at level (None without a bar).
+    top_angles : tuple of (numpy.ndarray or None)  [deg]
+    """
+
+    pairs: tuple
+    apex: np.ndarray
+    radius: np.ndarray
+    swl: np.ndarray
+    hook_nominal: np.ndarray
+    hook_worst: np.ndarray
+    sling_angles: tuple
+    legs_nominal: tuple
+    legs_worst: tuple
+    roll: float
+    worst_value: float
+    worst_tilt: float
+    worst_cog_offset: tuple
+    top_legs: tuple = (None, None)
+    top_angles: tuple = (None, None)
+
+
+def _turn(axis, angle, points):
+    """Points turned by ``angle`` about a horizontal ``axis`` through the origin (Rodrigues).
+
+    axis : (N, 3) unit; angle : (N,) [rad]; points : (N, 3) -> (N, 3)
+    """
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    return points * c + np.cross(axis, points) * s + axis * (axis * points).sum(1, keepdims=True) * (1 - c)
+
+
+def rig_legs(crane, hook, lugs, load):
+    """Lug-leg tensions (and a spreader's top legs) of one rig under a vertical hook load  [t].
+
+    Returns
+    -------
+    legs : (k,)  [t]
+    top : (2,)  [t] or None
+    """
+    if crane.sling.spreader is None:
+        stiff = np.full(len(lugs), crane.sling.EA / crane.sling.length)
+        return leg_split(hook, lugs, (0.0, 0.0, load), stiff), None
+
+    bar = crane.sling.spreader
+    _, e1, e2 = spreader_hook(
+        lugs[:1], lugs[1:], crane.sling.length, bar.length, bar.top_length, load, bar.weight
+    )
+    ends = np.vstack([e1, e2])
+    top = leg_split(hook, ends, (0.0, 0.0, load))
+    legs = []
+    for j in range(2):  # each end: top leg + bar + bottom leg + half the bar's weight = 0
+        up = hook - ends[j]
+        force = top[j] * up / np.linalg.norm(up) - np.array([0.0, 0.0, 0.5 * bar.weight])
+        along = ends[1 - j] - ends[j]
+        down = lugs[j] - ends[j]
+        mat = np.column_stack([along / np.linalg.norm(along), down / np.linalg.norm(down)])
+        legs.append(np.linalg.lstsq(mat, -force, rcond=None)[0][1])
+    return np.array(legs), top
+
+
+def uses_slings(problem):
+    """Whether ``problem`` is planned by the sling-lift planner (its cranes carry slings)."""
+    return any(c.sling is not None for c in problem.fleet)
+
+
+def plan_two_slings(problem, top=None):
+    """Choose each crane's lugs for a two-crane lift on slings or spreader bars.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+        Two cranes, each with a :class:`~liftplan.planner.problem.fleet.SlingSpec`.
+    top : int, optional
+
+    Returns
+    -------
+    SlingPlan
+
+    Raises
+    ------
+    PlanInfeasible
+        No pair of rigs meets the sling angle, reach, the rules' limits and the roll; the
+        message counts what ruled them out.
+    """
+
+    top = top or problem.top
+    fleet = problem.fleet
+    weight = problem.body.weight
+    cog = np.array(problem.body.cog)
+    offsets = problem.cog_envelope.offsets()
+    yaw = rotation_matrix(0.0, 0.0, problem.yaw)
+    bars = np.array([bar_weight(c) for c in fleet])
+    limits_problem = dataclasses.replace(problem, rules=rules_with_bars(problem))
+    counts = {
+        "beyond the crane's reach": 0,
+        "lugs shared by both slings": 0,
+        "hook load over the rules' level limit (code margin)": 0,
+        "hook load over the rules' limit within the tolerance": 0,
+        "roll about the hook line beyond the tolerance": 0,
+        "the two hooks (nearly) coincide": 0,
+        "a hook unloaded (the CG beyond a hook)": 0,
+    }
+    per_crane = []
+    for crane in fleet:
+        rigs = crane_rigs(problem, crane, 0.5 * weight)
+        for text, n in rigs.ruled_out.items():
+            counts[text] = counts.get(text, 0) + n
+        plan_xy = (rigs.hook @ yaw.T)[:, :2]
+        radius = crane.radius(plan_xy)
+        swl = crane.swl_at(radius)
+        reach = ~np.isnan(swl)
+        counts["beyond the crane's reach"] += int(np.sum(~reach))
+        per_crane.append((rigs.take(reach), radius[reach], swl[reach]))
+    (g1, r1, s1), (g2, r2, s2) = per_crane
+    if len(g1) == 0 or len(g2) == 0:
+        raise PlanInfeasible(_no_plan(problem, counts))
+    i1, i2 = np.meshgrid(np.arange(len(g1)), np.arange(len(g2)), indexing="ij")
+    i1, i2 = i1.ravel(), i2.ravel()
+    shared = (g1.lugs[i1][:, :, None] == g2.lugs[i2][:, None, :]).any(axis=(1, 2))
+    counts["lugs shared by both slings"] += int(np.sum(shared))
+    i1, i2 = i1[~shared], i2[~shared]
+    r1g, r2g = g1.take(i1), g2.take(i2)
+    hook1, hook2 = r1g.hook, r2g.hook
+    swl = np.stack([s1[i1], s2[i2]], axis=1)
+    axis = hook2 - hook1
+    axis_h = axis.copy()
+    axis_h[:, 2] = 0.0
+    length = np.linalg.norm(axis_h, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = axis_h / length[:, None]
+    span = np.ptp(problem.points, axis=0).max()
+    longitudinal = np.abs(e[:, 0]) >= np.abs(e[:, 1])
+    tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance)
+    roll_tol = np.where(longitudinal, problem.heel_tolerance, problem.trim_tolerance)
+    tilts = np.stack([-tilt_tol, 0 * tilt_tol, tilt_tol], axis=1)  # (N, 3) deg
+    # The operators tilt the body about the horizontal axis square to the hook line; each
+    # hook then sits where its rig puts it over the turned lugs (a 2-leg sling or a spreader
+    # in the vertical plane of its pair, a 3/4-leg apex turned with the body), and the hook
+    # loads follow by the lever rule along the line.
+    turn_axis = np.cross(np.array([0.0, 0.0, 1.0]), e)  # + tilt lowers hook 2's side
+    loads = np.empty((len(i1), len(offsets), 3, 2))
+    for k in range(3):
+        angle = np.radians(tilts[:, k])
+        hooks = [
+            (
+                turned_hooks(
+                    rigs,
+                    crane,
+                    problem.points,
+                    lambda p, angle=angle: _turn(turn_axis, angle, p),
+                    0.5 * weight,
+                )
+                * e
+            ).sum(1)
+            for rigs, crane in zip((r1g, r2g), fleet)
+        ]
+        for m, offset in enumerate(offsets):
+            g = (_turn(turn_axis, angle, np.broadcast_to(cog + offset, (len(i1), 3))) * e).sum(1)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                share2 = weight * (g - hooks[0]) / (hooks[1] - hooks[0])
+            loads[:, m, k] = np.stack([weight - share2, share2], axis=-1)  # the body's shares
+    nominal = loads[:, 0, 1]  # nominal CG, level
+    # roll to bring the CG under the hook line: its offset square to the line, over its depth
+    rolls = []
+    for offset in offsets:
+        g = cog + offset - hook1
+        side = g - (g * e).sum(1)[:, None] * e
+        lateral = np.linalg.norm(side[:, :2], axis=1)
+        rolls.append(np.degrees(np.arctan2(lateral, -side[:, 2])))
+    roll = np.max(rolls, axis=0)
+    hook_loads = loads + bars  # what each crane carries: the body's share and its bar
+    scale = problem.goal.scale(swl)
+    scaled = hook_loads * scale[:, None, None, :]
+    # reserve: the larger hook load / SWL; otherwise the difference of the two
+    values = scaled.max(axis=-1) if problem.goal.peak else np.abs(scaled[..., 0] - scaled[..., 1])
+    worst_value = values.reshape(len(values), -1).max(axis=1)
+    worst_share = loads.max(axis=(1, 2))
+    in_box, level = rule_limits(limits_problem, swl, np.broadcast_to([0, 1], swl.shape))
+    bad = np.zeros(len(values), dtype=np.int64)
+    checks = [
+        (
+            (length <= 1e-6 * span) | ~np.all(np.isfinite(loads), axis=(1, 2, 3)),
+            "the two hooks (nearly) coincide",
+        ),
+        (np.any(loads <= 0, axis=(1, 2, 3)), "a hook unloaded (the CG beyond a hook)"),
+        (np.any(nominal > level, axis=1), "hook load over the rules' level limit (code margin)"),
+        (np.any(worst_share > in_box, axis=1), "hook load over the rules' limit within the tolerance"),
+        (roll > roll_tol + 1e-9, "roll about the hook line beyond the tolerance"),
+    ]
+    for k, (failed, text) in enumerate(checks, start=1):
+        fresh = failed & (bad == 0)
+        counts[text] += int(np.sum(fresh))
+        bad = np.where(fresh, k, bad)
+    good = np.flatnonzero(bad == 0)
+    if len(good) == 0:
+        raise PlanInfeasible(_no_plan(problem, counts))
+    nominal_hooks = nominal + bars
+    order = good[np.lexsort((np.ptp(nominal_hooks[good] * scale[good], axis=1), worst_value[good]))][:top]
+    ranking = []
+    for k in order:
+        rigs = (r1g.take([k]), r2g.take([k]))
+        flat = int(np.argmax(values[k]))
+        cg_k, tilt_k = np.unravel_index(flat, values[k].shape)
+        hooks = np.stack([rigs[0].hook[0], rigs[1].hook[0]])
+        worst_hook = hook_loads[k].max(axis=(0, 1))
+        split = [
+            [
+                rig_legs(crane, hooks[c], problem.points[rig.lugs[0]], load)
+                for load in (nominal_hooks[k, c], worst_hook[c])
+            ]
+            for c, (crane, rig) in enumerate(zip(fleet, rigs))
+        ]
+        ranking.append(
+            SlingOption(
+                pairs=tuple(tuple(int(v) for v in rig.lugs[0]) for rig in rigs),
+                apex=hooks,
+                radius=np.array([r1[i1[k]], r2[i2[k]]]),
+                swl=swl[k],
+                hook_nominal=nominal_hooks[k],
+                hook_worst=worst_hook,
+                sling_angles=tuple(rig.angles[0] for rig in rigs),
+                legs_nominal=tuple(s[0][0] for s in split),
+                legs_worst=tuple(s[1][0] for s in split),
+                roll=float(roll[k]),
+                worst_value=float(worst_value[k]),
+                worst_tilt=float(tilts[k, tilt_k]),
+                worst_cog_offset=tuple(float(v) for v in offsets[cg_k]),
+                top_legs=tuple(s[0][1] for s in split),
+                top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
+            )
+        )
+    return SlingPlan(
+        problem=problem,
+        ranking=ranking,
+        options=int(len(i1)),
+        ruled_out={t: n for t, n in counts.items() if n},
+    )
+
+
+def _no_plan(problem, counts):
+    causes = "; ".join(f"{n} options: {text}" for text, n in counts.items() if n)
+    return f"no two rigs among {len(problem.candidates)} candidates can take the two slings ({causes})"
+
+
+@dataclass(frozen=True)
+class SlingPlan(SlingLift):
+    """A two-crane sling lift plan: each crane's lugs, hook and boom height.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    ranking : list of SlingOption
+        Best first.
+    options : int
+        Pairs of rigs (with both assignments) considered.
+    ruled_out : dict of str to int
+        Why the others were ruled out.
+    """
+
+    problem: object
+    ranking: list
+    options: int
+    ruled_out: dict
+
+    lift_text = "two-crane slings"
+
+    @property
+    def chosen(self):
+        return self.ranking[0]
+
+    @property
+    def objective(self):
+        return self.problem.objective
+
+    # -- the per-crane arrays of SlingLift ------------------------------------------------------
+    @property
+    def groups(self):
+        return self.chosen.pairs
+
+    @property
+    def hooks(self):
+        return self.chosen.apex
+
+    @property
+    def hook_radius(self):
+        return self.chosen.radius
+
+    @property
+    def hook_swl(self):
+        return self.chosen.swl
+
+    @property
+    def hook_nominal(self):
+        return self.chosen.hook_nominal
+
+    @property
+    def hook_worst(self):
+        return self.chosen.hook_worst
+
+    @property
+    def leg_angles(self):
+        return self.chosen.sling_angles
+
+    @property
+    def legs_nominal(self):
+        return self.chosen.legs_nominal
+
+    @property
+    def legs_worst(self):
+        return self.chosen.legs_worst
+
+    @property
+    def top_legs(self):
+        return self.chosen.top_legs
+
+    @property
+    def top_angles(self):
+        return self.chosen.top_angles
+
+    @property
+    def tolerances(self):
+        """(tilt along the hook line, roll about it)  [deg]: trim and heel for a hook line
+        nearer the body's x axis, heel and trim for one nearer its y axis."""
+        line = self.chosen.apex[1] - self.chosen.apex[0]
+        problem = self.problem
+        if abs(line[0]) >= abs(line[1]):
+            return problem.trim_tolerance, problem.heel_tolerance
+        return problem.heel_tolerance, problem.trim_tolerance
+
+    @cached_property
+    def _rules_tilt(self):
+        """(shares at the rules' tilt per crane [t], note): 0027/ND B.1.2's two-crane model,
+        the hooks' lift points their level hooks, the worse of the rules' tilt and the hook
+        elevation difference over the hook spacing."""
+
+        problem = self.problem
+        names = self.crane_names
+        offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
+        vertices = offsets[1:] if len(offsets) > 1 else offsets
+        geometry = TiltGeometry(
+            {n: tuple(p) for n, p in zip(names, self.chosen.apex)}, problem.body.cog, problem.body.weight
+        )
+        design_tilt, elevation = problem.rules.design_tilt()
+        spacing = geometry.least_spacing()
+        try:
+            tilt = governing_tilt(design_tilt, elevation, spacing)
+            worst = geometry.worst(tilt, vertices)
+        except (InvalidScene, EquilibriumNotFound) as err:
+            return [None, None], f"rules' tilt not evaluated: {err}"
+        note = (
+            f"{tilt:.2f} deg: the worse of {design_tilt:g} deg and a {elevation:g} m hook "
+            f"elevation difference over the hook spacing {spacing:.2f} m"
+        )
+        return [float(worst[n].load) for n in names], note
+
+    @property
+    def tilt_shares(self):
+        return self._rules_tilt[0]
+
+    @property
+    def tilt_note(self):
+        return self._rules_tilt[1]
+
+    @property
+    def worst_utilisation_spread(self):
+        worst = self.chosen.hook_worst / self.chosen.swl
+        per_swl = self.problem.goal.per_swl and not self.problem.goal.peak
+        return self.chosen.worst_value if per_swl else float(abs(worst[0] - worst[1]))
+
+    @cached_property
+    def checks(self):
+        """The rules' chain per crane and lug, the sling angles, the roll about the hook line,
+        and the rigging model's hook loads against the plan's (1 % of W: the plan's lever rule
+        takes the hooks where the rig's geometry puts them, the model finds them)."""
+        out = self._lift_checks()
+        out.append(
+            Check.upper(
+                "roll",
+                "hook line",
+                self.chosen.roll,
+                self.tolerances[1],
+                "deg",
+                note="the CG settles under the hook line",
+            )
+        )
+        return out
+
+    def to_json(self):
+        """The plan JSON (the contract's keys; labels L1, L2, ... are the lugs)."""
+        chosen = self.chosen
+        return {
+            **self._lift_json(),
+            "roll": chosen.roll,
+            "worst_attitude": {
+                "tilt_along_hook_line": chosen.worst_tilt,
+                "cog_offset": list(chosen.worst_cog_offset),
+            },
+            "ranking": [
+                {
+                    "lugs": [self.problem.names[i] for p in r.pairs for i in p],
+                    "worst": r.worst_value,
+                    "hook_loads": r.hook_nominal.tolist(),
+                }
+                for r in self.ranking
+            ],
+            "options": self.options,
+            "ruled_out": self.ruled_out,
+            "checks": [c.to_json() for c in self.checks],
+        }

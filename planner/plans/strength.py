@@ -1,0 +1,790 @@
+"""Lift plans chosen for the hull girder's strength (``[plan] objective = "bending"``,
+``"shear"`` or ``"strength"``): the plan object and its search.
+
+The objective is the worst |M| / allowable (``bending``), |Q| / allowable (``shear``) or
+w_M x the first + w_Q x the second (``strength``, weights from ``[plan] strength_weights``),
+over the heel/trim box (hoist control) or the equilibrium attitudes (force control), the CG
+envelope and, for hoist control, the hook errors, with every tension within its limits
+(min_tension, the rules' limits of :func:`liftplan.planner.problem.fleet.rule_limits`, the
+crane code's margin at level, the boom range). For each lug set the tensions follow from a
+linear program (:class:`liftplan.planner.search.strength.StrengthLP`) solved on a growing list
+of states and sections (cutting planes: a dense heel x trim grid and the exact maxima along
+the body). Over the candidates:
+
+* force control: one mixed-integer program over every candidate (HiGHS) is the problem
+  itself, so its optimum is the plan; sections found by the exact check are added and it is
+  re-solved until the chosen set's exact value meets the bound;
+* hoist control: the held model's tensions depend on the whole set (a 3x3 solve per state),
+  which is not linear in the choice. The MIP of the level state (exact: the tensions there
+  are T*) with each other state's tensions only statically admissible is a relaxation: its
+  optimum is a lower bound on every set. Its set is evaluated exactly, excluded by a no-good
+  cut, and the MIP re-solved until the bound meets the best set found (logic-based Benders)
+  or the time limit stops it with the gap stated.
+
+The plan carries the strength-optimal choice beside the spread-optimal one (the same search
+with the objective max - min tension), so an engineer sees what each costs the other.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from liftplan.model.checks import Check
+from liftplan.model.errors import PlanInfeasible, SolverFailed
+from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.plans.common import InFileFrame
+from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.evaluator import GapMixin
+from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.strength import (
+    STABLE_HEIGHT,
+    CandidateMIP,
+    GirderLoads,
+    Peak,
+    Sections,
+    State,
+    body_tilt,
+    curve_peak,
+    exact_curves,
+    force_attitude,
+    section_rows,
+    strength_lp,
+)
+
+#: The weights (bending ratio, shear ratio, spread) of the spread-optimal plan beside it.
+SPREAD_WEIGHTS = (0.0, 0.0, 1.0)
+#: Dense heel x trim grid of the exact check (hoist control), per CG vertex.
+DENSE = 21
+#: A set's value is converged when the exact worst exceeds the LP's by less than this
+#: (relative; the LP solver's own accuracy is ~1e-8).
+CONVERGED = 1e-6
+#: Cutting-plane rounds per set before the search says it did not converge.
+ROUNDS = 40
+#: Time for the spread-optimal plan beside a strength plan  [s]: it is the comparison, not the
+#: plan, and its MIP (min - max over the chosen points) is weak; its gap is stated.
+PARTNER_TIME = 30.0
+
+
+def uses_strength(problem):
+    """True when the plan's objective is the hull girder's strength."""
+    return problem.goal.girder
+
+
+def objective_weights(problem):
+    """(bending, shear, spread) weights of the problem's objective."""
+    goal = problem.goal
+    if not goal.girder:
+        return SPREAD_WEIGHTS
+    return (*(goal.girder_weights or problem.strength_weights), 0.0)
+
+
+@dataclass(frozen=True)
+class StrengthSet:
+    """One lug set with its tensions, evaluated over every state.
+
+    Parameters
+    ----------
+    indices : tuple of int   candidate indices
+    names : tuple of str
+    preload : (n,)  [t]   level tensions T* (force control: the held forces)
+    boom_heights : (n,) or None  [m]   hoist control
+    bending, shear : Peak   worst |M| / allowable [t m], |Q| / allowable [t], with the state
+    spread : float  [t]   max - min of T*
+    worst_spread : float  [t]   over every state (force control: = spread)
+    value : float   the objective's value (weights x ratios, or the worst spread)
+    bound : float   the set's LP over the states and sections it used (a lower bound)
+    states : tuple of dict   the states the peaks name (heel, trim [deg], cog_offset [m])
+    tension_range : (float, float)  [t]   lowest and highest tension over the states
+    """
+
+    indices: tuple[int, ...]
+    names: tuple[str, ...]
+    preload: np.ndarray
+    boom_heights: np.ndarray | None
+    bending: Peak
+    shear: Peak
+    spread: float
+    worst_spread: float
+    value: float
+    bound: float
+    states: tuple
+    tension_range: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class StrengthStats(GapMixin):
+    """How the search went.
+
+    Parameters
+    ----------
+    method : str   ``"MIP"`` (force control) or ``"MIP relaxation + no-good cuts"`` (hoist)
+    lower_bound : float   no lug set does better (over the states and sections used)
+    seconds : float  [s]
+    rounds : int   MIP solves
+    evaluated : int   lug sets evaluated exactly
+    stopped : str   ``"proved"``, ``"gap"``, ``"time_limit"``
+    certified : bool   False where the bound rests on an approximation (force control with
+        candidates at different heights: the attitudes by fixed point)
+    """
+
+    method: str
+    lower_bound: float
+    seconds: float
+    rounds: int
+    evaluated: int
+    stopped: str
+    certified: bool = True
+    best: float = math.nan
+
+
+class StrengthContext:
+    """What every lug set of a problem shares: loads, envelopes, states, limits.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    """
+
+    def __init__(self, problem):
+        self.problem = problem
+        body = problem.body
+        self.loads = GirderLoads(body)
+        strength = problem.strength
+        self.envelopes = (
+            None if strength is None else strength.bending_moment,
+            None if strength is None else strength.shear_force,
+        )
+        self.control = problem.control
+        self.points = problem.points
+        self.offsets = problem.cog_envelope.offsets()
+        self.sections = Sections.initial(self.loads, self.points[:, 0], self.envelopes)
+        swl = problem.reach[1][:, 0]
+        self.limit, self.share = rule_limits(problem, swl, np.zeros(len(swl), dtype=int))
+        crane = problem.fleet[0]
+        self.stiffness = crane.EA / crane.rope_length
+        self.boom_zero = problem.lift_height + self.points[:, 2] + crane.rope_length
+        self.boom_range = (crane.boom_min, crane.boom_max)
+
+    def allowable(self, which, x):
+        envelope = self.envelopes[which]
+        if envelope is None:
+            return np.ones(len(x))
+        ex, ev = zip(*envelope)
+        return np.interp(x, ex, ev)
+
+    def up(self, heel, trim):
+        return attitude_matrix(heel, trim, self.problem.yaw)[2]
+
+    # -- states ---------------------------------------------------------------------------
+    def hoist_states(self, dense=False):
+        """Scenarios of the held model: the first list (level x CG vertices, the box's corners
+        at the nominal CG) or the dense grid x CG vertices."""
+        p = self.problem
+        if dense:
+            grid = box_attitudes(p, DENSE, DENSE)
+            return [Scenario(float(h), float(t), tuple(o)) for o in self.offsets for h, t in grid]
+        out = [Scenario(0.0, 0.0, tuple(o)) for o in self.offsets]
+        corners = {
+            (h * p.heel_tolerance + 0.0, t * p.trim_tolerance + 0.0) for h in (-1, 1) for t in (-1, 1)
+        } - {(0.0, 0.0)}
+        return out + [Scenario(h, t) for h, t in sorted(corners)]
+
+    def centre_floor(self):
+        """Force control: the least height of the force centre F_z [m] for every CG vertex to
+        hang stable with its equilibrium tilt inside the tolerance box."""
+        p, need = self.problem, []
+        for dx, dy, dz in self.offsets:
+            h = STABLE_HEIGHT
+            for off, tol, what in ((dx, p.trim_tolerance, "trim"), (dy, p.heel_tolerance, "heel")):
+                if abs(off) > 0.0:
+                    if tol <= 0.0:
+                        raise PlanInfeasible(
+                            f"force control: a CG offset of {abs(off):g} m tilts the body, but "
+                            f"plan.tolerance.{what} = 0; expected a tolerance > 0 deg"
+                        )
+                    h = max(h, abs(off) / math.tan(math.radians(tol)))
+            need.append(p.body.cog[2] + dz + h)
+        return max(need)
+
+
+# -- one lug set ---------------------------------------------------------------------------------
+class StrengthEvaluator:
+    """Evaluate lug sets exactly: the LP on growing lists of states and sections.
+
+    Parameters
+    ----------
+    context : StrengthContext
+    """
+
+    def __init__(self, context):
+        self.context = context
+        self.count = 0
+
+    def evaluate(self, indices, weights):
+        """The best tensions for one lug set and its exact worst values.
+
+        Returns
+        -------
+        StrengthSet
+
+        Raises
+        ------
+        PlanInfeasible
+            No tensions hold the limits (the message says which).
+        SolverFailed
+            The cutting planes did not converge in :data:`ROUNDS` rounds.
+        """
+        self.count += 1
+        indices = tuple(sorted(int(i) for i in indices))
+        plan = self.context.points[list(indices), :2]
+        if (
+            np.linalg.matrix_rank(
+                np.column_stack([np.ones(len(plan)), plan - plan.mean(axis=0)]),
+                tol=1e-9 * max(np.ptp(plan), 1.0),
+            )
+            < 3
+        ):
+            names = ", ".join(self.context.problem.names[i] for i in indices)
+            raise PlanInfeasible(f"lugs {names}: on one line in plan; they cannot hold the body")
+        if self.context.control == "force":
+            return self._force(indices, weights)
+        return self._hoist(indices, weights)
+
+    # rows of the LP for states whose tensions are P T* + q
+    def _rows(self, points, sections, states, gains, offsets, hook):
+        ctx = self.context
+        allow_m = ctx.allowable(0, sections.x)
+        allow_q = ctx.allowable(1, sections.x)
+        rows = {"m": ([], [], []), "q": ([], [], [])}
+        for k, state in enumerate(states):
+            gm, hm, gq, hq = section_rows(ctx.loads, points, sections, state)
+            for key, g, h, allow in (("m", gm, hm, allow_m), ("q", gq, hq, allow_q)):
+                gp = g @ gains[k]
+                rows[key][0].append(gp / allow[:, None])
+                rows[key][1].append((g @ offsets[k] + h) / allow)
+                margin = np.zeros(len(h)) if hook is None else np.abs(g @ hook[0][k]) @ hook[1] / allow
+                rows[key][2].append(margin)
+        return tuple(tuple(np.concatenate(v) for v in rows[key]) for key in ("m", "q"))
+
+    def _peaks(self, points, tensions, states, hook=None):
+        """Exact worst ratio of M and Q over the given states (tensions (k, n))."""
+        ctx = self.context
+        best = [None, None]
+        worst_x = []
+        for k, state in enumerate(states):
+            shear, moment = exact_curves(ctx.loads, points, tensions[k], state)
+            for which, curve in ((0, moment), (1, shear)):
+                ratio, value, x = curve_peak(curve, ctx.envelopes[which])
+                if hook is not None:  # the hook errors' largest effect at that section
+                    sec = Sections(np.array([x]), np.array([True]))
+                    g = section_rows(ctx.loads, points, sec, state)[2 * which]
+                    extra = float(np.abs(g @ hook[0][k]) @ hook[1])
+                    allow = ctx.allowable(which, [x])[0] if ctx.envelopes[which] is not None else 1.0
+                    value, ratio = value + extra, ratio + extra / allow
+                worst_x.append(x)
+                if best[which] is None or ratio > best[which].ratio:
+                    best[which] = Peak(ratio=ratio, value=value, x=x, state=k)
+        return best, worst_x
+
+    def _finish(self, indices, preload, boom, peaks, spread, worst_spread, weights, bound, states, trange):
+        names = tuple(self.context.problem.names[i] for i in indices)
+        value = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * worst_spread
+        return StrengthSet(
+            indices=indices,
+            names=names,
+            preload=preload,
+            boom_heights=boom,
+            bending=peaks[0],
+            shear=peaks[1],
+            spread=float(np.ptp(preload)),
+            worst_spread=float(worst_spread),
+            value=float(value),
+            bound=float(bound),
+            states=tuple(states),
+            tension_range=trange,
+        )
+
+    def _force(self, indices, weights):
+        ctx, p = self.context, self.context.problem
+        points = ctx.points[list(indices)]
+        n = len(indices)
+        lugset = LugSet(p, indices)
+        a0, b0 = lugset.level_statics
+        floor = ctx.centre_floor()
+        centre = (points[:, 2] * 1.0, p.body.weight * floor)
+        if points[:, 2].max() * p.body.weight < centre[1] - 1e-9:
+            raise PlanInfeasible(
+                "force control: every lug is too low above the CG for the body to "
+                "hang stable within the tolerance box"
+            )
+        limit, share = ctx.limit[list(indices)], ctx.share[list(indices)]
+        tension_rows = (
+            np.eye(n)[None],
+            np.zeros((1, n)),
+            np.zeros((1, n)),
+            np.full((1, n), p.min_tension),
+            limit[None],
+        )
+        prange = (np.full(n, p.min_tension), np.minimum(limit, share))
+        sections = ctx.sections
+        up = force_attitude(points, np.full(n, p.body.weight / n), p.body.weight, p.body.cog, ctx.offsets)[0]
+        for _ in range(ROUNDS):
+            states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
+            eye = [np.eye(n)] * len(states)
+            zero = [np.zeros(n)] * len(states)
+            rows_m, rows_q = self._rows(points, sections, states, eye, zero, None)
+            lp = strength_lp(n, len(rows_m[1]), len(rows_q[1]), 1)
+            result = lp.solve(weights, rows_m, rows_q, tension_rows, a0, b0, prange, centre)
+            new_up, height = force_attitude(points, result.preload, p.body.weight, p.body.cog, ctx.offsets)
+            moved = float(np.abs(new_up - up).max())
+            up = new_up
+            states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
+            tensions = np.repeat(result.preload[None], len(states), axis=0)
+            peaks, xs = self._peaks(points, tensions, states)
+            lp_value = weights[0] * result.bending + weights[1] * result.shear + weights[2] * result.spread
+            exact = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * result.spread
+            if moved < 1e-12 and exact <= lp_value * (1 + CONVERGED) + 1e-12:
+                described = [self._describe(s) for s in states]
+                return self._finish(
+                    indices,
+                    result.preload,
+                    None,
+                    peaks,
+                    result.spread,
+                    float(np.ptp(result.preload)),
+                    weights,
+                    lp_value,
+                    described,
+                    (float(result.preload.min()), float(result.preload.max())),
+                )
+            sections = sections.add(np.repeat(xs, 2), np.tile([False, True], len(xs)))
+        raise SolverFailed(
+            f"strength LP for {', '.join(p.names[i] for i in indices)}: the sections "
+            f"and attitudes did not converge in {ROUNDS} rounds"
+        )
+
+    @staticmethod
+    def _describe(state):
+        heel, trim = body_tilt(state.up)
+        return {"heel": heel, "trim": trim, "cog_offset": list(state.cog_offset)}
+
+    def _hoist(self, indices, weights):
+        ctx, p = self.context, self.context.problem
+        lugset = LugSet(p, indices)
+        points, n = lugset.points, lugset.n
+        hook = lugset.hook_uncertain
+        scenarios = ctx.hoist_states()
+        dense = ctx.hoist_states(dense=True)
+        d_gain, d_offset = lugset.affine(dense)
+        d_hook = d_gain * lugset.stiffness[None, None, :]
+        d_states = [State(tuple(ctx.up(s.heel, s.trim)), s.cog_offset) for s in dense]
+        sections = ctx.sections
+        a0, b0 = lugset.level_statics
+        prange = lugset.preload_range()
+        for _ in range(ROUNDS):
+            gains, offsets = lugset.affine(scenarios)
+            states = [State(tuple(ctx.up(s.heel, s.trim)), s.cog_offset) for s in scenarios]
+            hk = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) if hook else None
+            rows_m, rows_q = self._rows(points, sections, states, gains, offsets, hk)
+            margin = np.zeros((len(scenarios), n)) if hk is None else np.abs(hk[0]) @ hk[1]
+            tension_rows = (
+                gains,
+                offsets,
+                margin,
+                np.full((len(scenarios), n), p.min_tension),
+                np.repeat(lugset.limit[None], len(scenarios), axis=0),
+            )
+            lp = strength_lp(n, len(rows_m[1]), len(rows_q[1]), len(scenarios))
+            result = lp.solve(weights, rows_m, rows_q, tension_rows, a0, b0, prange)
+            lp_value = weights[0] * result.bending + weights[1] * result.shear + weights[2] * result.spread
+            tensions = d_gain @ result.preload + d_offset
+            ratios = self._dense_ratios(
+                points, sections, d_states, tensions, (d_hook, lugset.hook_tolerance) if hook else None
+            )
+            spread, trange = self._dense_spread(tensions, (d_hook, lugset.hook_tolerance) if hook else None)
+            top = np.unique(np.argsort(-ratios[0])[:3].tolist() + np.argsort(-ratios[1])[:3].tolist())
+            peaks, xs = self._peaks(
+                points,
+                tensions[top],
+                [d_states[k] for k in top],
+                (d_hook[top], lugset.hook_tolerance) if hook else None,
+            )
+            peaks = [Peak(pk.ratio, pk.value, pk.x, int(top[pk.state])) for pk in peaks]
+            exact = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * spread
+            if exact <= lp_value * (1 + CONVERGED) + 1e-12:
+                described = [
+                    {"heel": s.heel, "trim": s.trim, "cog_offset": list(s.cog_offset)} for s in dense
+                ]
+                return self._finish(
+                    indices,
+                    result.preload,
+                    lugset.boom_heights(result.preload),
+                    peaks,
+                    spread,
+                    spread,
+                    weights,
+                    lp_value,
+                    described,
+                    trange,
+                )
+            worst = {pk.state for pk in peaks}
+            if weights[2] > 0:
+                worst.add(int(np.argmax(np.ptp(tensions, axis=1))))
+            scenarios = scenarios + [dense[k] for k in sorted(worst) if dense[k] not in scenarios]
+            sections = sections.add(np.repeat(xs, 2), np.tile([False, True], len(xs)))
+        raise SolverFailed(
+            f"strength LP for {', '.join(p.names[i] for i in indices)}: the states "
+            f"and sections did not converge in {ROUNDS} rounds"
+        )
+
+    def _dense_ratios(self, points, sections, states, tensions, hook):
+        """Worst |M| / allowable and |Q| / allowable at the sections, per dense state, (2, k)."""
+        ctx = self.context
+        allow = (ctx.allowable(0, sections.x), ctx.allowable(1, sections.x))
+        out = np.zeros((2, len(states)))
+        for k, state in enumerate(states):
+            gm, hm, gq, hq = section_rows(ctx.loads, points, sections, state)
+            for which, g, h in ((0, gm, hm), (1, gq, hq)):
+                value = np.abs(g @ tensions[k] + h)
+                if hook is not None:
+                    value = value + np.abs(g @ hook[0][k]) @ hook[1]
+                out[which, k] = np.max(value / allow[which])
+        return out
+
+    @staticmethod
+    def _dense_spread(tensions, hook):
+        """Worst spread [t] and (lowest, highest) tension over dense states (hook errors exact)."""
+        if hook is None:
+            return float(np.ptp(tensions, axis=1).max()), (float(tensions.min()), float(tensions.max()))
+        gain, delta = hook
+        margin = np.abs(gain) @ delta
+        n = tensions.shape[1]
+        first, second = np.nonzero(~np.eye(n, dtype=bool))
+        pair = tensions[:, first] - tensions[:, second] + np.abs(gain[:, first] - gain[:, second]) @ delta
+        return float(pair.max()), (float((tensions - margin).min()), float((tensions + margin).max()))
+
+
+# -- over the candidates --------------------------------------------------------------------------
+def search_strength(problem, weights, context=None, time_limit=None):
+    """The best lug set and tensions for the weights (bending, shear, spread).
+
+    Returns
+    -------
+    best : StrengthSet
+    stats : StrengthStats
+    """
+    started = time.perf_counter()
+    ctx = context or StrengthContext(problem)
+    evaluator = StrengthEvaluator(ctx)
+    limit = time_limit if time_limit is not None else problem.time_limit
+    if ctx.control == "force":
+        return _search_force(ctx, evaluator, weights, started, limit)
+    return _search_hoist(ctx, evaluator, weights, started, limit)
+
+
+def _mip_rows(ctx, states, sections):
+    allow_m, allow_q = ctx.allowable(0, sections.x), ctx.allowable(1, sections.x)
+    out = []
+    for state in states:
+        gm, hm, gq, hq = section_rows(ctx.loads, ctx.points, sections, state)
+        out.append(((gm / allow_m[:, None], hm / allow_m), (gq / allow_q[:, None], hq / allow_q)))
+    return out
+
+
+def _statics(ctx, heel, trim, offset):
+    p = ctx.problem
+    rot = attitude_matrix(heel, trim, p.yaw)
+    plan = (ctx.points @ rot.T)[:, :2]
+    cog = rot @ (np.asarray(p.body.cog) + np.asarray(offset))
+    return np.vstack([np.ones(len(plan)), plan.T]), p.body.weight * np.array([1.0, cog[0], cog[1]])
+
+
+def _search_force(ctx, evaluator, weights, started, limit):
+    p = ctx.problem
+    count, n = len(ctx.points), p.cranes
+    equal_height = bool(np.ptp(ctx.points[:, 2]) < 1e-9)
+    floor = ctx.centre_floor()
+    centre = (ctx.points[:, 2].copy(), p.body.weight * floor)
+    sections = ctx.sections
+    statics = [_statics(ctx, 0.0, 0.0, (0.0, 0.0, 0.0))]
+    limits = (np.full(count, p.min_tension), ctx.limit, np.minimum(ctx.limit, ctx.share))
+    tensions = np.full(count, p.body.weight / n)
+    best, rounds, bound = None, 0, -math.inf
+    while True:
+        # the equilibrium attitudes from the force centre of the last solution (exact when
+        # every candidate is at one height: the centre's height is then that height)
+        centre_z = ctx.points[:, 2] @ tensions / tensions.sum()
+        up, _ = force_attitude(
+            np.column_stack([ctx.points[:, :2], np.full(count, centre_z)]),
+            tensions,
+            tensions.sum(),
+            p.body.cog,
+            ctx.offsets,
+        )
+        states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
+        blocks = _mip_rows(ctx, states, sections)
+        stacked = (
+            tuple(np.concatenate([b[0][j] for b in blocks]) for j in range(2)),
+            tuple(np.concatenate([b[1][j] for b in blocks]) for j in range(2)),
+        )
+        mip = CandidateMIP(count, n, len(stacked[0][1]), len(stacked[1][1]), 1, shared=True)
+        remaining = None if limit is None else limit - (time.perf_counter() - started)
+        result = mip.solve(weights, statics, [stacked], limits, centre, time_limit=remaining)
+        rounds += 1
+        bound = result.value
+        current = evaluator.evaluate(result.chosen, weights)
+        if best is None or current.value < best.value:
+            best = current
+        tensions = result.forces
+        done = best.value <= bound * (1 + CONVERGED) + 1e-9
+        timed_out = (limit is not None and time.perf_counter() - started > limit) or not result.complete
+        if done or timed_out or rounds >= ROUNDS:
+            break
+        peaks = (current.bending.x, current.shear.x)
+        sections = sections.add(np.repeat(peaks, 2), np.tile([False, True], 2))
+    stopped = (
+        "proved"
+        if best.value <= bound * (1 + CONVERGED) + 1e-9
+        else ("time_limit" if timed_out else "rounds")
+    )
+    return best, StrengthStats(
+        method="MIP (HiGHS) over every candidate",
+        lower_bound=min(bound, best.value),
+        seconds=time.perf_counter() - started,
+        rounds=rounds,
+        evaluated=evaluator.count,
+        stopped=stopped,
+        certified=equal_height,
+        best=best.value,
+    )
+
+
+def _search_hoist(ctx, evaluator, weights, started, limit):
+    p = ctx.problem
+    count, n = len(ctx.points), p.cranes
+    scen = ctx.hoist_states()
+    states = [State(tuple(ctx.up(s.heel, s.trim)), s.cog_offset) for s in scen]
+    sections = ctx.sections
+    statics = [_statics(ctx, s.heel, s.trim, s.cog_offset) for s in scen]
+    # at level the tensions are T* itself: the code margin and the boom range hold exactly
+    level_high = np.minimum(
+        np.minimum(ctx.limit, ctx.share), ctx.stiffness * (ctx.boom_range[1] - ctx.boom_zero)
+    )
+    limits = (np.full(count, p.min_tension), ctx.limit, np.maximum(level_high, 0.0))
+    rows = _mip_rows(ctx, states, sections)
+    mip = CandidateMIP(count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False)
+    best, cuts, rounds, bound, stopped = None, [], 0, -math.inf, "proved"
+    while True:
+        remaining = None if limit is None else limit - (time.perf_counter() - started)
+        if remaining is not None and remaining <= 0:
+            stopped = "time_limit"
+            break
+        try:
+            result = mip.solve(weights, statics, rows, limits, cuts=cuts, time_limit=remaining)
+        except PlanInfeasible:
+            if best is None:
+                raise
+            bound = best.value  # every set is cut off: the best found is the optimum
+            break
+        rounds += 1
+        bound = result.value
+        if not result.complete:
+            stopped = "time_limit"
+        if best is not None and bound >= best.value * (1 - p.gap) - 1e-9:
+            stopped = "proved" if bound >= best.value - 1e-9 else "gap"
+            break
+        try:
+            current = evaluator.evaluate(result.chosen, weights)
+        except PlanInfeasible:
+            current = None
+        if current is not None and (best is None or current.value < best.value):
+            best = current
+        cuts.append(result.chosen)
+        if not result.complete:
+            break
+    if best is None:
+        raise PlanInfeasible("no lug set holds the body within the limits over the box")
+    return best, StrengthStats(
+        method="MIP relaxation (HiGHS) + exact set LP, no-good cuts",
+        lower_bound=min(bound, best.value),
+        seconds=time.perf_counter() - started,
+        rounds=rounds,
+        evaluated=evaluator.count,
+        stopped=stopped,
+        best=best.value,
+    )
+
+
+# -- the plan ----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class StrengthPlan(InFileFrame):
+    """A lift plan chosen for the hull girder, with the spread-optimal plan beside it.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    chosen : StrengthSet   the strength-optimal set (the plan)
+    stats : StrengthStats
+    spread_plan : StrengthSet   the spread-optimal set (max - min tension), same limits
+    spread_stats : StrengthStats
+    """
+
+    kind = "strength"
+
+    problem: object
+    chosen: StrengthSet
+    stats: StrengthStats
+    spread_plan: StrengthSet
+    spread_stats: StrengthStats
+    labels: tuple[str, ...] = field(init=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "labels", tuple(f"L{i + 1}" for i in range(len(self.chosen.indices))))
+
+    @property
+    def objective(self):
+        return self.problem.objective
+
+    @property
+    def control(self):
+        return self.problem.control
+
+    @property
+    def lugs(self):
+        return dict(zip(self.labels, self.chosen.names))
+
+    @property
+    def tensions(self):
+        return dict(zip(self.labels, self.chosen.preload.tolist()))
+
+    @property
+    def boom_heights(self):
+        if self.chosen.boom_heights is None:
+            return {}
+        return dict(zip(self.labels, self.chosen.boom_heights.tolist()))
+
+    @property
+    def spread(self):
+        return self.chosen.spread
+
+    @property
+    def worst_spread(self):
+        return self.chosen.worst_spread
+
+    @cached_property
+    def checks(self):
+        """The strength envelopes at the worst state and the tension limits, as checks."""
+        p, c = self.problem, self.chosen
+        out = []
+        for name, peak, envelope, unit in (
+            ("bending_moment", c.bending, p.strength.bending_moment, "t m"),
+            ("shear_force", c.shear, p.strength.shear_force, "t"),
+        ):
+            if envelope is not None:
+                out.append(
+                    Check.upper(
+                        name,
+                        f"x = {peak.x:.1f} m",
+                        peak.value,
+                        peak.value / peak.ratio,
+                        unit,
+                        note="the worst over the states, exactly along the body",
+                    )
+                )
+        out.append(
+            Check.lower(
+                "min_tension",
+                "all lugs",
+                c.tension_range[0],
+                p.min_tension,
+                "t",
+                note="lowest tension over the states",
+            )
+        )
+        return out
+
+    def _set_json(self, s, stats):
+        def peak(pk):
+            state = dict(s.states[pk.state])
+            state["cog_offset"] = list(self.in_file_frame(state["cog_offset"]))
+            return {"value": pk.value, "ratio": pk.ratio, "x": pk.x, "state": state}
+
+        return {
+            "lugs": dict(zip(self.labels, s.names)),
+            "tensions": dict(zip(self.labels, s.preload.tolist())),
+            "boom_heights": (
+                None if s.boom_heights is None else dict(zip(self.labels, s.boom_heights.tolist()))
+            ),
+            "max_bending_moment": peak(s.bending),
+            "max_shear_force": peak(s.shear),
+            "spread": s.spread,
+            "worst_spread": s.worst_spread,
+            "objective_value": s.value,
+            "tension_range": list(s.tension_range),
+            "search": {
+                "method": stats.method,
+                "lower_bound": stats.lower_bound,
+                "gap": stats.gap,
+                "relative_gap": stats.relative_gap,
+                "stopped": stats.stopped,
+                "certified": stats.certified,
+                "seconds": stats.seconds,
+                "mip_solves": stats.rounds,
+                "sets_evaluated": stats.evaluated,
+            },
+        }
+
+    def to_json(self):
+        """``liftplan plan --json`` for a strength objective: the contract's keys (lugs,
+        boom_heights, tensions, spread, worst_spread) of the chosen plan, then ``strength``
+        (its peaks) and ``spread_optimal`` (the same for the spread-optimal plan)."""
+        c = self.chosen
+        return {
+            "lugs": self.lugs,
+            "boom_heights": self.boom_heights,
+            "tensions": self.tensions,
+            "spread": self.spread,
+            "worst_spread": self.worst_spread,
+            "objective": self.objective,
+            "control": self.control,
+            "strength_weights": {
+                "bending": objective_weights(self.problem)[0],
+                "shear": objective_weights(self.problem)[1],
+            },
+            "ranking": [],
+            "frame": self.problem.frame,
+            "lower_bound": self.stats.lower_bound,
+            "gap": self.stats.gap,
+            "relative_gap": self.stats.relative_gap,
+            "strength": self._set_json(c, self.stats),
+            "spread_optimal": self._set_json(self.spread_plan, self.spread_stats),
+        }
+
+
+def plan_strength(problem, top=None):
+    """Plan for the hull girder (``objective`` bending / shear / strength).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    top : int, optional   not used: the search gives the best set, not a ranking
+
+    Returns
+    -------
+    StrengthPlan
+    """
+    del top
+    context = StrengthContext(problem)
+    chosen, stats = search_strength(problem, objective_weights(problem), context)
+    limit = PARTNER_TIME if problem.time_limit is None else min(PARTNER_TIME, problem.time_limit)
+    partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
+    # the spread plan's own peaks are reported in the same terms: evaluate it on the
+    # strength weights with its tensions as found (its value under the strength objective)
+    return StrengthPlan(
+        problem=problem, chosen=chosen, stats=stats, spread_plan=partner, spread_stats=partner_stats
+    )

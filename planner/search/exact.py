@@ -1,0 +1,205 @@
+"""The exact search: branch and bound over lug sets and crane assignments.
+
+1. :func:`~liftplan.planner.search.screen.screen` gives every (set, assignment) row a lower
+   bound on its worst value (and rules out the rows it can prove infeasible).
+2. Rows are evaluated best bound first by
+   :class:`~liftplan.planner.search.evaluator.SetEvaluator` (the preload minimax LP with
+   cutting planes over the dense box).
+3. The search stops when the next row's bound is no better than the k-th best worst value
+   found: no row left can enter the top k (every bound is a valid lower bound).
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+import time
+from collections import Counter
+
+import numpy as np
+
+from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.search.evaluator import (
+    Interrupted,
+    SearchStats,
+    SetEvaluator,
+    SetInfeasible,
+    progress_bar,
+    tick,
+)
+from liftplan.planner.search.lines import line_bound
+from liftplan.planner.search.screen import (
+    FEASIBLE,
+    FULL_COLUMNS,
+    REASONS,
+    screen,
+    screening_scenarios,
+    set_rows,
+)
+
+#: Rows whose coarse screening bound is replaced by the full one at a time (256: fewer, larger
+#: calls; 4 of 100 candidates 21.9 -> 18.3 s, 8 of 16 5.4 -> 4.6 s against 64).
+REFINE = 256
+#: n >= 5: refine the preload-free pair bound to the LP's dual bound before a row is
+#: evaluated (False: the pair bound alone, as before; studies/planner_scale.py compares).
+DUAL_BOUND = True
+
+
+def search_exact(problem, started, top, progress=None):
+    """The exact search: every (set, assignment) row screened, then evaluated best bound first.
+
+    It stops when no row left can enter the top ``top`` (the optimum is proved), when the
+    best plan is within ``problem.gap`` of the certified lower bound, or at
+    ``problem.time_limit`` counted from ``started`` (:func:`time.perf_counter`).
+
+    Returns, raises: as :func:`liftplan.planner.search.methods.search`.
+    """
+    top = top or problem.top
+    sets, cranes, out_of_reach = set_rows(problem)
+    if len(sets) == 0:
+        raise PlanInfeasible(_unreachable(problem))
+    screening = screen(problem, sets, cranes)
+    evaluator = SetEvaluator(problem)
+    reasons = Counter(
+        dict(
+            zip(
+                *(
+                    v.tolist()
+                    for v in np.unique(screening.reason[screening.reason != FEASIBLE], return_counts=True)
+                )
+            )
+        )
+    )
+    bound = screening.bound.copy()
+    # rows whose bound is refined before they are evaluated: from the coarse screening, or
+    # (n >= 5) from the preload-free pair bound to the LP's dual bound
+    dual = problem.cranes >= 5 and DUAL_BOUND
+    lazy = _coarse(screening, problem) or dual
+    refined = np.full(len(bound), not lazy)
+    heap = [(float(bound[k]), bool(not refined[k]), int(k)) for k in np.flatnonzero(np.isfinite(bound))]
+    heapq.heapify(heap)
+    feasible_rows = len(heap)
+    ranking, evaluated, refine_count = [], 0, 0
+    evaluated_bound = math.inf  # least LP bound of the rows evaluated feasible
+    stopped = "proved"
+    bar = progress_bar(feasible_rows, progress)
+
+    def lower_bound():
+        return min(evaluated_bound, heap[0][0] if heap else math.inf)
+
+    def stats_now():
+        best = ranking[0].worst_value if ranking else math.inf
+        return SearchStats(
+            sets=problem.set_count,
+            screened_out=int(np.sum(screening.reason != FEASIBLE)),
+            evaluated=evaluated,
+            pruned=feasible_rows - evaluated,
+            infeasible={REASONS[c]: n for c, n in reasons.most_common()},
+            seconds=time.perf_counter() - started,
+            rows=len(sets),
+            out_of_reach=out_of_reach,
+            refined=refine_count,
+            # stopped early: the two-line bound may be the better of two valid bounds
+            lower_bound=min(
+                lower_bound()
+                if stopped == "proved"
+                else max(lower_bound(), line_bound(problem, evaluator.dense)),
+                best,
+            ),
+            best=best,
+            stopped=stopped,
+        )
+
+    done = np.zeros(len(bound), dtype=bool)  # evaluated out of turn
+
+    def evaluate(k, value):
+        nonlocal evaluated, evaluated_bound
+        evaluated += 1
+        tick(bar, ranking, lower_bound)
+        try:
+            result = evaluator.evaluate(sets[k], cranes[k], value)
+        except SetInfeasible as err:
+            reasons[err.code] += 1
+            return
+        evaluated_bound = min(evaluated_bound, result.bound)
+        ranking.append(result)
+        ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
+        del ranking[top:]
+
+    try:
+        while heap:
+            if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
+                break
+            if ranking:
+                best, low = ranking[0].worst_value, min(lower_bound(), ranking[0].worst_value)
+                if problem.gap > 0 and best - low <= problem.gap * best:
+                    stopped = "gap"
+                    break
+                if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
+                    stopped = "time_limit"
+                    break
+            value, coarse, k = heapq.heappop(heap)
+            if done[k]:
+                continue
+            if coarse:
+                batch = [k] + [
+                    heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap))) if heap and heap[0][1]
+                ]
+                # a bound past the k-th best found need not be tightened further
+                target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
+                full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual, target=target)
+                refine_count += len(batch)
+                dive = None
+                for j, new_bound, reason in zip(batch, full.bound, full.reason):
+                    refined[j] = True
+                    if reason != FEASIBLE:
+                        reasons[int(reason)] += 1
+                        continue
+                    entry = (max(float(new_bound), float(bound[j])), False, int(j))
+                    heapq.heappush(heap, entry)
+                    dive = entry if dive is None or entry < dive else dive
+                if dive is not None and len(ranking) < top:
+                    # no k-th best yet: evaluate the batch's best now, so that its value
+                    # lets the next batches' bounds stop early (the row is not evaluated twice)
+                    done[dive[2]] = True
+                    evaluate(dive[2], dive[0])
+                continue
+            evaluate(k, value)
+    except KeyboardInterrupt:
+        stopped = "interrupted"
+        raise Interrupted(ranking, stats_now()) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    stats = stats_now()
+    if not ranking:
+        causes = "; ".join(f"{n} sets: {text}" for text, n in stats.infeasible.items())
+        what = f"{problem.cranes} lugs among {len(problem.candidates)} candidates"
+        if not problem.equal_cranes:
+            what += f" with any assignment of the cranes in reach ({out_of_reach} out of reach)"
+        if stopped == "time_limit":
+            what += f" found within the time limit {problem.time_limit:g} s"
+        raise PlanInfeasible(
+            f"no set of {what} can hold the body within heel +-{problem.heel_tolerance:g} deg, "
+            f"trim +-{problem.trim_tolerance:g} deg, tensions {problem.min_tension:g} t to "
+            f"each crane's SWL ({causes})"
+        )
+    return ranking, stats
+
+
+def _coarse(screening, problem):
+    return len(screening.sets) * len(screening_scenarios(problem)[0]) > FULL_COLUMNS
+
+
+def _unreachable(problem):
+    """Why no assignment puts every crane within reach of a distinct lug."""
+    swl = problem.reach[1]
+    counts = np.sum(~np.isnan(swl), axis=0)
+    worst = int(np.argmin(counts))
+    crane = problem.fleet[worst]
+    return (
+        f"no assignment puts every crane within reach of its own lug: crane "
+        f"{crane.name} reaches {int(counts[worst])} of {len(problem.candidates)} candidates "
+        f"(chart reach {crane.reach:g} m); expected cranes closer to the candidates or "
+        "longer charts"
+    )
