@@ -36,6 +36,9 @@ from mkdocs.structure.files import File
 ROOT = Path(__file__).resolve().parents[2]
 STUDIES_OUT = "studies/out"
 IMAGE_LINK = re.compile(r"\]\(\.\./" + re.escape(STUDIES_OUT) + r"/")
+# reStructuredText in the docstrings that Markdown would show raw: roles, and "Example::"
+ROLE = re.compile(r":(?:func|class|mod|meth|attr|data|exc|obj):`~?([^`]+)`")
+LITERAL_INTRO = re.compile(r"::$", re.MULTILINE)
 
 
 def _package_tree():
@@ -94,7 +97,14 @@ def _exports(module):
 
 
 class LazyExports(griffe.Extension):
-    """Add a lazily exporting package's public names to it, as aliases of their definitions."""
+    """Add a lazily exporting package's public names to it, as aliases of their definitions;
+    show the docstrings' reStructuredText roles (``:func:`x```) as code and their literal
+    block openers (``Example::``) as a colon (the indented block is code either way)."""
+
+    def on_instance(self, *, obj, **kwargs):
+        if obj.docstring is not None:
+            text = ROLE.sub(r"`\1`", obj.docstring.value)
+            obj.docstring.value = LITERAL_INTRO.sub(":", text)
 
     def on_package(self, *, pkg, **kwargs):
         self._walk(pkg)
