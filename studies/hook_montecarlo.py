@@ -3,7 +3,7 @@
 Runs examples/tanker_montecarlo.toml (100 000 uniform draws within the plan's +-0.02 m) and
 two variants of it (normal errors with a 0.02 m standard deviation; uniform within +-0.05 m)
 on a local two-worker Dask cluster, each table to a temporary folder (100 000 rows each, too
-large to keep), and keeps what the README reads: per study the spread percentiles, the
+large to keep), and keeps what docs/batch.md's table reads: per study the spread percentiles, the
 chance of exceeding the plan's worst spread, a design tension (like for like), a design
 hook load (lenient) and an SWL, the heel reached, the spread histogram, and the batch's wall
 time. Then draws the histograms from that data.

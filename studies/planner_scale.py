@@ -28,7 +28,7 @@ Run:  python studies/planner_scale.py     (writes studies/out/planner_scale.json
       python studies/planner_scale.py --only exact local mip   (re-run those methods; the
                                               others' rows are kept, each row dated)
       python studies/planner_scale.py --only mip --problems "154 m hull"   (one problem)
-      python studies/planner_scale.py --table   (README's table, from the JSON)
+      python studies/planner_scale.py --table   (docs/studies.md's table, from the JSON)
 """
 
 from __future__ import annotations
@@ -147,7 +147,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--figure-only", action="store_true", help="redraw from the JSON")
-    parser.add_argument("--table", action="store_true", help="print README's table from the JSON")
+    parser.add_argument("--table", action="store_true", help="print docs/studies.md's table from the JSON")
     parser.add_argument(
         "--only",
         nargs="+",
@@ -207,7 +207,7 @@ TABLE = [
 
 
 def table(rows):
-    """README's markdown table: per problem and method, time, accuracy and certified gap."""
+    """docs/studies.md's markdown table: per problem and method, time, accuracy and certified gap."""
 
     def cell(r):
         if r is None:
