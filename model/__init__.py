@@ -44,8 +44,9 @@ _EXPORTS = {
     "RiggingState": "results",
     **dict.fromkeys(("hull_girder", "strength_checks"), "strength"),
     **dict.fromkeys(("HullForm", "Particulars", "fitted_hull"), "hullfit"),
+    "__version__": "version",
 }
 
-__all__ = sorted(_EXPORTS)
+__all__ = sorted(n for n in _EXPORTS if not n.startswith("__"))  # __version__ is no API name
 
 __getattr__, __dir__ = lazy_package(__name__, _EXPORTS)

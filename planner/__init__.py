@@ -18,8 +18,9 @@ _EXPORTS = {
     **dict.fromkeys(("Candidate", "CogEnvelope", "CraneSpec", "PlanProblem"), "problem.definition"),
     **dict.fromkeys(("load_problem", "loads_problem"), "problem.file"),
     "write_report": "output.report",
+    "__version__": "liftplan.model.version",
 }
 
-__all__ = sorted(_EXPORTS)
+__all__ = sorted(n for n in _EXPORTS if not n.startswith("__"))  # __version__ is no API name
 
 __getattr__, __dir__ = lazy_package(__name__, _EXPORTS)

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model.frames import zup_to_choi
+from liftplan.model.version import stamped
 from liftplan.planner.output import figures, report_page
 from liftplan.planner.plan import FRAMES, OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
@@ -97,7 +98,7 @@ def write_report(plan, directory):
     scene_path = out / "plan_scene.toml"
     scene_path.write_text(scene_text, encoding="utf-8")
     json_path = out / "plan.json"
-    json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
+    json_path.write_text(json.dumps(stamped(plan.to_json()), indent=1), encoding="utf-8")
     pdf_path = None
     try:
         import weasyprint  # optional: pip install "liftplan[pdf]"

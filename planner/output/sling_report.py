@@ -12,6 +12,7 @@ import json
 import numpy as np
 
 from liftplan.model.frames import zup_to_choi
+from liftplan.model.version import stamped
 from liftplan.planner.output import report_page
 
 FRAMES = {
@@ -445,7 +446,7 @@ def write_report(plan, directory):
     scene_path = out / "plan_scene.toml"
     scene_path.write_text(scene_toml(plan), encoding="utf-8")
     json_path = out / "plan.json"
-    json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
+    json_path.write_text(json.dumps(stamped(plan.to_json()), indent=1), encoding="utf-8")
     pdf_path = None
     try:
         import weasyprint  # optional: pip install "liftplan[pdf]"
