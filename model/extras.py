@@ -50,7 +50,7 @@ def require(extra: str, module: str, *more: str, what: str = "") -> ModuleType:
     what : str, optional
         What needed them, put before the message (e.g. ``"hull.mesh = 'a.stl'"``).
     """
-    reason = missing(extra, *more, module)
+    reason = missing(extra, module, *more)
     if reason is not None:
         raise MissingExtra(f"{what}: {reason}" if what else reason)
     return importlib.import_module(module)

@@ -5,8 +5,8 @@ lift) is written with ``write_report``; every PDF page is rendered to PNG (``pdf
 read back as text (``pdftotext``). Checked: the page count, that nothing is printed to the
 right of the A4 text width (a table or figure wider than the page overflows into the right
 margin), the running header, "page n of N" and liftplan's version on every page, and the
-``[report]`` title block in both the HTML and the PDF. Skipped, and said so, without WeasyPrint or poppler-utils
-(Debian: ``apt-get install poppler-utils``).
+``[report]`` title block in both the HTML and the PDF. Skipped, and said so, without
+WeasyPrint or poppler-utils (Debian: ``apt-get install poppler-utils``).
 """
 
 from __future__ import annotations
