@@ -30,7 +30,7 @@ from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.inclined import solve_inclined
 from liftplan.model.results import Equilibrium, Pose, SolverInfo
 from liftplan.model.rigging import solve_rigging
-from liftplan.model.scene import MODELS, name_list
+from liftplan.model.scene import MODELS, Scene, name_list
 from liftplan.model.statics import BLOCK, rope_model
 from liftplan.model.water import solve_hydrostatic
 
@@ -60,7 +60,7 @@ def pick_model(scene):
     return "paper-elastic"
 
 
-def solve(scene, model=None, method="newton"):
+def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equilibrium:
     """Solve a scene.
 
     Parameters

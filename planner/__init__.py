@@ -12,12 +12,23 @@ for every command, and only ``plan`` needs cvxpy.
 
 from liftplan.model.lazy import lazy_package
 
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
+if TYPE_CHECKING:  # what a type checker sees of the typed public API (loaded lazily below)
+    from liftplan.model.version import __version__ as __version__
+    from liftplan.planner.output.report import ReportFiles as ReportFiles
+    from liftplan.planner.output.report import write_report as write_report
+    from liftplan.planner.plan import Plan as Plan
+    from liftplan.planner.plan import plan as plan
+    from liftplan.planner.problem.definition import PlanProblem as PlanProblem
+    from liftplan.planner.problem.file import load_problem as load_problem
+    from liftplan.planner.problem.file import loads_problem as loads_problem
+
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
     **dict.fromkeys(("CraneCapacity", "GuidanceStep", "Plan", "SkewLoad", "plan"), "plan"),
     **dict.fromkeys(("Candidate", "CogEnvelope", "CraneSpec", "PlanProblem"), "problem.definition"),
     **dict.fromkeys(("load_problem", "loads_problem"), "problem.file"),
-    "write_report": "output.report",
+    **dict.fromkeys(("ReportFiles", "write_report"), "output.report"),
     "__version__": "liftplan.model.version",
 }
 

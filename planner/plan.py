@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,6 +26,16 @@ from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.branch import Interrupted, SearchStats, SetResult, robust, search
 from liftplan.planner.search.scenarios import LugSet, Scenario
+
+if TYPE_CHECKING:  # what plan() returns besides a Plan (their modules import this one)
+    from typing import TypeAlias
+
+    from liftplan.planner.slings.apex import ApexSlingPlan
+    from liftplan.planner.slings.two_crane import SlingPlan
+    from liftplan.planner.strength_plan import StrengthPlan
+
+    #: Whatever :func:`plan` returns (each with its own tables, report and JSON).
+    AnyPlan: TypeAlias = "Plan | SlingPlan | ApexSlingPlan | StrengthPlan"
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
 GUIDANCE_STEP = 5.0
@@ -165,17 +176,17 @@ class Plan:
         return tuple(f"L{i + 1}" for i in range(len(self.chosen.lugs)))
 
     @property
-    def lugs(self):
+    def lugs(self) -> dict[str, str]:
         """Planned label -> candidate name."""
         return dict(zip(self.labels, self.chosen.lugs))
 
     @property
-    def boom_heights(self):
+    def boom_heights(self) -> dict[str, float]:
         """Planned label -> boom-tip height H  [m]."""
         return dict(zip(self.labels, self.chosen.boom_heights.tolist()))
 
     @property
-    def tensions(self):
+    def tensions(self) -> dict[str, float]:
         """Planned label -> level tension with the nominal CG  [t]."""
         return dict(zip(self.labels, self.chosen.preload.tolist()))
 
@@ -185,12 +196,12 @@ class Plan:
         return {label: self.problem.fleet[j].rope_length for label, j in zip(self.labels, self.chosen.cranes)}
 
     @property
-    def spread(self):
+    def spread(self) -> float:
         """Max - min of the level tensions  [t]."""
         return float(np.ptp(self.chosen.preload))
 
     @property
-    def worst_spread(self):
+    def worst_spread(self) -> float:
         """Largest max - min tension over the tolerance box and CG envelope  [t]."""
         return self.chosen.worst_spread
 
@@ -652,7 +663,7 @@ def _twist_stiffness(problem, result):
     return float(np.abs(gain).sum(axis=1).max() / 100.0)
 
 
-def plan(problem, top=None):
+def plan(problem: PlanProblem, top: int | None = None) -> AnyPlan:
     """Plan a lift: lugs among the candidates and boom heights.
 
     Parameters

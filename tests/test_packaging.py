@@ -3,7 +3,9 @@ output and the report's footer; an optional part that is not installed refused i
 naming the extra to install; the public API typed. (That the built wheel installs and runs
 outside the repository is ``.ci/wheel_smoke``'s job: CI runs it.)"""
 
+import ast
 import importlib.metadata
+import inspect
 import io
 import json
 import re
@@ -149,3 +151,40 @@ def test_require_and_missing():
     with pytest.raises(MissingExtra, match=r"^writing 'a\.stl': needs the mesh extra") as caught:
         require("mesh", "liftplan_no_such_module", what="writing 'a.stl'")
     assert isinstance(caught.value, ImportError)  # also caught as what it is
+
+
+PUBLIC_API = {
+    liftplan.model: ("load_scene", "loads_scene", "solve"),
+    liftplan.planner: ("plan", "load_problem", "loads_problem", "write_report"),
+}
+
+
+@pytest.mark.parametrize(
+    ("package", "name"), [(package, name) for package, names in PUBLIC_API.items() for name in names]
+)
+def test_public_api_is_annotated(package, name):
+    # mypy (.ci/typecheck) checks the annotations; this keeps every parameter annotated
+    signature = inspect.signature(getattr(package, name))
+    assert signature.return_annotation is not inspect.Signature.empty, name
+    for parameter in signature.parameters.values():
+        assert parameter.annotation is not inspect.Parameter.empty, f"{name}({parameter.name})"
+
+
+@pytest.mark.parametrize("package", [liftplan.model, liftplan.planner])
+def test_type_checkers_see_the_lazy_exports_where_they_load(package):
+    # the `if TYPE_CHECKING:` imports of the package's __init__ name the same modules as its
+    # lazy table (a module moved in one and not the other would type one thing, load another)
+    tree = ast.parse(inspect.getsource(package))
+    block = next(
+        node for node in tree.body if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING"
+    )
+    seen = {}
+    for node in block.body:
+        assert isinstance(node, ast.ImportFrom), ast.unparse(node)
+        for alias in node.names:
+            assert alias.asname == alias.name, f"{alias.name}: re-exported as itself"
+            seen[alias.name] = node.module
+    assert {*PUBLIC_API[package], "__version__"} <= set(seen)
+    for name, module in seen.items():
+        lazy = package._EXPORTS[name]
+        assert module == (lazy if lazy.startswith("liftplan.") else f"{package.__name__}.{lazy}"), name

@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import html
 import json
+import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -20,6 +22,9 @@ from liftplan.model.version import stamped
 from liftplan.planner.output import figures, report_page
 from liftplan.planner.plan import FRAMES, OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
+
+if TYPE_CHECKING:
+    from liftplan.planner.plan import AnyPlan
 
 ASSUMPTIONS = (
     "Ropes hang vertically (each hook above its lug) and the body is rigid.",
@@ -65,7 +70,7 @@ class ReportFiles:
     json: Path
 
 
-def write_report(plan, directory):
+def write_report(plan: AnyPlan, directory: str | os.PathLike[str]) -> ReportFiles:
     """Write the report of a plan into ``directory`` (created if needed).
 
     Parameters

@@ -8,6 +8,7 @@ the file's frame and converted to ``z-up``.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Annotated, Literal
 
@@ -160,7 +161,7 @@ class _PlanFile(Table):
     strength: _Strength | None = None
 
 
-def load_problem(path):
+def load_problem(path: str | os.PathLike[str]) -> PlanProblem:
     """Read and validate a planning scene file.
 
     Parameters
@@ -180,7 +181,7 @@ def load_problem(path):
     return load_with(path, lambda text: loads_problem(text, base=Path(path).parent))
 
 
-def loads_problem(text, base=None):
+def loads_problem(text: str, base: str | os.PathLike[str] | None = None) -> PlanProblem:
     """Validate a planning scene given as TOML text; see :func:`load_problem`.
 
     ``base`` is the folder a relative ``plan.breakout_scene`` is read from (default: the
