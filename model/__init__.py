@@ -14,6 +14,15 @@ command line's ``--help``) does not pay for casadi, numpy or pydantic until they
 
 from liftplan.model.lazy import lazy_package
 
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up)
+if TYPE_CHECKING:  # what a type checker sees of the typed public API (loaded lazily below)
+    from liftplan.model.results import Equilibrium as Equilibrium
+    from liftplan.model.scene.file import load_scene as load_scene
+    from liftplan.model.scene.file import loads_scene as loads_scene
+    from liftplan.model.scene.objects import Scene as Scene
+    from liftplan.model.solve import solve as solve
+    from liftplan.model.version import __version__ as __version__
+
 #: Public name -> the submodule that defines it.
 _EXPORTS = {
     **dict.fromkeys(
@@ -39,8 +48,9 @@ _EXPORTS = {
     "RiggingState": "results",
     **dict.fromkeys(("hull_girder", "strength_checks"), "strength"),
     **dict.fromkeys(("HullForm", "Particulars", "fitted_hull"), "scene.hullfit"),
+    "__version__": "version",
 }
 
-__all__ = sorted(_EXPORTS)
+__all__ = sorted(n for n in _EXPORTS if not n.startswith("__"))  # __version__ is no API name
 
 __getattr__, __dir__ = lazy_package(__name__, _EXPORTS)

@@ -17,7 +17,8 @@ def lazy_package(name, exports):
     name : str
         The package (``__name__`` of its ``__init__``).
     exports : dict of str to str
-        Public name -> the submodule (relative dotted path) that defines it.
+        Public name -> the submodule (dotted path relative to the package, or absolute from
+        ``liftplan.``) that defines it.
 
     Returns
     -------
@@ -36,7 +37,8 @@ def lazy_package(name, exports):
             module = exports[attribute]
         except KeyError:
             raise AttributeError(f"module {name!r} has no attribute {attribute!r}") from None
-        value = getattr(importlib.import_module(f"{name}.{module}"), attribute)
+        absolute = module.startswith("liftplan.")  # another package's module (the version)
+        value = getattr(importlib.import_module(module if absolute else f"{name}.{module}"), attribute)
         setattr(sys.modules[name], attribute, value)
         return value
 

@@ -22,7 +22,8 @@ import time
 import numpy as np
 
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
-from liftplan.model.scene.objects import MODELS, name_list
+from liftplan.model.results import Equilibrium
+from liftplan.model.scene.objects import MODELS, Scene, name_list
 from liftplan.model.statics.acceptance import Verdict
 from liftplan.model.statics.inclined import solve_inclined
 from liftplan.model.statics.rigging import solve_rigging
@@ -71,7 +72,7 @@ def pick_model(scene):
     return "paper-elastic"
 
 
-def solve(scene, model=None, method="newton"):
+def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equilibrium:
     """Solve a scene.
 
     Parameters

@@ -22,6 +22,7 @@ import os
 import sys
 
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene, LiftPlanError, PlanInfeasible
+from liftplan.model.extras import MissingExtra
 
 # exit codes
 NO_SOLUTION = 1
@@ -35,6 +36,20 @@ BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for a writer whose read
 MAX_YAW = 360.0
 
 
+class _Version(argparse.Action):
+    """``--version``: argparse's ``action="version"``, but the version is read (from the
+    installed metadata, ~25 ms) only when asked for, not for every command."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from liftplan.model.version import __version__
+
+        print(f"{parser.prog} {__version__}")  # on stdout, as argparse's own
+        parser.exit()
+
+
 def _parser():
     parser = argparse.ArgumentParser(
         prog="liftplan",
@@ -44,6 +59,7 @@ def _parser():
         "130 interrupted (Ctrl-C), 141 output pipe closed early",
     )
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
+    parser.add_argument("--version", action=_Version, help="print liftplan's version and exit")
     commands = parser.add_subparsers(dest="command", required=True)
     solve_cmd = commands.add_parser("solve", help="tensions and pose of a scene")
     solve_cmd.add_argument("scene", help="scene file (TOML)")
@@ -186,7 +202,7 @@ def _solve(args):
         out = {**eq.to_json(), "checks": [c.to_json() for c in checks]}
         if girder is not None:
             out["strength"] = girder.to_json()
-        print(json.dumps(out))
+        print(json.dumps(_stamped(out)))
     else:
         print(equilibrium_table(scene, eq, girder=girder))
         if eq.flexible_hull is not None:  # a hull stiffness: which hull, the change, the deflection
@@ -252,9 +268,20 @@ def _plan(args):
         else:
             written = [files.html, files.pdf, files.scene, files.json]
             print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
+            if files.pdf is None:  # the HTML report is always written; the PDF is optional
+                from liftplan.model.extras import missing
+
+                _warn([f"no report.pdf: {missing('pdf', 'weasyprint') or 'WeasyPrint did not write it'}"])
     _print_plan(result, args)
     code = _verdict(result.checks, table=not args.json)
     return _unwritten(unwritten) or code
+
+
+def _stamped(out):
+    """A JSON object printed by a command, with liftplan's version as its last key."""
+    from liftplan.model.version import stamped
+
+    return stamped(out)
 
 
 def _unwritten(message):
@@ -272,7 +299,7 @@ def _print_plan(result, args, interrupted=False):
         out = {**result.to_json(), "checks": [c.to_json() for c in result.checks]}
         if interrupted:
             out["interrupted"] = True
-        print(json.dumps(out))
+        print(json.dumps(_stamped(out)))
     else:
         if interrupted:
             print("INTERRUPTED: best plan found so far (the search did not finish)")
@@ -309,7 +336,7 @@ def _lift(args):
     else:
         print(f"liftplan: wrote {figure}", file=sys.stderr)
     if args.json:
-        print(json.dumps(curve.to_json()))
+        print(json.dumps(_stamped(curve.to_json())))
     else:
         print(lift_table(scene, curve))
     return _unwritten(unwritten)
@@ -373,6 +400,9 @@ def _run(args):
     except PlanInfeasible as err:
         print(f"liftplan: no feasible plan: {err}", file=sys.stderr)
         return NO_SOLUTION
+    except MissingExtra as err:  # an optional part not installed: which extra to install
+        print(f"liftplan {args.command}: {err}", file=sys.stderr)
+        return BAD_INPUT
     except LiftPlanError as err:
         print(f"liftplan: error: {err}", file=sys.stderr)
         return BAD_INPUT

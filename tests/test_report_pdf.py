@@ -4,9 +4,9 @@ Each of the three example plans (four equal cranes, an unequal fleet, a two-cran
 lift) is written with ``write_report``; every PDF page is rendered to PNG (``pdftoppm``) and
 read back as text (``pdftotext``). Checked: the page count, that nothing is printed to the
 right of the A4 text width (a table or figure wider than the page overflows into the right
-margin), the running header and "page n of N" on every page, and the ``[report]`` title
-block in both the HTML and the PDF. Skipped, and said so, without WeasyPrint or poppler-utils
-(Debian: ``apt-get install poppler-utils``).
+margin), the running header, "page n of N" and liftplan's version on every page, and the
+``[report]`` title block in both the HTML and the PDF. Skipped, and said so, without
+WeasyPrint or poppler-utils (Debian: ``apt-get install poppler-utils``).
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.model.errors import InvalidScene
+from liftplan.model.version import __version__
 from liftplan.planner.output.report.page import MARGINS_MM, document, table
 from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.problem.report_info import ReportInfo
@@ -133,13 +134,14 @@ def test_nothing_is_printed_beyond_the_text_width(printed):
 
 
 @needs_pdf
-def test_every_page_has_the_running_header_and_its_number(printed):
+def test_every_page_has_the_running_header_its_number_and_the_version(printed):
     name, problem, _, _, texts, _ = printed
     header = problem.report.project or problem.name
     for k, text in enumerate(texts, start=1):
         flat = " ".join(text.split())
         assert f"page {k} of {len(texts)}" in flat, f"{name} page {k}"
         assert " ".join(header.split())[:40] in flat, f"{name} page {k}: no running header"
+        assert f"liftplan {__version__}" in flat, f"{name} page {k}: no software version in the footer"
 
 
 @needs_pdf

@@ -1,11 +1,11 @@
 """mkdocs hook: let mkdocstrings (griffe) read ``liftplan.model`` and ``liftplan.planner``.
 
-The repository keeps the packages in ``model/`` and ``planner/`` at its root; pyproject's
-``[tool.setuptools.package-dir]`` installs them as ``liftplan.model`` and ``liftplan.planner``
+The repository keeps the packages in ``model/`` and ``planner/`` at its root; setup.py's
+``package_dir`` installs them as ``liftplan.model`` and ``liftplan.planner``
 (``liftplan`` itself is a namespace package with no folder). griffe finds packages by their
 folder names, so on every build this hook links the mapped folders into a temporary
 ``liftplan/`` tree and puts it first on the python handler's search paths. The mapping is read
-from pyproject.toml, so the docs follow the packaging.
+from setup.py, so the docs follow the packaging.
 
 The packages export their public names lazily (PEP 562: a ``_EXPORTS`` dict of public name ->
 submodule, read by ``__getattr__``), which static analysis cannot see. :class:`LazyExports`,
@@ -26,7 +26,6 @@ import atexit
 import re
 import shutil
 import tempfile
-import tomllib
 from pathlib import Path
 
 import griffe
@@ -42,10 +41,10 @@ LITERAL_INTRO = re.compile(r"::$", re.MULTILINE)
 
 
 def _package_tree():
-    """A temporary folder holding ``liftplan/<sub>`` links to the folders pyproject maps."""
-    mapping = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"][
-        "package-dir"
-    ]
+    """A temporary folder holding ``liftplan/<sub>`` links to the folders setup.py maps
+    (``FOLDERS``: ``model/`` is ``liftplan.model``, ``planner/`` is ``liftplan.planner``)."""
+    folders = ast.literal_eval(re.search(r"^FOLDERS = (.+)$", (ROOT / "setup.py").read_text(), re.M)[1])
+    mapping = {f"liftplan.{folder}": folder for folder in folders}
     tree = Path(tempfile.mkdtemp(prefix="liftplan-docs-"))
     atexit.register(shutil.rmtree, tree, ignore_errors=True)
     for package, folder in mapping.items():
@@ -112,7 +111,8 @@ class LazyExports(griffe.Extension):
     def _walk(self, module):
         for member in list(module.modules.values()):
             self._walk(member)
-        exports = _exports(module)
+        # the public names (``__version__`` is metadata, read at run time: not an API name)
+        exports = {name: sub for name, sub in (_exports(module) or {}).items() if not name.startswith("__")}
         if exports:
             # every definition first: a name may be its own submodule's (``solve``, ``plan``),
             # and the alias then takes the submodule's place in the package

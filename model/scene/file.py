@@ -10,6 +10,7 @@ expected; nothing is returned half-read.
 
 from __future__ import annotations
 
+import os
 import stat
 import tomllib
 import types
@@ -125,9 +126,10 @@ class _Redundant(Table):
 
 
 class _Analysis(Table):
-    model: Literal[MODELS] | None = None
+    # Literal of a tuple of names: Python expands it at run time, a static checker cannot
+    model: Literal[MODELS] | None = None  # type: ignore[valid-type]
     redundant: _Redundant | list[_Redundant] | None = None
-    hull: Literal[HULL_MODELS] = "auto"
+    hull: Literal[HULL_MODELS] = "auto"  # type: ignore[valid-type]
 
 
 class _Water(Table):
@@ -209,7 +211,7 @@ class _SceneFile(Table):
 PLAN_TABLES = ("candidates", "plan", "crane", "rules")
 
 
-def load_scene(path):
+def load_scene(path: str | os.PathLike[str]) -> Scene:
     """Read and validate a scene file.
 
     Parameters
@@ -293,7 +295,7 @@ def parse_toml(text):
     return raw
 
 
-def loads_scene(text, base=None):
+def loads_scene(text: str, base: str | os.PathLike[str] | None = None) -> Scene:
     """Validate a scene given as TOML text; see :func:`load_scene`.
 
     ``base`` is the folder that a relative ``hull.mesh`` path is read from (default: the

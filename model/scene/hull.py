@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
+from liftplan.model.extras import require
 from liftplan.model.scene.objects import finite, point, positive
 
 FLOODING = ("intact", "flooded")
@@ -214,11 +215,10 @@ class Hull:
             The file cannot be read, or the mesh is not closed, not consistently wound,
             or its normals point inward.
         """
-        import trimesh  # only when a mesh is read
-
         path = Path(path)
         if not path.is_file():
             raise InvalidScene(f"hull.mesh = {str(path)!r}: no such file")
+        trimesh = require("mesh", "trimesh", what=f"hull.mesh = {str(path)!r}")  # only when read
         try:
             mesh = trimesh.load_mesh(path, file_type="stl", process=True)
         except Exception as err:  # noqa: BLE001 - any reader failure is a bad file

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import InvalidScene
+from liftplan.model.extras import require
 
 # mesh resolution: points along each fined end, along the parallel body, levels in the
 # bilge and between the bilge and the waterline (about 3 000 triangles)
@@ -546,7 +547,6 @@ def write_stl(triangles, path, binary=True):
     triangles : numpy.ndarray, shape (m, 3, 3)  [m]
     path : str or pathlib.Path
     """
-    import trimesh
-
+    trimesh = require("mesh", "trimesh", what=f"writing {str(path)!r}")
     mesh = trimesh.Trimesh(**trimesh.triangles.to_kwargs(np.asarray(triangles, dtype=float)))
     mesh.export(str(path), file_type="stl" if binary else "stl_ascii")

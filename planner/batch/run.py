@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from liftplan.model.errors import InvalidScene, LiftPlanError, PlanInfeasible
+from liftplan.model.extras import require
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.statics.model import rope_model
 from liftplan.planner.batch.check import CheckCases, check_plan
@@ -140,6 +141,7 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
     LiftPlanError
         The scheduler cannot be reached, or the journal belongs to another study.
     """
+    require("batch", "dask.distributed", "msgpack")  # before any work, in one line
     from tqdm import tqdm
 
     output = Path(output or study.output)

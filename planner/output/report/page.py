@@ -13,6 +13,8 @@ import base64
 import html
 import io
 
+from liftplan.model.version import __version__
+
 #: A4 text width [mm]: 210 mm less 20 mm margins each side. Figures are drawn to it.
 TEXT_WIDTH_MM = 170.0
 #: Page margins [mm]: top, right, bottom, left.
@@ -31,6 +33,10 @@ _CSS = """
 }
 @media screen {
   body { max-width: %(width)smm; margin: 2em auto; padding: 0 1em; }
+  footer { margin-top: 2em; border-top: 1px solid #999; font-size: 7.5pt; color: #555; }
+}
+@media print {
+  footer { display: none; }
 }
 body { font-family: sans-serif; font-size: 9pt; line-height: 1.3; color: #222; }
 h1 { font-size: 16pt; margin: 0.2em 0 0.4em; }
@@ -86,9 +92,11 @@ def document(title, body, header, footer=""):
     header : str
         Running header printed at the top of every page.
     footer : str
-        Printed at the bottom left of every page (document number and revision).
+        Printed at the bottom left of every page (document number, revision, the software
+        and its version); on screen, once below the body.
     """
     top, right, bottom, left = MARGINS_MM
+    shown = f"<footer>{html.escape(footer)}</footer>\n" if footer else ""  # on screen
     css = _CSS % {
         "top": top,
         "right": right,
@@ -104,7 +112,7 @@ def document(title, body, header, footer=""):
 <style>{css}</style></head>
 <body>
 {body}
-</body></html>
+{shown}</body></html>
 """
 
 
@@ -276,11 +284,12 @@ def running_header(info, plan_name):
 
 
 def running_footer(info):
-    """The line printed at the bottom left of every page: document number and revision."""
+    """The line printed at the bottom left of every page: document number and revision, and
+    the software that computed the plan, with its version (the signed report carries it)."""
     parts = [info.document] if info.document else []
     if info.revision:
         parts.append(f"rev. {info.revision}")
-    return ", ".join(parts)
+    return ", ".join([*parts, f"liftplan {__version__}"])
 
 
 def status(checks):

@@ -8,10 +8,13 @@ every kind.
 from __future__ import annotations
 
 import json
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from liftplan.model.version import stamped
 from liftplan.planner.output.report import held, slings, strength
+from liftplan.planner.plans.protocol import LiftPlan
 
 #: plan kind (:data:`liftplan.planner.plan.KINDS`) -> ``render(plan) -> (html, scene toml)``.
 PAGES = {
@@ -42,7 +45,7 @@ class ReportFiles:
     json: Path
 
 
-def write_report(plan, directory):
+def write_report(plan: LiftPlan, directory: str | os.PathLike[str]) -> ReportFiles:
     """Write the report of any plan into ``directory`` (created if needed).
 
     Parameters
@@ -62,7 +65,7 @@ def write_report(plan, directory):
     scene_path = out / "plan_scene.toml"
     scene_path.write_text(scene_text, encoding="utf-8")
     json_path = out / "plan.json"
-    json_path.write_text(json.dumps(plan.to_json(), indent=1), encoding="utf-8")
+    json_path.write_text(json.dumps(stamped(plan.to_json()), indent=1), encoding="utf-8")
     pdf_path = None
     try:
         import weasyprint  # optional (pip install "liftplan[pdf]"), and heavy: only here
