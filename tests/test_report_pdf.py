@@ -234,3 +234,22 @@ def test_report_info_refuses_line_breaks_and_defaults_the_date():
         ReportInfo(client="a\nb")
     rows = dict(ReportInfo(project="P").rows(today=datetime.date(2026, 1, 2)))
     assert rows["Date"] == "2026-01-02" and rows["Project"] == "P" and rows["Checked by"] == ""
+
+
+def test_the_report_says_how_to_get_the_plan_again():
+    """The held report's last section (one function and one row of SECTIONS): the version,
+    the search asked for and what ended it, and whether the plan depends on the machine."""
+    import dataclasses
+
+    from liftplan.planner.output.report.held import SECTIONS, render_html
+    from liftplan.planner.plan import plan
+    from liftplan.planner.problem.file import load_problem
+
+    assert SECTIONS[-1].__name__ == "_reproducing"
+    problem = load_problem(EXAMPLES / "tanker_plan.toml")
+    proved = render_html(plan(problem))
+    assert f"liftplan {__version__}" in proved and "Reproducing this plan" in proved
+    assert "gives this plan again" in proved
+    stopped = plan(dataclasses.replace(problem, time_limit=1e-9))
+    assert stopped.stats.stopped == "time_limit"
+    assert "may end at another point" in render_html(stopped)

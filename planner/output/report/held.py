@@ -14,6 +14,7 @@ import json
 import numpy as np
 
 from liftplan.model.frames import FRAME_TEXT, zup_to_choi
+from liftplan.model.version import __version__
 from liftplan.planner.batch.montecarlo import hook_monte_carlo
 from liftplan.planner.output.figures import plan as figures
 from liftplan.planner.output.report import page as report_page
@@ -856,6 +857,37 @@ def render(plan):
     return render_html(plan), scene_toml(plan)
 
 
+def _reproducing(plan):
+    """How to get this plan again: the software, the search asked for and what ended it."""
+    problem, stats = plan.problem, plan.stats
+    machine_bound = stats.stopped in ("time_limit", "interrupted")
+    rows = [
+        ("software", f"liftplan {__version__}", "-"),
+        ("search asked for ([plan] search)", problem.search, "-"),
+        ("search that ran", stats.method, "-"),
+        ("relative gap asked for ([plan] gap)", f"{100 * problem.gap:g}", "%"),
+        (
+            "time limit ([plan] time_limit)",
+            "none" if problem.time_limit is None else f"{problem.time_limit:g}",
+            "s",
+        ),
+        ("what ended the search", stats.stopped, "-"),
+        ("rules code ([rules] code)", problem.rules.code_title, "-"),
+    ]
+    table = _table(
+        ["quantity", "value", "unit"], rows, "Reproducing this plan", full=False, text_columns=(0, 1)
+    )
+    why = (
+        "The search ended at its time limit (or was interrupted): the same file on a faster or "
+        "slower machine, or under another load, may end at another point and give another plan "
+        "and gap."
+        if machine_bound
+        else "The search ended on its own terms (the optimum proved, the gap met, or the local "
+        "search's end): the same planning file with this liftplan version gives this plan again."
+    )
+    return [table, f"<p>{why}</p>"]
+
+
 #: The held plan's report, section by section (after the title block and the status line):
 #: each ``section(plan) -> list of HTML``. A new section is one function and one row here.
-SECTIONS = (_recommendation, _basis, _checks, _figures, _alternatives, _assumptions, _appendix)
+SECTIONS = (_recommendation, _basis, _checks, _figures, _alternatives, _assumptions, _appendix, _reproducing)
