@@ -462,6 +462,13 @@ def _max_load(lift, points, failed, lugs, tensions):
     return MaxLoad(peak, lugs[i], tuple(ranges), tolerance, to_end)
 
 
+def _with_brackets(lift, points):
+    """The solved points and every bracket end solved so far, by hoist (one per hoist)."""
+    by_hoist = {p.hoist: p for p in lift.brackets}
+    by_hoist.update({p.hoist: p for p in points})
+    return [by_hoist[h] for h in sorted(by_hoist)]
+
+
 def load_curve(scene, stop=None, step=0.25, speed=None):
     """The load curve of a lift from the scene's pose.
 
@@ -526,13 +533,13 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
         start = point.start
     if not points:
         raise EquilibriumNotFound(f"lift: no hoist step solved; first failure: {failed[0][1]}")
-    tensions = np.array([list(p.eq.tensions.values()) for p in points])
     events = _events(lift, points, failed)
+    # the bracket ends are equilibria too: on the curve, they show each kink where it is, and
+    # the largest load is looked for among them (a breakout peak falls between two steps)
+    points = _with_brackets(lift, points)
+    tensions = np.array([list(p.eq.tensions.values()) for p in points])
     max_load = _max_load(lift, points, failed, scene.lug_names, tensions)
-    # the bracket ends are equilibria too: on the curve, they show each kink where it is
-    by_hoist = {p.hoist: p for p in lift.brackets}
-    by_hoist.update({p.hoist: p for p in points})
-    points = [by_hoist[h] for h in sorted(by_hoist)]
+    points = _with_brackets(lift, points)  # and the plateau's own bracket ends
     afloat = [p.eq.afloat for p in points]
     tensions = np.array([list(p.eq.tensions.values()) for p in points])
     hoist = np.array([p.hoist for p in points])
