@@ -63,6 +63,9 @@ EVENTS = {
 }
 
 
+#: Hoist steps a load curve may take (each an equilibrium solve).
+MAX_STEPS = 100_000
+
 @dataclass(frozen=True)
 class Event:
     """A change of state on the load curve, located by bisection between steps.
@@ -496,9 +499,13 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
         raise InvalidScene(f"lift: hoist to {stop:g} m in steps of {step:g} m; expected both > 0")
     if speed is not None and not (np.isfinite(speed) and speed > 0):
         raise InvalidScene(f"lift: speed = {speed!r} m/min; expected a finite number > 0")
-    count = int(np.floor(stop / step + 1e-9)) + 1
-    if count > 100_000:
-        raise InvalidScene(f"lift: {count} steps; expected at most 100000 (a larger step)")
+    steps = stop / step  # may overflow to inf (--to 1e308): refused below, never int(inf)
+    if not steps <= MAX_STEPS:
+        raise InvalidScene(
+            f"lift: hoist to {stop:g} m in steps of {step:g} m is {steps:.3g} steps; expected at most "
+            f"{MAX_STEPS} (a larger step or a lower --to)"
+        )
+    count = int(np.floor(steps + 1e-9)) + 1
     lift = _Lift(scene, speed)
     hoists = np.linspace(0.0, step * (count - 1), count)
     points, failed = [], []
