@@ -30,6 +30,7 @@ from liftplan.model.extras import require
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.statics.model import rope_model
 from liftplan.planner.batch.check import CheckCases, check_plan
+from liftplan.planner.batch.lock import output_lock
 from liftplan.planner.batch.montecarlo import block_solver, draw_units, solve_draws
 from liftplan.planner.plan import plan
 
@@ -140,11 +141,19 @@ def run_study(study, client=None, scheduler=None, workers=None, restart=False, p
         A ``check`` study whose base scene has no feasible plan.
     LiftPlanError
         The scheduler cannot be reached, or the journal belongs to another study.
+    OutputLocked
+        Another run is writing the same output table (its pid, host and start time).
     """
     require("batch", "dask.distributed", "msgpack")  # before any work, in one line
+    output = Path(output or study.output)
+    with output_lock(output):  # one run per table: a second is refused, never interleaved
+        return _run(study, client, scheduler, workers, restart, progress, output)
+
+
+def _run(study, client, scheduler, workers, restart, progress, output):
+    """:func:`run_study` holding the output's lock."""
     from tqdm import tqdm
 
-    output = Path(output or study.output)
     if client is None and scheduler:
         probe_scheduler(scheduler)  # before any work: a wrong address costs seconds, not a plan
     # the plan every case checks (or draws hook errors on)
