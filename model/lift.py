@@ -66,6 +66,7 @@ EVENTS = {
 #: Hoist steps a load curve may take (each an equilibrium solve).
 MAX_STEPS = 100_000
 
+
 @dataclass(frozen=True)
 class Event:
     """A change of state on the load curve, located by bisection between steps.

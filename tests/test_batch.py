@@ -101,7 +101,7 @@ def test_check_study_on_two_workers(tmp_path, client):
     rows = read_table(tmp_path / "check_study.csv")
     assert len(rows) == 200 and [int(r["case"]) for r in rows] == list(range(200))
     heavy = [r for r in rows if r["body.weight"] == "1700.0"]
-    assert heavy and all(r["status"] == "unsafe" and "over the SWL 400 t" in r["reason"] for r in heavy)
+    assert heavy and all(r["status"] == "unsafe" and "over the plan's limit" in r["reason"] for r in heavy)
     light = [r for r in rows if r["body.weight"] == "904.0"]
     assert all(r["status"] == "ok" and r["reason"] == "" for r in light)
     assert sum(summary.counts.values()) == 200
@@ -221,7 +221,11 @@ def test_check_reports_slack_and_limits_not_numbers(tanker_plan):
     # a CG 0.1 m inside the edge of the lugs and 16.5 m above them: a rope goes slack in the box
     assert "slack" in result.reason[0] and np.isnan(result.worst_spread[0])
     assert "below min_tension 225 t" in result.reason[1]
-    assert "over the SWL 400 t" in result.reason[2] and result.utilisation[2] > 1.0
+    assert (
+        "over the plan's limit" in result.reason[2]
+        and "chart SWL 400 t" in result.reason[2]
+        and result.utilisation[2] > 1.0
+    )
     # a CG 60 m forward lies beyond the forward lugs: no scene would accept it
     assert "outside the plan's lugs' support polygon" in result.reason[3]
     assert np.isnan(result.max_tension[3])

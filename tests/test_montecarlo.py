@@ -153,7 +153,7 @@ def test_montecarlo_study_per_crane_tolerance_and_normal(tmp_path, client, tanke
     # and rows over an SWL or with a slack rope are unsafe with their reason
     assert any(r["above_plan_worst"] == "1" for r in rows)
     unsafe = [r for r in rows if r["status"] == "unsafe"]
-    assert unsafe and all("over the SWL" in r["reason"] or "slack" in r["reason"] for r in unsafe)
+    assert unsafe and all("over the plan's limit" in r["reason"] or "slack" in r["reason"] for r in unsafe)
 
 
 @pytest.mark.parametrize(

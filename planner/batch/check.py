@@ -53,7 +53,9 @@ class CheckResult:
     Parameters
     ----------
     status : list of str
-        ``"ok"``; ``"unsafe"`` (a rope above the SWL or below the minimum tension);
+        ``"ok"``; ``"unsafe"`` (a rope above the plan's limit, the tension the rules' chain
+        allows under its crane's chart SWL - the limit the plan was made to -, or below the
+        minimum tension);
         ``"failed"`` (a rope went slack: the all-taut model does not hold there); or
         ``"invalid"`` (the CG is not over the plan's lugs, as the scene rules require).
         The numbers of failed and invalid cases are NaN.
@@ -137,8 +139,11 @@ def check_plan(problem, indices, preload, cases, grid=3, cranes=None):
     rows = np.arange(m)
     low, high = tensions.min(axis=(1, 2)), tensions.max(axis=(1, 2))
     swl = lugset.swl  # (n,): each crane's chart SWL at its radius
+    # the limit the plan itself was made to (the rules' chain: chart SWL over the DAF, less the
+    # rigging, over the contingency), not the bare chart SWL: one limit everywhere
+    limit = lugset.limit
     flagged = ~np.all(np.isfinite(tensions), axis=(1, 2)) | np.any(
-        (tensions < 0.0) | (tensions > swl) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2)
+        (tensions < 0.0) | (tensions > limit) | (tensions < cases.min_tension[:, None, None]), axis=(1, 2)
     )
     status, reason = [OK] * m, [""] * m
     outside = outside_support(lugset.points[:, :2], cases.cog[:, :2])
@@ -153,7 +158,9 @@ def check_plan(problem, indices, preload, cases, grid=3, cranes=None):
                 ),
             )
         else:
-            status[k], reason[k] = _judge(tensions[k], heel[k], trim[k], swl, cases.min_tension[k], names)
+            status[k], reason[k] = _judge(
+                tensions[k], heel[k], trim[k], limit, swl, cases.min_tension[k], names
+            )
     failed = np.array([s in (FAILED, INVALID) for s in status])
 
     def blank(values):
@@ -195,23 +202,26 @@ def outside_support(lugs, points):
     return np.where(beyond > 1e-9 * diameter, beyond, 0.0)
 
 
-def _judge(tensions, heel, trim, swl, min_tension, names):
+def _judge(tensions, heel, trim, limit, swl, min_tension, names):
     """Status and reason of one case from its (g, n) tensions; a rope is named by its plan
     label and its lug (``L20 (S07)``: with many ropes the label alone is hard to place)."""
     if not np.all(np.isfinite(tensions)):
         return FAILED, "tensions not finite: the lugs cannot hold the body (collinear?)"
     for test, bound, word, outcome in (
         (tensions < 0.0, 0.0, "slack", FAILED),
-        (tensions > swl, swl, "over the SWL", UNSAFE),
+        (tensions > limit, limit, "over the plan's limit", UNSAFE),
         (tensions < min_tension, min_tension, "below min_tension", UNSAFE),
     ):
         if test.any():
-            bound = np.broadcast_to(bound, tensions.shape)  # swl: one per rope
+            bound = np.broadcast_to(bound, tensions.shape)  # limit: one per rope
             j, i = np.unravel_index(np.argmax(np.abs(tensions - bound) * test), test.shape)
             bound = bound[j, i]
             where = f"at heel {heel[j]:+.2f}, trim {trim[j]:+.2f} deg"
             rope = f"rope L{i + 1} ({names[i]})"
             if outcome == FAILED:
                 return FAILED, (f"{rope} slack {where}: the all-taut (held) model does not hold there")
+            if word == "over the plan's limit":
+                word = f"over the plan's limit {bound:.1f} t (chart SWL {swl[i]:g} t by the rules' chain)"
+                return UNSAFE, f"{rope} {tensions[j, i]:.1f} t {word} {where}"
             return UNSAFE, f"{rope} {tensions[j, i]:.1f} t {word} {bound:g} t {where}"
     return OK, ""

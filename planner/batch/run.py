@@ -383,6 +383,7 @@ def montecarlo_rows(study, base, cases, result):
     design = np.array([c.design_hook_load for c in base.capacity])
     covered = np.array([c.design_tension for c in base.capacity])  # the same, static
     swl = np.asarray(base.chosen.swl, dtype=float)
+    limit = base.lugset.limit  # the plan's own limit (the rules' chain under the chart SWL)
     labels = base.labels
     rows = []
     for (index, _), e, t, h, r in zip(cases, errors, tensions, heel, trim):
@@ -400,11 +401,15 @@ def montecarlo_rows(study, base, cases, result):
             continue
         spread = float(np.ptp(t))
         slack = int(np.sum(t <= 0.0))
-        over = np.flatnonzero(t > swl)
+        over = np.flatnonzero(t > limit)
         status, reason = "ok", ""
         if over.size:
-            i = int(over[np.argmax(t[over] - swl[over])])
-            status, reason = "unsafe", f"rope {labels[i]} {t[i]:.1f} t over the SWL {swl[i]:g} t"
+            i = int(over[np.argmax(t[over] - limit[over])])
+            status, reason = (
+                "unsafe",
+                f"rope {labels[i]} {t[i]:.1f} t over the plan's limit {limit[i]:.1f} t (chart SWL "
+                f"{swl[i]:g} t by the rules' chain)",
+            )
         elif slack:
             i = int(np.argmin(t))
             status, reason = "unsafe", f"rope {labels[i]} slack"
@@ -421,7 +426,7 @@ def montecarlo_rows(study, base, cases, result):
                 float(t.max()),
                 int(spread > base.worst_spread + 1e-6),
                 _above(t, design),
-                int(over.size > 0),
+                int(np.any(t > swl)),
                 slack,
                 _above(t, covered),
             ]
