@@ -35,14 +35,19 @@ def _non_negative(key, value):
     return number
 
 
+#: The DAF column assumed when none is given: the most onerous.
+DEFAULT_LOCATION = "offshore"
+
+
 @dataclass(frozen=True)
 class Rules:
     """Settings of the design-load chain (0027/ND Rev 11 unless a field says otherwise).
 
     Parameters
     ----------
-    location : {"onshore", "inshore", "offshore"}
-        Column of the DAF table (Table 5-1). Default ``"offshore"``, the most onerous.
+    location : {"onshore", "inshore", "offshore"} or None
+        Column of the DAF table (Table 5-1). Default (None): ``"offshore"``, the most
+        onerous, assumed (:attr:`location_assumed`).
     weight_contingency : float  [-]
         Design Weight = weight x this (6.2.1). Default 1.05 (project assumption, see
         :func:`~liftplan.model.rules.factors.weight_contingency`).
@@ -77,9 +82,12 @@ class Rules:
     code : str
         The rules code the factors come from (:data:`~liftplan.model.rules.codes.CODES`);
         default ``"0027/ND"``, the only one implemented.
+    location_assumed : bool
+        Set when ``location`` is not given (None): the most onerous column, ``"offshore"``,
+        was assumed; every output that shows the DAF says so.
     """
 
-    location: str = "offshore"
+    location: str | None = None
     weight_contingency: float = factors.DEFAULT_WEIGHT_CONTINGENCY
     cog_factor: float | None = None
     daf: float | None = None
@@ -95,8 +103,12 @@ class Rules:
     chart_includes_dynamics: bool = False
     code_margin: float | None = field(default=None)
     code: str = DEFAULT_CODE
+    location_assumed: bool = False  # an init field: dataclasses.replace carries it
 
     def __post_init__(self):
+        if self.location is None:  # not given: the most onerous column, and say so
+            _set(self, "location", DEFAULT_LOCATION)
+            _set(self, "location_assumed", True)
         if self.code not in CODES:
             raise InvalidScene(f"rules.code = {self.code!r}: expected one of {', '.join(CODES)}")
         if self.location not in factors.LOCATIONS:
@@ -172,3 +184,10 @@ class Rules:
     def code_title(self):
         """The rules code in words (for the basis of a plan)."""
         return CODES[self.code][0]
+
+    @property
+    def location_text(self):
+        """The location (the DAF column) in words, saying when it was assumed."""
+        if self.location_assumed:
+            return f"{self.location} (assumed: [rules] location not given)"
+        return self.location

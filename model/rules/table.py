@@ -80,7 +80,10 @@ def rules_from_table(table):
     """
     if table is None:
         return Rules()
-    return Rules(**table.model_dump())
+    values = table.model_dump()
+    if "location" not in table.model_fields_set:  # not given: Rules assumes (and says so)
+        values["location"] = None
+    return Rules(**values)
 
 
 def read_rules(raw):

@@ -174,6 +174,7 @@ def _chain_lines(plan, design):
     lines = [
         "",
         f"design-load chain: tilt {design.tilt_note}",
+        f"location: {plan.problem.rules.location_text} (the DAF column of Table 5-1)",
         f"{'crane':<12}{'contingency':>12}{'tilt':>8}{'skew':>8}{'DAF':>7}{'rigging [t]':>12}"
         f"{'static hook [t]':>16}{'code margin [t]':>17}  check",
     ]

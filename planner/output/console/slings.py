@@ -76,6 +76,7 @@ def sling_table(plan):
         "(hook = level, nominal CG; worst = largest over the tolerance and the CG envelope; "
         "design = the rules' chain, docs/design-loads.md; util. = design / chart SWL)"
     )
+    lines.append(f"location: {plan.problem.rules.location_text} (the DAF column of Table 5-1)")
     if chain is None:
         lines.append(f"design loads not computed: {plan.design}")
     lug_design = {} if chain is None else {lug.lug: lug for r in chain.results for lug in r.lugs}

@@ -184,6 +184,7 @@ def _basis(plan):
         ["quantity", "value", "unit"],
         [
             ("weight W", f"{problem.body.weight:.2f}", "t"),
+            ("location (the DAF column of 0027/ND Table 5-1)", problem.rules.location_text, "-"),
             ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
             (
                 "CG envelope half-widths (x, y, z)",
