@@ -10,6 +10,25 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
+#: What each check is, in words, for the documents a person signs (the JSON keeps the names).
+TITLES = {
+    "swl": "rope tension within the SWL",
+    "min_tension": "tension at or above the minimum",
+    "taut": "every rope taut",
+    "leg_taut": "every sling leg taut",
+    "sling_angle": "sling angle from the horizontal",
+    "code_margin": "crane-code margin",
+    "design_hook_load": "design hook load within the chart SWL",
+    "design_loads": "design loads computed",
+    "lug_design_load": "lug design load within its capacity",
+    "breakout_hook_load": "hook load at breakout within the chart SWL",
+    "breakout_min_tension": "tension at breakout at or above the minimum",
+    "model_agreement": "plan and rigging model agree",
+    "roll": "roll of the body on its slings",
+    "bending_moment": "bending moment within the allowable",
+    "shear_force": "shear force within the allowable",
+}
+
 
 @dataclass(frozen=True)
 class Check:
@@ -56,6 +75,11 @@ class Check:
         """A check that ``value >= limit`` (NaN never passes)."""
         value, limit = float(value), float(limit)
         return cls(name, subject, value, limit, unit, bool(value >= limit), "min", note)
+
+    @property
+    def title(self):
+        """What is checked, in words (:data:`TITLES`; the name with spaces where none is set)."""
+        return TITLES.get(self.name, self.name.replace("_", " "))
 
     def to_json(self):
         """The contract's check object: name, subject, value, limit, unit, ok (+ kind, note)."""

@@ -312,7 +312,7 @@ def _checks(plan):
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
         [
-            (c.name, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL", c.note)
+            (c.title, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL", c.note)
             for c in plan.checks
         ],
         "Every check of the plan",
@@ -493,7 +493,7 @@ def _appendix(plan):
     """The engineering appendix: how good the plan is proved to be, the admissible tension
     bounds, and what the search did."""
     stats, chosen = plan.stats, plan.chosen
-    unit = "t" if plan.objective == "spread" else "-"
+    unit = plan.problem.goal.unit
     fmt = "{:.4f}" if unit == "-" else "{:.2f}"
     optimality = _table(
         ["quantity", "value", "unit"],
@@ -509,9 +509,9 @@ def _appendix(plan):
             ("why the search ended", stats.stopped, "-"),
             ("how the lug sets were searched (plan.search)", stats.method, "-"),
             (
-                "least worst spread for the recommended lugs (linear programme over the preloads)",
-                f"{chosen.bound:.2f}",
-                "t",
+                "least worst value for the recommended lugs (linear programme over the preloads)",
+                fmt.format(chosen.bound),
+                unit,
             ),
         ],
         "Optimality: how far the recommendation can be from the best plan",

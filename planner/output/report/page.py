@@ -12,6 +12,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+import re
 
 from liftplan.model.version import __version__
 
@@ -122,11 +123,23 @@ ROPE_COLUMNS = 8
 NOWRAP_CHARS = 10
 
 
+#: A number that rounded to zero but kept its minus sign ("-0.000", and in a list "1.2, -0.00"),
+#: not after "+" (a tolerance "+-0" stays as written).
+NEGATIVE_ZERO = re.compile(r"(?<![\w.+])-(0(?:\.0+)?)(?![\w.])")
+
+
+def cell_text(value):
+    """A table cell's text: a rounded negative zero is shown as zero (a reader takes "-0.000"
+    for a value below zero)."""
+    return NEGATIVE_ZERO.sub(r"\1", str(value))
+
+
 def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), ropes=None):
     """An HTML table (:func:`one_table`), split into several when it has more than
     :data:`ROPE_COLUMNS` per-rope columns: ``ropes = (start, count)`` names them, and each part
     keeps the columns before and after them (so 26 or 64 ropes stay within the page width).
     """
+    rows = [[cell_text(v) for v in row] for row in rows]
     if ropes is None or ropes[1] <= ROPE_COLUMNS:
         return one_table(headers, rows, caption, full=full, keep=keep, text_columns=text_columns)
     start, count = ropes
@@ -297,7 +310,7 @@ def status(checks):
     failed = [c for c in checks if not c.ok]
     if not failed:
         return f'<p class="status">All {len(checks)} checks pass (listed under "Checks to hand over").</p>'
-    names = "; ".join(f"{c.name} {c.subject}" for c in failed)
+    names = "; ".join(f"{c.title}: {c.subject}" for c in failed)
     return (
         f'<p class="status fail">{len(failed)} of {len(checks)} checks FAIL: '
         f"{html.escape(names)}. Do not lift on this plan as it stands.</p>"

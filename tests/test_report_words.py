@@ -1,0 +1,36 @@
+"""What a client reads (issue 29 item 6): checks named in words, no rounded "-0.000", and
+every value in its objective's unit (a utilisation spread of 0.2947 was printed "0.29 t")."""
+
+from __future__ import annotations
+
+import re
+
+from helpers import EXAMPLES
+
+from liftplan.model.checks import TITLES, Check
+from liftplan.planner import load_problem, plan
+from liftplan.planner.output.report.held import render_html
+from liftplan.planner.output.report.page import cell_text, table
+
+
+def test_a_rounded_negative_zero_reads_as_zero():
+    assert cell_text("-0.000") == "0.000" and cell_text("1.20, -0.00") == "1.20, 0.00"
+    assert cell_text("-0.001") == "-0.001" and cell_text("-0.5") == "-0.5"
+    assert cell_text("+-0") == "+-0" and cell_text("+-0.02") == "+-0.02"  # tolerances stay
+    assert "-0.00" not in table(["a"], [["-0.00"]], "x")
+
+
+def test_checks_are_named_in_words():
+    check = Check.upper("design_hook_load", "crane A", 1.0, 2.0, "t")
+    assert check.title == TITLES["design_hook_load"] == "design hook load within the chart SWL"
+    assert Check.upper("some_new_check", "x", 1.0, 2.0, "t").title == "some new check"
+    assert check.to_json()["name"] == "design_hook_load"  # the JSON keeps the name
+
+
+def test_a_fleet_report_shows_its_objective_in_its_unit():
+    fleet = plan(load_problem(EXAMPLES / "tanker_fleet.toml"))
+    assert fleet.objective == "utilisation"
+    text = re.sub(r"<[^>]+>", "|", render_html(fleet))
+    row = re.search(r"least worst value for the recommended lugs[^|]*\|+([^|]+)\|+([^|]+)\|", text)
+    assert row is not None and row[2] == "-" and float(row[1]) < 1.0
+    assert "design_hook_load" not in text and "|-0.00" not in text
