@@ -456,34 +456,32 @@ class Plan(InFileFrame):
                 )
         return rows
 
-    def spread_map(self, count=41, utilisation=False, largest=False):
-        """Spread over a heel x trim grid, worst over the CG envelope (hooks as planned).
+    def spread_map(self, count=41):
+        """The plan's objective over a heel x trim grid, at each attitude the worst over the
+        CG envelope and the hook-height errors within their tolerance (as the plan's worst
+        case: the map's largest value is at most :attr:`chosen.worst_value`, reached at its
+        worst attitude when that lies on the grid).
 
         Parameters
         ----------
         count : int
-        utilisation : bool
-            Map max - min of T_i / SWL_i instead of the tension spread.
-        largest : bool
-            Map the largest T_i / SWL_i instead (the ``reserve`` objective).
+            Points per axis.
 
         Returns
         -------
         heel : (count,)  [deg]
         trim : (count,)  [deg]
-        spread : (count, count)  [t or -], indexed [heel, trim]
+        value : (count, count)  [the objective's unit], indexed [heel, trim]
         """
         heel = np.linspace(-self.problem.heel_tolerance, self.problem.heel_tolerance, count)
         trim = np.linspace(-self.problem.trim_tolerance, self.problem.trim_tolerance, count)
         hh, tt = np.meshgrid(heel, trim, indexing="ij")
-        spread = np.zeros(hh.size)
+        value = np.full(hh.size, -np.inf)
         for offset in self.problem.cog_envelope.offsets():
-            tensions = self.tensions_at(hh.ravel(), tt.ravel(), offset)
-            if utilisation or largest:
-                tensions = tensions / self.chosen.swl
-            values = tensions.max(axis=1) if largest else np.ptp(tensions, axis=1)
-            spread = np.maximum(spread, values)
-        return heel, trim, spread.reshape(hh.shape)
+            scenarios = [Scenario(float(h), float(t), tuple(offset)) for h, t in zip(hh.ravel(), tt.ravel())]
+            tensions, gain = self.lugset.tensions_and_gain(self.chosen.preload, scenarios)
+            value = np.maximum(value, robust(tensions, gain, self.lugset)[0])
+        return heel, trim, value.reshape(hh.shape)
 
     # -- output -------------------------------------------------------------------------
     def to_json(self):

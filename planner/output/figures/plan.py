@@ -381,12 +381,13 @@ def _draw_cranes(ax, plan):
 
 
 def spread_map(plan, count=41):
-    """The plan's objective (tension spread, or utilisation spread) over the tolerance box,
-    at each attitude the worst over the CG envelope; heel on the horizontal axis as in the
-    tension curves."""
-    utilisation = plan.objective != "spread"
-    largest = plan.objective == "reserve"
-    heel, trim, spread = plan.spread_map(count, utilisation=utilisation, largest=largest)
+    """The plan's objective (tension spread, utilisation spread, or largest T / SWL) over the
+    tolerance box, at each attitude the worst over the CG envelope and the hook errors (the
+    plan's own worst case, so the map's top is the starred worst); heel on the horizontal
+    axis as in the tension curves."""
+    goal = plan.problem.goal
+    utilisation, largest = goal.per_swl, goal.peak
+    heel, trim, spread = plan.spread_map(count)
     fig = Figure(figsize=(125 * _MM, 100 * _MM), layout="constrained")
     ax = fig.subplots()
     mesh = ax.pcolormesh(heel, trim, spread.T, shading="auto", cmap="viridis")
@@ -416,7 +417,8 @@ def spread_map(plan, count=41):
     ax.set_xlabel("heel [deg] (+ starboard down)")
     ax.set_ylabel("trim [deg] (+ bow down)")
     what = ("Largest T / SWL" if largest else "Utilisation spread") if utilisation else "Tension spread"
-    ax.set_title(f"{what} over the tolerance box\n(each point: worst CG of the envelope)")
+    hooks = " and hook errors" if plan.lugset.hook_uncertain else ""
+    ax.set_title(f"{what} over the tolerance box\n(each point: worst CG of the envelope{hooks})")
     _style(ax)
     ax.grid(False)
     fig.legend(loc="outside lower center", fontsize=_SMALL, frameon=False)

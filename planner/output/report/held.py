@@ -352,8 +352,8 @@ def _figures(plan):
         _png(
             figures.spread_map(plan),
             "spread over the tolerance box",
-            "The plan's spread over the heel/trim tolerance box, at each point the worst CG "
-            "position of the envelope; the star marks the worst case.",
+            "The plan's objective over the heel/trim tolerance box, at each point the worst CG "
+            "position of the envelope and the worst hook errors; the star marks the worst case.",
         ),
     ]
     return ["<h2>4 Figures</h2>", *figs]
