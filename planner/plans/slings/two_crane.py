@@ -34,6 +34,7 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene, PlanInfeasible
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import TiltGeometry, governing_tilt
+from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
 from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
 from liftplan.planner.plans.slings.rigs import crane_rigs, turned_hooks
@@ -377,7 +378,43 @@ class SlingPlan(SlingLift):
 
     @property
     def legs_worst(self):
-        return self.chosen.legs_worst
+        """Each lug leg's largest tension  [t]: the larger of the lever rule's worst hook load
+        split at the level sling geometry and the rigging model's solve at every vertex of
+        the CG envelope and the tilt box (:attr:`posed_legs`, the roll included)."""
+        return tuple(np.maximum(a, b) for a, b in zip(self.chosen.legs_worst, self.posed_legs))
+
+    @cached_property
+    def posed_legs(self):
+        """Each lug leg's largest tension solved on the rigging model  [t] (per crane, (k,)).
+
+        The plan's rigging scene with the CG at each vertex of the CG envelope and the hooks
+        set for the tilt along the hook line at -tol, 0 and +tol: the body then rolls about
+        the hook line by gravity, as it hangs, and loads the low-side leg more (issue 29:
+        an equal split of the worst hook load at the level geometry was 4.4 % low). A pose
+        the rigging model does not solve raises :class:`EquilibriumNotFound`: no number is
+        given for it.
+        """
+        scene, problem = self.scene, self.problem
+        tilt = self.tolerances[0]
+        span = float(np.linalg.norm(self.chosen.apex[1, :2] - self.chosen.apex[0, :2]))
+        out = [np.zeros(len(g)) for g in self.groups]
+        keys = [[f"{name}/{problem.names[i]}" for i in g] for name, g in zip(self.crane_names, self.groups)]
+        for offset in problem.cog_envelope.offsets():
+            body = dataclasses.replace(scene.body, cog=tuple(float(v) for v in problem.body.cog + offset))
+            for angle in (-tilt, 0.0, tilt):
+                drop = 0.5 * span * np.tan(np.radians(angle))  # hook 2 down, hook 1 up
+                cranes = tuple(
+                    dataclasses.replace(
+                        crane,
+                        boom_height=crane.boom_height + shift,
+                        tip=(*crane.tip[:2], crane.tip[2] + shift),
+                    )
+                    for crane, shift in zip(scene.cranes, (drop, -drop))
+                )
+                eq = solve_rigging(dataclasses.replace(scene, body=body, cranes=cranes))
+                for c, names in enumerate(keys):
+                    out[c] = np.maximum(out[c], [eq.rigging.legs[k] for k in names])
+        return tuple(out)
 
     @property
     def top_legs(self):
