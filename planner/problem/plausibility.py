@@ -8,6 +8,7 @@ as m) and the heel/trim tolerance box.
 from __future__ import annotations
 
 from liftplan.model.scene.plausibility import coordinate_warnings, height_warnings, weight_warnings
+from liftplan.model.water.equilibrium import WaterSetup
 
 #: A hook-height tolerance above this is likely in mm  [m].
 MAX_HOOK_TOLERANCE = 0.5
@@ -45,6 +46,7 @@ def problem_warnings(problem):
         *height_warnings("attitude.lift_height", problem.lift_height),
         *coordinate_warnings("candidates", [(c.name, c.at) for c in problem.candidates]),
     ]
+    out += _undrained_water(problem)
     if problem.hook_tolerance > MAX_HOOK_TOLERANCE:
         out.append(
             f"plan.hook_tolerance = {problem.hook_tolerance:g} m: more than "
@@ -58,3 +60,19 @@ def problem_warnings(problem):
                 "each way; a slip (radians? a total instead of a half-width?)"
             )
     return out
+
+
+def _undrained_water(problem):
+    """The breakout scene's water in compartments, which the in-air case leaves out."""
+    if problem.breakout_scene is None or problem.breakout_scene.hull is None:
+        return []
+    water = WaterSetup(problem.breakout_scene).trapped
+    if water <= 0.0:
+        return []
+    weight = problem.body.weight
+    return [
+        f"plan.breakout_scene: its compartments hold {water:.1f} t of water that the in-air case "
+        f"(body.weight = {weight:g} t) takes as drained; if it has not drained when the body "
+        f"clears the water the hooks carry up to {weight + water:.1f} t (liftplan lift --speed "
+        "shows how much drains; plan that case with a heavier [body])"
+    ]
