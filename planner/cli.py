@@ -215,11 +215,12 @@ def _solve(args):
 def _strength_figure(scene, eq, girder, figure):
     """Save the strength figure; the reason it could not be written, or None."""
     from liftplan.planner.output.figures.strength import strength_figure
-    from liftplan.planner.output.paths import make_parent
+    from liftplan.planner.output.paths import make_parent, replaced
 
     try:
         make_parent(figure)
-        strength_figure(scene, eq, girder).savefig(figure, dpi=120)
+        with replaced(figure) as temporary:  # whole or not at all
+            strength_figure(scene, eq, girder).savefig(temporary, dpi=120)
     except OSError as err:  # a full disk, a folder removed meanwhile: the result still prints
         return f"--strength-figure {figure}: cannot write ({err.strerror or err})"
     print(f"liftplan: wrote {figure}", file=sys.stderr)
@@ -309,7 +310,7 @@ def _print_plan(result, args, interrupted=False):
 def _lift(args):
     from pathlib import Path
 
-    from liftplan.planner.output.paths import FIGURE_TYPES, make_parent, output_file
+    from liftplan.planner.output.paths import FIGURE_TYPES, make_parent, output_file, replaced
 
     for option, value in (("--to", args.to), ("--step", args.step), ("--speed", args.speed)):
         if value is not None and not (math.isfinite(value) and value > 0):
@@ -330,7 +331,8 @@ def _lift(args):
     unwritten = None
     try:
         make_parent(figure)
-        draw(curve, swl=swl).savefig(figure, dpi=120)
+        with replaced(figure) as temporary:  # whole or not at all
+            draw(curve, swl=swl).savefig(temporary, dpi=120)
     except OSError as err:  # a full disk, a folder removed meanwhile: the table still prints
         unwritten = f"--figure {figure}: cannot write ({err.strerror or err})"
     else:

@@ -10,6 +10,7 @@ naming the option, the path and what is expected.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import stat
 import tempfile
@@ -112,3 +113,34 @@ def _writable(folder, option, target):
             f"{option} {target}: cannot write in {existing} "
             f"({err.strerror or err}); expected a writable location"
         ) from None
+
+
+@contextlib.contextmanager
+def replaced(path):
+    """Write ``path`` whole or not at all: yields a temporary file beside it, which replaces
+    ``path`` when the block ends without an error and is removed otherwise (a full disk or an
+    interruption never leaves a half-written report or figure behind).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write (its folder exists).
+
+    Yields
+    ------
+    pathlib.Path
+        Where to write; it has ``path``'s suffix (a figure's format follows it).
+    """
+    path = Path(path)
+    fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    temporary = Path(name)
+    try:
+        yield temporary
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)  # as a plain open() would have made it
+        os.replace(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from liftplan.model.version import stamped
+from liftplan.planner.output.paths import replaced
 from liftplan.planner.output.report import held, slings, strength
 from liftplan.planner.plans.protocol import LiftPlan
 
@@ -60,12 +61,11 @@ def write_report(plan: LiftPlan, directory: str | os.PathLike[str]) -> ReportFil
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
     page, scene_text = PAGES[plan.kind](plan)
-    html_path = out / "report.html"
-    html_path.write_text(page, encoding="utf-8")
-    scene_path = out / "plan_scene.toml"
-    scene_path.write_text(scene_text, encoding="utf-8")
-    json_path = out / "plan.json"
-    json_path.write_text(json.dumps(stamped(plan.to_json()), indent=1), encoding="utf-8")
+    html_path, scene_path, json_path = out / "report.html", out / "plan_scene.toml", out / "plan.json"
+    texts = (page, scene_text, json.dumps(stamped(plan.to_json()), indent=1))
+    for path, text in zip((html_path, scene_path, json_path), texts):
+        with replaced(path) as temporary:  # whole or not at all (a full disk)
+            temporary.write_text(text, encoding="utf-8")
     pdf_path = None
     try:
         import weasyprint  # optional (pip install "liftplan[pdf]"), and heavy: only here
@@ -73,5 +73,6 @@ def write_report(plan: LiftPlan, directory: str | os.PathLike[str]) -> ReportFil
         pass
     else:
         pdf_path = out / "report.pdf"
-        weasyprint.HTML(string=page).write_pdf(pdf_path)
+        with replaced(pdf_path) as temporary:
+            weasyprint.HTML(string=page).write_pdf(temporary)
     return ReportFiles(html=html_path, pdf=pdf_path, scene=scene_path, json=json_path)
