@@ -50,8 +50,16 @@ class _Version(argparse.Action):
         parser.exit()
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block), as every other error here; the
+    sub-commands' parsers are of this class too (argparse makes them of the parent's)."""
+
+    def error(self, message):
+        self.exit(BAD_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def _parser():
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="liftplan",
         description="Multi-crane lift planning for salvage and heavy-block rigging.",
         epilog="exit codes: 0 success, 1 no equilibrium / no feasible plan, 2 bad input, "

@@ -46,3 +46,15 @@ def test_a_lift_too_long_to_compute_is_refused_in_one_line(option, value, capsys
     assert main(["lift", str(EXAMPLES / "sunken_block_lift.toml"), option, value]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "expected at most 100000" in err[0]
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [["plan"], ["solve", "--model", "nope", "x.toml"], ["frob"], ["lift", "x.toml", "--step", "abc"]],
+)
+def test_command_line_mistakes_are_one_line(argv, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and ": error: " in err[0] and err[0].endswith("--help)")
