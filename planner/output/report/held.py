@@ -121,7 +121,6 @@ def _recommendation(plan):
             "chart SWL [t]",
             "boom height H [m]",
             "level tension [t]",
-            "level T / chart SWL [%]",
         ],
         [
             (
@@ -133,7 +132,6 @@ def _recommendation(plan):
                 f"{plan.swl[label]:.1f}",
                 f"{plan.boom_heights[label]:.3f}",
                 f"{plan.tensions[label]:.2f}",
-                f"{100 * plan.utilisation[label]:.1f}",
             )
             for label, name in plan.lugs.items()
         ],
@@ -174,7 +172,63 @@ def _recommendation(plan):
         full=False,
         text_columns=(0,),
     )
-    return ["<h2>1 Recommendation</h2>", lugs, summary]
+    return ["<h2>1 Recommendation</h2>", lugs, _governing(plan), summary]
+
+
+def _governing(plan):
+    """Page 1's loads to sign against: per crane the design hook load and the one utilisation
+    (design hook load / chart SWL), what governs it, and the hook accuracy the crew must hold."""
+    design = plan.design_loads
+    if design.chain is None:
+        return f"<p><b>Design loads NOT computed</b>: {html.escape(design.missing)}.</p>"
+    rows = []
+    for c in plan.capacity:
+        r = c.design
+        ok = r.check.ok and (r.code_margin is None or r.code_margin.ok)
+        rows.append(
+            (
+                c.label,
+                c.crane,
+                f"{c.swl:.1f}",
+                f"{r.design_hook_load:.2f}",
+                f"{100 * r.utilisation:.1f}",
+                _governing_case(c),
+                "ok" if ok else "FAIL",
+            )
+        )
+    table = _table(
+        [
+            "lug",
+            "crane",
+            "chart SWL [t]",
+            "design hook load [t]",
+            "utilisation: design / chart SWL [%]",
+            "what governs it",
+            "check",
+        ],
+        rows,
+        "The loads to sign against: each crane's design hook load by the rules' chain",
+        text_columns=(1, 5),
+    )
+    tolerance = plan.problem.hook_tolerance
+    needed = plan.hook_accuracy_needed
+    within = f"+-{needed:.3f} m" if np.isfinite(needed) else "any error"
+    crew = (
+        f"The crew must hold every hook within {within} of its planned height (planned for "
+        f"+-{tolerance:g} m) for every rope to stay within its limits."
+    )
+    return table + f"<p>{crew}</p>"
+
+
+def _governing_case(capacity):
+    """What sets a crane's static hook load: the worst in the box (where), the breakout, or
+    the rules' tilt."""
+    if capacity.tilt is not None and capacity.tilt.load > capacity.static_input:
+        return f"the rules' tilt, {capacity.tilt.tilt:.2f} deg"
+    if capacity.governs == "breakout":
+        return "breakout from the seabed"
+    at = capacity.worst_at
+    return f"the box: heel {at.heel:+.2f}, trim {at.trim:+.2f} deg"
 
 
 def _basis(plan):
