@@ -540,6 +540,14 @@ class Plan(InFileFrame):
                     "pruned": self.stats.pruned,
                     "infeasible": self.stats.infeasible,
                     "seconds": self.stats.seconds,
+                    # what the search was allowed: with a work limit alone (no time limit) the
+                    # same file gives the same plan on any machine
+                    "limits": {
+                        "search": self.problem.search,
+                        "gap": self.problem.gap,
+                        "time_limit": self.problem.time_limit,
+                        "work_limit": self.problem.work_limit,
+                    },
                 },
                 "checks": [c.to_json() for c in self.checks],
             }

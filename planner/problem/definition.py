@@ -216,6 +216,11 @@ class PlanProblem:
         Relative optimality gap at which the search may stop (0: prove the optimum).
     time_limit : float or None  [s]
         Stop the search after this long with the best plan and its honest gap.
+    work_limit : int or None  [-]
+        Stop the search after this much work, counted, not timed, so the same file gives the
+        same plan on any machine: (set, assignment) rows evaluated by the exact search; swaps
+        tried by the local search (half) and cells searched for its bound (half); the MIP's
+        cutting-plane rounds. Held-preload plans only.
     search : {"auto", "exact", "local", "mip"}
         ``exact``: every lug set, bounded and pruned (proves the optimum or states the gap);
         ``local``: swaps from an even spread (a local optimum, no gap proved); ``mip``: one
@@ -268,6 +273,7 @@ class PlanProblem:
     objective: str | None = None
     gap: float = 0.0
     time_limit: float | None = None
+    work_limit: int | None = None
     search: str = "auto"
     rules: Rules = field(default_factory=Rules)
     min_sling_angle: float = 60.0
@@ -341,6 +347,10 @@ class PlanProblem:
             if value <= 0.0:
                 raise InvalidScene(f"plan.time_limit = {value!r}: expected > 0 s")
             _set(self, "time_limit", value)
+        if self.work_limit is not None and (
+            isinstance(self.work_limit, bool) or not isinstance(self.work_limit, int) or self.work_limit < 1
+        ):
+            raise InvalidScene(f"plan.work_limit = {self.work_limit!r}: expected a whole number >= 1")
         if not isinstance(self.report, ReportInfo):
             raise InvalidScene(f"report = {self.report!r}: expected a ReportInfo (the [report] table)")
         self._check_fleet()
@@ -409,6 +419,21 @@ class PlanProblem:
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
+        if self.work_limit is not None:
+            kind = (
+                "cranes on slings (the sling search is exhaustive)"
+                if any(c.sling is not None for c in fleet)
+                else f"plan.objective = {self.objective!r} (its search takes a time limit only)"
+                if self.goal.girder
+                else "rope-length ranges (the outer search takes a time limit only)"
+                if any(c.rope_length_range is not None for c in fleet)
+                else None
+            )
+            if kind is not None:
+                raise InvalidScene(
+                    f"plan.work_limit: given with {kind}; expected it for single ropes with a held "
+                    "preload, or plan.time_limit"
+                )
         if not isinstance(self.rules, Rules):
             raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
         if isinstance(self.rules.rigging_weight, dict):

@@ -72,6 +72,7 @@ class _Plan(Table):
     strength_weights: _StrengthWeights | None = None
     gap: Num = 0.0
     time_limit: Num | None = None
+    work_limit: Count | None = None
     search: Literal["auto", "exact", "local", "mip"] = "auto"
     tolerance: _Tolerance = _Tolerance()
     min_tension: Num = 0.0
@@ -336,6 +337,7 @@ def _to_problem(data, base):
         objective=data.plan.objective,
         gap=data.plan.gap,
         time_limit=data.plan.time_limit,
+        work_limit=data.plan.work_limit,
         search=data.plan.search,
         heel_tolerance=data.plan.tolerance.heel,
         trim_tolerance=data.plan.tolerance.trim,

@@ -162,6 +162,7 @@ _ENDED = {
     "proved": "optimum proved",
     "gap": "within the gap target",
     "time_limit": "stopped at the time limit",
+    "work_limit": "stopped at the work limit",
     "interrupted": "interrupted",
     "rounds": "stopped after its cutting-plane rounds",
 }
@@ -195,10 +196,11 @@ class SearchStats(GapMixin):
         of the LP bounds of the rows evaluated and the screening bounds of the rows not).
     best : float  [t or -]
         The plan's worst value of the objective.
-    stopped : {"proved", "gap", "time_limit", "interrupted", "local", "rounds"}
+    stopped : {"proved", "gap", "time_limit", "work_limit", "interrupted", "local", "rounds"}
         Why the search ended: the top plans proved, the gap target reached, the time limit,
-        Ctrl-C, a local optimum of the local search (its lower bound holds for every set but
-        is not its value: :mod:`~liftplan.planner.search.lines`,
+        the work limit (``[plan] work_limit``: the same plan on any machine), Ctrl-C, a local
+        optimum of the local search (its lower bound holds for every set but is not its
+        value: :mod:`~liftplan.planner.search.lines`,
         :mod:`~liftplan.planner.search.line_cells`, or 0), or the MIP's cutting-plane rounds
         run out (its bound still holds).
     method : {"enumeration", "local", "mip"}
@@ -230,7 +232,7 @@ class SearchStats(GapMixin):
                 f"{'' if self.refined == 1 else 's'}, {self.evaluated} "
                 f"sets evaluated, {_ENDED[self.stopped]} ({self.seconds:.2f} s)"
             )
-        if self.stopped == "local":
+        if self.method == "local":
             gap = 100 * self.relative_gap
             text = f"{gap:.2f} %" if gap < 10 else f"{gap:.1f} %"
             proved = (
@@ -239,9 +241,10 @@ class SearchStats(GapMixin):
                 else "no gap proved"
             )
             swaps = "swap" if self.refined == 1 else "swaps"
+            end = "to a local optimum" if self.stopped == "local" else f"({_ENDED[self.stopped]})"
             return (
                 f"{self.sets} lug sets: local search, {self.refined} {swaps} from its starts "
-                f"to a local optimum ({proved}) ({self.seconds:.2f} s)"
+                f"{end} ({proved}) ({self.seconds:.2f} s)"
             )
         return None
 

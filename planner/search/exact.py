@@ -138,6 +138,9 @@ def search_exact(problem, started, top, progress=None):
                 if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
                     stopped = "time_limit"
                     break
+                if problem.work_limit is not None and evaluated >= problem.work_limit:
+                    stopped = "work_limit"  # rows evaluated: the same on any machine
+                    break
             value, coarse, k = heapq.heappop(heap)
             if done[k]:
                 continue

@@ -470,7 +470,7 @@ def _open_cells(cells, lay, two_line, target):
     return np.concatenate(found), np.concatenate(bounds), len(first) * len(second)
 
 
-def cell_bound(problem, scenarios, target, deadline=None, tick=None):
+def cell_bound(problem, scenarios, target, deadline=None, tick=None, work=None):
     """No lug set does better than the returned value over ``scenarios`` (module docstring).
 
     Parameters
@@ -487,6 +487,9 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
     tick : callable, optional
         Called after each searched cell with (cells searched, cells to search in this count,
         the bound if the search stopped now) [-, -, objective unit].
+    work : int, optional
+        Cells to search at most (a count, not a time: the same bound on any machine); the
+        open cells then count as at the deadline.
 
     Ctrl-C (KeyboardInterrupt) ends the search like the deadline: the result says it is
     incomplete and counts the open cells at their one-scenario bound.
@@ -522,7 +525,9 @@ def cell_bound(problem, scenarios, target, deadline=None, tick=None):
         total += size
         for k, sums in enumerate(open_cells):
             try:
-                if deadline is not None and time.perf_counter() > deadline:
+                if (deadline is not None and time.perf_counter() > deadline) or (
+                    work is not None and searched >= work
+                ):
                     raise TimeoutError
                 searched += 1
                 cell = _Cell(cells, sums)

@@ -32,6 +32,7 @@ import time
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.search.budget import Budget
 from liftplan.planner.search.coplanar import PlaneLP, coplanar
 from liftplan.planner.search.evaluator import (
     Interrupted,
@@ -107,7 +108,7 @@ def swaps(current, count):
     return np.sort(out, axis=1)
 
 
-def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=None, seed=0):
+def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=None, seed=0, work_limit=None):
     """The best set one swap at a time (module docstring), from several starts; equal cranes.
 
     Parameters
@@ -117,6 +118,9 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
         Candidate indices to start from (default :func:`spread_start`).
     time_limit : float, optional  [s]
         Stop moving after this long (the best set reached is still evaluated exactly).
+    work_limit : int, optional
+        Stop moving after this many swaps over all starts (a count: the same set on any
+        machine).
     max_moves : int
         Swaps per start at most.
     restarts : int, optional
@@ -144,8 +148,7 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
             "the local search plans a fleet of equal cranes only; give the "
             "cranes one [crane] table, or fewer candidates for the exact search"
         )
-    started = time.perf_counter()
-    deadline = None if time_limit is None else started + time_limit
+    budget = Budget.of(time_limit, work_limit)
     count, n = len(problem.candidates), problem.cranes
     first = tuple(sorted(start)) if start is not None else spread_start(problem)
     rng = np.random.default_rng(seed)
@@ -161,9 +164,9 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
         starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)].tolist())))
     best, moves, reason = (None, math.inf), 0, None
     for begin in dict.fromkeys(starts):  # a repeated start is run once
-        if deadline is not None and time.perf_counter() > deadline and best[0] is not None:
+        if budget.out() and best[0] is not None:
             break
-        current, value, taken, why = _descend(problem, begin, deadline, max_moves, plane)
+        current, value, taken, why = _descend(problem, begin, budget, max_moves, plane)
         moves += taken
         reason = reason or why
         if value < best[1]:
@@ -197,7 +200,7 @@ def _plane_lp(problem):
     )
 
 
-def _descend(problem, current, deadline, max_moves, plane=None):
+def _descend(problem, current, budget, max_moves, plane=None):
     """Swaps from one start while they lower the value: (set, value, swaps, why not).
 
     The value is the screening bound, or with ``plane`` its exact LP over the same scenarios.
@@ -210,7 +213,7 @@ def _descend(problem, current, deadline, max_moves, plane=None):
         value = plane.value(current)
     moves = 0
     while moves < max_moves:
-        if deadline is not None and time.perf_counter() > deadline:
+        if budget.out():
             break
         near = swaps(current, count)
         target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
@@ -224,7 +227,7 @@ def _descend(problem, current, deadline, max_moves, plane=None):
         else:  # exact values in order of the bound, until the bound passes the best found
             k, best = None, target
             for j in ok[np.argsort(found.bound[ok], kind="stable")]:
-                if found.bound[j] >= best or (deadline is not None and time.perf_counter() > deadline):
+                if found.bound[j] >= best or budget.out() == "time_limit":
                     break
                 exact = plane.value(near[j])
                 if exact < best:
@@ -233,6 +236,7 @@ def _descend(problem, current, deadline, max_moves, plane=None):
                 break
         current, value = tuple(int(i) for i in near[k]), best
         moves += 1
+        budget.spend()
     return current, value, moves, why
 
 
@@ -244,8 +248,12 @@ def search_local(problem, started, top=1, progress=None):
     it and the bound the rest; Ctrl-C during the bound keeps the plan with the bound so far
     (:class:`Interrupted`). One plan: ``top`` is not used."""
 
-    limit = problem.time_limit
-    indices, moves, _ = local_search(problem, time_limit=None if limit is None else 0.5 * limit)
+    limit, work = problem.time_limit, problem.work_limit
+    swap_work = None if work is None else max(1, work // 2)  # half for the swaps, half for the cells
+    indices, moves, _ = local_search(
+        problem, time_limit=None if limit is None else 0.5 * limit, work_limit=swap_work
+    )
+    stopped = "work_limit" if swap_work is not None and moves >= swap_work else "local"
     evaluator = SetEvaluator(problem)
     try:
         result = evaluator.evaluate(indices)
@@ -277,7 +285,8 @@ def search_local(problem, started, top=1, progress=None):
                     )
 
             try:
-                cells = cell_bound(problem, evaluator.dense, target, deadline, tick)
+                cell_work = None if work is None else max(1, work - swap_work)
+                cells = cell_bound(problem, evaluator.dense, target, deadline, tick, work=cell_work)
             finally:
                 if bar is not None:
                     bar.close()
@@ -286,7 +295,10 @@ def search_local(problem, started, top=1, progress=None):
                 raise Interrupted(
                     [result], _local_stats(problem, started, moves, bound, result, "interrupted")
                 )
-    return [result], _local_stats(problem, started, moves, bound, result, "local")
+            if not cells.complete:  # a limit left cells open: which one
+                ran_out = cell_work is not None and cells.searched >= cell_work
+                stopped = "work_limit" if ran_out else "time_limit"
+    return [result], _local_stats(problem, started, moves, bound, result, stopped)
 
 
 def _local_stats(problem, started, moves, bound, result, stopped):

@@ -579,6 +579,9 @@ def search_mip(problem, started, top=1, progress=None):
             if best - lower <= problem.gap * best:  # the first plan's bound already suffices
                 stopped = "gap" if best > lower else "proved"
                 break
+            if problem.work_limit is not None and rounds >= problem.work_limit:
+                stopped = "work_limit"  # rounds counted: the same on any machine
+                break
             if rounds >= MAX_ROUNDS or time.perf_counter() >= deadline:
                 stopped = "rounds" if rounds >= MAX_ROUNDS else "time_limit"
                 break

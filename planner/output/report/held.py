@@ -926,6 +926,11 @@ def _reproducing(plan):
             "none" if problem.time_limit is None else f"{problem.time_limit:g}",
             "s",
         ),
+        (
+            "work limit ([plan] work_limit)",
+            "none" if problem.work_limit is None else f"{problem.work_limit:d}",
+            "-",
+        ),
         ("what ended the search", stats.stopped, "-"),
         ("rules code ([rules] code)", problem.rules.code_title, "-"),
     ]
@@ -935,10 +940,12 @@ def _reproducing(plan):
     why = (
         "The search ended at its time limit (or was interrupted): the same file on a faster or "
         "slower machine, or under another load, may end at another point and give another plan "
-        "and gap."
+        "and gap. A work limit ([plan] work_limit) instead of the time limit gives the same plan "
+        "on any machine."
         if machine_bound
-        else "The search ended on its own terms (the optimum proved, the gap met, or the local "
-        "search's end): the same planning file with this liftplan version gives this plan again."
+        else "The search ended on its own terms (the optimum proved, the gap met, the local "
+        "search's end, or its work limit): the same planning file with this liftplan version "
+        "gives this plan again."
     )
     return [table, f"<p>{why}</p>"]
 
