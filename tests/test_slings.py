@@ -174,7 +174,8 @@ def test_block_example_plans_and_solves(capsys, tmp_path):
 
 def test_sling_report_and_scene_file(tmp_path):
     from liftplan.model import load_scene, solve
-    from liftplan.planner.output.report.slings import render_html, scene_toml
+    from liftplan.planner.output.report.slings import plan_scene_toml as scene_toml
+    from liftplan.planner.output.report.slings import render_html
 
     result = plan(load_problem(BLOCK))
     page = render_html(result)

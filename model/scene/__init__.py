@@ -6,6 +6,8 @@ Modules:
   water, analysis) and its checks.
 * :mod:`.file` - scene files (TOML, every key in ``docs/scene-files.md``) read by pydantic
   into a :class:`~.objects.Scene` (:func:`~.file.load_scene`, :func:`~.file.loads_scene`).
+* :mod:`.writer` - the one scene writer: a :class:`~.objects.Scene` of a body in air as the
+  text of a scene file that reads back to it (:func:`~.writer.scene_toml`).
 * :mod:`.hull` - a hull as a closed triangle mesh, with its compartments; :mod:`.hullfit` a
   parametric hull fitted to published particulars.
 * :mod:`.rigging_gear` - sling sets and spreader bars between a hook and its lugs.

@@ -10,6 +10,7 @@ guidance table (tension change per step of heel and of trim). Coordinates a pers
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -251,6 +252,23 @@ class Plan(InFileFrame):
             attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
             analysis=Analysis(model="elastic"),
             name=f"{problem.name or 'plan'}: chosen lugs",
+        )
+
+    @cached_property
+    def named_scene(self):
+        """:attr:`scene` under the names a person uses, as ``plan_scene.toml`` holds it: each lug
+        by its candidate name, each crane by its name (and its lug), in the planning file's
+        frame (``scene.frame``; the coordinates stay z-up, as in every Scene). Same numbers, so
+        its solve gives the same tensions, keyed by candidate name."""
+        scene, names = self.scene, self.lugs
+        return dataclasses.replace(
+            scene,
+            lugs=tuple(dataclasses.replace(lug, name=names[lug.name]) for lug in scene.lugs),
+            cranes=tuple(
+                dataclasses.replace(crane, lug=names[crane.lug], name=self.cranes[crane.lug])
+                for crane in scene.cranes
+            ),
+            frame=self.frame,
         )
 
     def cog_at(self, scenario):

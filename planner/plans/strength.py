@@ -27,6 +27,7 @@ with the objective max - min tension), so an engineer sees what each costs the o
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from dataclasses import dataclass, field
@@ -36,6 +37,7 @@ import numpy as np
 
 from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible, SolverFailed
+from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redundant, Scene
 from liftplan.model.strength.girder import attitude_matrix
 from liftplan.planner.plans.common import InFileFrame
 from liftplan.planner.problem.fleet import rule_limits
@@ -672,6 +674,58 @@ class StrengthPlan(InFileFrame):
     def spread(self):
         return self.chosen.spread
 
+    @cached_property
+    def scene(self):
+        """The strength-optimal plan at level as a :class:`~liftplan.model.scene.objects.Scene`
+        for ``solve``: lugs by candidate name, in the planning file's frame (``scene.frame``;
+        coordinates z-up), with the body's weight curve and the allowables, so its solve gives
+        the girder's peaks and checks at level.
+
+        Force control: the ``rigid`` model, level, every force but three held
+        (``analysis.redundant``); the three free ones (the widest triangle in plan,
+        :func:`free_three`) follow from the statics, so the solve gives the planned forces
+        [t]. Hoist control: the ``elastic`` model with the planned boom heights [m], which hold
+        T* at the level pose. Boom heights under force control are the hooks' at level,
+        lift height + lug height + rope length [m] (the rigid model does not use them).
+        """
+        p, c = self.problem, self.chosen
+        indices = list(c.indices)
+        points, swl, crane = p.points[indices], p.reach[1][indices, 0], p.fleet[0]
+        heights = (
+            c.boom_heights if c.boom_heights is not None else p.lift_height + points[:, 2] + crane.rope_length
+        )
+        if self.control == "force":
+            free = free_three(points)
+            analysis = Analysis(
+                model="rigid",
+                redundant=tuple(
+                    Redundant(lug=c.names[k], tension=float(c.preload[k]))
+                    for k in range(len(c.names))
+                    if k not in free
+                ),
+            )
+        else:
+            analysis = Analysis(model="elastic")
+        return Scene(
+            body=p.body,
+            lugs=tuple(Lug(name=name, at=tuple(at)) for name, at in zip(c.names, points)),
+            cranes=tuple(
+                Crane(
+                    lug=name,
+                    boom_height=float(h),
+                    rope_length=crane.rope_length,
+                    EA=crane.EA,
+                    swl=float(limit),
+                )
+                for name, h, limit in zip(c.names, heights, swl)
+            ),
+            attitude=Attitude(lift_height=p.lift_height, yaw=p.yaw),
+            analysis=analysis,
+            name=f"{p.name or 'plan'}: strength-optimal lugs",
+            frame=p.frame,
+            strength=p.strength,
+        )
+
     @property
     def worst_spread(self):
         return self.chosen.worst_spread
@@ -764,6 +818,28 @@ class StrengthPlan(InFileFrame):
             "strength": self._set_json(c, self.stats),
             "spread_optimal": self._set_json(self.spread_plan, self.spread_stats),
         }
+
+
+def free_three(points):
+    """The three lugs spanning the largest area in plan, left free in the ``rigid`` model.
+
+    Parameters
+    ----------
+    points : numpy.ndarray, shape (n, 3)  [m]
+        Lug positions, z-up body frame.
+
+    Returns
+    -------
+    tuple of 3 int
+        Indices into ``points``; the first of equal areas.
+    """
+    best, area = None, -1.0
+    for trio in itertools.combinations(range(len(points)), 3):
+        a, b, c = points[list(trio), :2]
+        value = abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+        if value > area:
+            best, area = trio, value
+    return best
 
 
 def plan_strength(problem, top=None):

@@ -14,6 +14,7 @@ import json
 import numpy as np
 
 from liftplan.model.frames import FRAME_TEXT, zup_to_choi
+from liftplan.model.scene.writer import scene_toml
 from liftplan.model.version import __version__
 from liftplan.planner.batch.montecarlo import hook_monte_carlo
 from liftplan.planner.output.figures import plan as figures
@@ -852,64 +853,27 @@ def _design_details(plan):
 
 
 # -- scene file of the chosen plan ---------------------------------------------------------
-def scene_toml(plan):
-    """The chosen plan as a scene file for ``liftplan solve``, in the planning file's frame.
+def plan_scene_toml(plan):
+    """The chosen plan as a scene file for ``liftplan solve``, in the planning file's frame:
+    :attr:`~liftplan.planner.plans.held.Plan.named_scene` written by the one scene writer.
 
-    Lugs carry their candidate names and each crane table names its crane; ``liftplan solve``
-    on it gives the plan's level tensions (keyed by candidate name).
+    Lugs carry their candidate names and each crane table names its crane (and, in a comment,
+    the planned lug label the report uses); ``liftplan solve`` on it gives the plan's level
+    tensions (keyed by candidate name).
     """
-    scene, problem = plan.scene, plan.problem
-    names = plan.lugs  # label -> candidate
-
-    def vec(values):
-        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
-
-    lines = [
-        f"# Written by liftplan plan: the chosen lugs of {json.dumps(problem.name)}.",
-        "# `liftplan solve` on this file gives the plan's level tensions.",
-        f"# Coordinates in the planning file's frame: {FRAME_TEXT[plan.frame]}.",
-        f"name = {json.dumps(scene.name)}",
-        f"frame = {json.dumps(plan.frame)}",
-        "",
-        "[body]",
-        f"weight = {scene.body.weight!r}",
-        f"cog = {vec(plan.in_file_frame(scene.body.cog))}",
-    ]
-    for lug in scene.lugs:
-        lines += [
-            "",
-            "[[lugs]]",
-            f"name = {json.dumps(names[lug.name])}",
-            f"at = {vec(plan.in_file_frame(lug.at))}",
-        ]
-    for crane in scene.cranes:
-        lines += [
-            "",
-            f"[[cranes]]                   # {plan.cranes[crane.lug]} (planned lug {crane.lug})",
-            f"name = {json.dumps(plan.cranes[crane.lug])}",
-            f"lug = {json.dumps(names[crane.lug])}",
-            f"boom_height = {crane.boom_height!r}",
-            f"rope_length = {crane.rope_length!r}",
-            f"EA = {crane.EA!r}",
-            f"swl = {crane.swl!r}",
-        ]
-    att = scene.attitude
-    lines += [
-        "",
-        "[attitude]",
-        f"lift_height = {att.lift_height!r}",
-        f"yaw = {att.yaw!r}",
-        "",
-        "[analysis]",
-        'model = "elastic"',
-        "",
-    ]
-    return "\n".join(lines)
+    problem = plan.problem
+    header = (
+        f"Written by liftplan plan: the chosen lugs of {json.dumps(problem.name)}.",
+        "`liftplan solve` on this file gives the plan's level tensions.",
+        f"Coordinates in the planning file's frame: {FRAME_TEXT[plan.frame]}.",
+    )
+    notes = {plan.lugs[label]: f"{plan.cranes[label]} (planned lug {label})" for label in plan.labels}
+    return scene_toml(plan.named_scene, header=header, crane_notes=notes)
 
 
 def render(plan):
     """The report page and the plan's scene file of a held-preload plan: (HTML, TOML) text."""
-    return render_html(plan), scene_toml(plan)
+    return render_html(plan), plan_scene_toml(plan)
 
 
 def _reproducing(plan):

@@ -12,6 +12,7 @@ import json
 import numpy as np
 
 from liftplan.model.frames import FRAME_TEXT, zup_to_choi
+from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.console.slings import _ranking
 from liftplan.planner.output.figures.plan import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 from liftplan.planner.output.report import page as report_page
@@ -354,67 +355,18 @@ def render_html(plan, today=None):
     )
 
 
-def scene_toml(plan):
-    """The sling plan as a rigging scene file (``liftplan solve`` reads it), file frame."""
-    scene, problem = plan.scene, plan.problem
-
-    def vec(values):
-        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
-
-    lines = [
-        f"# Written by liftplan plan: the chosen slings of {json.dumps(problem.name)}.",
-        "# `liftplan solve` on this file solves the rigging model (free hooks, elastic legs).",
-        f"# Coordinates in the planning file's frame: {FRAME_TEXT[problem.frame]}.",
-        f"name = {json.dumps(scene.name)}",
-        f"frame = {json.dumps(problem.frame)}",
-        "",
-        "[body]",
-        f"weight = {scene.body.weight!r}",
-        f"cog = {vec(_in_file(problem, scene.body.cog))}",
-    ]
-    for lug in scene.lugs:
-        lines += ["", "[[lugs]]", f"name = {json.dumps(lug.name)}", f"at = {vec(_in_file(problem, lug.at))}"]
-    for crane in scene.cranes:
-        legs = ", ".join(
-            f"{{ lug = {json.dumps(leg.lug)}, length = {leg.length!r}, EA = {leg.EA!r}"
-            + (f", end = {leg.end}" if leg.end is not None else "")
-            + " }"
-            for leg in crane.sling.legs
-        )
-        bar = crane.sling.spreader
-        if bar is not None:
-            top = ", ".join(f"{{ length = {leg.length!r}, EA = {leg.EA!r} }}" for leg in bar.top)
-            legs += (
-                f" ], spreader = {{ length = {bar.length!r}, weight = {bar.weight!r}, "
-                f"EA = {bar.EA!r}, top = [ {top} ] }}"
-            )
-        else:
-            legs += " ]"
-        lines += [
-            "",
-            "[[cranes]]",
-            f"name = {json.dumps(crane.name)}",
-            f"boom_height = {crane.boom_height!r}",
-            f"rope_length = {crane.rope_length!r}",
-            f"EA = {crane.EA!r}",
-            f"swl = {crane.swl!r}",
-            f"tip = {vec(_in_file(problem, crane.tip))}",
-            f"sling = {{ legs = [ {legs} }}",
-        ]
-    att = scene.attitude
-    lines += [
-        "",
-        "[attitude]",
-        f"lift_height = {att.lift_height!r}",
-        f"yaw = {att.yaw!r}",
-        "",
-        "[rigging]",
-        f"min_sling_angle = {problem.min_sling_angle!r}",
-        "",
-    ]
-    return "\n".join(lines)
+def plan_scene_toml(plan):
+    """The sling plan as a rigging scene file (``liftplan solve`` reads it), file frame: its
+    :attr:`~liftplan.planner.plans.slings.lift.SlingLift.scene` written by the one scene writer."""
+    problem = plan.problem
+    header = (
+        f"Written by liftplan plan: the chosen slings of {json.dumps(problem.name)}.",
+        "`liftplan solve` on this file solves the rigging model (free hooks, elastic legs).",
+        f"Coordinates in the planning file's frame: {FRAME_TEXT[problem.frame]}.",
+    )
+    return scene_toml(plan.scene, header=header)
 
 
 def render(plan):
     """The report page and the rigging scene file of a sling plan: (HTML, TOML) text."""
-    return render_html(plan), scene_toml(plan)
+    return render_html(plan), plan_scene_toml(plan)

@@ -9,7 +9,6 @@ engineer sees what each costs the other. Every coordinate is in the planning fil
 from __future__ import annotations
 
 import html
-import itertools
 import json
 import math
 
@@ -17,7 +16,7 @@ import numpy as np
 
 from liftplan.model import solve
 from liftplan.model.frames import FRAME_TEXT
-from liftplan.model.scene.file import loads_scene
+from liftplan.model.scene.writer import scene_toml
 from liftplan.model.strength import hull_girder
 from liftplan.planner.output.figures.strength import strength_figure
 from liftplan.planner.output.report import page as report_page
@@ -292,96 +291,31 @@ def _print_width(fig):
 
 
 # -- the scene file -------------------------------------------------------------------------
-def _free_three(points):
-    """The three lugs (indices) spanning the largest area in plan: left free in ``rigid``."""
-    best, area = None, -1.0
-    for trio in itertools.combinations(range(len(points)), 3):
-        a, b, c = points[list(trio), :2]
-        value = abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-        if value > area:
-            best, area = trio, value
-    return best
-
-
-def scene_toml(plan):
-    """The strength-optimal plan as a scene file for ``liftplan solve``, in the file's frame.
-
-    Force control: the ``rigid`` model, level, every force but three held
-    (``analysis.redundant``); the three free ones (the widest triangle in plan) follow from the
-    statics, so the solve gives the planned forces. Hoist control: the ``elastic`` model with
-    the planned boom heights, which hold T* at the level pose. Both carry the weight curve and
-    the allowables, so ``solve`` prints the girder's peaks and checks at level.
+def plan_scene_toml(plan):
+    """The strength-optimal plan as a scene file for ``liftplan solve``, in the file's frame:
+    :attr:`~liftplan.planner.plans.strength.StrengthPlan.scene` (force control: the ``rigid``
+    model, all but three forces held; hoist control: the ``elastic`` model at the planned boom
+    heights) written by the one scene writer, each crane commented with its planned lug label.
     """
-    p, c = plan.problem, plan.chosen
-    points = p.points[list(c.indices)]
-    swl = p.reach[1][list(c.indices), 0]
-    crane = p.fleet[0]
-
-    def vec(values):
-        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
-
-    def pairs(values):
-        return "[" + ", ".join(f"[{float(a)!r}, {float(b)!r}]" for a, b in values) + "]"
-
-    force = plan.control == "force"
-    lines = [
-        f"# Written by liftplan plan: the strength-optimal lugs of {json.dumps(p.name)}.",
-        "# `liftplan solve` on this file gives the plan's level "
+    p = plan.problem
+    header = (
+        f"Written by liftplan plan: the strength-optimal lugs of {json.dumps(p.name)}.",
+        "`liftplan solve` on this file gives the plan's level "
         + (
             "forces (rigid model, all but three held)."
-            if force
+            if plan.control == "force"
             else "tensions (elastic model, the planned boom heights)."
         ),
-        f"# Coordinates in the planning file's frame: {FRAME_TEXT[p.frame]}.",
-        f"name = {json.dumps((p.name or 'plan') + ': strength-optimal lugs')}",
-        f"frame = {json.dumps(p.frame)}",
-        "",
-        "[body]",
-        f"weight = {p.body.weight!r}",
-        f"cog = {vec(plan.in_file_frame(p.body.cog))}",
-        f"weight_curve = {pairs(p.body.weight_curve)}",
-    ]
-    if p.strength is not None:
-        lines += ["", "[strength]"]
-        for key in ("bending_moment", "shear_force"):
-            curve = getattr(p.strength, key)
-            if curve is not None:
-                lines.append(f"{key} = {pairs(curve)}")
-    for name, at in zip(c.names, points):
-        lines += ["", "[[lugs]]", f"name = {json.dumps(name)}", f"at = {vec(plan.in_file_frame(at))}"]
-    heights = (
-        c.boom_heights if c.boom_heights is not None else (p.lift_height + points[:, 2] + crane.rope_length)
+        f"Coordinates in the planning file's frame: {FRAME_TEXT[p.frame]}.",
     )
-    for k, name in enumerate(c.names):
-        lines += [
-            "",
-            f"[[cranes]]                   # planned lug {plan.labels[k]}",
-            f"lug = {json.dumps(name)}",
-            f"boom_height = {float(heights[k])!r}",
-            f"rope_length = {crane.rope_length!r}",
-            f"EA = {crane.EA!r}",
-            f"swl = {float(swl[k])!r}",
-        ]
-    lines += ["", "[attitude]", f"lift_height = {p.lift_height!r}", f"yaw = {p.yaw!r}", "", "[analysis]"]
-    if force:
-        free = _free_three(points)
-        held = [k for k in range(len(c.names)) if k not in free]
-        lines.append('model = "rigid"')
-        lines.append("redundant = [")
-        lines += [
-            f"    {{ lug = {json.dumps(c.names[k])}, tension = {float(c.preload[k])!r} }}," for k in held
-        ]
-        lines.append("]")
-    else:
-        lines.append('model = "elastic"')
-    lines.append("")
-    return "\n".join(lines)
+    notes = {name: f"planned lug {label}" for label, name in plan.lugs.items()}
+    return scene_toml(plan.scene, header=header, crane_notes=notes)
 
 
-def solved_scene(plan, text=None):
-    """(scene, equilibrium, girder) of :func:`scene_toml` solved: the level state of the plan."""
-
-    scene = loads_scene(text if text is not None else scene_toml(plan))
+def solved_level(plan):
+    """(scene, equilibrium, girder): the plan's scene (:attr:`StrengthPlan.scene`) solved, the
+    level state of the plan as ``liftplan solve`` gives it from plan_scene.toml."""
+    scene = plan.scene
     eq = solve(scene)
     return scene, eq, hull_girder(scene, eq)
 
@@ -444,7 +378,7 @@ def _allowables(problem):
     )
 
 
-def render_html(plan, today=None, solved=None):
+def render_html(plan, today=None):
     """The strength plan's report as one HTML page, laid out for A4 print.
 
     Parameters
@@ -452,8 +386,6 @@ def render_html(plan, today=None, solved=None):
     plan : StrengthPlan
     today : datetime.date, optional
         The date printed when ``[report] date`` is not given (default: today).
-    solved : tuple, optional
-        (scene, equilibrium, girder) of the plan's scene file solved (default: solved here).
     """
     p, c = plan.problem, plan.chosen
     name = p.name or "Lift plan"
@@ -575,7 +507,7 @@ def render_html(plan, today=None, solved=None):
         "Every check of the plan",
         text_columns=(0, 1, 6),
     )
-    scene, eq, girder = solved if solved is not None else solved_scene(plan)
+    scene, eq, girder = solved_level(plan)
 
     level = _print_width(strength_figure(scene, eq, girder))
     figs = [
@@ -715,6 +647,5 @@ def _appendix(plan):
 
 def render(plan):
     """The report page and the scene file of a strength plan: (HTML, TOML) text; the page
-    shows that scene file solved."""
-    scene_text = scene_toml(plan)
-    return render_html(plan, solved=solved_scene(plan, scene_text)), scene_text
+    shows the plan's scene (the one the file holds) solved."""
+    return render_html(plan), plan_scene_toml(plan)

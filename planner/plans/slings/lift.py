@@ -261,7 +261,8 @@ class SlingLift(InFileFrame):
     # -- the rigging scene ---------------------------------------------------------------------
     @cached_property
     def scene(self):
-        """The plan as a rigging scene (hooks free, legs inclined) for ``liftplan solve``."""
+        """The plan as a rigging scene (hooks free, legs inclined) for ``liftplan solve``, in the
+        planning file's frame (``scene.frame``; its coordinates z-up, as in every Scene)."""
 
         problem = self.problem
         yaw = rotation_matrix(0.0, 0.0, problem.yaw)
@@ -302,6 +303,7 @@ class SlingLift(InFileFrame):
             analysis=Analysis(model="rigging"),
             rigging=RiggingLimits(min_sling_angle=problem.min_sling_angle),
             name=f"{problem.name or 'plan'}: chosen slings",
+            frame=problem.frame,
         )
 
     @cached_property
