@@ -25,9 +25,9 @@ import numpy as np
 import pytest
 from helpers import EXAMPLES
 from numpy.testing import assert_allclose
-from test_cli import run
-from test_report_pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm, render
-from test_report_pdf import _missing as _pdf_missing
+from support.cli import run
+from support.pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm, render
+from support.pdf import missing as _pdf_missing
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene

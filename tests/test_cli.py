@@ -1,20 +1,10 @@
 """`liftplan solve` as a user (and outside tests) drive it: a separate process."""
 
 import json
-import subprocess
-import sys
 
 import pytest
 from helpers import EXAMPLES
-
-
-def run(*args):
-    return subprocess.run(
-        [sys.executable, "-m", "liftplan.planner.cli", *args],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+from support.cli import run
 
 
 def test_solve_json_tanker():

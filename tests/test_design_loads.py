@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from helpers import EXAMPLES
 from numpy.testing import assert_allclose
-from test_cli import run
+from support.cli import run
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup

@@ -13,7 +13,7 @@ import itertools
 import numpy as np
 import pytest
 from helpers import EXAMPLES
-from test_planner import small_problem
+from support.planning import small_problem
 
 from liftplan.model import solve
 from liftplan.planner.plan import plan

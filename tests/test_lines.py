@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pytest
 from helpers import EXAMPLES, ROOT
-from test_planner import linprog_minimax
+from support.planning import linprog_minimax
 
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.search.evaluator import SetEvaluator

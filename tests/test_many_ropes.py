@@ -223,7 +223,7 @@ def test_batch_check_26_reason_names_rope_and_lug(checked26):
 # -- the report at 26 and 64 ropes ------------------------------------------------------------
 def printed_report(name, tmp_path):
     """The plan report of hull154_<name>_given.toml as PDF pages (PNG) and their text."""
-    from test_report_pdf import render
+    from support.pdf import render
 
     from liftplan.planner import load_problem, plan
     from liftplan.planner.output.report.write import write_report
@@ -236,7 +236,9 @@ def printed_report(name, tmp_path):
 
 
 def assert_within_the_page(images, name):
-    from test_report_pdf import A4_WIDTH_MM, EDGE_MM, MARGINS_MM, ink_extent_mm
+    from support.pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm
+
+    from liftplan.planner.output.report.page import MARGINS_MM
 
     _, right, _, left = MARGINS_MM
     for k, png in enumerate(images, start=1):
@@ -263,10 +265,10 @@ def labels_overlap(fig):
 
 
 def needs_pdf():
-    from test_report_pdf import _missing
+    from support.pdf import missing
 
-    if _missing():
-        pytest.skip(_missing())
+    if missing():
+        pytest.skip(missing())
 
 
 def test_report_26_ropes_within_the_page(tmp_path):

@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 from helpers import EXAMPLES
-from test_fleet import brute_force as fleet_brute_force
-from test_fleet import fleet_problem
-from test_planner import brute_force, small_problem
+from support.fleet import brute_force as fleet_brute_force
+from support.fleet import fleet_problem
+from support.planning import brute_force, small_problem
 
 from liftplan.model import PlanInfeasible
 from liftplan.planner.plan import plan

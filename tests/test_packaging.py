@@ -14,8 +14,7 @@ from contextlib import redirect_stderr, redirect_stdout
 
 import pytest
 from helpers import EXAMPLES
-from test_cli import run
-from test_startup import imported_after
+from support.cli import imported_after, run
 
 import liftplan.model
 import liftplan.planner

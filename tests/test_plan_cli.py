@@ -10,7 +10,7 @@ import tomllib
 
 import pytest
 from helpers import EXAMPLES
-from test_cli import run
+from support.cli import run
 
 TANKER = str(EXAMPLES / "tanker_plan.toml")
 

@@ -16,7 +16,7 @@ import time
 
 import pytest
 from helpers import EXAMPLES
-from test_cli import run
+from support.cli import run
 
 from liftplan.model import Equilibrium, LiftPlanError, Pose, SolverInfo, load_scene
 from liftplan.model.scene.plausibility import equilibrium_warnings, scene_warnings

@@ -410,15 +410,15 @@ def test_strength_report_small_force_case_has_no_nearly_empty_page(tmp_path):
     """The pontoon under force control: the solved-scene figure leaves room for the
     assumptions on its page (at 215 mm two bullets went onto a page of their own, inked
     12 % down); every page but the last is inked at least a third of the way down."""
-    from test_report_pdf import _missing, render
-    from test_strength_report import small_text
+    from support.pdf import missing, render
+    from support.strength import small_text
 
     from liftplan.planner.output.report.page import MARGINS_MM
     from liftplan.planner.output.report.write import write_report
     from liftplan.planner.plans.strength import plan_strength
 
-    if _missing() is not None:
-        pytest.skip(_missing())
+    if missing() is not None:
+        pytest.skip(missing())
     files = write_report(plan_strength(loads_problem(small_text())), tmp_path / "report")
     pages, texts = render(files.pdf, tmp_path)
     fills = [_filled(png, MARGINS_MM[0], MARGINS_MM[2]) for png in pages]

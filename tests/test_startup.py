@@ -2,24 +2,14 @@
 packages' lazy exports stay complete."""
 
 import importlib
-import json
 import subprocess
 import sys
 
 from helpers import EXAMPLES
+from support.cli import imported_after
 
 import liftplan.model
 import liftplan.planner
-
-HEAVY = ("cvxpy", "dask", "distributed", "matplotlib", "scipy")
-
-
-def imported_after(code):
-    """The heavy modules loaded by ``code`` in a fresh interpreter."""
-    probe = f"import sys\n{code}\nprint(__import__('json').dumps([m for m in {HEAVY!r} if m in sys.modules]))"
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def test_cli_import_and_help_load_nothing_heavy():

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 from scipy.optimize import linprog
+from support.strength import SMALL, cog_x
 
 from liftplan.model import load_scene, solve
 from liftplan.model.errors import InvalidScene
@@ -39,38 +40,6 @@ from liftplan.planner.search.strength import (
 
 FERRY = "examples/ferry_strength_plan.toml"
 
-# A 60 m pontoon lifted at points chosen among stations on both sides (a small problem the
-# brute force can enumerate).
-SMALL = """
-name = "60 m pontoon"
-[body]
-weight = 1265.0
-cog = [{cog_x}, 0.0, 3.0]
-weight_curve = [[0.0, 10.0], [15.0, 30.0], [40.0, 20.0], [60.0, 14.0]]
-[strength]
-bending_moment = [[0.0, 1500.0], [30.0, 4000.0], [60.0, 1500.0]]
-shear_force = [[0.0, 400.0], [60.0, 400.0]]
-[plan]
-cranes = {cranes}
-objective = "{objective}"
-tolerance = {{ heel = 2.0, trim = 3.0 }}
-cog_tolerance = [0.1, 0.05, 0.1]
-min_tension = 20.0
-[crane]
-control = "{control}"
-swl = 900.0
-EA = 60000.0
-rope_length = 25.0
-{candidates}
-"""
-
-
-def _cog_x():
-    from liftplan.model.scene.objects import curve_totals
-
-    area, first = curve_totals([0, 15, 40, 60], [10, 30, 20, 14])
-    return first / area
-
 
 def small_problem(
     control="force",
@@ -86,7 +55,7 @@ def small_problem(
         for side, y in (("P", 5.0), ("S", -5.0)):
             rows.append(f'[[candidates]]\nname = "S{k}{side}"\nat = [{x}, {y}, 6.0]\n')
     text = SMALL.format(
-        cog_x=f"{_cog_x():.6f}",
+        cog_x=f"{cog_x():.6f}",
         cranes=cranes,
         objective=objective,
         control=control,

@@ -19,20 +19,13 @@ import json
 import subprocess
 
 import pytest
-from test_report_pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm, needs_pdf, render
-from test_strength_plan import SMALL, _cog_x
+from support.pdf import A4_WIDTH_MM, EDGE_MM, ink_extent_mm, needs_pdf, render
+from support.strength import small_text
 
 from liftplan.planner.output.report.page import MARGINS_MM
 from liftplan.planner.problem.file import loads_problem
 
 FERRY = "examples/ferry_strength_plan.toml"
-REPORT = """
-[report]
-project = "Pontoon salvage"
-document = "PS-01-LP"
-revision = "A"
-date = "2026-05-01"
-"""
 SECTIONS = (
     "1 Recommendation",
     "2 Basis of the plan",
@@ -42,21 +35,6 @@ SECTIONS = (
     "6 Assumptions",
     "Engineering appendix",
 )
-
-
-def small_text(control="force", cranes=5, bending="[[0.0, 1500.0], [30.0, 4000.0], [60.0, 1500.0]]"):
-    rows = []
-    for k, x in enumerate((4, 16, 28, 40, 52)):
-        for side, y in (("P", 5.0), ("S", -5.0)):
-            rows.append(f'[[candidates]]\nname = "S{k}{side}"\nat = [{x}, {y}, 6.0]\nbulkhead = "B{k}"\n')
-    text = SMALL.format(
-        cog_x=f"{_cog_x():.6f}",
-        cranes=cranes,
-        objective="bending",
-        control=control,
-        candidates="\n".join(rows),
-    )
-    return text.replace("[[0.0, 1500.0], [30.0, 4000.0], [60.0, 1500.0]]", bending) + REPORT
 
 
 def run(*args):
