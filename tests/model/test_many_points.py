@@ -17,7 +17,8 @@ import sys
 import numpy as np
 import pytest
 from helpers import EXAMPLES
-from many_points_peer import (
+from numpy.testing import assert_allclose
+from support.many_points_peer import (
     free_three,
     held_scene,
     hull_scene,
@@ -25,7 +26,6 @@ from many_points_peer import (
     numpy_paper_elastic,
     numpy_rigid,
 )
-from numpy.testing import assert_allclose
 
 from liftplan.model import Body, InvalidScene, Lug, Redundant, load_scene, paper_elastic_tensions, solve
 from liftplan.model.statics.model import rope_model
@@ -120,7 +120,7 @@ def test_energy_fallback_equals_newton_at_64(hull64):
 
 
 def test_elastic_against_moorpy_26(hull26):
-    from moorpy_peer import moorpy_solve
+    from support.moorpy_peer import moorpy_solve
 
     eq = solve(hull26, model="elastic")
     theirs, _ = moorpy_solve(hull26, eq.pose.heel, eq.pose.trim, eq.pose.lift_height)
@@ -130,7 +130,7 @@ def test_elastic_against_moorpy_26(hull26):
 
 @pytest.mark.slow
 def test_elastic_against_moorpy_64(hull64):
-    from moorpy_peer import moorpy_solve
+    from support.moorpy_peer import moorpy_solve
 
     eq = solve(hull64, model="elastic")
     theirs, _ = moorpy_solve(hull64, eq.pose.heel, eq.pose.trim, eq.pose.lift_height)

@@ -14,18 +14,17 @@ import subprocess
 import sys
 import textwrap
 import time
-from pathlib import Path
 
 import casadi as ca
 import numpy as np
 import pytest
+from helpers import ROOT
 from numpy.testing import assert_allclose
 
 from liftplan.model.statics import compiled
 from liftplan.model.statics.compiled import compile_cached, library_path
 from liftplan.model.statics.model import BLOCK, FastCall, rope_model
 
-ROOT = Path(__file__).resolve().parents[1]
 needs_compiler = pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler on this machine")
 
 # Builds the three batched maps of the 4-rope model, as `plan` and `batch` do.

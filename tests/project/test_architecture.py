@@ -7,12 +7,11 @@ from __future__ import annotations
 import ast
 import shutil
 import subprocess
-from pathlib import Path
 
 import grimp
 import pytest
+from helpers import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("liftplan.model", "liftplan.planner")
 #: The command line imports each command's modules in the command (its docstring says why).
 LAZY_MODULES = {"planner/cli.py"}

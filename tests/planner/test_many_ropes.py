@@ -19,8 +19,8 @@ import sys
 import numpy as np
 import pytest
 from helpers import EXAMPLES
-from many_points_peer import rotation
 from numpy.testing import assert_allclose
+from support.many_points_peer import rotation
 
 from liftplan.model import load_scene, solve
 

@@ -3,14 +3,14 @@
 systems have condition numbers below 1e4, so double precision leaves ~1e-12."""
 
 import json
-from pathlib import Path
 
 import pytest
+from helpers import ROOT
 from numpy.testing import assert_allclose
 
 from liftplan.model import Analysis, Attitude, Body, Crane, Lug, Redundant, Scene, solve
 
-CASES = json.loads((Path(__file__).parent / "reference" / "linear_reference.json").read_text())
+CASES = json.loads((ROOT / "tests" / "reference" / "linear_reference.json").read_text())
 
 
 def scene_of(case, model):

@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import dataclasses
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import EXAMPLES
 from numpy.testing import assert_allclose
 
 from liftplan.model import solve
@@ -20,8 +20,6 @@ from liftplan.planner import load_problem, plan
 from liftplan.planner.plans.held import Plan
 from liftplan.planner.plans.lengths import LENGTH_STEPS, REFINE_ROUNDS, with_lengths
 from liftplan.planner.problem.file import loads_problem
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 @pytest.fixture(scope="module")

@@ -5,8 +5,8 @@ import dataclasses
 
 import numpy as np
 import pytest
-from moorpy_peer import moorpy_solve_6dof
 from numpy.testing import assert_allclose
+from support.moorpy_peer import moorpy_solve_6dof
 
 from liftplan.model import rotation_matrix, solve
 

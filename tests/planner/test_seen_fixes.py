@@ -16,14 +16,11 @@ answers agree to round-off: 1e-9 relative is a wide margin that still catches a 
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
+from helpers import EXAMPLES, ROOT
 
 from liftplan.model.rules import CraneLoads, DesignLoadChain, Rules
-
-ROOT = Path(__file__).resolve().parent.parent
-EXAMPLES = ROOT / "examples"
 
 
 # -- 1. the chain's words ------------------------------------------------------------------

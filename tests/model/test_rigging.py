@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 import pytest
-from moorpy_peer import moorpy_angles, moorpy_solve_rigging
 from numpy.testing import assert_allclose
+from support.moorpy_peer import moorpy_angles, moorpy_solve_rigging
 
 from liftplan.model import (
     Attitude,

@@ -21,16 +21,15 @@ import re
 import tomllib
 import types
 import typing
-from pathlib import Path
 
 import pytest
+from helpers import ROOT
 from pydantic import BaseModel
 
 from liftplan.model.scene.file import _SceneFile, loads_scene
 from liftplan.planner.batch.study import _StudyFile, loads_study
 from liftplan.planner.problem.file import _PlanFile, loads_problem
 
-ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "scene-files.md"
 EXAMPLES = ROOT / "examples"
 

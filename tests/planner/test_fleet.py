@@ -4,10 +4,10 @@ which lug. The search must equal brute force over every lug set and every assign
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import EXAMPLES
 from numpy.testing import assert_allclose
 from support.fleet import brute_force, fleet, fleet_problem
 
@@ -15,8 +15,6 @@ from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.file import load_problem, loads_problem
 from liftplan.planner.search.methods import search
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 @pytest.mark.parametrize("objective", ["utilisation", "spread", "reserve"])

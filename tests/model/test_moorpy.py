@@ -5,8 +5,8 @@ Tolerance 1e-6 relative (1e-6 W for a slack rope's zero): MoorPy's lines weigh 1
 
 import numpy as np
 import pytest
-from moorpy_peer import moorpy_solve
 from numpy.testing import assert_allclose
+from support.moorpy_peer import moorpy_solve
 
 from liftplan.model import rotation_matrix, solve
 

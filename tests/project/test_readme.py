@@ -7,7 +7,7 @@ site as the block's title: a sketch with values left out). Every command line st
 command line's own parser (``a|b|c`` in an option value is the docs' notation for
 alternatives: each one is parsed); a command whose files exist (the examples) is also run,
 once however many pages show it, except ``batch``, which starts a Dask cluster and is
-covered by tests/test_batch.py. A ```console block is a command and its output: the command
+covered by tests/planner/test_batch.py. A ```console block is a command and its output: the command
 is run and must print that output (numbers that differ from run to run, a solve's residual
 and a search's seconds, are compared as placeholders). A ```toml block with a ``[study]``
 table is read as a study file next to the examples.
@@ -22,13 +22,12 @@ from __future__ import annotations
 import re
 import shlex
 import shutil
-from pathlib import Path
 
 import pytest
+from helpers import ROOT
 
 from liftplan.planner import cli
 
-ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 FENCE = re.compile(r"^```([\w-]*)([^\n]*)\n(.*?)^```", re.MULTILINE | re.DOTALL)
 # shell operators between commands on one line (a lone | inside a word is an alternative)
