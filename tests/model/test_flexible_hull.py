@@ -3,7 +3,7 @@
 Closed forms (a uniform beam on two and three supports, rigid and elastic; torsion between
 two lug stations), an independent frame solver (PyNite), the limit EI -> infinity (the
 rigid ``elastic`` model), the strength block from the flexible solution, the least-model
-rule of ``solve``, bad input and the command line.
+rule of ``solve`` and bad input (the command line: tests/cli/test_flexible_hull_cli.py).
 
 Geometry of the closed-form cases: a body 80 m long (x in [-40, 40]) of W = 800 t spread
 uniformly (q = 10 t/m), lifted at "stations": a port and a starboard lug at the same x, y =
@@ -15,7 +15,6 @@ spring K = 2 k under the beam.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 
 import helpers
@@ -39,7 +38,6 @@ from liftplan.model.scene.objects import (
 from liftplan.model.solve import solve_hull_on_ropes
 from liftplan.model.strength import hull_girder
 from liftplan.model.strength.beam import girder_mesh
-from liftplan.planner.cli import main
 
 W, L = 800.0, 80.0
 Q = W / L
@@ -385,32 +383,6 @@ def test_lug_off_the_body_and_missing_weight_curve_are_refused():
     with pytest.raises(InvalidScene, match=r'analysis.hull = "flexible": no hull.EI given'):
         bare = stations_scene([-40.0, 40.0], 1e6)
         Scene(body=bare.body, lugs=bare.lugs, cranes=bare.cranes, analysis=Analysis(hull="flexible"))
-
-
-# -- command line ---------------------------------------------------------------------------------
-
-
-def test_cli_json_reports_the_hull_the_deflection_and_the_strength(capsys, tmp_path):
-    path = tmp_path / "six.toml"
-    text = FLEXIBLE.read_text().replace('hull = "auto"', 'hull = "flexible"')
-    path.write_text(text)
-    code = main(["solve", str(path), "--json"])
-    out = json.loads(capsys.readouterr().out)
-    assert code == 0
-    block = out["flexible_hull"]
-    assert block["used"] == "flexible" and block["threshold"] == 0.01
-    assert len(block["deflection"]["x"]) == len(block["deflection"]["w"]) > 40
-    assert block["twist"] is not None
-    assert out["strength"]["max_bending_moment"]["value"] > 0
-    assert out["tensions"] == pytest.approx(block["flexible_tensions"], rel=1e-12)
-
-
-def test_cli_console_says_which_hull(capsys):
-    code = main(["solve", str(FLEXIBLE)])
-    out = capsys.readouterr().out
-    assert code == 0
-    assert "hull: rigid (flexibility changes no tension by more than 1 %" in out
-    assert "hull deflection from the chord through its ends" in out
 
 
 def test_a_deflection_beyond_small_deflection_theory_is_said():
