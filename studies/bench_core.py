@@ -19,7 +19,7 @@ from liftplan.model.statics.model import rope_model
 
 HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE.parent / "tests"))
-from moorpy_peer import moorpy_solve  # noqa: E402
+from support.moorpy_peer import moorpy_solve  # noqa: E402
 
 
 def varied_scenes(count=50, seed=1):

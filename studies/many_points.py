@@ -2,7 +2,7 @@
 models, beside independent peers in the same run.
 
 Scenes: the 154 m hull of ``examples/hull154_26_points.toml`` with n / 2 lifting points a
-side spread over the same 132 m (``tests/many_points_peer.hull_scene(n // 2, seed=1)``: an
+side spread over the same 132 m (``tests/support/many_points_peer.hull_scene(n // 2, seed=1)``: an
 uneven hoist, every rope taut); n = 26 is the example's layout, n = 64 its 64-point
 variant. ``rigid`` holds every lug but three (P01, the last port lug, the middle starboard
 one) at the paper-elastic tensions rounded to the tonne.
@@ -22,9 +22,9 @@ acceptance, result):
   (``held_columns``: planner screening) and without them (``held_tensions_columns``: what a
   check of a fixed plan needs).
 
-Peers (``tests/many_points_peer.py``, written from the physics): ``elastic`` against
+Peers (``tests/support/many_points_peer.py``, written from the physics): ``elastic`` against
 ``scipy.optimize.root`` (MINPACK hybr, finite-difference Jacobian) on a numpy residual and
-against MoorPy (build + 6-DOF quasi-static solve to 1e-10 m, as ``tests/moorpy_peer.py``);
+against MoorPy (build + 6-DOF quasi-static solve to 1e-10 m, as ``tests/support/moorpy_peer.py``);
 ``paper-elastic`` against numpy least squares on the (n + 3)-unknown system; ``rigid``
 against numpy least squares on [A; held rows]. Accuracy: max |T - T_peer| / W.
 
@@ -55,7 +55,7 @@ import numpy as np
 HERE = Path(__file__).parent
 OUT = HERE / "out"
 sys.path.insert(0, str(HERE.parent / "tests"))
-from many_points_peer import (  # noqa: E402
+from support.many_points_peer import (  # noqa: E402
     held_scene,
     hull_scene,
     numpy_elastic,
@@ -169,7 +169,7 @@ def build_time(model, n):
 def peers(model, scene):
     """(name, call returning tensions in lug order, repeats budget) of each peer of a model."""
     if model == "elastic":
-        from moorpy_peer import moorpy_solve
+        from support.moorpy_peer import moorpy_solve
 
         eq = solve(scene, model)
         pose = eq.pose

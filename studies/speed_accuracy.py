@@ -48,7 +48,7 @@ from liftplan.model.statics.vertical import pack_params, solve_elastic
 HERE = Path(__file__).parent
 OUT = HERE / "out"
 sys.path.insert(0, str(HERE.parent / "tests"))
-from moorpy_peer import moorpy_solve  # noqa: E402
+from support.moorpy_peer import moorpy_solve  # noqa: E402
 
 SCENES = 60
 MOORPY_SCENES = 12

@@ -2,6 +2,10 @@ import pytest
 from helpers import example
 from hypothesis import settings
 
+# The shared helpers' asserts (tests/support/, imported after this file) report their values as
+# a test's own do.
+pytest.register_assert_rewrite("support")
+
 # Property tests draw the same examples on every run and keep no example database, so a
 # clean checkout's `python -m pytest` cannot pass or fail by chance or by an earlier run.
 # `python -m pytest --hypothesis-profile explore` searches afresh (random draws); pin what it
