@@ -68,7 +68,7 @@ from liftplan.model.water.state import water_state
 #: solve whose quadrature is still not the clipped hull's exact buoyancy after these is refused
 #: (:attr:`WaterBeamState.accepted`); measured: every case of the tests and of the
 #: flexible-ground study is exact at the first mesh, a trimmed light barge whose keel leaves the
-#: water at the third (tests/test_flexible_water_contact.py).
+#: water at the third (tests/model/test_flexible_water_contact.py).
 REMESH = 4
 #: How the beam is held to the pose's frame: ``"chord"`` (w = 0 at both ends: the pose is the
 #: chord's) or ``"stern"`` (w = w' = 0 at the aft end: the pose is the aft section's). The

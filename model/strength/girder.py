@@ -220,7 +220,7 @@ def hull_girder(scene, eq, grid=GRID):
 def attitude_matrix(heel, trim, yaw):
     """R = Rx(heel) Rz(yaw) Ry(trim) from degrees, in numpy: the definition of
     :func:`liftplan.model.frames.rotation` (which builds casadi matrices, ~0.2 ms a call),
-    pinned to it by tests/test_strength.py."""
+    pinned to it by tests/model/test_strength.py."""
     h, t, y = np.radians([heel, trim, yaw])
     ch, sh, ct, st, cy, sy = np.cos(h), np.sin(h), np.cos(t), np.sin(t), np.cos(y), np.sin(y)
     rx = np.array([[1.0, 0.0, 0.0], [0.0, ch, -sh], [0.0, sh, ch]])

@@ -6,7 +6,7 @@ elastic model (the body finds its own pose; slack ropes carry nothing): Newton m
 blocks of 4096 draws in one casadi call, each answer accepted by the same test as every
 elastic answer (:mod:`liftplan.model.statics.acceptance`). The planner's worst case holds every
 error within the tolerance box exactly, so no uniform draw may exceed the plan's worst
-spread or any rope's largest load (``tests/test_montecarlo.py``); the draws show how likely
+spread or any rope's largest load (``tests/planner/test_montecarlo.py``); the draws show how likely
 the crew is to see what, and what happens when they are worse than assumed. The same
 draws run as a ``batch`` study (``kind = "montecarlo"``, one CSV row per draw).
 """

@@ -66,7 +66,7 @@ class _Tolerance(Table):
 
 class _Plan(Table):
     cranes: Count | None = None
-    # the choices of OBJECTIVES (tests/test_registries.py checks they agree; a type checker
+    # the choices of OBJECTIVES (tests/project/test_registries.py checks they agree; a type checker
     # needs them written out)
     objective: Literal["spread", "utilisation", "reserve", "bending", "shear", "strength"] | None = None
     strength_weights: _StrengthWeights | None = None

@@ -21,6 +21,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from helpers import EXAMPLES
+from support.slings import crane as _crane
+from support.slings import spreader_problem as _spreader_problem
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.frames import rotation_matrix
@@ -31,9 +33,9 @@ from liftplan.planner.cli import main
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.slings.apex import ApexSlingPlan, apex_problem
 from liftplan.planner.plans.slings.geometry import hinge_rows, hinged_hooks, pair_apex, spreader_hook
-from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
+from liftplan.planner.problem.definition import Candidate, PlanProblem
 from liftplan.planner.problem.file import load_problem
-from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
+from liftplan.planner.problem.fleet import SlingSpec
 from liftplan.planner.search.scenarios import Scenario
 
 EXAMPLE = Path(EXAMPLES) / "block_three_slings_plan.toml"
@@ -219,10 +221,6 @@ def test_no_crane_beyond_its_reach_and_relabelling_does_not_matter():
     assert second.inner.chosen.worst_value == pytest.approx(first.inner.chosen.worst_value, abs=1e-9)
 
 
-def _crane(name, swl, sling):
-    return FleetCrane(name=name, EA=40000.0, rope_length=24.0, swl=swl, sling=sling)
-
-
 def _three_crane_problem():
     sling = SlingSpec(length=8.0, legs=2, EA=20000.0)
     candidates = tuple(
@@ -283,29 +281,6 @@ def test_three_cranes_on_two_leg_slings_equal_brute_force():
     chosen = result.inner.chosen
     assert chosen.worst_value == pytest.approx(best, abs=1e-3)
     assert sorted(zip(chosen.cranes, chosen.indices)) == choice
-
-
-def _spreader_problem(bar_length=4.0):
-    bar = SpreaderSpec(length=bar_length, top_length=5.0, weight=2.0)
-    sling = SlingSpec(length=1.5, legs=2, EA=20000.0, spreader=bar)
-    candidates = tuple(
-        Candidate(f"S{x:+.0f}{y:+.0f}", (x, y, 3.0), bulkhead=f"x{x:+.0f}")
-        for x in (-7.0, -3.0, 1.0, 3.0, 7.0)
-        for y in (-4.0, 4.0)
-    )
-    fleet = tuple(_crane(n, 300.0, sling) for n in ("FP", "FS", "AP", "AS"))
-    return PlanProblem(
-        body=Body(180.0, (0.0, 0.0, 1.3)),
-        candidates=candidates,
-        cranes=4,
-        crane=None,
-        fleet=fleet,
-        heel_tolerance=2.0,
-        trim_tolerance=2.0,
-        lift_height=8.0,
-        top=3,
-        cog_envelope=CogEnvelope((0.2, 0.2, 0.1)),
-    )
 
 
 def test_spreader_bars_on_four_cranes_hook_load_is_share_plus_bar():

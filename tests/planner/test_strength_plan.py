@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 from scipy.optimize import linprog
-from support.strength import SMALL, cog_x
+from support.strength import small_problem
 
 from liftplan.model import load_scene, solve
 from liftplan.model.errors import InvalidScene
@@ -28,7 +28,6 @@ from liftplan.planner.plans.strength import (
     StrengthEvaluator,
     search_strength,
 )
-from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.search.strength import (
     GirderLoads,
     Sections,
@@ -39,38 +38,6 @@ from liftplan.planner.search.strength import (
 )
 
 FERRY = "examples/ferry_strength_plan.toml"
-
-
-def small_problem(
-    control="force",
-    objective="bending",
-    cranes=5,
-    stations=(4, 16, 28, 40, 52),
-    plan_extra="",
-    drop_curve=False,
-    drop_shear=False,
-):
-    rows = []
-    for k, x in enumerate(stations):
-        for side, y in (("P", 5.0), ("S", -5.0)):
-            rows.append(f'[[candidates]]\nname = "S{k}{side}"\nat = [{x}, {y}, 6.0]\n')
-    text = SMALL.format(
-        cog_x=f"{cog_x():.6f}",
-        cranes=cranes,
-        objective=objective,
-        control=control,
-        candidates="\n".join(rows),
-    )
-    text = text.replace("min_tension = 20.0", "min_tension = 20.0\n" + plan_extra)
-    if drop_curve:
-        text = text.replace("weight_curve = [[0.0, 10.0], [15.0, 30.0], [40.0, 20.0], [60.0, 14.0]]", "")
-        text = (
-            text.replace("[strength]", "[plan_strength_unused]").split("[plan_strength_unused]")[0]
-            + text.split("shear_force = [[0.0, 400.0], [60.0, 400.0]]")[1]
-        )
-    if drop_shear:
-        text = text.replace("shear_force = [[0.0, 400.0], [60.0, 400.0]]", "")
-    return loads_problem(text)
 
 
 # -- the girder rows -------------------------------------------------------------------------------

@@ -20,10 +20,10 @@ import pytest
 from helpers import EXAMPLES
 from hypothesis import given
 from hypothesis import strategies as st
-from test_fleet import fleet_problem
-from test_planner import small_problem as held_problem
-from test_slings_hinged import _spreader_problem
-from test_strength_plan import small_problem as strength_problem
+from support.fleet import fleet_problem
+from support.planning import small_problem as held_problem
+from support.slings import spreader_problem as _spreader_problem
+from support.strength import small_problem as strength_problem
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
