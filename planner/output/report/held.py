@@ -188,8 +188,7 @@ def _governing(plan):
         ok = r.check.ok and (r.code_margin is None or r.code_margin.ok)
         rows.append(
             (
-                c.label,
-                c.crane,
+                f"{c.label} ({c.crane})",
                 f"{c.swl:.1f}",
                 f"{r.design_hook_load:.2f}",
                 f"{100 * r.utilisation:.1f}",
@@ -199,8 +198,7 @@ def _governing(plan):
         )
     table = _table(
         [
-            "lug",
-            "crane",
+            "lug (crane)",
             "chart SWL [t]",
             "design hook load [t]",
             "utilisation: design / chart SWL [%]",
@@ -209,7 +207,7 @@ def _governing(plan):
         ],
         rows,
         "The loads to sign against: each crane's design hook load by the rules' chain",
-        text_columns=(1, 5),
+        text_columns=(0, 4),
     )
     tolerance = plan.problem.hook_tolerance
     needed = plan.hook_accuracy_needed
