@@ -107,7 +107,7 @@ def test_hook_plane_bounds_hold_for_sets_that_beat_the_cutoff():
     assert checked >= 5
 
 
-@pytest.mark.parametrize("cranes", [3, 4, 5])
+@pytest.mark.parametrize("cranes", [3, 4, pytest.param(5, marks=pytest.mark.slow)])  # 5: 8 s
 def test_mip_finds_the_brute_force_optimum(cranes):
     problem = small_problem(cranes)
     brute = brute_force(problem)

@@ -174,7 +174,16 @@ def _brute(problem, weights):
     return best
 
 
-@pytest.mark.parametrize("weights", [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.5, 0.0), SPREAD_WEIGHTS])
+# 6-15 s each: bending alone and the spread in the default run, the others with -m slow
+@pytest.mark.parametrize(
+    "weights",
+    [
+        (1.0, 0.0, 0.0),
+        pytest.param((0.0, 1.0, 0.0), marks=pytest.mark.slow),
+        pytest.param((1.0, 0.5, 0.0), marks=pytest.mark.slow),
+        SPREAD_WEIGHTS,
+    ],
+)
 def test_force_search_equals_brute_force(weights):
     """The MIP over the candidates finds the optimum of every lug set's LP (10 choose 5)."""
     problem = small_problem()
