@@ -34,3 +34,11 @@ def test_a_fleet_report_shows_its_objective_in_its_unit():
     row = re.search(r"least worst value for the recommended lugs[^|]*\|+([^|]+)\|+([^|]+)\|", text)
     assert row is not None and row[2] == "-" and float(row[1]) < 1.0
     assert "design_hook_load" not in text and "|-0.00" not in text
+
+
+def test_a_sling_report_names_its_factors_in_words():
+    from liftplan.planner.output.report.slings import render_html as sling_html
+
+    text = re.sub(r"<[^>]+>", "|", sling_html(plan(load_problem(EXAMPLES / "block_sling_plan.toml"))))
+    assert "weight contingency [-]" in text and "DAF [-]" in text
+    assert "weight_contingency" not in text and "design_hook_load" not in text

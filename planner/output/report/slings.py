@@ -227,7 +227,11 @@ def render_html(plan, today=None):
         factors = _table(
             [
                 "crane",
-                *[f.name for f in chain.results[0].factors],
+                # the factors in words, not their JSON keys (weight_contingency)
+                *[
+                    f"{'DAF' if f.name == 'daf' else f.name.replace('_', ' ')} [-]"
+                    for f in chain.results[0].factors
+                ],
                 "rigging [t]",
                 "static hook [t]",
                 "design hook [t]",
