@@ -22,6 +22,8 @@ from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.planner.plans.breakout import breakout_json
 from liftplan.planner.plans.common import InFileFrame, contract_json
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
+from liftplan.planner.plans.girder import applies as girder_applies
+from liftplan.planner.plans.girder import girder_json, girder_worst
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
@@ -122,12 +124,16 @@ class Plan(InFileFrame):
     lengths : LengthSearch or None
         How the rope lengths were chosen (:mod:`liftplan.planner.plans.lengths`); None when every
         crane's length was given. With it, ``problem`` is the problem at the chosen lengths.
+    girders : list of tuple of GirderWorst, optional
+        The hull girder's worst of each ranked set when already computed (by
+        :func:`girder_first`); else computed when first asked for.
     """
 
     problem: PlanProblem
     ranking: list[SetResult]
     stats: SearchStats
     lengths: object = None
+    girders: list | None = None
 
     # -- the chosen set ------------------------------------------------------------------
     @property
@@ -252,6 +258,7 @@ class Plan(InFileFrame):
             attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
             analysis=Analysis(model="elastic"),
             name=f"{problem.name or 'plan'}: chosen lugs",
+            strength=problem.strength,
         )
 
     @cached_property
@@ -306,6 +313,20 @@ class Plan(InFileFrame):
         :attr:`design_loads`)."""
         return [self.design_loads] + [self._design_builder.build(r, self.labels) for r in self.ranking[1:]]
 
+    @cached_property
+    def ranked_girder(self):
+        """The hull girder's worst |M| and |Q| of every ranked set, best first (each a tuple
+        of :class:`~.girder.GirderWorst`; empty without a weight curve and ``[strength]``)."""
+        if self.girders is not None:
+            return self.girders
+        return [set_girder(self.problem, r, self._design_builder.dense) for r in self.ranking]
+
+    @property
+    def girder(self):
+        """The chosen set's worst |M| and |Q| over the box, the CG envelope and the hook errors
+        (:class:`~.girder.GirderWorst`, bending first; empty when not checked)."""
+        return self.ranked_girder[0]
+
     @property
     def capacity(self):
         """Per crane (L1..Ln): static loads, where they occur, and the design hook load against
@@ -319,9 +340,10 @@ class Plan(InFileFrame):
         The rules' chain: per crane the design hook load against the chart SWL at its radius
         and the crane code's margin over the calculated share, per lug with a ``capacity`` its
         design load, with a breakout case each crane's breakout hook load; per plan: the lowest
-        tension in the box against min_tension.
+        tension in the box against min_tension and, with a weight curve and ``[strength]``, the
+        hull girder's worst |M| and |Q| against the allowables (:mod:`.girder`).
         """
-        out = list(self.design_loads.checks)
+        out = list(self.design_loads.checks) + [w.check() for w in self.girder]
         out.append(
             Check.lower(
                 "min_tension",
@@ -513,7 +535,10 @@ class Plan(InFileFrame):
         return (
             contract_json(self)
             | {
-                "ranking": [self._ranking_entry(r, d) for r, d in zip(self.ranking, self.ranked_design)],
+                "ranking": [
+                    self._ranking_entry(r, d, g)
+                    for r, d, g in zip(self.ranking, self.ranked_design, self.ranked_girder)
+                ],
                 "frame": self.frame,
                 "worst_attitude": self.scenario_json(self.chosen.worst),
                 "bound": self.chosen.bound,
@@ -568,6 +593,7 @@ class Plan(InFileFrame):
                     },
                 },
                 "checks": [c.to_json() for c in self.checks],
+                "girder": girder_json(self.girder, self.scenario_json),
             }
             | (
                 {}
@@ -611,7 +637,7 @@ class Plan(InFileFrame):
             "ok": ok,
         }
 
-    def _ranking_entry(self, result, design):
+    def _ranking_entry(self, result, design, girder):
         return {
             "lugs": list(result.lugs),
             "cranes": list(result.crane_names),
@@ -623,11 +649,39 @@ class Plan(InFileFrame):
             "highest_in_box_load_over_swl": result.max_utilisation,
             "design_utilisation": design.max_utilisation if design.chain is not None else None,
             "design_ok": design.ok,
+            "girder_ok": all(w.ratio <= 1.0 for w in girder),
+            "girder_ratio": max((w.ratio for w in girder), default=None),
             "boom_heights": result.boom_heights.tolist(),
             "preload": result.preload.tolist(),
             "twist_stiffness": _twist_stiffness(self.problem, result),
             "converged": result.converged,
         }
+
+
+def set_girder(problem, result, scenarios):
+    """A ranked set's hull girder worst over the scenarios, its hook errors at their worst."""
+    lugset = LugSet(problem, result.indices, result.cranes)
+    tensions, gain = lugset.tensions_and_gain(np.asarray(result.preload, dtype=float), scenarios)
+    hook = (gain, lugset.hook_tolerance) if lugset.hook_uncertain else None
+    return girder_worst(problem, lugset.points, scenarios, tensions, hook)
+
+
+def girder_first(problem, ranking):
+    """The ranking with the sets whose hull girder holds first (the order kept within each
+    group), and each set's girder worst in that order: the plan is the best set that does not
+    overload the girder, when one was ranked.
+
+    Returns
+    -------
+    ranking : list of SetResult
+    girders : list of tuple of GirderWorst, or None when the girder is not checked
+    """
+    if not girder_applies(problem):
+        return ranking, None
+    dense = DesignBuilder(problem).dense
+    worst = [set_girder(problem, r, dense) for r in ranking]
+    order = sorted(range(len(ranking)), key=lambda k: any(w.ratio > 1.0 for w in worst[k]))
+    return [ranking[k] for k in order], [worst[k] for k in order]
 
 
 def _twist_stiffness(problem, result):
@@ -636,7 +690,7 @@ def _twist_stiffness(problem, result):
     return float(np.abs(gain).sum(axis=1).max() / 100.0)
 
 
-def plan_held(problem, top=None):
+def plan_held(problem, top=None, girder_order=True):
     """Plan a lift on single ropes with a held level preload: lugs among the candidates (and
     the crane on each, for a fleet) and boom heights, by the search ``problem.search`` names.
 
@@ -645,6 +699,9 @@ def plan_held(problem, top=None):
     problem : PlanProblem
     top : int, optional
         How many lug sets to rank (default ``problem.top``).
+    girder_order : bool
+        With a weight curve and ``[strength]``: rank the sets that overload the hull girder
+        last (:func:`girder_first`). The rope-length search leaves it to its chosen plan.
 
     Returns
     -------
@@ -662,6 +719,8 @@ def plan_held(problem, top=None):
         ranking, stats = search(problem, top)
     except Interrupted as stop:
         if stop.ranking:
-            stop.plan = Plan(problem=problem, ranking=stop.ranking, stats=stop.stats)
+            ranked, girders = girder_first(problem, stop.ranking) if girder_order else (stop.ranking, None)
+            stop.plan = Plan(problem=problem, ranking=ranked, stats=stop.stats, girders=girders)
         raise
-    return Plan(problem=problem, ranking=ranking, stats=stats)
+    ranked, girders = girder_first(problem, ranking) if girder_order else (ranking, None)
+    return Plan(problem=problem, ranking=ranked, stats=stats, girders=girders)

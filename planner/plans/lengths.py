@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
-from liftplan.planner.plans.held import plan_held
+from liftplan.planner.plans.held import girder_first, plan_held
 
 LENGTH_STEPS = 5
 #: Largest number of length combinations in the first pass (several classes with ranges).
@@ -185,7 +185,7 @@ def plan_lengths(problem, top=None):
         if key in results:
             return results[key]
         try:
-            result = plan_held(with_lengths(problem, classes, key), top)
+            result = plan_held(with_lengths(problem, classes, key), top, girder_order=False)
         except PlanInfeasible as err:
             result = None
             trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
@@ -242,7 +242,8 @@ def plan_lengths(problem, top=None):
         evaluated=sum(r.stats.evaluated for r in finished),
         seconds=time.perf_counter() - start,
     )
-    return dataclasses.replace(chosen, stats=stats, lengths=search)
+    ranking, girders = girder_first(chosen.problem, chosen.ranking)
+    return dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
 
 
 def _product(grids):

@@ -50,10 +50,11 @@ from liftplan.planner.search.strength import (
     Peak,
     Sections,
     State,
+    allowable,
     body_tilt,
-    curve_peak,
-    exact_curves,
+    exact_peaks,
     force_attitude,
+    section_ratios,
     section_rows,
     strength_lp,
 )
@@ -173,11 +174,7 @@ class StrengthContext:
         self.boom_range = (crane.boom_min, crane.boom_max)
 
     def allowable(self, which, x):
-        envelope = self.envelopes[which]
-        if envelope is None:
-            return np.ones(len(x))
-        ex, ev = zip(*envelope)
-        return np.interp(x, ex, ev)
+        return allowable(self.envelopes[which], x)
 
     def up(self, heel, trim):
         return attitude_matrix(heel, trim, self.problem.yaw)[2]
@@ -275,23 +272,7 @@ class StrengthEvaluator:
 
     def _peaks(self, points, tensions, states, hook=None):
         """Exact worst ratio of M and Q over the given states (tensions (k, n))."""
-        ctx = self.context
-        best = [None, None]
-        worst_x = []
-        for k, state in enumerate(states):
-            shear, moment = exact_curves(ctx.loads, points, tensions[k], state)
-            for which, curve in ((0, moment), (1, shear)):
-                ratio, value, x = curve_peak(curve, ctx.envelopes[which])
-                if hook is not None:  # the hook errors' largest effect at that section
-                    sec = Sections(np.array([x]), np.array([True]))
-                    g = section_rows(ctx.loads, points, sec, state)[2 * which]
-                    extra = float(np.abs(g @ hook[0][k]) @ hook[1])
-                    allow = ctx.allowable(which, [x])[0] if ctx.envelopes[which] is not None else 1.0
-                    value, ratio = value + extra, ratio + extra / allow
-                worst_x.append(x)
-                if best[which] is None or ratio > best[which].ratio:
-                    best[which] = Peak(ratio=ratio, value=value, x=x, state=k)
-        return best, worst_x
+        return exact_peaks(self.context.loads, self.context.envelopes, points, tensions, states, hook)
 
     def _finish(self, indices, preload, boom, peaks, spread, worst_spread, weights, bound, states, trange):
         names = tuple(self.context.problem.names[i] for i in indices)
@@ -447,16 +428,7 @@ class StrengthEvaluator:
     def _dense_ratios(self, points, sections, states, tensions, hook):
         """Worst |M| / allowable and |Q| / allowable at the sections, per dense state, (2, k)."""
         ctx = self.context
-        allow = (ctx.allowable(0, sections.x), ctx.allowable(1, sections.x))
-        out = np.zeros((2, len(states)))
-        for k, state in enumerate(states):
-            gm, hm, gq, hq = section_rows(ctx.loads, points, sections, state)
-            for which, g, h in ((0, gm, hm), (1, gq, hq)):
-                value = np.abs(g @ tensions[k] + h)
-                if hook is not None:
-                    value = value + np.abs(g @ hook[0][k]) @ hook[1]
-                out[which, k] = np.max(value / allow[which])
-        return out
+        return section_ratios(ctx.loads, ctx.envelopes, points, sections, states, tensions, hook)
 
     @staticmethod
     def _dense_spread(tensions, hook):

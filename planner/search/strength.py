@@ -237,6 +237,86 @@ def curve_peak(curve, envelope):
     return value / limit, value, x
 
 
+def allowable(envelope, x):
+    """An allowable envelope [(x, value)] at sections x by linear interpolation (ones when None)."""
+    if envelope is None:
+        return np.ones(len(x))
+    ex, ev = zip(*envelope)
+    return np.interp(x, ex, ev)
+
+
+def section_ratios(loads, envelopes, points, sections, states, tensions, hook=None):
+    """Worst |M| / allowable and |Q| / allowable at the sections, per state, shape (2, k).
+
+    Parameters
+    ----------
+    loads : GirderLoads
+    envelopes : (bending, shear) allowable envelopes, each [(x m, value)] or None
+    points : (n, 3)  [m]
+    sections : Sections
+    states : list of State
+    tensions : (k, n)  [t]
+    hook : (gain (k, n, n) [t/m], tolerance (n,) [m]), optional
+        The hook errors' worst effect is added at every section.
+    """
+    allow = (allowable(envelopes[0], sections.x), allowable(envelopes[1], sections.x))
+    up = np.array([state.up for state in states], dtype=float)  # (k, 3)
+    offsets = np.array([state.cog_offset for state in states], dtype=float)
+    # the rows of section_rows, for every state at once: M = u_z (A_s T - M_aft) + u_x (A_z T -
+    # dz W_aft), Q = u_z (aft T - W_aft); W_aft and M_aft are affine in the CG's x offset
+    s, xc = sections.x[:, None], points[None, :, 0]
+    aft = ((xc < s) | ((xc == s) & sections.right[:, None])).astype(float)
+    arm_x, arm_z = aft * (s - xc), aft * (points[None, :, 2] - loads.cog[2])
+    w0, m0 = loads.aft(sections.x, 0.0)
+    w1, m1 = loads.aft(sections.x, 1.0)
+    dx, dz = offsets[:, :1], offsets[:, 2:]
+    weight_aft, moment_aft = w0 + dx * (w1 - w0), m0 + dx * (m1 - m0)  # (k, S)
+    uz, ux = up[:, 2:], up[:, :1]
+    moment = uz * (tensions @ arm_x.T - moment_aft) + ux * (tensions @ arm_z.T - dz * weight_aft)
+    shear = uz * (tensions @ aft.T - weight_aft)
+    moment, shear = np.abs(moment), np.abs(shear)
+    if hook is not None:
+        gain, tolerance = hook
+        by_x, by_z, by_aft = (np.einsum("sn,knm->ksm", a, gain) for a in (arm_x, arm_z, aft))
+        moment = moment + np.abs(uz[:, :, None] * by_x + ux[:, :, None] * by_z) @ tolerance
+        shear = shear + np.abs(uz[:, :, None] * by_aft) @ tolerance
+    return np.stack([(moment / allow[0]).max(axis=1), (shear / allow[1]).max(axis=1)])
+
+
+def exact_peaks(loads, envelopes, points, tensions, states, hook=None):
+    """The exact worst |M| and |Q| ratios over the given states, along the whole body.
+
+    Parameters
+    ----------
+    loads, envelopes, points, states, hook
+        As :func:`section_ratios`; the hook errors' worst effect is added at each curve's
+        worst point.
+    tensions : (k, n)  [t]
+
+    Returns
+    -------
+    peaks : list of 2 Peak
+        Bending, shear; ``Peak.state`` indexes ``states``.
+    worst_x : list of float  [m]
+        Each state's worst sections (for cutting planes).
+    """
+    best = [None, None]
+    worst_x = []
+    for k, state in enumerate(states):
+        shear, moment = exact_curves(loads, points, tensions[k], state)
+        for which, curve in ((0, moment), (1, shear)):
+            ratio, value, x = curve_peak(curve, envelopes[which])
+            if hook is not None:  # the hook errors' largest effect at that section
+                sec = Sections(np.array([x]), np.array([True]))
+                g = section_rows(loads, points, sec, state)[2 * which]
+                extra = float((np.abs(g @ hook[0][k]) @ hook[1])[0])
+                value, ratio = value + extra, ratio + extra / allowable(envelopes[which], [x])[0]
+            worst_x.append(x)
+            if best[which] is None or ratio > best[which].ratio:
+                best[which] = Peak(ratio=ratio, value=value, x=x, state=k)
+    return best, worst_x
+
+
 def force_attitude(points, tensions, weight, cog, offsets):
     """Body up-vectors of constant lug forces holding the body with each CG offset.
 

@@ -1,8 +1,10 @@
 """The held-preload search's small problem (seven deck points of the tanker, equal cranes) and
-its brute force: every lug set's preload minimax as a scipy LP on a dense grid of scenarios."""
+its brute force: every lug set's preload minimax as a scipy LP on a dense grid of scenarios;
+the tanker fleet with her hull girder's allowables."""
 
 import dataclasses
 import itertools
+from pathlib import Path
 
 import numpy as np
 from scipy.optimize import linprog
@@ -11,6 +13,8 @@ from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene.objects import Body
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 #: Seven deck points of the tanker (papers' frame).
 POINTS = [
@@ -90,3 +94,20 @@ def linprog_minimax(lugset, scenarios):
         cost, A_ub=np.array(rows), b_ub=rhs, A_eq=a_eq, b_eq=b_level, bounds=bounds, method="highs"
     )
     return result.fun if result.status == 0 else None
+
+
+def fleet_with_girder(bending=None):
+    """examples/tanker_fleet.toml with the weight curve and allowables of
+    examples/tanker_strength.toml (the bending allowable replaced when given): a fleet plan
+    whose hull girder is checked."""
+    fleet = (EXAMPLES / "tanker_fleet.toml").read_text(encoding="utf-8")
+    strength = (EXAMPLES / "tanker_strength.toml").read_text(encoding="utf-8")
+    curve = strength[strength.index("weight_curve") : strength.index("[strength]")]
+    allowables = strength[strength.index("[strength]") : strength.index("[[lugs]]")]
+    if bending is not None:
+        start = allowables.index("bending_moment = ")
+        allowables = (
+            allowables[:start] + f"bending_moment = {bending}" + allowables[allowables.index("   # t m") :]
+        )
+    text = fleet.replace("cog = [35.86, 2.5, 6.0]\n", "cog = [35.86, 2.5, 6.0]\n" + curve, 1)
+    return text.replace("[attitude]", allowables + "\n[attitude]", 1)

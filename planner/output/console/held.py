@@ -76,6 +76,7 @@ def plan_table(plan):
             )
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
+    lines += girder_lines(plan, plan.girder, "over the box, the CG envelope and the hook errors")
     if not chosen.converged:
         lines.append(
             f"WARNING: the worst-case search still exceeded the LP bound by "
@@ -279,22 +280,50 @@ def _ranking_lines(plan):
     problem = plan.problem
     unit = "[t]" if plan.objective == "spread" else "[%]"
     scale = 1.0 if plan.objective == "spread" else 100.0
+    girder = bool(plan.girder)
     lines = [
         "",
-        f"{'rank':<6}{'nominal ' + unit:>13}{'worst ' + unit:>12}{'design util. [%]':>18}   lugs (crane)",
+        f"{'rank':<6}{'nominal ' + unit:>13}{'worst ' + unit:>12}{'design util. [%]':>18}"
+        + (f"{'girder [%]':>13}" if girder else "")
+        + "   lugs (crane)",
     ]
-    for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design)):
+    for k, (r, d, g) in enumerate(zip(plan.ranking, plan.ranked_design, plan.ranked_girder)):
         names = [
             lug if problem.equal_cranes else f"{lug}({crane})" for lug, crane in zip(r.lugs, r.crane_names)
         ]
         util = "n/a" if d.chain is None else f"{100 * d.max_utilisation:.1f}" + ("" if d.ok else " FAIL")
-        row = f"{k + 1:<6}{scale * r.nominal_value:>13.2f}{scale * r.worst_value:>12.2f}{util:>18}   "
-        lines += _names_after(row, names)
+        row = f"{k + 1:<6}{scale * r.nominal_value:>13.2f}{scale * r.worst_value:>12.2f}{util:>18}"
+        if girder:
+            ratio = max(w.ratio for w in g)
+            row += f"{100 * ratio:>8.1f}" + (" FAIL" if ratio > 1.0 else "     ")
+        lines += _names_after(row + "   ", names)
         lines.append(f"{'':<6}worst at {_where(plan, r.worst)}")
     lines.append(
         "(nominal / worst: the objective, level and largest in the box; design util.: the highest "
-        "design hook load / chart SWL of the set's cranes, FAIL if any design check fails)"
+        "design hook load / chart SWL of the set's cranes, FAIL if any design check fails"
+        + (
+            "; girder: the hull girder's largest |M| or |Q| / allowable, the sets that overload "
+            "it ranked last)"
+            if girder
+            else ")"
+        )
     )
+    return lines
+
+
+def girder_lines(plan, worst, over):
+    """The hull girder's worst |M| and |Q| against the allowables, each with its state (none
+    when the girder is not checked)."""
+    if not worst:
+        return []
+    lines = ["", f"hull girder (body.weight_curve against [strength]), the worst {over}:"]
+    for w in worst:
+        what = "bending moment |M|" if w.name == "bending_moment" else "shear force |Q|   "
+        unit = "t m" if w.name == "bending_moment" else "t"
+        lines.append(
+            f"  {what} {w.value:>9.1f} {unit:<3} at x = {w.x:.1f} m, allowable {w.allowable:.1f} {unit} "
+            f"({100 * w.ratio:.0f} %) {'ok' if w.ratio <= 1.0 else 'FAIL'}, at {_where(plan, w.scenario)}"
+        )
     return lines
 
 

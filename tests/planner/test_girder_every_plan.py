@@ -1,0 +1,136 @@
+"""Issue 24 item 1: the hull girder is checked whatever the plan's objective.
+
+A fleet plan (objective utilisation) of the tanker with her weight curve and allowables: the
+plan's worst |M| and |Q| (over the box, the CG envelope and the hook errors) become checks,
+agree with ``solve`` of the plan's own scene at the worst state, fail (exit 4) when the
+allowables are too low, and the sets that overload the girder are ranked after those that do
+not.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+from support.cli import run
+from support.planning import fleet_with_girder
+
+from liftplan.model import solve
+from liftplan.model.strength import strength_checks
+from liftplan.planner import plan
+from liftplan.planner.plans.girder import girder_worst
+from liftplan.planner.problem.file import loads_problem
+
+
+@pytest.fixture(scope="module")
+def fleet_plan():
+    problem = loads_problem(fleet_with_girder())
+    return plan(dataclasses.replace(problem, hook_tolerance=0.0))
+
+
+def _moved(body, offset):
+    """The body with its CG moved by ``offset`` and its weight curve with it: the curve plus
+    the linear term 12 W dx (x - x_mid) / L^3, which moves its centroid by dx and keeps its
+    integral (the correction the planner and ``solve`` both apply, made explicit so that the
+    scene reader's centroid check accepts it)."""
+    x, w = body.weight_curve_arrays
+    length, middle = x[-1] - x[0], 0.5 * (x[0] + x[-1])
+    w = w + 12.0 * body.weight * offset[0] * (x - middle) / length**3
+    cog = tuple(np.asarray(body.cog) + np.asarray(offset))
+    return dataclasses.replace(body, cog=cog, weight_curve=tuple(zip(x.tolist(), w.tolist())))
+
+
+def _solved_checks(result, worst):
+    """solve's girder checks of the plan's scene at a GirderWorst's state: the CG moved and
+    each hook moved by the plan's hook shift that brings the body to that attitude (the held
+    preload: the crews hold the level tensions' pattern as the body heels and trims)."""
+    scene, s = result.scene, worst.scenario
+    shift = result.lugset.hook_shifts(result.chosen.preload, [s])[0]
+    scene = dataclasses.replace(
+        scene,
+        body=_moved(scene.body, s.cog_offset),
+        cranes=tuple(
+            dataclasses.replace(c, boom_height=c.boom_height + float(d)) for c, d in zip(scene.cranes, shift)
+        ),
+    )
+    eq = solve(scene)
+    assert eq.pose.heel == pytest.approx(s.heel, abs=1e-9) and eq.pose.trim == pytest.approx(s.trim, abs=1e-9)
+    return {c.name: c for c in strength_checks(scene, eq)}
+
+
+def test_fleet_plan_checks_the_girder_as_solve_does(fleet_plan):
+    names = [c.name for c in fleet_plan.checks]
+    assert "bending_moment" in names and "shear_force" in names
+    assert len(fleet_plan.girder) == 2
+    weight = fleet_plan.problem.body.weight
+    for worst in fleet_plan.girder:
+        solved = _solved_checks(fleet_plan, worst)[worst.name]
+        s = worst.scenario
+        if worst.name == "shear_force":  # same loads, one exact integration each: equal to rounding
+            assert solved.value == pytest.approx(worst.value, rel=1e-9)
+        else:
+            # the moments' reference height: the plan takes the nominal CG's (the hull's, fixed
+            # whatever the CG estimate), solve its scene's CG, here moved by dz; they differ by
+            # dz x the axial force, |N| <= |u_x| W with u_x = -cos(heel) sin(trim)
+            axial = abs(np.cos(np.radians(s.heel)) * np.sin(np.radians(s.trim))) * weight
+            assert abs(solved.value - worst.value) <= abs(s.cog_offset[2]) * axial
+            assert solved.value != pytest.approx(worst.value, rel=1e-9)  # the bound is needed
+        assert solved.limit == pytest.approx(worst.allowable, rel=1e-12)
+        assert worst.ratio < 1.0
+
+
+def test_at_level_nominal_cg_the_moment_equals_solve(fleet_plan):
+    """Where the CG is not moved in height the two references coincide: equal to rounding."""
+    worst = fleet_plan.girder[0]
+    level = dataclasses.replace(
+        worst, scenario=dataclasses.replace(worst.scenario, cog_offset=(0.5, 0.3, 0.0))
+    )
+    result = fleet_plan
+    scenario = level.scenario
+    lugset = result.lugset
+    tensions = lugset.tensions(result.chosen.preload, [scenario])
+    mine = girder_worst(result.problem, lugset.points, [scenario], tensions)[0]
+    solved = _solved_checks(result, mine)["bending_moment"]
+    assert solved.value == pytest.approx(mine.value, rel=1e-9)
+
+
+def test_the_worst_is_the_largest_over_the_states(fleet_plan):
+    """No state of the dense grid solved on its own gives a larger |M| than the plan's worst."""
+    worst = fleet_plan.girder[0]
+    rng = np.random.default_rng(7)
+    builder_states = fleet_plan._design_builder.dense
+    for k in rng.choice(len(builder_states), 12, replace=False):
+        probe = dataclasses.replace(worst, scenario=builder_states[k])
+        assert _solved_checks(fleet_plan, probe)["bending_moment"].value <= worst.value * (1 + 1e-9)
+
+
+def test_girder_failure_is_a_failed_check_and_the_ranking_puts_it_last(tmp_path):
+    text = fleet_with_girder(bending="[[0.0, 3000.0], [82.05, 3000.0]]")
+    path = tmp_path / "fleet.toml"
+    path.write_text(text, encoding="utf-8")
+    out = run("plan", str(path), "--json")
+    data = json.loads(out.stdout)
+    ranking = data["ranking"]
+    # 3000 t m all along: of the five best sets by utilisation only the fourth holds the
+    # girder (|M| 2205 t m); it becomes the plan, the others follow in their order
+    assert [r["girder_ok"] for r in ranking] == [True, False, False, False, False]
+    assert ranking[0]["lugs"] == ["BH3-P", "BH4-S", "BH7-S", "BH8-S"]
+    values = [r["worst_utilisation_spread"] for r in ranking[1:]]
+    assert values == sorted(values)
+    assert out.returncode == 0 and all(c["ok"] for c in data["checks"])
+    # an allowable nothing can meet: every check FAILs, exit 4, the console says FAIL
+    path.write_text(fleet_with_girder(bending="[[0.0, 300.0], [82.05, 300.0]]"), encoding="utf-8")
+    out = run("plan", str(path))
+    assert out.returncode == 4
+    assert "bending moment |M|" in out.stdout and "FAIL" in out.stdout
+    failed = next(c for c in plan(loads_problem(path.read_text())).checks if c.name == "bending_moment")
+    assert not failed.ok and failed.value > 300.0
+
+
+def test_rope_length_plan_checks_the_girder():
+    text = fleet_with_girder().replace("rope_length = 30.0", "rope_length = { min = 28.0, max = 32.0 }")
+    result = plan(dataclasses.replace(loads_problem(text), hook_tolerance=0.0, top=1))
+    assert result.kind == "lengths"
+    assert {"bending_moment", "shear_force"} <= {c.name for c in result.checks}
