@@ -327,6 +327,23 @@ class Plan(InFileFrame):
         (:class:`~.girder.GirderWorst`, bending first; empty when not checked)."""
         return self.ranked_girder[0]
 
+    @cached_property
+    def clearances(self):
+        """Per planned lug label: (crane, least plan distance [m] from its boom and hoist line to
+        another crane's, that crane's name); empty without crane positions
+        (:mod:`~liftplan.planner.problem.clearance`)."""
+        d = self.problem.boom_distances
+        if d is None:
+            return {}
+        idx, cranes, names = self.chosen.indices, self.chosen.cranes, self.chosen.crane_names
+        out = {}
+        for k, label in enumerate(self.labels):
+            others = [d[idx[k], cranes[k], idx[m], cranes[m]] for m in range(len(idx))]
+            m = int(np.argmin(others))
+            if np.isfinite(others[m]):
+                out[label] = (names[k], float(others[m]), names[m])
+        return out
+
     @property
     def capacity(self):
         """Per crane (L1..Ln): static loads, where they occur, and the design hook load against
@@ -339,11 +356,23 @@ class Plan(InFileFrame):
 
         The rules' chain: per crane the design hook load against the chart SWL at its radius
         and the crane code's margin over the calculated share, per lug with a ``capacity`` its
-        design load, with a breakout case each crane's breakout hook load; per plan: the lowest
+        design load, with a breakout case each crane's breakout hook load, with crane positions
+        each crane's least plan clearance to the others' booms and hoist lines; per plan: the lowest
         tension in the box against min_tension and, with a weight curve and ``[strength]``, the
         hull girder's worst |M| and |Q| against the allowables (:mod:`.girder`).
         """
         out = list(self.design_loads.checks) + [w.check() for w in self.girder]
+        for crane, distance, nearest in self.clearances.values():
+            out.append(
+                Check.lower(
+                    "crane_clearance",
+                    crane,
+                    distance,
+                    self.problem.crane_clearance,
+                    "m",
+                    note=f"boom and hoist line to {nearest}'s, in plan",
+                )
+            )
         out.append(
             Check.lower(
                 "min_tension",
@@ -578,6 +607,7 @@ class Plan(InFileFrame):
                     "stopped": self.stats.stopped,
                     "method": self.stats.method,
                     "out_of_reach": self.stats.out_of_reach,
+                    "clashing": self.stats.clashing,
                     "screened_out": self.stats.screened_out,
                     "evaluated": self.stats.evaluated,
                     "pruned": self.stats.pruned,

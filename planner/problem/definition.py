@@ -20,6 +20,7 @@ from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FAC
 from liftplan.model.scene.objects import Body, Scene, Strength, finite, point, positive
 from liftplan.model.statics.model import check_hinges
 from liftplan.model.water.breakout import breakout_load
+from liftplan.planner.problem.clearance import DEFAULT_CLEARANCE, boom_distances, check_positions
 from liftplan.planner.problem.fleet import (
     FleetCrane,
     crane_classes,
@@ -200,7 +201,12 @@ class PlanProblem:
     top : int
         How many lug sets to rank.
     outline : tuple of (x, y) points  [m]
-        Hull outline in plan for the figures (empty: none drawn).
+        Hull outline in plan, body frame (empty: none): drawn in the figures, and each crane's
+        slew centre must stand outside it by ``crane_clearance``.
+    crane_clearance : float  [m]
+        Least plan distance between two cranes' booms and hoist lines, and from a crane to the
+        hull's outline (:mod:`~liftplan.planner.problem.clearance`; default 3 m, GL Noble
+        Denton 0027/ND 16.2). Sets and assignments that break it are ruled out.
     name : str
     frame : str
         Frame of the file the problem came from (``"z-up"`` or ``"choi"``), to echo the
@@ -267,6 +273,7 @@ class PlanProblem:
     cog_envelope: CogEnvelope = field(default_factory=CogEnvelope)
     top: int = 5
     outline: tuple[tuple[float, float], ...] = ()
+    crane_clearance: float = DEFAULT_CLEARANCE
     name: str = ""
     frame: str = "z-up"
     fleet: tuple[FleetCrane, ...] = ()
@@ -338,6 +345,10 @@ class PlanProblem:
             "outline",
             tuple((finite("plan.outline", x), finite("plan.outline", y)) for x, y, *_ in self.outline),
         )
+        value = finite("plan.crane_clearance", self.crane_clearance)
+        if value < 0.0:
+            raise InvalidScene(f"plan.crane_clearance = {value!r}: expected >= 0 m")
+        _set(self, "crane_clearance", value)
         value = finite("plan.gap", self.gap)
         if not 0.0 <= value < 1.0:
             raise InvalidScene(f"plan.gap = {value!r}: expected a relative gap 0 <= gap < 1 (0.01 = 1 %)")
@@ -446,13 +457,19 @@ class PlanProblem:
         for j, crane in enumerate(fleet):
             if np.all(np.isnan(swl[:, j])):
                 i = int(np.argmin(radius[:, j]))
+                least = crane.load_chart[0][0] if crane.load_chart else 0.0
                 raise InvalidScene(
-                    f"cranes[{crane.name}]: reaches no candidate (chart reach {crane.reach:g} m; "
-                    f"nearest candidate {self.names[i]} at radius {radius[i, j]:.2f} m)"
+                    f"cranes[{crane.name}]: reaches no candidate (chart radii {least:g} to "
+                    f"{crane.reach:g} m; nearest candidate {self.names[i]} at radius {radius[i, j]:.2f} m)"
                 )
-            reachable = int(np.sum(~np.isnan(swl[:, j])))
-            if reachable < 1:
-                raise InvalidScene(f"cranes[{crane.name}]: reaches no candidate")
+        outline = [tuple(p) for p in self.world_plan(np.array(self.outline))] if self.outline else []
+        shown = zup_to_choi if self.frame == "choi" else tuple
+        check_positions(
+            fleet,
+            outline,
+            self.crane_clearance,
+            lambda xy: "(" + ", ".join(f"{v:g}" for v in shown((xy[0], xy[1], 0.0))) + ")",
+        )
 
     def _check_strength(self, fleet):
         controls = tuple(self.controls) or ("hoist",) * len(fleet)
@@ -597,6 +614,23 @@ class PlanProblem:
     def plan_points(self):
         """Candidates at the level attitude in world plan coordinates (yaw applied), (C, 2)  [m]."""
         return (self.points @ rotation_matrix(0.0, 0.0, self.yaw).T)[:, :2]
+
+    def world_plan(self, xy):
+        """Body-frame plan points (k, 2) at the level attitude in world plan (yaw)  [m]."""
+        xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+        rot = rotation_matrix(0.0, 0.0, self.yaw)[:2, :2]
+        return xy @ rot.T
+
+    @cached_property
+    def boom_distances(self):
+        """Least plan distance between every two cranes' booms, each on each candidate,
+        (C, m, C, m) [m] (:func:`~liftplan.planner.problem.clearance.boom_distances`); None
+        when no two cranes have positions."""
+        positions = [c.position for c in self.fleet]
+        if sum(p is not None for p in positions) < 2:
+            return None
+        xy = np.array([(np.nan, np.nan) if p is None else p for p in positions], dtype=float)
+        return boom_distances(xy, self.plan_points)
 
     @cached_property
     def reach(self):

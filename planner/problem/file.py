@@ -81,6 +81,7 @@ class _Plan(Table):
     cog_envelope: Literal["box", "cross"] = "box"
     top: Count = 5
     outline: list[Point] = []
+    crane_clearance: Num = 3.0  # m, between booms and hoist lines in plan (0027/ND 16.2)
     breakout_scene: Text | None = None  # scene file of the hull on the seabed, relative path
 
 
@@ -338,6 +339,7 @@ def _to_problem(data, base):
         gap=data.plan.gap,
         time_limit=data.plan.time_limit,
         work_limit=data.plan.work_limit,
+        crane_clearance=data.plan.crane_clearance,
         search=data.plan.search,
         heel_tolerance=data.plan.tolerance.heel,
         trim_tolerance=data.plan.tolerance.trim,

@@ -132,8 +132,9 @@ class FleetCrane:
     position : tuple of 2 float or None  [m]
         Slew centre in plan (world x, y, z-up); None: anywhere (no reach limit).
     load_chart : tuple of (radius [m], SWL [t]) pairs
-        Radii strictly increasing; SWL linear between points, the first point's SWL inside
-        its radius, no reach past the last point. Empty when ``swl`` is given.
+        Radii strictly increasing; SWL linear between points; the first radius is the least
+        the crane can work at and the last its reach (no lug outside them). Empty when ``swl``
+        is given.
     swl : float or None  [t]
         A fixed SWL at any radius (instead of a chart).
     boom_min, boom_max : float  [m]
@@ -243,13 +244,15 @@ class FleetCrane:
         return np.hypot(plan_points[..., 0] - self.position[0], plan_points[..., 1] - self.position[1])
 
     def swl_at(self, radius):
-        """SWL at a radius  [t]; NaN beyond the chart's reach."""
+        """SWL at a radius  [t]; NaN outside the chart's radii (a crane cannot luff its boom in
+        past its least radius, nor out past its reach)."""
         radius = np.asarray(radius, dtype=float)
         if not self.load_chart:
             return np.full(radius.shape, self.swl)
         chart = np.array(self.load_chart)
-        value = np.interp(radius, chart[:, 0], chart[:, 1])  # flat inside the first radius
-        return np.where(radius <= chart[-1, 0] * (1 + 1e-12), value, np.nan)
+        value = np.interp(radius, chart[:, 0], chart[:, 1])
+        inside = (radius >= chart[0, 0] * (1 - 1e-12)) & (radius <= chart[-1, 0] * (1 + 1e-12))
+        return np.where(inside, value, np.nan)
 
     def same_as(self, other):
         """True when the two cranes are interchangeable (all but the name equal)."""

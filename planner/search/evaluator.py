@@ -189,6 +189,9 @@ class SearchStats(GapMixin):
         (set, crane assignment) pairs searched (equal cranes: one per set).
     out_of_reach : int
         (set, assignment) pairs dropped because a crane cannot reach its lug.
+    clashing : int
+        (set, assignment) pairs dropped because two cranes' booms cross in plan or come nearer
+        than ``plan.crane_clearance`` (:mod:`liftplan.planner.problem.clearance`).
     refined : int
         Rows whose coarse screening bound was replaced by the full one before evaluation.
     lower_bound : float  [t or -]
@@ -216,6 +219,7 @@ class SearchStats(GapMixin):
     seconds: float = 0.0
     rows: int = 0
     out_of_reach: int = 0
+    clashing: int = 0
     refined: int = 0
     lower_bound: float = 0.0
     best: float = math.inf

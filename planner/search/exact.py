@@ -55,8 +55,14 @@ def search_exact(problem, started, top, progress=None):
     Returns, raises: as :func:`liftplan.planner.search.methods.search`.
     """
     top = top or problem.top
-    sets, cranes, out_of_reach = set_rows(problem)
+    sets, cranes, out_of_reach, clashing = set_rows(problem)
     if len(sets) == 0:
+        if clashing:
+            raise PlanInfeasible(
+                f"every assignment of the cranes in reach ({clashing}) has two booms crossing in "
+                f"plan or nearer than plan.crane_clearance = {problem.crane_clearance:g} m; "
+                "expected cranes placed apart, or more candidates"
+            )
         raise PlanInfeasible(_unreachable(problem))
     screening = screen(problem, sets, cranes)
     evaluator = SetEvaluator(problem)
@@ -98,6 +104,7 @@ def search_exact(problem, started, top, progress=None):
             seconds=time.perf_counter() - started,
             rows=len(sets),
             out_of_reach=out_of_reach,
+            clashing=clashing,
             refined=refine_count,
             # stopped early: the two-line bound may be the better of two valid bounds
             lower_bound=min(
@@ -179,7 +186,10 @@ def search_exact(problem, started, top, progress=None):
         causes = "; ".join(f"{n} sets: {text}" for text, n in stats.infeasible.items())
         what = f"{problem.cranes} lugs among {len(problem.candidates)} candidates"
         if not problem.equal_cranes:
-            what += f" with any assignment of the cranes in reach ({out_of_reach} out of reach)"
+            what += (
+                f" with any assignment of the cranes in reach ({out_of_reach} out of reach, "
+                f"{clashing} with booms crossing or within the clearance)"
+            )
         if stopped == "time_limit":
             what += f" found within the time limit {problem.time_limit:g} s"
         raise PlanInfeasible(

@@ -47,9 +47,11 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import sparse
 
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.frames import rotation_matrix
+from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.bounds import run_highs
 from liftplan.planner.search.evaluator import (
@@ -381,6 +383,18 @@ class LugMip:
         else:
             self.line_counts = None
 
+    def clashing_pairs(self):
+        """Column pairs (candidate-major, as ``y``) whose cranes' booms cross in plan or come
+        nearer than ``plan.crane_clearance``, shape (P, 2) (none without crane positions)."""
+        d, kinds = self.problem.boom_distances, len(self.classes.members)
+        if d is None:
+            return np.empty((0, 2), dtype=np.int64)
+        first = [m[0] for m in self.classes.members]
+        sub = d[:, first][:, :, :, first]  # (C, K, C, K)
+        i, c, i2, c2 = np.nonzero(~clear(sub, self.problem.crane_clearance))
+        keep = (i * kinds + c) < (i2 * kinds + c2)
+        return np.column_stack([i[keep] * kinds + c[keep], i2[keep] * kinds + c2[keep]])
+
     def solve(self, scenarios, gap=0.0, time_limit=None, forbidden=()):
         """Solve over ``scenarios``; a :class:`MipSolution`.
 
@@ -480,6 +494,13 @@ class LugMip:
             ]
         for lugs in forbidden:
             cons.append(cp.sum(per_set[list(lugs)]) <= problem.cranes - 1)
+        clash = self.clashing_pairs()
+        if len(clash):  # two booms crossing or within the clearance: not both
+            rows = np.repeat(np.arange(len(clash)), 2)
+            pairs = sparse.csr_matrix(
+                (np.ones(2 * len(clash)), (rows, clash.ravel())), shape=(len(clash), count * kinds)
+            )
+            cons.append(pairs @ y <= 1)
         if self.mirror is not None:  # one of each mirror pair of sets
             cons.append(mirror_side(problem)[col_cand] @ y >= 0)
         mip = cp.Problem(cp.Minimize(z), cons)

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from liftplan.model.errors import PlanInfeasible
+from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.dual import preload_lp_bound
 from liftplan.planner.search.rows import row_max, row_min, row_spread
@@ -164,23 +166,92 @@ def _distinct_orders(labels):
 
 
 def set_rows(problem, sets=None):
-    """Every (set, assignment) row whose cranes all reach their lugs.
+    """Every (set, assignment) row whose cranes all reach their lugs and keep their clearance.
+
+    The rows are grown lug by lug (a crane class on the first lug of every set, then on the
+    second, ...), each partial row dropped as soon as its newest crane cannot reach its lug or
+    its boom clashes with an earlier one: sets x assignments is never held in memory, only the
+    rows still possible. More than :data:`MAX_ROWS` rows at any step is refused with the count.
+    The rows come out in the order of the product (set, then assignment as
+    :func:`assignments` lists them).
 
     Returns
     -------
     sets, cranes : numpy.ndarray, shape (N, n), int
     out_of_reach : int
         Rows dropped because a crane cannot reach its lug.
+    clashing : int
+        Rows dropped because two booms cross or come nearer than ``plan.crane_clearance``
+        (:mod:`liftplan.planner.problem.clearance`). A row with both causes is counted once,
+        under the first found lug by lug (reach before clearance at each lug).
     """
     sets = all_sets(problem) if sets is None else np.asarray(sets, dtype=np.int64)
-    patterns = assignments(problem)
-    swl = problem.reach[1]
-    if len(patterns) == 1 and not np.any(np.isnan(swl[:, patterns[0]])):
-        return sets, np.broadcast_to(patterns[0], sets.shape), 0  # one way, every lug in reach
-    sets_r = np.repeat(sets, len(patterns), axis=0)
-    cranes_r = np.tile(patterns, (len(sets), 1))
-    ok = ~row_max(np.isnan(swl[sets_r, cranes_r]))
-    return sets_r[ok], cranes_r[ok], int(np.sum(~ok))
+    swl, distances = problem.reach[1], problem.boom_distances
+    classes = problem.crane_classes
+    n = problem.cranes
+    if len(classes) == 1 and distances is None and not np.any(np.isnan(swl[:, list(classes[0])])):
+        return sets, np.broadcast_to(np.arange(n, dtype=np.int64), sets.shape), 0, 0  # one way
+    counts = np.array([len(g) for g in classes])
+    member = np.array([list(g) + [-1] * (counts.max() - len(g)) for g in classes], dtype=np.int64)
+    row = np.arange(len(sets))  # the set of each partial row
+    kind = np.empty((len(sets), 0), dtype=np.int64)  # crane class on each lug so far
+    crane = np.empty((len(sets), 0), dtype=np.int64)  # fleet index on each lug so far
+    used = np.zeros((len(sets), len(classes)), dtype=np.int64)
+    log_fact = np.array([math.lgamma(k + 1) for k in range(n + 1)])
+    out_of_reach = clashing = 0.0
+    for k in range(n):
+        lug = sets[row, k]
+        grown = []
+        for c in range(len(classes)):
+            free = used[:, c] < counts[c]
+            j = member[c, np.minimum(used[:, c], counts[c] - 1)]
+            left = counts[None, :] - used
+            left[:, c] -= 1
+            # completions of each partial row once class c takes lug k: multinomial of the rest
+            ways = np.exp(log_fact[n - k - 1] - log_fact[np.maximum(left, 0)].sum(axis=1))
+            reach = free & ~np.isnan(swl[lug, j])
+            out_of_reach += float(ways[free & ~reach].sum())
+            ok = reach.copy()
+            if distances is not None:
+                least = np.full(len(row), np.inf)
+                for m in range(k):
+                    least = np.minimum(least, distances[sets[row, m], crane[:, m], lug, j])
+                ok &= clear(least, problem.crane_clearance)
+                clashing += float(ways[reach & ~ok].sum())
+            if np.any(ok):
+                step = used[ok].copy()
+                step[:, c] += 1
+                grown.append(
+                    (
+                        row[ok],
+                        np.column_stack([kind[ok], np.full(ok.sum(), c)]),
+                        np.column_stack([crane[ok], j[ok]]),
+                        step,
+                    )
+                )
+        if not grown:
+            row = np.empty(0, dtype=np.int64)
+            break
+        row = np.concatenate([g[0] for g in grown])
+        kind = np.concatenate([g[1] for g in grown])
+        crane = np.concatenate([g[2] for g in grown])
+        used = np.concatenate([g[3] for g in grown])
+        if len(row) > MAX_ROWS:
+            raise PlanInfeasible(
+                f"the exact search would hold more than {MAX_ROWS} (set, assignment) rows in reach "
+                f"and clear after {k + 1} of {n} lugs ({len(sets)} sets x {len(assignments(problem))} "
+                "assignments); expected fewer candidates or distinct cranes, or "
+                'plan.search = "mip" (no set enumerated)'
+            )
+    if len(row) == 0:
+        empty = np.empty((0, n), dtype=np.int64)
+        return empty, empty, int(round(out_of_reach)), int(round(clashing))
+    order = np.lexsort([kind[:, m] for m in range(n - 1, -1, -1)] + [row])
+    return sets[row[order]], crane[order], int(round(out_of_reach)), int(round(clashing))
+
+
+#: Most partial (set, assignment) rows :func:`set_rows` holds at once.
+MAX_ROWS = 5_000_000
 
 
 #: Screening columns (rows x scenarios) above which the rows are first screened on the box
@@ -212,7 +283,7 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
     Screening
     """
     if sets is None:
-        sets, cranes, _ = set_rows(problem)
+        sets, cranes, *_ = set_rows(problem)
     sets = np.asarray(sets, dtype=np.int64)
     if cranes is None:
         cranes = np.broadcast_to(np.arange(sets.shape[1]), sets.shape)

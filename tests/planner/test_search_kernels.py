@@ -56,7 +56,7 @@ def test_plan_geometry_never_rules_out_a_set_the_full_screening_keeps():
     base = load_problem(EXAMPLES / "tanker_plan.toml")
     for n in (4, 5):
         problem = dataclasses.replace(base, cranes=n, hook_tolerance=0.0, fleet=())
-        sets, cranes, _ = set_rows(problem)
+        sets, cranes, *_ = set_rows(problem)
         code = _plan_geometry(problem, sets)
         assert np.any(code == CG_OUTSIDE) and np.any(code == FEASIBLE)
         dropped = code != FEASIBLE
@@ -81,5 +81,5 @@ def test_twenty_six_equal_cranes_on_their_twenty_six_points_is_one_row():
     from liftplan.planner.search.screen import assignments
 
     problem = load_problem(EXAMPLES / "hull154_26_given.toml")
-    sets, cranes, out = set_rows(problem)
+    sets, cranes, out, _ = set_rows(problem)
     assert assignments(problem).shape == (1, 26) and sets.shape == (1, 26) and out == 0

@@ -11,6 +11,7 @@ from scipy.optimize import linprog
 
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene.objects import Body
+from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
 from liftplan.planner.problem.fleet import FleetCrane
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
@@ -26,8 +27,18 @@ def fleet(count):
         ("Small fwd", (60.0, 22.0), ((15.0, 420.0), (30.0, 260.0), (40.0, 180.0)), 40000.0, 30.0),
         ("Mid", (38.0, 30.0), ((20.0, 500.0), (40.0, 300.0), (48.0, 240.0)), 60000.0, 35.0),
     ]
+    # each chart from 5 m at its first SWL: every candidate lies more than 5 m from every
+    # crane, so the charts' least radii rule none out (reach is the last radius)
     return tuple(
-        FleetCrane(name=n, position=p, load_chart=c, EA=ea, rope_length=l0, boom_min=30.0, boom_max=70.0)
+        FleetCrane(
+            name=n,
+            position=p,
+            load_chart=((5.0, c[0][1]),) + c,
+            EA=ea,
+            rope_length=l0,
+            boom_min=30.0,
+            boom_max=70.0,
+        )
         for n, p, c, ea, l0 in specs[:count]
     )
 
@@ -48,6 +59,17 @@ def fleet_problem(count, objective="utilisation", **changes):
         top=3,
     )
     return dataclasses.replace(problem, **changes)
+
+
+def buildable(problem, indices, cranes):
+    """Every two booms of a row (slew centre to the lug in plan) apart by the clearance, by
+    the closed-form segment distance (tested against sampling in test_crane_clearance.py)."""
+    tips = problem.plan_points[list(indices)]
+    ends = [(np.asarray(problem.fleet[j].position, dtype=float), tips[k]) for k, j in enumerate(cranes)]
+    for (a0, a1), (b0, b1) in itertools.combinations(ends, 2):
+        if not clear(segment_distance(a0, a1, b0, b1), problem.crane_clearance):
+            return False
+    return True
 
 
 def linprog_minimax(lugset, scenarios):
@@ -108,5 +130,7 @@ def brute_force(problem, grid=7):
         for perm in itertools.permutations(range(problem.cranes)):
             if np.any(np.isnan(swl[list(indices), list(perm)])):
                 continue  # a crane beyond its chart's reach
+            if not buildable(problem, indices, perm):
+                continue  # two booms crossing or within plan.crane_clearance
             best[(indices, perm)] = linprog_minimax(LugSet(problem, indices, perm), scenarios)
     return best

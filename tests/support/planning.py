@@ -111,3 +111,46 @@ def fleet_with_girder(bending=None):
         )
     text = fleet.replace("cog = [35.86, 2.5, 6.0]\n", "cog = [35.86, 2.5, 6.0]\n" + curve, 1)
     return text.replace("[attitude]", allowables + "\n[attitude]", 1)
+
+
+#: Cranes added to the tanker fleet for the six- and eight-crane cases (papers' frame, like the
+#: example's [[cranes]]): a 600 t crane off each side amidships, a 400 t crane off the stern and
+#: off the bow. ASSUMED data, like the example's.
+EXTRA_CRANES = """
+[[cranes]]
+name = "Crane E"
+position = [40.0, 0.0, -25.0]
+load_chart = [[15.0, 600.0], [25.0, 450.0], [32.0, 330.0]]
+EA = 40000.0
+rope_length = 30.0
+
+[[cranes]]
+name = "Crane F"
+position = [40.0, 0.0, 37.0]
+load_chart = [[15.0, 600.0], [25.0, 450.0], [32.0, 330.0]]
+EA = 40000.0
+rope_length = 30.0
+
+[[cranes]]
+name = "Crane G"
+position = [-22.0, 0.0, 6.0]
+load_chart = [[15.0, 400.0], [30.0, 250.0], [40.0, 180.0]]
+EA = 30000.0
+rope_length = 30.0
+
+[[cranes]]
+name = "Crane H"
+position = [104.0, 0.0, 6.0]
+load_chart = [[15.0, 400.0], [30.0, 250.0], [40.0, 180.0]]
+EA = 30000.0
+rope_length = 30.0
+"""
+
+
+def larger_fleet(count, text=None):
+    """examples/tanker_fleet.toml (or ``text``, a variant of it) with ``count`` - 4 of
+    :data:`EXTRA_CRANES` added (count 4 to 8)."""
+    text = (EXAMPLES / "tanker_fleet.toml").read_text(encoding="utf-8") if text is None else text
+    blocks = EXTRA_CRANES.split("\n[[cranes]]")[1:]
+    added = "".join("\n[[cranes]]" + b for b in blocks[: count - 4])
+    return text.replace("\n[attitude]", added + "\n[attitude]", 1)

@@ -31,7 +31,8 @@ def plan_table(plan):
     fleet = (
         ""
         if problem.equal_cranes
-        else f" x crane assignments in reach: {stats.rows} pairs ({stats.out_of_reach} out of reach)"
+        else f" x crane assignments in reach: {stats.rows} pairs ({stats.out_of_reach} out of reach, "
+        f"{stats.clashing} with booms crossing or within {problem.crane_clearance:g} m)"
     )
     swl = sorted(set(plan.swl.values()))
     swl_text = f"{swl[0]:g} t" if len(swl) == 1 else "each crane's chart SWL at its radius"

@@ -362,6 +362,7 @@ def _draw_cranes(ax, plan):
             x, y = chosen[k]
             label = plan.labels[k]
             ax.plot([cx, x], [cy, y], color=color, lw=1.1)
+            _clearance_zone(ax, (cx, cy), (x, y), 0.5 * problem.crane_clearance, color)
             text += f"\n{label}: radius {plan.radius[label]:.1f} m, SWL {plan.swl[label]:.1f} t"
         # the crane's text away from the hull, on screen
         up = (cy >= centre[1]) != choi
@@ -378,6 +379,29 @@ def _draw_cranes(ax, plan):
         )
     ax.plot([], [], color="0.4", ls=":", lw=0.7, label="crane reach (chart)")
     ax.scatter([], [], marker="s", color="0.4", label="crane slew centre")
+    if plan.clearances and problem.crane_clearance > 0.0:
+        least = min(plan.clearances.values(), key=lambda c: c[1])
+        ax.fill(
+            [], [], color="0.4", alpha=0.15, label=f"boom +- half the clearance {problem.crane_clearance:g} m"
+        )
+        ax.plot([], [], " ", label=f"least clearance {least[1]:.1f} m ({least[0]} - {least[2]})")
+
+
+def _clearance_zone(ax, start, end, half, color):
+    """A boom's zone in plan: every point within ``half`` of it (two zones that do not overlap
+    keep twice ``half`` between their booms)."""
+    from matplotlib.patches import Circle, Polygon
+
+    if half <= 0.0:
+        return
+    p0, p1 = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+    along = p1 - p0
+    normal = np.array([-along[1], along[0]]) / max(np.linalg.norm(along), 1e-12) * half
+    corners = [p0 + normal, p1 + normal, p1 - normal, p0 - normal]
+    style = {"color": color, "alpha": 0.15, "lw": 0}
+    ax.add_patch(Polygon(corners, closed=True, **style))
+    for p in (p0, p1):
+        ax.add_patch(Circle(tuple(p), half, **style))
 
 
 def spread_map(plan, count=41):
