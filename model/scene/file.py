@@ -6,6 +6,32 @@ re-implement. Values (finite, positive, names, statics) are checked by the scene
 dataclasses, so a scene built in Python obeys the same rules. Every failure is one
 :class:`~liftplan.model.errors.InvalidScene` line naming the key, the value and what is
 expected; nothing is returned half-read.
+
+Every key of the file schemas (here, in :mod:`liftplan.planner.problem.file`,
+:mod:`liftplan.planner.batch.study` and :mod:`liftplan.model.rules.table`) is declared with
+:func:`Key`, which carries its documentation: the key tables of ``docs/scene-files.md`` are
+generated from it (``python docs/_hooks/file_reference.py --write``). The convention:
+
+``doc``
+    What the key means, in Markdown (a sentence fragment, like a table cell).
+``unit``
+    The unit of the key's numbers: ``m``, ``mm``, ``t``, ``t/m3``, ``deg``, ``kPa``, ``h``,
+    ``s``...; a pair's as ``[m, t/m]``; ``-`` for a number without unit (a factor, a count).
+    Given for every key whose value holds a number (the generator refuses one without), and
+    for no other key.
+``values``
+    The type column when the annotation alone does not say it: a range (``number > 0``),
+    the names of a pair's values. Absent: read from the annotation (``number``, ``string``,
+    ``table``...); the choices of a ``Literal`` are always listed from the annotation.
+``frame``
+    How a coordinate is read (``body, file frame``, ``world height``...).
+``absent``
+    What leaving the key out means, when its default alone does not say.
+``example``
+    One line of TOML setting the key.
+
+Descriptions only: :func:`Key` hands the default to pydantic's ``Field`` unchanged, and
+nothing reads the rest when a file is read.
 """
 
 from __future__ import annotations
@@ -16,10 +42,11 @@ import tomllib
 import types
 import typing
 from pathlib import Path
-from typing import Annotated, Literal, Union
+from typing import Annotated, Any, Literal, Union
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Strict, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError
+from pydantic_core import PydanticUndefined
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
@@ -57,154 +84,624 @@ class Table(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
+def Key(
+    default: Any = PydanticUndefined,
+    *,
+    doc: str,
+    unit: str | None = None,
+    values: str | None = None,
+    frame: str | None = None,
+    absent: str | None = None,
+    example: str | None = None,
+) -> Any:
+    """A key of a file schema with its documentation (the module docstring's convention).
+
+    Parameters
+    ----------
+    default : optional
+        The value used when the key is absent; none: the key is required.
+    doc : str
+        What the key means (Markdown).
+    unit : str, optional
+        Unit of its numbers (``-``: a number without unit); only for a key holding numbers.
+    values, frame, absent, example : str, optional
+        The type column's text, how a coordinate is read, what absent means, a TOML line.
+
+    Returns
+    -------
+    pydantic.fields.FieldInfo
+        ``Field(default, description=doc)`` with the rest in ``json_schema_extra``.
+    """
+    notes = {"unit": unit, "values": values, "frame": frame, "absent": absent, "example": example}
+    extra: dict[str, Any] = {name: text for name, text in notes.items() if text is not None}
+    return Field(default, description=doc, json_schema_extra=extra)
+
+
 Pair = tuple[Num, Num]
 
 
 class _Body(Table):
-    weight: Num
-    cog: Point
-    weight_curve: list[Pair] | None = None  # [x m, t/m]; x is the same axis in both frames
+    weight: Num = Key(
+        doc="total weight W (in air; in water when the scene has no `[hull]`, give the weight in water)",
+        unit="t",
+        values="number > 0",
+        example="weight = 904.0",
+    )
+    cog: Point = Key(
+        doc="centre of gravity", unit="m", frame="body, file frame", example="cog = [35.86, 2.5, 6.0]"
+    )
+    weight_curve: list[Pair] | None = Key(
+        None,
+        doc=(
+            "weight per unit length along the body's x, linear between points, zero outside; its "
+            "integral must be `weight` within 0.5 % and its centroid the CG's x within 0.05 m (the "
+            "rest is spread linearly over the curve so the curves close); `solve` then reports shear "
+            'force and bending moment (see "Hull girder" below)'
+        ),
+        unit="[m, t/m]",
+        values="array of [x, w] pairs, x increasing, w >= 0",
+        frame="body x (the same axis in both frames)",
+        absent="no hull-girder strength",
+        example="weight_curve = [[0.0, 6.0], [40.0, 14.0], [82.0, 4.0]]",
+    )
 
 
 class _Lug(Table):
-    name: Text
-    at: Point
+    name: Text = Key(
+        doc="the lug's name, unique; cranes, results and JSON keys refer to it", example='name = "T1"'
+    )
+    at: Point = Key(
+        doc="where the lug is", unit="m", frame="body, file frame", example="at = [16.2, 6.0, 12.0]"
+    )
 
 
 class _Ropes(Table):
-    EA: Num | None = None
+    EA: Num | None = Key(
+        None,
+        doc="rope axial stiffness (modulus x metallic area) for cranes that give none",
+        unit="t",
+        values="number > 0",
+        example="EA = 50000.0",
+    )
 
 
 class _Leg(Table):
-    lug: Text
-    length: Num
-    EA: Num | None = None
-    diameter: Num | None = None  # mm
-    end: Literal[1, 2] | None = None
+    lug: Text = Key(doc="the lug the leg is shackled to", example='lug = "L1"')
+    length: Num = Key(
+        doc="unstretched leg length, pin to pin", unit="m", values="number > 0", example="length = 18.0"
+    )
+    EA: Num | None = Key(
+        None,
+        doc="leg stiffness; exactly one of `EA` and `diameter`",
+        unit="t",
+        values="number > 0",
+        example="EA = 20000.0",
+    )
+    diameter: Num | None = Key(
+        None,
+        doc="wire-rope diameter; EA = 80 000 N/mm2 x 0.785 d^2 (Noble Denton 0027/ND 5.6.13)",
+        unit="mm",
+        values="number > 0",
+        example="diameter = 76.0",
+    )
+    end: Literal[1, 2] | None = Key(
+        None,
+        doc=(
+            "with a spreader: the bar end the leg hangs from (two legs without `end`: ends 1 and 2 in order)"
+        ),
+        example="end = 1",
+    )
 
 
 class _TopLeg(Table):
-    length: Num
-    EA: Num | None = None
-    diameter: Num | None = None
+    length: Num = Key(
+        doc="unstretched top-leg length", unit="m", values="number > 0", example="length = 15.0"
+    )
+    EA: Num | None = Key(
+        None,
+        doc="top-leg stiffness; exactly one of `EA` and `diameter`",
+        unit="t",
+        values="number > 0",
+        example="EA = 30000.0",
+    )
+    diameter: Num | None = Key(
+        None,
+        doc="wire-rope diameter, as for the legs",
+        unit="mm",
+        values="number > 0",
+        example="diameter = 90.0",
+    )
 
 
 class _Spreader(Table):
-    length: Num
-    top: list[_TopLeg]
-    weight: Num = 0.0
-    EA: Num | None = None
+    length: Num = Key(
+        doc="distance between the bar's end pins", unit="m", values="number > 0", example="length = 20.0"
+    )
+    top: list[_TopLeg] = Key(
+        doc="hook to end 1 and hook to end 2 (no `lug`)",
+        values="array of 2 tables",
+        example="top = [{ length = 15.0, EA = 30000.0 }, { length = 15.0, EA = 30000.0 }]",
+    )
+    weight: Num = Key(
+        0.0,
+        doc="the bar's weight with its shackles, half at each end",
+        unit="t",
+        values="number >= 0",
+        example="weight = 6.5",
+    )
+    EA: Num | None = Key(
+        None,
+        doc="the bar's axial stiffness",
+        unit="t",
+        values="number > 0",
+        absent="1.0e6, a stiff strut",
+        example="EA = 800000.0",
+    )
 
 
 class _Sling(Table):
-    legs: list[_Leg]
-    spreader: _Spreader | None = None
-    equalised: Annotated[bool, Strict()] = False
+    legs: list[_Leg] = Key(
+        doc="2 to 4 legs, hook (or spreader end) to lug, each lug once", example="[[cranes.sling.legs]]"
+    )
+    spreader: _Spreader | None = Key(
+        None,
+        doc="a spreader bar between the hook's two top legs and the sling legs",
+        example="[cranes.sling.spreader]",
+    )
+    equalised: Annotated[bool, Strict()] = Key(
+        False,
+        doc=(
+            "`true`: the two legs are one continuous rope over a sheave at the hook (or an "
+            "equaliser): both carry the same tension whatever the hook height, and their lengths add "
+            "up to the rope's (the split follows the equilibrium, so the pair carries no twist); two "
+            "legs of one EA, no spreader"
+        ),
+        example="equalised = true",
+    )
 
 
 class _Crane(Table):
-    lug: Text | None = None
-    name: Text | None = None
-    sling: _Sling | None = None
-    tip: Point | None = None
-    boom_height: Num | None = None
-    rope_length: Num | None = None
-    swl: Num | None = None
-    EA: Num | None = None
+    lug: Text | None = Key(
+        None, doc="the lug its rope is shackled to; exactly one of `lug` and `sling`", example='lug = "T1"'
+    )
+    name: Text | None = Key(
+        None,
+        doc=(
+            "the crane's label; required with a `sling` (its results are keyed by it); a single-rope "
+            "crane is keyed by its lug"
+        ),
+        example='name = "Big-P"',
+    )
+    sling: _Sling | None = Key(
+        None,
+        doc="a sling set from the hook to 2-4 lugs, instead of `lug`",
+        example="sling = { legs = [...] }",
+    )
+    tip: Point | None = Key(
+        None,
+        doc=(
+            "the boom tip when it is not above the lug: inclined rope, 6-DOF `inclined` model; with a "
+            "sling: default above the centroid of its lugs at `boom_height`"
+        ),
+        unit="m",
+        frame="world, file frame",
+        example="tip = [16.2, 30.0, 40.0]",
+    )
+    boom_height: Num | None = Key(
+        None,
+        doc=(
+            "H: height of the boom tip (the rope's upper end) above the datum; with `rope_length` and "
+            "`EA`, for the forward `elastic` model"
+        ),
+        unit="m",
+        frame="world height",
+        example="boom_height = 40.0",
+    )
+    rope_length: Num | None = Key(
+        None,
+        doc="l0: unstretched rope length from tip to lug (with a sling: tip to hook)",
+        unit="m",
+        values="number > 0",
+        example="rope_length = 30.0",
+    )
+    swl: Num | None = Key(
+        None,
+        doc="safe working load at the crane's radius; tensions are checked against it",
+        unit="t",
+        values="number > 0",
+        example="swl = 400.0",
+    )
+    EA: Num | None = Key(
+        None,
+        doc="this rope's stiffness; default `ropes.EA`",
+        unit="t",
+        values="number > 0",
+        example="EA = 70000.0",
+    )
 
 
 class _Attitude(Table):
-    heel: Num = 0.0
-    trim: Num = 0.0
-    yaw: Num = 0.0
-    lift_height: Num = 0.0
+    heel: Num = Key(0.0, doc="heel, > 0 starboard side down", unit="deg", example="heel = 2.0")
+    trim: Num = Key(0.0, doc="trim, > 0 bow down", unit="deg", example="trim = -1.0")
+    yaw: Num = Key(0.0, doc="yaw, > 0 bow to port", unit="deg", example="yaw = 0.0")
+    lift_height: Num = Key(
+        0.0,
+        doc="a: height of the body-frame origin above the datum",
+        unit="m",
+        frame="world height",
+        example="lift_height = 1.0",
+    )
 
 
 class _Redundant(Table):
-    lug: Text
-    tension: Num
+    lug: Text = Key(doc="the lug whose tension is held", example='lug = "T4"')
+    tension: Num = Key(doc="its tension", unit="t", example="tension = 200.0")
 
 
 class _Analysis(Table):
     # Literal of a tuple of names: Python expands it at run time, a static checker cannot
-    model: Literal[MODELS] | None = None  # type: ignore[valid-type]
-    redundant: _Redundant | list[_Redundant] | None = None
-    hull: Literal[HULL_MODELS] = "auto"  # type: ignore[valid-type]
+    model: Literal[MODELS] | None = Key(  # type: ignore[valid-type]
+        None,
+        doc=(
+            'the model to solve (README "Models"): `rigid` holds n - 3 tensions at the given '
+            "attitude; `paper-elastic` closes the statics with the 2003 paper's coplanar elongations; "
+            "`elastic` finds pose and tensions from H, l0 and EA; `hydrostatic` adds a hull in water; "
+            "`inclined` places the crane tips; `rigging` solves sling sets with free hooks and bar "
+            "ends; `rigid` and `paper-elastic` also take `[water]` and `[hull]` at the given attitude"
+        ),
+        absent="the least model the scene needs",
+        example='model = "elastic"',
+    )
+    redundant: _Redundant | list[_Redundant] | None = Key(
+        None,
+        doc=(
+            "`rigid`: the held tensions, n - 3 of them, each lug once; the three lugs left free must "
+            "span an area in plan"
+        ),
+        example='redundant = { lug = "T4", tension = 200.0 }',
+    )
+    hull: Literal[HULL_MODELS] = Key(  # type: ignore[valid-type]
+        "auto",
+        doc=(
+            "with `hull.EI`, how the `elastic` and `hydrostatic` models take the hull: `auto` solves "
+            "it rigid and flexible and keeps the rigid answer when flexibility changes no tension "
+            "(and, grounded, not the ground reaction) by more than 1 % (and says which it used, with "
+            "the measured change); `rigid` and `flexible` force one. The other models, `paper-newton` "
+            "and a breakout scene hold the hull rigid and say so (`flexible` is refused there)"
+        ),
+        example='hull = "flexible"',
+    )
 
 
 class _Water(Table):
-    density: Num = 1.025
-    level: Num = 0.0
+    density: Num = Key(
+        1.025, doc="water density", unit="t/m3", values="number > 0", example="density = 1.0273"
+    )
+    level: Num = Key(
+        0.0, doc="free-surface height above the datum", unit="m", frame="world height", example="level = 0.0"
+    )
 
 
 class _Box(Table):
-    min: Point
-    max: Point
+    min: Point = Key(
+        doc="one corner (min < max on every axis)",
+        unit="m",
+        frame="body, file frame",
+        example="min = [-50.0, -15.0, -5.0]",
+    )
+    max: Point = Key(
+        doc="the opposite corner", unit="m", frame="body, file frame", example="max = [50.0, 15.0, 5.0]"
+    )
 
 
 class _Opening(Table):
-    area: Num  # m2; inf drains at once
-    at: Point  # body, file frame
-    discharge: Num = DISCHARGE
+    area: Num = Key(
+        doc=(
+            "the opening's area: `0` never drains (a trapped compartment), `inf` drains at once (the "
+            "inside level follows the outside water, or the opening's sill: free-flooding)"
+        ),
+        unit="m2",
+        values="number >= 0, or `inf`",
+        example="area = 0.05",
+    )
+    at: Point = Key(
+        doc="where the opening is (its height is z in the z-up frame); on or inside the compartment's box",
+        unit="m",
+        frame="body, file frame",
+        example="at = [3.0, 0.0, 0.0]",
+    )
+    discharge: Num = Key(
+        DISCHARGE,
+        doc=(
+            "discharge coefficient C_d; 0.61 is the sharp-edged orifice's (its vena contracta) in "
+            "hydraulics textbooks; a short pipe or rounded entry runs 0.8-0.98"
+        ),
+        unit="-",
+        values="number in (0, 1]",
+        example="discharge = 0.8",
+    )
 
 
 class _Compartment(Table):
-    name: Text
-    box: _Box
-    contents: Literal["air", "water"] = "air"
-    openings: list[_Opening] = []
+    name: Text = Key(doc="the compartment's name", example='name = "fore tank"')
+    box: _Box = Key(doc="its box", example="box = { min = [55, -6, 0], max = [60, 6, 2] }")
+    contents: Literal["air", "water"] = Key(
+        "air",
+        doc=(
+            "`air` displaces water while submerged; `water` is trapped: a weight carried at every "
+            "hoist; its watertight compartment displaces water while submerged, so under water the "
+            "two cancel"
+        ),
+        example='contents = "water"',
+    )
+    openings: list[_Opening] = Key(
+        [],
+        doc=(
+            "openings of a `water` compartment through which it drains as the hull rises (`liftplan "
+            "lift --speed`; without a speed it is carried full, the conservative bound). The "
+            "compartment is taken as vented (air enters above its water); each opening passes C_d x "
+            "area x sqrt(2 g head) (Torricelli), the head being the inside level over the opening, or "
+            "over the outside water while the opening is below it (then water may flow either way)"
+        ),
+        example="openings = [{ area = 0.05, at = [3.0, 0.0, 0.0] }]",
+    )
 
 
 class _Hull(Table):
-    box: _Box | None = None
-    mesh: Text | None = None
-    flooding: Literal["intact", "flooded"] = "intact"
-    steel_density: Num | None = None
-    weight_in_water: Num | None = None
-    compartments: list[_Compartment] = []
-    EI: list[Pair] | None = None  # [x m, t m2]: the hull girder's bending stiffness
-    GJ: list[Pair] | None = None  # [x m, t m2]: its torsional stiffness
+    box: _Box | None = Key(
+        None, doc="an axis-aligned box hull", example="box = { min = [-50, -15, -5], max = [50, 15, 5] }"
+    )
+    mesh: Text | None = Key(
+        None,
+        doc="a closed, outward-oriented triangle mesh (STL), path relative to the scene file",
+        values="string (path)",
+        frame="body, file frame",
+        example='mesh = "hull.stl"',
+    )
+    flooding: Literal["intact", "flooded"] = Key(
+        "intact",
+        doc=(
+            "`intact`: watertight and empty, displaces up to the waterline; `flooded`: free-flooding, "
+            "only the steel (and air compartments) displace water"
+        ),
+        example='flooding = "flooded"',
+    )
+    steel_density: Num | None = Key(
+        None,
+        doc="flooded hull: steel volume = weight / steel_density",
+        unit="t/m3",
+        values="number > 0",
+        absent="7.85",
+        example="steel_density = 7.85",
+    )
+    weight_in_water: Num | None = Key(
+        None,
+        doc=(
+            "flooded hull: instead of `steel_density`, steel volume = (weight - weight_in_water) / "
+            "water density"
+        ),
+        unit="t",
+        example="weight_in_water = 523.0",
+    )
+    compartments: list[_Compartment] = Key(
+        [], doc="watertight boxes inside a flooded hull", example="[[hull.compartments]]"
+    )
+    EI: list[Pair] | None = Key(
+        None,
+        doc=(
+            "the hull girder's vertical bending stiffness (E x the section's moment of inertia), "
+            "linear between points, its end values held beyond the first and last; every x on the "
+            "body (the weight curve's span); needs `body.weight_curve`, and every lug's x on that "
+            "span. The `elastic` model then solves the hull as an elastic beam on the elastic ropes, "
+            "and the `hydrostatic` model on its ropes, the water and the ground contact (see "
+            '"Flexible hull" below); in water the weight curve must span the hull'
+        ),
+        unit="[m, t m2]",
+        values="array of [x, EI] pairs, x increasing, EI > 0",
+        frame="body x",
+        absent="a rigid hull",
+        example="EI = [[0.0, 5.3e7], [82.05, 5.3e7]]",
+    )
+    GJ: list[Pair] | None = Key(
+        None,
+        doc=(
+            "the hull girder's torsional stiffness about its x axis (through the CG's y and height), "
+            "as `EI`; needs `EI`"
+        ),
+        unit="[m, t m2]",
+        values="array of [x, GJ] pairs, x increasing, GJ > 0",
+        frame="body x",
+        absent="rigid in torsion",
+        example="GJ = [[0.0, 5.2e7], [82.05, 5.2e7]]",
+    )
 
 
 class _Breakout(Table):
-    factor: Num | None = None
-    shear_strength: Num | None = None  # kPa
-    area: Num | None = None  # m2
-    bearing_factor: Num = Breakout.bearing_factor
-    pull_time: Num | None = None  # h
-    embedded_time: Num | None = None  # h
-    clear: Num = Breakout.clear  # m
+    factor: Num | None = Key(
+        None,
+        doc=(
+            "F_b = factor x the submerged weight at rest (W + trapped water - B). A measured salvage "
+            "lift of a small vessel peaked at twice its initial lifting force (1.38 MN against 0.69 "
+            "MN; Ocean Engineering, 2016): factor 1.0"
+        ),
+        unit="-",
+        values="number >= 0",
+        example="factor = 1.0",
+    )
+    shear_strength: Num | None = Key(
+        None,
+        doc=(
+            "soil model: the seabed's undrained shear strength s_u. F_b = 1.5 (pull_time / "
+            "embedded_time)^-0.07 x F_r (Liu 1969, NCEL R-635, fitted for time ratios 1e-3 to 10; a "
+            "ratio outside that is refused), F_r = bearing_factor x s_u x area (the static soil "
+            "resistance, taken as the reverse undrained bearing capacity with suction under the base; "
+            'our reading of R-635\'s "static soil resistance due to shear and tension")'
+        ),
+        unit="kPa",
+        values="number >= 0",
+        example="shear_strength = 5.0",
+    )
+    area: Num | None = Key(
+        None,
+        doc=(
+            "soil model: the contact area (Muga 1968, NCEL R-591: the horizontal projection of the "
+            "largest contact area)"
+        ),
+        unit="m2",
+        values="number > 0",
+        absent="the plan area of the hull's underside at rest",
+        example="area = 600.0",
+    )
+    bearing_factor: Num = Key(
+        Breakout.bearing_factor,
+        doc=(
+            "soil model: N_c; 5.14 is Prandtl's for a long footing, about 6.2 (Skempton) for a square "
+            "or circle"
+        ),
+        unit="-",
+        values="number > 0",
+        example="bearing_factor = 6.2",
+    )
+    pull_time: Num | None = Key(
+        None,
+        doc="soil model: the time allowed for the breakout pull (Liu's T)",
+        unit="h",
+        values="number > 0",
+        example="pull_time = 1.0",
+    )
+    embedded_time: Num | None = Key(
+        None,
+        doc="soil model: how long the hull has lain bedded (Liu's T_e)",
+        unit="h",
+        values="number > 0",
+        example="embedded_time = 100.0",
+    )
+    clear: Num = Key(
+        Breakout.clear,
+        doc=(
+            "the soil holds on with the full F_b until the contact has risen this far above its bed, "
+            "then lets go (an assumption: the real hold falls off as the soil fails, so this is on "
+            "the safe side; it lengthens the peak's plateau, never raises it)"
+        ),
+        unit="m",
+        values="number >= 0",
+        example="clear = 0.2",
+    )
 
 
 class _Ground(Table):
-    contact: Point
-    friction: Num | None = None
-    breakout: _Breakout | None = None
+    contact: Point = Key(
+        doc=(
+            "the body point on the ground; it stays where it sits at the scene's attitude and "
+            "`lift_height`, and the body pivots about it"
+        ),
+        unit="m",
+        frame="body, file frame",
+        example="contact = [30.0, 0.0, -5.0]",
+    )
+    friction: Num | None = Key(
+        None,
+        doc="friction coefficient: freeing force = friction x ground reaction",
+        unit="-",
+        values="number >= 0",
+        example="friction = 0.5",
+    )
+    breakout: _Breakout | None = Key(
+        None,
+        doc=(
+            "how hard the seabed holds the bedded hull down: either `factor`, or the soil model "
+            "(`shear_strength`, `pull_time`, `embedded_time`). The breakout force F_b acts down at "
+            "the contact: the hull stays on the bed until the ropes carry W + trapped water - B + F_b "
+            "(the peak, `liftplan lift` event `breakout`), then rises with F_b still pulling until "
+            "the contact is `clear` m above its bed (event `released`). `breakout_load(scene)` gives "
+            "the peak total hook load for a plan's capacity check"
+        ),
+        absent="the soil lets go at once: today's lift-off",
+        example="breakout = { factor = 1.0 }",
+    )
 
 
 class _Rigging(Table):
-    min_sling_angle: Num = RiggingLimits.min_sling_angle
+    min_sling_angle: Num = Key(
+        RiggingLimits.min_sling_angle,
+        doc="lowest leg angle from the horizontal; legs below it are flagged",
+        unit="deg",
+        values="number in (0, 90]",
+        example="min_sling_angle = 45.0",
+    )
 
 
 class _Strength(Table):
-    bending_moment: list[Pair] | None = None  # [x m, t m]
-    shear_force: list[Pair] | None = None  # [x m, t]
+    bending_moment: list[Pair] | None = Key(
+        None,
+        doc=(
+            "allowable absolute bending moment, linear between points, its end values held beyond the "
+            "first and last"
+        ),
+        unit="[m, t m]",
+        values="array of [x, M] pairs, x increasing, M > 0",
+        frame="body x",
+        example="bending_moment = [[0.0, 2000.0], [82.0, 2000.0]]",
+    )
+    shear_force: list[Pair] | None = Key(
+        None,
+        doc="allowable absolute shear force, as `bending_moment`",
+        unit="[m, t]",
+        values="array of [x, Q] pairs, x increasing, Q > 0",
+        frame="body x",
+        example="shear_force = [[0.0, 300.0], [82.0, 300.0]]",
+    )
 
 
 class _SceneFile(Table):
-    name: Text = ""
-    frame: Literal["z-up", "choi"] = "z-up"
-    body: _Body
-    lugs: list[_Lug] = []
-    ropes: _Ropes = _Ropes()
-    cranes: list[_Crane] = []
-    attitude: _Attitude = _Attitude()
-    analysis: _Analysis = _Analysis()
-    water: _Water | None = None
-    hull: _Hull | None = None
-    ground: _Ground | None = None
-    rigging: _Rigging = _Rigging()
-    strength: _Strength | None = None
+    name: Text = Key("", doc="a label for the scene, shown in outputs", example='name = "1500 GT tanker"')
+    frame: Literal["z-up", "choi"] = Key(
+        "z-up", doc="the axes every coordinate of the file is read in (see above)", example='frame = "choi"'
+    )
+    body: _Body = Key(doc="the lifted body", example="[body]")
+    lugs: list[_Lug] = Key(
+        [], doc="the lift points, three or more (none for a stranded ship with no cranes)", example="[[lugs]]"
+    )
+    ropes: _Ropes = Key(_Ropes(), doc="defaults for every crane's rope", example="[ropes]")
+    cranes: list[_Crane] = Key([], doc="the cranes, one per lug (or per sling set)", example="[[cranes]]")
+    attitude: _Attitude = Key(
+        _Attitude(),
+        doc=(
+            "the body's attitude for the given-attitude models (`rigid`, `paper-elastic`); the start "
+            "of the others"
+        ),
+        example="[attitude]",
+    )
+    analysis: _Analysis = Key(
+        _Analysis(), doc="which model, and the held tensions of `rigid`", example="[analysis]"
+    )
+    water: _Water | None = Key(None, doc="still water around the body", absent="no water", example="[water]")
+    hull: _Hull | None = Key(
+        None,
+        doc=(
+            "the displacing envelope: exactly one of `box` and `mesh` (in water); a body in air may "
+            "give only `EI` (and `GJ`)"
+        ),
+        absent="no hull",
+        example="[hull]",
+    )
+    ground: _Ground | None = Key(
+        None,
+        doc="a contact point resting on the seabed (a stranded ship, a wreck before lift-off)",
+        absent="no ground",
+        example="[ground]",
+    )
+    rigging: _Rigging = Key(_Rigging(), doc="limits checked on sling sets", example="[rigging]")
+    strength: _Strength | None = Key(
+        None,
+        doc=(
+            "allowable envelopes of the hull girder; needs `body.weight_curve`; each is checked where "
+            "the absolute value over the allowable is largest along the body, flagged like every "
+            "other check"
+        ),
+        absent="no envelope checks",
+        example="[strength]",
+    )
 
 
 # Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).

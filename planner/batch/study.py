@@ -33,6 +33,9 @@ planning file's own dotted names, values in its frame and units::
     seed = 1
     weight = [0.95, 1.05]          # factor on body.weight, uniform
     cog = [0.5, 0.2, 0.3]          # m, half-widths of a uniform offset of body.cog
+
+Each key is declared with its documentation (``Key``: the convention is in
+:mod:`liftplan.model.scene.file`), from which the file reference's tables are generated.
 """
 
 from __future__ import annotations
@@ -51,7 +54,7 @@ import numpy as np
 from pydantic import Field, Strict, ValidationError
 
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scene.file import Num, Point, Table, Text, load_with, one_line, parse_toml
+from liftplan.model.scene.file import Key, Num, Point, Table, Text, load_with, one_line, parse_toml
 from liftplan.planner.problem.file import problem_from_dict
 
 Count = Annotated[int, Strict(), Field(ge=1)]
@@ -65,35 +68,155 @@ MAX_CASES = 10_000_000
 
 
 class _Study(Table):
-    problem: Text
-    kind: Literal["plan", "check", "montecarlo"] = "plan"
-    name: Text = ""
-    output: Text = ""
-    grid: Annotated[int, Strict(), Field(ge=1, le=41)] = 3
-    chunk: Count | None = None
+    problem: Text = Key(
+        doc=(
+            "the planning file, relative to the study file; the planning file's own relative paths "
+            "(`plan.breakout_scene`) are read from its folder, whatever the working folder"
+        ),
+        values="string (path)",
+        example='problem = "tanker_plan.toml"',
+    )
+    kind: Literal["plan", "check", "montecarlo"] = Key(
+        "plan",
+        doc=(
+            "`plan`: optimise every case; `check`: plan the file once, then check that plan (lugs and "
+            "boom heights fixed) in every case; `montecarlo`: plan the file once, then solve it on "
+            "the elastic model under `[montecarlo]` draws of hook-height errors (no `[sweep]`, "
+            "`[sample]` or `[candidate_sets]`)"
+        ),
+        example='kind = "check"',
+    )
+    name: Text = Key(
+        "", doc="a label for the study", absent="the study file's name", example='name = "tanker robustness"'
+    )
+    output: Text = Key(
+        "",
+        doc="the CSV table to write, relative to the study file",
+        values="string (path)",
+        absent="STUDY.csv next to the study file",
+        example='output = "tanker_check.csv"',
+    )
+    grid: Annotated[int, Strict(), Field(ge=1, le=41)] = Key(
+        3,
+        doc="`check`: attitudes per axis of each tolerance box",
+        unit="-",
+        values="integer 1 to 41",
+        example="grid = 5",
+    )
+    chunk: Count | None = Key(
+        None,
+        doc="cases per Dask task",
+        unit="-",
+        values="integer >= 1",
+        absent="5000 for `check` and `montecarlo`, 1 for `plan`",
+        example="chunk = 1000",
+    )
 
 
 class _Sample(Table):
-    count: Count
-    seed: Annotated[int, Strict(), Field(ge=0)] = 0
-    weight: Annotated[list[Num], Field(min_length=2, max_length=2)] | None = None
-    cog: Point | None = None
+    count: Count = Key(doc="draws per grid point", unit="-", values="integer >= 1", example="count = 20000")
+    seed: Annotated[int, Strict(), Field(ge=0)] = Key(
+        0, doc="the random generator's seed", unit="-", values="integer >= 0", example="seed = 1"
+    )
+    weight: Annotated[list[Num], Field(min_length=2, max_length=2)] | None = Key(
+        None,
+        doc="uniform factor on `body.weight`, 0 < low <= high",
+        unit="factor",
+        values="[low, high]",
+        example="weight = [0.95, 1.05]",
+    )
+    cog: Point | None = Key(
+        None,
+        doc="uniform offset of `body.cog` (at least one of `weight` and `cog`)",
+        unit="m",
+        values="[dx, dy, dz] >= 0",
+        frame="half-widths, file frame axes",
+        example="cog = [1.0, 0.3, 0.5]",
+    )
 
 
 class _MonteCarlo(Table):
-    draws: Count = 10_000
-    distribution: Literal["uniform", "normal"] = "uniform"
-    seed: Annotated[int, Strict(), Field(ge=0)] = 0
-    tolerance: Num | None = None
-    tolerances: dict[str, Num] = {}
+    draws: Count = Key(
+        10_000, doc="number of draws (rows)", unit="-", values="integer >= 1", example="draws = 100000"
+    )
+    distribution: Literal["uniform", "normal"] = Key(
+        "uniform",
+        doc="`uniform`: each error within +-tolerance; `normal`: the tolerance is the standard deviation",
+        example='distribution = "normal"',
+    )
+    seed: Annotated[int, Strict(), Field(ge=0)] = Key(
+        0,
+        doc=(
+            "the generator's seed: the draws are made from it alone, the same however the run is "
+            "chunked or resumed"
+        ),
+        unit="-",
+        values="integer >= 0",
+        example="seed = 1",
+    )
+    tolerance: Num | None = Key(
+        None,
+        doc="every hook's error scale",
+        unit="m",
+        values="number >= 0",
+        absent="the plan's hook tolerances",
+        example="tolerance = 0.05",
+    )
+    tolerances: dict[str, Num] = Key(
+        {},
+        doc=(
+            "per crane, by its name in the planning file (`crane 1` ... for `[crane]` defaults), "
+            "overriding `tolerance`; at least one hook's scale must be above 0"
+        ),
+        unit="m",
+        values="table of numbers >= 0",
+        example='tolerances = { "crane 2" = 0.05 }',
+    )
 
 
 class _StudyFile(Table):
-    study: _Study
-    sweep: dict[str, Annotated[list[Value], Field(min_length=1)]] = {}
-    candidate_sets: dict[str, Annotated[list[Text], Field(min_length=1)]] = {}
-    sample: _Sample | None = None
-    montecarlo: _MonteCarlo | None = None
+    study: _Study = Key(doc="the study", example="[study]")
+    sweep: dict[str, Annotated[list[Value], Field(min_length=1)]] = Key(
+        {},
+        doc=(
+            "each key is a planning key in quotes (dotted, as in the planning tables above), each "
+            "value the array of values to run; `check` studies may vary `body.weight`, `body.cog`, "
+            "`plan.tolerance.heel`, `plan.tolerance.trim`, `plan.min_tension`; the key `candidates` "
+            'picks `"all"` or a named set of `[candidate_sets]`'
+        ),
+        unit="the planning key's",
+        values="table of arrays",
+        frame="planning file's",
+        example='"plan.tolerance.heel" = [1.0, 2.0, 3.0]',
+    )
+    candidate_sets: dict[str, Annotated[list[Text], Field(min_length=1)]] = Key(
+        {},
+        doc="named subsets of the planning file's candidates, picked by `sweep.candidates`",
+        values="table of arrays of strings",
+        example='cargo = ["BH3-P", "BH3-S", "BH4-P", "BH4-S"]',
+    )
+    sample: _Sample | None = Key(
+        None, doc="seeded random draws, the same at every grid point", absent="no draws", example="[sample]"
+    )
+    montecarlo: _MonteCarlo | None = Key(
+        None,
+        doc=(
+            'hook-height error draws on the planned file (only with `kind = "montecarlo"`): each draw '
+            "moves every hook off its planned height by an independent error and solves the full "
+            "elastic model; the table has one row per draw: `error.L1..Ln` (m), `status` (`ok`; "
+            "`unsafe`: a rope over its SWL or slack; `failed`: no stable upright equilibrium), "
+            "`reason`, `tension.L1..Ln` (t), `heel`, `trim` (deg), `spread`, `max_tension` (t), "
+            "`above_plan_worst`, `above_design_load`, `above_swl` (0 or 1), `slack` (ropes) and "
+            "`above_design_tension` (0 or 1). `above_design_tension`: a drawn (static) tension above "
+            "the static tension its crane's design hook load was built from, (static hook load - "
+            "rigging) / (contingency x CoG factor): like for like. `above_design_load`: a drawn "
+            "static tension above the design hook load itself, which carries the contingency and the "
+            "DAF on top (lenient; kept for scripts). Blank where no design load was computed "
+            '(docs/design-loads.md "Monte-Carlo draws against the design load")'
+        ),
+        absent='the defaults below, with `kind = "montecarlo"`',
+        example="[montecarlo]",
+    )
 
 
 @dataclass(frozen=True)

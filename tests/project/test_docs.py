@@ -1,37 +1,38 @@
 """docs/scene-files.md against the validation schemas, so the key reference cannot drift.
 
-The schemas are the pydantic tables that read the files (``Table`` subclasses in
-model/scene/file.py, planner/problemfile.py, planner/study.py and the tables they nest).
-Walking them gives every key path: ``plan.tolerance.heel`` for a nested table,
-``lugs[].name`` for a key of each table of an array of tables (``[[lugs]]``), and
-``x.*.key`` for a table of tables whose names the user chooses. The doc has one section per
-file kind (``## Scene files``, ``## Planning files``, ``## Study files``) whose tables list
-one key path per row, in backticks in the first column, with a ``default`` column.
-
-Checked, per file kind: every schema key is documented and every documented key exists;
-the default column says ``required`` exactly for the required keys and shows the schema's
-default (as a TOML value in backticks) for scalar and array defaults; every allowed value
-of a choice (``Literal``) appears in its row; and each section's complete example files
-(the ```toml blocks under "### Example" headings) are read without error by the real reader.
+The page's key tables are generated from the schemas (the pydantic tables that read the
+files, each key declared with its documentation by ``Key``) by docs/_hooks/file_reference.py,
+between ``<!-- keys: ... -->`` marks; the prose around them is hand-written. Checked: the
+committed page is what the generator gives, byte for byte (else: ``python
+docs/_hooks/file_reference.py --write``), and the generator refuses a key without a description
+or a number without a unit. The page's own tables are read back as before, which checks the
+rendering independently: one section per file kind (``## Scene files``, ``## Planning files``,
+``## Study files``) whose tables list one key path per row, in backticks in the first column,
+with a ``default`` column; every schema key is documented and every documented key exists, the
+default column says ``required`` exactly for the required keys and shows the schema's default
+(as a TOML value in backticks), every allowed value of a choice (``Literal``) appears in its
+row; and each section's complete example files (the ```toml blocks under "### Example"
+headings) are read without error by the real reader.
 """
 
 from __future__ import annotations
 
+import difflib
+import importlib.util
 import re
 import tomllib
-import types
-import typing
 
 import pytest
 from helpers import ROOT
 from pydantic import BaseModel
 
-from liftplan.model.scene.file import _SceneFile, loads_scene
+from liftplan.model.scene.file import Key, Num, Table, _SceneFile, loads_scene
 from liftplan.planner.batch.study import _StudyFile, loads_study
 from liftplan.planner.problem.file import _PlanFile, loads_problem
 
 DOC = ROOT / "docs" / "scene-files.md"
 EXAMPLES = ROOT / "examples"
+GENERATOR = ROOT / "docs" / "_hooks" / "file_reference.py"
 
 SECTIONS = {
     "Scene files": (_SceneFile, lambda text: loads_scene(text, base=EXAMPLES)),
@@ -42,66 +43,21 @@ ROW = re.compile(r"^\|\s*`([^`]+)`\s*\|(.*)\|\s*$")
 REQUIRED = object()
 
 
-# -- the schemas -----------------------------------------------------------------------------
+def _generator():
+    spec = importlib.util.spec_from_file_location("file_reference", GENERATOR)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
-def _branches(annotation):
-    """The alternatives of a type, with Annotated and None removed."""
-    if typing.get_origin(annotation) is typing.Annotated:
-        return _branches(typing.get_args(annotation)[0])
-    if typing.get_origin(annotation) in (typing.Union, types.UnionType):
-        return [b for arg in typing.get_args(annotation) for b in _branches(arg)]
-    return [] if annotation is type(None) else [annotation]
-
-
-def _is_table(node):
-    return isinstance(node, type) and issubclass(node, BaseModel)
-
-
-def _nested(annotation):
-    """(table type, separator) for each table a key's value may hold: ``.`` for a table,
-    ``[].`` for an array of tables, ``.*.`` for a table of named tables. A table that may
-    also be given as an array (``redundant``) is listed once, as a table."""
-    found = {}
-    for branch in _branches(annotation):
-        origin, args = typing.get_origin(branch), typing.get_args(branch)
-        if _is_table(branch):
-            found[branch] = "."
-        elif origin in (list, tuple) and args:
-            for inner in _branches(args[0]):
-                if _is_table(inner):
-                    found.setdefault(inner, "[].")
-        elif origin is dict and len(args) == 2:
-            for inner in _branches(args[1]):
-                if _is_table(inner):
-                    found.setdefault(inner, ".*.")
-    return found.items()
-
-
-def schema_keys(model, prefix=""):
-    """{key path: pydantic FieldInfo} of a table and every table it nests."""
-    out = {}
-    for name, field in model.model_fields.items():
-        path = prefix + (field.alias or name)
-        out[path] = field
-        for table, sep in _nested(field.annotation):
-            out.update(schema_keys(table, path + sep))
-    return out
+reference = _generator()
+schema_keys = reference.schema_keys
 
 
 def default(field):
     if field.is_required():
         return REQUIRED
     return field.default
-
-
-def choices(annotation):
-    """Allowed values of a Literal (through Optional and Annotated), else ()."""
-    out = []
-    for branch in _branches(annotation):
-        if typing.get_origin(branch) is typing.Literal:
-            out.extend(typing.get_args(branch))
-    return tuple(out)
 
 
 # -- the doc ---------------------------------------------------------------------------------
@@ -143,6 +99,37 @@ def doc():
 
 def test_every_file_kind_has_a_section(doc):
     assert set(doc) == set(SECTIONS)
+
+
+def test_the_page_is_what_the_schemas_give():
+    page = DOC.read_text(encoding="utf-8")
+    fresh = reference.render(page)
+    diff = "\n".join(
+        difflib.unified_diff(page.splitlines(), fresh.splitlines(), "committed", "generated", n=0)
+    )
+    assert fresh == page, f"docs/scene-files.md is out of date: run {reference.COMMAND}\n{diff[:4000]}"
+
+
+def test_an_undocumented_key_is_refused():
+    class Bare(Table):
+        weight: Num = Key(1.0, doc="a weight")  # a number with no unit
+
+    class Silent(Table):
+        name: str = ""  # no description
+
+    with pytest.raises(ValueError, match="weight: a number with no unit"):
+        reference.table(Bare, ["weight"])
+    with pytest.raises(ValueError, match="name: no description"):
+        reference.table(Silent, ["name"])
+
+
+def test_every_top_level_key_has_a_table():
+    page = DOC.read_text(encoding="utf-8")
+    mark = "<!-- keys: scene ropes cranes rigging -->"
+    assert mark in page
+    page = page.replace(mark, "<!-- keys: scene ropes cranes -->")
+    with pytest.raises(ValueError, match="scene keys in no table: rigging"):
+        reference.render(page)
 
 
 @pytest.mark.parametrize("section", SECTIONS)
@@ -212,7 +199,7 @@ def test_every_choice_is_listed(doc, section):
     keys = schema_keys(SECTIONS[section][0])
     missing = []
     for key, (line, _, text) in doc[section][1].items():
-        for value in choices(keys[key].annotation) if key in keys else ():
+        for value in reference.choices(keys[key].annotation) if key in keys else ():
             shown = f'`"{value}"`' if isinstance(value, str) else f"`{value}`"
             if shown not in text:
                 missing.append(f"line {line} `{key}`: {shown}")
