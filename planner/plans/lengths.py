@@ -180,12 +180,22 @@ def plan_lengths(problem, top=None):
     results = {}
     trials = []
 
+    timed_out = False
+
     def run(lengths):
+        nonlocal timed_out
         key = tuple(round(float(v), 9) for v in lengths)
         if key in results:
             return results[key]
+        inner = with_lengths(problem, classes, key)
+        if problem.time_limit is not None:  # the limit is the whole search's: each trial gets what is left
+            left = problem.time_limit - (time.perf_counter() - start)
+            if left <= 0.0:
+                timed_out = True
+                return None
+            inner = dataclasses.replace(inner, time_limit=left)
         try:
-            result = plan_held(with_lengths(problem, classes, key), top, girder_order=False)
+            result = plan_held(inner, top, girder_order=False)
         except PlanInfeasible as err:
             result = None
             trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
@@ -208,6 +218,11 @@ def plan_lengths(problem, top=None):
     grids = first_pass(ranges)
     for lengths in _product(grids):
         run(lengths)
+    if not results:
+        raise PlanInfeasible(
+            f"rope lengths: no length set tried within the time limit {problem.time_limit:g} s "
+            f"({_ranges_text(problem, classes, ranges)}); expected a longer plan.time_limit"
+        )
     best = min(results, key=value)  # first (shortest) of equals: dicts keep insertion order
     steps = [(hi - lo) / max(len(g) - 1, 1) for (lo, hi), g in zip(ranges, grids)]
     for _ in range(REFINE_ROUNDS):
@@ -241,6 +256,7 @@ def plan_lengths(problem, top=None):
         lower_bound=min(search.lower_bound, chosen.stats.lower_bound),
         evaluated=sum(r.stats.evaluated for r in finished),
         seconds=time.perf_counter() - start,
+        stopped="time_limit" if timed_out else chosen.stats.stopped,
     )
     ranking, girders = girder_first(chosen.problem, chosen.ranking)
     return dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)

@@ -59,6 +59,8 @@ from liftplan.planner.search.strength import (
     strength_lp,
 )
 
+#: Share of ``plan.time_limit`` the strength search takes; the spread-optimal partner the rest.
+MAIN_SHARE = 0.8
 #: The weights (bending ratio, shear ratio, spread) of the spread-optimal plan beside it.
 SPREAD_WEIGHTS = (0.0, 0.0, 1.0)
 #: Dense heel x trim grid of the exact check (hoist control), per CG vertex.
@@ -389,7 +391,8 @@ class StrengthEvaluator:
             ratios = self._dense_ratios(
                 points, sections, d_states, tensions, (d_hook, lugset.hook_tolerance) if hook else None
             )
-            spread, trange = self._dense_spread(tensions, (d_hook, lugset.hook_tolerance) if hook else None)
+            hook_terms = (d_hook, lugset.hook_tolerance) if hook else None
+            spread, trange = self._dense_spread(tensions, hook_terms)
             top = np.unique(np.argsort(-ratios[0])[:3].tolist() + np.argsort(-ratios[1])[:3].tolist())
             peaks, xs = self._peaks(
                 points,
@@ -416,8 +419,8 @@ class StrengthEvaluator:
                     trange,
                 )
             worst = {pk.state for pk in peaks}
-            if weights[2] > 0:
-                worst.add(int(np.argmax(np.ptp(tensions, axis=1))))
+            if weights[2] > 0:  # the state of the largest spread, the hook errors' included
+                worst.add(int(np.argmax(self._state_spreads(tensions, hook_terms))))
             scenarios = scenarios + [dense[k] for k in sorted(worst) if dense[k] not in scenarios]
             sections = sections.add(np.repeat(xs, 2), np.tile([False, True], len(xs)))
         raise SolverFailed(
@@ -431,16 +434,23 @@ class StrengthEvaluator:
         return section_ratios(ctx.loads, ctx.envelopes, points, sections, states, tensions, hook)
 
     @staticmethod
-    def _dense_spread(tensions, hook):
-        """Worst spread [t] and (lowest, highest) tension over dense states (hook errors exact)."""
+    def _state_spreads(tensions, hook):
+        """Each dense state's spread [t], (k,): max - min tension, with hook errors the largest
+        T_i - T_j + |dT_i/dH - dT_j/dH| delta over pairs (exact for independent errors)."""
         if hook is None:
-            return float(np.ptp(tensions, axis=1).max()), (float(tensions.min()), float(tensions.max()))
+            return np.ptp(tensions, axis=1)
         gain, delta = hook
-        margin = np.abs(gain) @ delta
         n = tensions.shape[1]
         first, second = np.nonzero(~np.eye(n, dtype=bool))
         pair = tensions[:, first] - tensions[:, second] + np.abs(gain[:, first] - gain[:, second]) @ delta
-        return float(pair.max()), (float((tensions - margin).min()), float((tensions + margin).max()))
+        return pair.max(axis=1)
+
+    @classmethod
+    def _dense_spread(cls, tensions, hook):
+        """Worst spread [t] and (lowest, highest) tension over dense states (hook errors exact)."""
+        margin = 0.0 if hook is None else np.abs(hook[0]) @ hook[1]
+        spread = float(cls._state_spreads(tensions, hook).max())
+        return spread, (float((tensions - margin).min()), float((tensions + margin).max()))
 
 
 # -- over the candidates --------------------------------------------------------------------------
@@ -827,9 +837,14 @@ def plan_strength(problem, top=None):
     StrengthPlan
     """
     del top
+    started = time.perf_counter()
     context = StrengthContext(problem)
-    chosen, stats = search_strength(problem, objective_weights(problem), context)
-    limit = PARTNER_TIME if problem.time_limit is None else min(PARTNER_TIME, problem.time_limit)
+    # a time limit covers both searches: the plan's gets 80 % of it, the spread-optimal
+    # partner what is left (at least the other 20 %)
+    total = problem.time_limit
+    main_limit = None if total is None else MAIN_SHARE * total
+    chosen, stats = search_strength(problem, objective_weights(problem), context, time_limit=main_limit)
+    limit = PARTNER_TIME if total is None else min(PARTNER_TIME, total - (time.perf_counter() - started))
     partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
     # the spread plan's own peaks are reported in the same terms: evaluate it on the
     # strength weights with its tensions as found (its value under the strength objective)

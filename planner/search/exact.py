@@ -40,6 +40,8 @@ from liftplan.planner.search.screen import (
 #: Rows whose coarse screening bound is replaced by the full one at a time (256: fewer, larger
 #: calls; 4 of 100 candidates 21.9 -> 18.3 s, 8 of 16 5.4 -> 4.6 s against 64).
 REFINE = 256
+#: Rows in the first refinement batch under a time limit (its time sets the next batches').
+FIRST_REFINE = 8
 #: n >= 5: refine the preload-free pair bound to the LP's dual bound before a row is
 #: evaluated (False: the pair bound alone, as before; studies/planner_scale.py compares).
 DUAL_BOUND = True
@@ -133,6 +135,18 @@ def search_exact(problem, started, top, progress=None):
         ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
         del ranking[top:]
 
+    per_row = None  # seconds to refine one row's bound, once measured
+
+    def batch_size():
+        """Rows to refine at once: :data:`REFINE`, fewer where the time limit would not hold
+        them (the first batch under a time limit is small, to measure the rate)."""
+        if problem.time_limit is None:
+            return REFINE
+        if per_row is None:
+            return min(REFINE, FIRST_REFINE)
+        left = problem.time_limit - (time.perf_counter() - started)
+        return max(1, min(REFINE, int(left / per_row)))
+
     try:
         while heap:
             if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
@@ -142,22 +156,26 @@ def search_exact(problem, started, top, progress=None):
                 if problem.gap > 0 and best - low <= problem.gap * best:
                     stopped = "gap"
                     break
-                if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
-                    stopped = "time_limit"
-                    break
                 if problem.work_limit is not None and evaluated >= problem.work_limit:
                     stopped = "work_limit"  # rows evaluated: the same on any machine
                     break
+            if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
+                stopped = "time_limit"  # with no plan yet: none found in time (said so below)
+                break
             value, coarse, k = heapq.heappop(heap)
             if done[k]:
                 continue
             if coarse:
                 batch = [k] + [
-                    heapq.heappop(heap)[2] for _ in range(min(REFINE - 1, len(heap))) if heap and heap[0][1]
+                    heapq.heappop(heap)[2]
+                    for _ in range(min(batch_size() - 1, len(heap)))
+                    if heap and heap[0][1]
                 ]
                 # a bound past the k-th best found need not be tightened further
                 target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
+                clock = time.perf_counter()
                 full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual, target=target)
+                per_row = (time.perf_counter() - clock) / len(batch)
                 refine_count += len(batch)
                 dive = None
                 for j, new_bound, reason in zip(batch, full.bound, full.reason):

@@ -1,0 +1,68 @@
+"""Issue 24 item 5: limits honoured and the failures of the combined runs fixed.
+
+- ``objective = "bending"`` under hoist control with a hook tolerance crashed on numpy 2
+  (``float()`` of a one-element array in the hook errors' term at a curve's peak).
+- ``time_limit`` covers the whole search: the exact search stops before a refinement batch
+  it cannot finish (none found in time is said so), the rope-length search gives each trial
+  what is left, not the whole limit again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from support.planning import larger_fleet
+from support.strength import small_problem
+
+from liftplan.model.errors import PlanInfeasible
+from liftplan.planner import plan
+from liftplan.planner.problem.file import loads_problem
+from liftplan.planner.search.strength import GirderLoads, Sections, State, exact_peaks, section_rows
+
+
+def test_the_hook_errors_term_at_a_peak_is_a_number():
+    """The crash site: exact_peaks with hook errors, against the term by hand at the peak."""
+    problem = small_problem(control="hoist", cranes=4)
+    loads = GirderLoads(problem.body)
+    envelopes = (problem.strength.bending_moment, problem.strength.shear_force)
+    points = problem.points[[0, 3, 6, 9]]
+    rng = np.random.default_rng(5)
+    tensions = np.full((2, 4), problem.body.weight / 4) + rng.normal(0.0, 5.0, (2, 4))
+    states = [State((0.0, 0.0, 1.0)), State((0.02, -0.01, 0.9997))]
+    gain = rng.normal(0.0, 300.0, (2, 4, 4))  # dT/dH  [t/m]
+    delta = np.full(4, 0.02)
+    plain, _ = exact_peaks(loads, envelopes, points, tensions, states)
+    with_hook, _ = exact_peaks(loads, envelopes, points, tensions, states, (gain, delta))
+    for which in (0, 1):
+        peak = with_hook[which]
+        section = Sections(np.array([peak.x]), np.array([True]))
+        g = section_rows(loads, points, section, states[peak.state])[2 * which]
+        extra = float((np.abs(g @ gain[peak.state]) @ delta)[0])
+        alone = exact_peaks(loads, envelopes, points, tensions[[peak.state]], [states[peak.state]])[0]
+        assert isinstance(peak.value, float) and peak.value == pytest.approx(alone[which].value + extra)
+        assert peak.ratio >= plain[which].ratio
+
+
+@pytest.mark.slow  # 20-40 s: the whole strength plan (the test above covers the crash site)
+def test_bending_under_hoist_control_with_hook_tolerance_plans():
+    problem = small_problem(control="hoist", cranes=4, plan_extra="hook_tolerance = 0.02")
+    result = plan(problem)
+    assert result.kind == "strength" and problem.hook_tolerance == 0.02
+    zero = plan(dataclasses.replace(problem, hook_tolerance=0.0))
+    # the hook errors can only make the girder's worst larger
+    assert result.chosen.bending.ratio >= zero.chosen.bending.ratio - 1e-9
+
+
+def test_a_six_crane_fleet_stops_at_its_time_limit_and_says_none_was_found():
+    problem = dataclasses.replace(loads_problem(larger_fleet(6)), time_limit=1e-6)
+    with pytest.raises(PlanInfeasible, match=r"found within the time limit 1e-06 s"):
+        plan(problem)
+
+
+def test_rope_length_trials_share_one_time_limit():
+    text = larger_fleet(4).replace("rope_length = 30.0", "rope_length = { min = 28.0, max = 32.0 }")
+    problem = dataclasses.replace(loads_problem(text), hook_tolerance=0.0, time_limit=1e-6)
+    with pytest.raises(PlanInfeasible, match=r"no length set tried within the time limit 1e-06 s"):
+        plan(problem)
