@@ -635,6 +635,26 @@ def loads_problem(text: str, base: str | os.PathLike[str] | None = None) -> Plan
     return problem_from_dict(parse_toml(text), base=base)
 
 
+#: Scene tables a planning file refuses, each with why and what to do instead (docs/planning.md
+#: "What the planner does not plan").
+NOT_PLANNED = {
+    "hull": (
+        "the planner plans on a rigid hull in air; expected [hull] (its geometry, EI, GJ) in a "
+        "scene: solve the plan's written scene (plan_scene.toml, --report DIR) with [hull] added "
+        "to see whether the flexible hull changes its tensions by more than 1 %"
+    ),
+    "water": (
+        "the planner plans the lift clear of the water; expected the case in water as "
+        "plan.breakout_scene (a scene with [hull], [water] and [ground]: the breakout loads "
+        "enter the plan's design loads) and `liftplan lift` of that scene for the whole lift"
+    ),
+    "ground": (
+        "the planner plans the lift clear of the seabed; expected [ground] in the scene that "
+        "plan.breakout_scene names"
+    ),
+}
+
+
 def problem_from_dict(raw, base=None):
     """Validate a planning scene given as the dict its TOML file parses to (``base``: see
     :func:`loads_problem`)."""
@@ -643,6 +663,9 @@ def problem_from_dict(raw, base=None):
             "[[lugs]]: a scene with fixed lugs; expected [[candidates]] and [plan] for "
             "planning (use `liftplan solve` for a fixed scene)"
         )
+    for table, reason in NOT_PLANNED.items():
+        if table in raw:
+            raise InvalidScene(f"[{table}]: not in a planning file; {reason}")
     try:
         data = _PlanFile.model_validate(raw)
     except ValidationError as err:

@@ -13,10 +13,10 @@ import dataclasses
 
 import numpy as np
 import pytest
-from support.planning import larger_fleet
+from support.planning import EXAMPLES, larger_fleet
 from support.strength import small_problem
 
-from liftplan.model.errors import PlanInfeasible
+from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.planner import plan
 from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.search.strength import GirderLoads, Sections, State, exact_peaks, section_rows
@@ -66,3 +66,17 @@ def test_rope_length_trials_share_one_time_limit():
     problem = dataclasses.replace(loads_problem(text), hook_tolerance=0.0, time_limit=1e-6)
     with pytest.raises(PlanInfeasible, match=r"no length set tried within the time limit 1e-06 s"):
         plan(problem)
+
+
+@pytest.mark.parametrize(
+    ("table", "said"),
+    [
+        ("[hull]\nEI = 1.0e9\n", r"\[hull\]: not in a planning file; the planner plans on a rigid hull"),
+        ("[water]\nlevel = 10.0\n", r"\[water\]: not in a planning file; the planner plans the lift clear"),
+        ("[ground]\nz = 0.0\n", r"\[ground\]: not in a planning file"),
+    ],
+)
+def test_scene_tables_in_a_planning_file_are_refused_with_the_reason(table, said):
+    text = (EXAMPLES / "tanker_plan.toml").read_text(encoding="utf-8") + "\n" + table
+    with pytest.raises(InvalidScene, match=said):
+        loads_problem(text)

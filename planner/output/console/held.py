@@ -77,7 +77,10 @@ def plan_table(plan):
             )
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
-    lines += girder_lines(plan, plan.girder, "over the box, the CG envelope and the hook errors")
+    over = "over the box, the CG envelope and the hook errors"
+    if problem.breakout is not None:  # docs/planning.md "What the planner does not plan"
+        over += " (not the breakout state: the seabed's hold is not in the planner's girder)"
+    lines += girder_lines(plan, plan.girder, over)
     if not chosen.converged:
         lines.append(
             f"WARNING: the worst-case search still exceeded the LP bound by "
