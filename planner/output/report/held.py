@@ -412,9 +412,15 @@ def _figures(plan):
     return ["<h2>4 Figures</h2>", *figs]
 
 
+def _girder_cell(worst):
+    ratio = max(w.ratio for w in worst)
+    return f"{100 * ratio:.1f}" + (" FAIL" if ratio > 1.0 else "")
+
+
 def _alternatives(plan):
     """5: the ranking of lug sets."""
     unequal = not plan.problem.equal_cranes
+    girder = bool(plan.girder)
     ranking = _table(
         [
             "rank",
@@ -427,6 +433,7 @@ def _alternatives(plan):
             "highest in-box load / SWL [%]",
             "design utilisation [%]",
             "design checks",
+            *(["hull girder: worst |M| or |Q| / allowable [%]"] if girder else []),
             "boom heights H [m]",
         ],
         [
@@ -442,12 +449,14 @@ def _alternatives(plan):
                 f"{100 * r.max_utilisation:.1f}",
                 "n/a" if d.chain is None else f"{100 * d.max_utilisation:.1f}",
                 "ok" if d.ok else "FAIL",
+                *([_girder_cell(g)] if girder else []),
                 " ".join(f"{h:.3f}" for h in r.boom_heights),
             )
-            for k, (r, d) in enumerate(zip(plan.ranking, plan.ranked_design))
+            for k, (r, d, g) in enumerate(zip(plan.ranking, plan.ranked_design, plan.ranked_girder))
         ],
         f"Ranking of lug sets (the best {len(plan.ranking)} of {plan.stats.sets}; rank 1 is the "
-        "recommendation)",
+        "recommendation"
+        + ("; the sets that overload the hull girder are ranked after those that do not)" if girder else ")"),
         text_columns=(1,),
     )
     return ["<h2>5 Alternatives</h2>", ranking]
@@ -595,6 +604,11 @@ def _appendix(plan):
             ("lug sets", stats.sets, "-"),
             ("(set, crane assignment) pairs in reach", stats.rows, "-"),
             ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
+            (
+                f"pairs with two booms crossing or within {plan.problem.crane_clearance:g} m in plan",
+                stats.clashing,
+                "-",
+            ),
             *(
                 (
                     ("the MIP's cutting-plane rounds (no set enumerated)", stats.refined, "-"),

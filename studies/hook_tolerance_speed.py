@@ -1,0 +1,140 @@
+"""What the hook-height tolerance costs the search: each plan with and without it, one run.
+
+Issue 24 item 4 asks that the hook tolerance not multiply the search. Each case below is
+planned twice in the same run, ``[plan] hook_tolerance = 0.02`` m and 0, everything else
+equal, and the ratio of the wall times is the figure of merit (seconds depend on the machine
+and its load; the ratio much less). The targets the issue sets:
+
+* tanker, 16 candidates, CG box: 5, 6 and 8 equal cranes, each within 2x without;
+* a six-crane mixed fleet with charts, the CG box and hull allowables (the tanker fleet plus
+  two cranes): within 20 s; eight unequal cranes within 60 s;
+* the MIP proves the tanker's 4 of 16 with its 0.02 m.
+
+Each plan runs in its own process with ``plan.time_limit = LIMIT`` s: a case that reaches it
+is recorded with its stop reason (``time_limit``) and its honest gap, not waited for.
+
+Run:  python studies/hook_tolerance_speed.py            (studies/out/hook_tolerance_speed.json, .md)
+      python studies/hook_tolerance_speed.py --quick    (the 5-crane and the MIP cases only)
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import multiprocessing
+import platform
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).parent
+OUT = HERE / "out"
+ROOT = HERE.parent
+#: Time limit of every plan  [s].
+LIMIT = 300.0
+
+
+def _problem(case, hook):
+    """The planning problem of a case with the hook tolerance ``hook`` [m]."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from support.planning import fleet_with_girder, larger_fleet
+
+    from liftplan.planner import load_problem
+    from liftplan.planner.problem.file import loads_problem
+
+    kind, count = case
+    if kind == "equal":
+        problem = dataclasses.replace(
+            load_problem(ROOT / "examples" / "tanker_plan.toml"), cranes=count, fleet=()
+        )
+    elif kind == "mip":
+        problem = dataclasses.replace(load_problem(ROOT / "examples" / "tanker_plan.toml"), search="mip")
+    else:  # the tanker fleet with her girder's allowables, plus extra cranes
+        problem = loads_problem(larger_fleet(count, fleet_with_girder()))
+    return dataclasses.replace(problem, hook_tolerance=hook, time_limit=LIMIT)
+
+
+def _run(case, hook, queue):
+    from liftplan.planner import plan
+
+    problem = _problem(case, hook)
+    started = time.perf_counter()
+    try:
+        result = plan(problem)
+    except Exception as err:  # recorded, not raised: the study goes on
+        queue.put({"seconds": time.perf_counter() - started, "error": f"{type(err).__name__}: {err}"})
+        return
+    stats = result.stats
+    queue.put(
+        {
+            "seconds": time.perf_counter() - started,
+            "stopped": stats.stopped,
+            "relative_gap": stats.relative_gap,
+            "evaluated": stats.evaluated,
+            "lugs": list(result.chosen.lugs),
+            "worst": result.chosen.worst_value,
+        }
+    )
+
+
+def measure(case, hook):
+    """One plan in a fresh process (no cache shared between the two runs of a case)."""
+    queue = multiprocessing.get_context("spawn").Queue()
+    process = multiprocessing.get_context("spawn").Process(target=_run, args=(case, hook, queue))
+    process.start()
+    out = queue.get()
+    process.join()
+    return out
+
+
+CASES = [("equal", 5), ("equal", 6), ("equal", 8), ("fleet", 6), ("fleet", 8), ("mip", 4)]
+NAMES = {
+    "equal": "tanker, {n} equal cranes of 16, CG box",
+    "fleet": "tanker fleet + {m}, {n} unequal charted cranes, CG box, girder",
+    "mip": "tanker 4 of 16, CG box, search = mip",
+}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="the 5-crane and MIP cases only")
+    args = parser.parse_args()
+    cases = [c for c in CASES if not args.quick or c in (("equal", 5), ("mip", 4))]
+    rows = []
+    for case in cases:
+        without, with_hook = measure(case, 0.0), measure(case, 0.02)
+        name = NAMES[case[0]].format(n=case[1], m=case[1] - 4)
+        rows.append({"case": name, "without": without, "with": with_hook})
+        ratio = with_hook["seconds"] / without["seconds"]
+        print(
+            f"{name}: {without['seconds']:.1f} s -> {with_hook['seconds']:.1f} s ({ratio:.1f}x)",
+            file=sys.stderr,
+        )
+    OUT.mkdir(exist_ok=True)
+    meta = {
+        "date": time.strftime("%Y-%m-%d"),
+        "machine": platform.machine(),
+        "cpus": multiprocessing.cpu_count(),
+    }
+    (OUT / "hook_tolerance_speed.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=1) + "\n")
+    lines = [
+        f"Command: `python studies/hook_tolerance_speed.py`; {meta['date']}, {meta['cpus']} cores "
+        f"{meta['machine']}; every plan with time_limit {LIMIT:g} s.",
+        "",
+        "| case | without [s] | with 0.02 m [s] | ratio | stopped (with) | gap (with) |",
+        "|---|---|---|---|---|---|",
+    ]
+    for row in rows:
+        a, b = row["without"], row["with"]
+        stop = b.get("stopped", b.get("error", ""))
+        gap = b.get("relative_gap")
+        lines.append(
+            f"| {row['case']} | {a['seconds']:.1f} | {b['seconds']:.1f} | {b['seconds'] / a['seconds']:.1f}x "
+            f"| {stop} | {'' if gap is None else f'{100 * gap:.1f} %'} |"
+        )
+    (OUT / "hook_tolerance_speed.md").write_text("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
