@@ -27,6 +27,7 @@ TITLES = {
     "roll": "roll of the body on its slings",
     "bending_moment": "bending moment within the allowable",
     "shear_force": "shear force within the allowable",
+    "girder_states": "hull girder found at every state",
     "crane_clearance": "crane booms clear of each other in plan",
 }
 

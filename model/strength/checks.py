@@ -5,6 +5,37 @@ from __future__ import annotations
 from liftplan.model.checks import Check
 from liftplan.model.strength.girder import hull_girder
 
+#: (check name, what the value is, unit, the GirderForces curve) of the two quantities.
+QUANTITIES = (
+    ("bending_moment", "|M|", "t m", "moment_curve"),
+    ("shear_force", "|Q|", "t", "shear_curve"),
+)
+
+
+def worst_ratios(strength, girder):
+    """Where |M| / allowable and |Q| / allowable are largest along the body, exactly.
+
+    Parameters
+    ----------
+    strength : Strength
+        The allowable envelopes (``[strength]``); a quantity without one is left out.
+    girder : GirderForces
+        A solved state's curves (:func:`~liftplan.model.strength.hull_girder`).
+
+    Returns
+    -------
+    list of (str, float, float, float)
+        (check name, x [m], |value| [t m or t], allowable there [t m or t]) per envelope
+        given, bending first (:meth:`~liftplan.model.strength.piecewise.Piecewise.worst_ratio`).
+    """
+    out = []
+    for name, _, _, curve in QUANTITIES:
+        envelope = getattr(strength, name)
+        if envelope is not None:
+            x, value, limit = getattr(girder, curve).worst_ratio(envelope)
+            out.append((name, float(x), float(value), float(limit)))
+    return out
+
 
 def strength_checks(scene, eq, girder=None):
     """The bending-moment and shear-force checks of a solved state, at the worst ratio point.
@@ -22,22 +53,16 @@ def strength_checks(scene, eq, girder=None):
     list of Check
         ``Check.upper("bending_moment", "x = 40.2 m", |M|, allowable, "t m")`` and the same for
         ``"shear_force"`` (t), each where |value| / allowable(x) is largest along the body
-        (found exactly, :meth:`~liftplan.model.strength.piecewise.Piecewise.worst_ratio`).
+        (found exactly, :func:`worst_ratios`).
     """
     if scene.strength is None or scene.body.weight_curve is None:
         return []
     if girder is None:
         girder = hull_girder(scene, eq)
+    symbols = {name: (what, unit) for name, what, unit, _ in QUANTITIES}
     checks = []
-    for name, curve, unit in (
-        ("bending_moment", girder.moment_curve, "t m"),
-        ("shear_force", girder.shear_curve, "t"),
-    ):
-        envelope = getattr(scene.strength, name)
-        if envelope is None:
-            continue
-        x, value, limit = curve.worst_ratio(envelope)
-        what = "|M|" if name == "bending_moment" else "|Q|"
+    for name, x, value, limit in worst_ratios(scene.strength, girder):
+        what, unit = symbols[name]
         checks.append(
             Check.upper(
                 name,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from liftplan.model.frames import zup_to_choi
 from liftplan.planner.problem.objectives import OBJECTIVES
 
@@ -44,3 +46,18 @@ class InFileFrame:
         """A z-up body-frame point or vector in the planning file's frame  [m]."""
         vector = tuple(float(v) for v in vector)
         return tuple(float(v) for v in zup_to_choi(vector)) if self.frame == "choi" else vector
+
+    def cog_at(self, scenario):
+        """The CG position of a scenario (nominal CG + its offset) in the file's frame  [m]."""
+        cog = np.asarray(self.problem.body.cog) + np.asarray(scenario.cog_offset)
+        return self.in_file_frame(cog)
+
+    def scenario_json(self, scenario):
+        """A scenario as JSON: heel, trim [deg], CG offset and CG position [m] in the file's frame."""
+        return {
+            "heel": scenario.heel,
+            "trim": scenario.trim,
+            "cog_offset": list(self.in_file_frame(scenario.cog_offset)),
+            "cog": list(self.cog_at(scenario)),
+            "frame": self.frame,
+        }

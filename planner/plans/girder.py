@@ -12,15 +12,26 @@ every check).
 
 The loads are those of :mod:`liftplan.model.strength.girder`, which ``liftplan solve`` uses:
 the same numbers come from solving the plan's written scene at the worst state.
+
+Sling plans, whose legs pull the lugs along their lines, solve their rigging scene at each
+state they hold instead (:attr:`~.slings.lift.SlingLift.hung`); each solved state gives
+its :class:`GirderWorst` by :func:`solved_worst` (:func:`~liftplan.model.strength.hull_girder`
+and the exact worst ratio along the body), :func:`worst_of` keeps the largest. A state with
+the CG moved carries its weight curve moved with it (:func:`moved_body`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from liftplan.model.checks import Check
+from liftplan.model.errors import InvalidScene
+from liftplan.model.strength import hull_girder
+from liftplan.model.strength.checks import QUANTITIES as CURVES
+from liftplan.model.strength.checks import worst_ratios
 from liftplan.model.strength.girder import attitude_matrix
 from liftplan.planner.search.scenarios import Scenario
 from liftplan.planner.search.strength import (
@@ -36,7 +47,7 @@ from liftplan.planner.search.strength import (
 EXACT_STATES = 3
 
 #: (check name, what the value is, unit) of the two quantities, bending first.
-QUANTITIES = (("bending_moment", "|M|", "t m"), ("shear_force", "|Q|", "t"))
+QUANTITIES = tuple(q[:3] for q in CURVES)
 
 
 @dataclass(frozen=True)
@@ -53,7 +64,8 @@ class GirderWorst:
     x : float  [m]
         The section, body frame (the file's x: the same axis in both frames).
     scenario : Scenario
-        The state: heel, trim [deg] and CG offset [m] (body frame, z up).
+        The state: heel, trim [deg] and CG offset [m] (body frame, z up); a sling plan's
+        :class:`~.slings.lift.HungState` also says how its hooks were set.
     """
 
     name: str
@@ -160,3 +172,90 @@ def girder_json(worst, scenario_json):
         }
         for w in worst
     ]
+
+
+def moved_body(body, offset):
+    """The body with its CG moved by ``offset`` and its weight curve moved with it.
+
+    The curve gains the linear term 12 W dx (x - x_mid) / L^3, which keeps its integral and
+    moves its centroid by dx: the correction :func:`~liftplan.model.strength.hull_girder` and
+    the planner's girder both apply to a curve whose centroid is off the CG, made explicit so
+    that the body's check (centroid within 0.05 m of the CG) accepts it.
+
+    Parameters
+    ----------
+    body : Body
+        Weight W [t], CG [m] (body frame, z up) and weight curve (over x_0..x_1, L = x_1 - x_0)
+        or None.
+    offset : (3,)  [m]
+        The CG offset, body frame (z up); dx is its x.
+
+    Returns
+    -------
+    Body
+
+    Raises
+    ------
+    InvalidScene
+        The moved curve would go below 0 t/m at one of its points (a curve near 0 t/m at an end
+        and a CG offset large for the body's length): it is not a weight curve any more.
+    """
+    cog = tuple(float(c + d) for c, d in zip(body.cog, offset))
+    if body.weight_curve is None:
+        return dataclasses.replace(body, cog=cog)
+    x, w = body.weight_curve_arrays
+    length, middle = x[-1] - x[0], 0.5 * (x[0] + x[-1])
+    moved = w + 12.0 * body.weight * float(offset[0]) * (x - middle) / length**3
+    if moved.min() < 0.0:
+        at = int(np.argmin(moved))
+        raise InvalidScene(
+            f"body.weight_curve: moved with the CG by {offset[0]:+g} m in x (plan.cog_tolerance) it "
+            f"is {moved[at]:.3g} t/m at x = {x[at]:g} m; expected >= 0 (the linear term "
+            "12 W dx (x - x_mid) / L^3 that moves its centroid); a smaller x tolerance or a "
+            "curve with weight at its ends"
+        )
+    return dataclasses.replace(body, cog=cog, weight_curve=tuple(zip(x.tolist(), moved.tolist())))
+
+
+def solved_worst(scene, eq, scenario):
+    """The largest |M| / allowable and |Q| / allowable of one solved state.
+
+    Parameters
+    ----------
+    scene : Scene
+        With ``body.weight_curve`` and ``strength``, posed as solved.
+    eq : Equilibrium
+        Its solve.
+    scenario : Scenario
+        What the state is, kept in the result.
+
+    Returns
+    -------
+    tuple of GirderWorst
+        One per envelope given, bending first, each at its exact worst ratio along the body.
+    """
+    girder = hull_girder(scene, eq)
+    return tuple(
+        GirderWorst(name=name, value=value, allowable=limit, x=x, scenario=scenario)
+        for name, x, value, limit in worst_ratios(scene.strength, girder)
+    )
+
+
+def worst_of(per_state):
+    """The largest ratio of each quantity over many states' :class:`GirderWorst` tuples.
+
+    Parameters
+    ----------
+    per_state : iterable of tuple of GirderWorst
+
+    Returns
+    -------
+    tuple of GirderWorst
+        Bending first; the first state kept on a tie.
+    """
+    best = {}
+    for worst in per_state:
+        for w in worst:
+            if w.name not in best or w.ratio > best[w.name].ratio:
+                best[w.name] = w
+    return tuple(best[name] for name, _, _ in QUANTITIES if name in best)

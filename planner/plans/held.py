@@ -278,21 +278,6 @@ class Plan(InFileFrame):
             frame=self.frame,
         )
 
-    def cog_at(self, scenario):
-        """The CG position of a scenario (nominal CG + its offset) in the file's frame  [m]."""
-        cog = np.asarray(self.problem.body.cog) + np.asarray(scenario.cog_offset)
-        return self.in_file_frame(cog)
-
-    def scenario_json(self, scenario):
-        """A scenario as JSON: heel, trim [deg], CG offset and CG position [m] in the file's frame."""
-        return {
-            "heel": scenario.heel,
-            "trim": scenario.trim,
-            "cog_offset": list(self.in_file_frame(scenario.cog_offset)),
-            "cog": list(self.cog_at(scenario)),
-            "frame": self.frame,
-        }
-
     # -- checks to hand over ------------------------------------------------------------
     @cached_property
     def _twist_gain(self):

@@ -20,7 +20,7 @@ from support.planning import fleet_with_girder
 from liftplan.model import solve
 from liftplan.model.strength import strength_checks
 from liftplan.planner import plan
-from liftplan.planner.plans.girder import girder_worst
+from liftplan.planner.plans.girder import girder_worst, moved_body
 from liftplan.planner.problem.file import loads_problem
 
 
@@ -28,18 +28,6 @@ from liftplan.planner.problem.file import loads_problem
 def fleet_plan():
     problem = loads_problem(fleet_with_girder())
     return plan(dataclasses.replace(problem, hook_tolerance=0.0))
-
-
-def _moved(body, offset):
-    """The body with its CG moved by ``offset`` and its weight curve with it: the curve plus
-    the linear term 12 W dx (x - x_mid) / L^3, which moves its centroid by dx and keeps its
-    integral (the correction the planner and ``solve`` both apply, made explicit so that the
-    scene reader's centroid check accepts it)."""
-    x, w = body.weight_curve_arrays
-    length, middle = x[-1] - x[0], 0.5 * (x[0] + x[-1])
-    w = w + 12.0 * body.weight * offset[0] * (x - middle) / length**3
-    cog = tuple(np.asarray(body.cog) + np.asarray(offset))
-    return dataclasses.replace(body, cog=cog, weight_curve=tuple(zip(x.tolist(), w.tolist())))
 
 
 def _solved_checks(result, worst):
@@ -50,7 +38,7 @@ def _solved_checks(result, worst):
     shift = result.lugset.hook_shifts(result.chosen.preload, [s])[0]
     scene = dataclasses.replace(
         scene,
-        body=_moved(scene.body, s.cog_offset),
+        body=moved_body(scene.body, s.cog_offset),
         cranes=tuple(
             dataclasses.replace(c, boom_height=c.boom_height + float(d)) for c, d in zip(scene.cranes, shift)
         ),

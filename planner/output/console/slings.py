@@ -3,13 +3,15 @@
 Two cranes (:class:`~liftplan.planner.plans.slings.SlingPlan`) or three and more, on body-fixed apexes
 or hooks hinged about their pairs (:class:`~liftplan.planner.plans.slings.apex.ApexSlingPlan`): per
 crane its lugs, radius, chart SWL, hook loads and the rules' design hook load; per lug its leg's
-sling angle and tension, and the lug's design load from the rules' chain.
+sling angle and tension, and the lug's design load from the rules' chain; with a weight curve
+and ``[strength]`` the hull girder's worst |M| and |Q| and the state where the body hung.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from liftplan.planner.output.console.held import girder_lines
 from liftplan.planner.output.console.text import fold, grouped
 
 OBJECTIVES = {
@@ -118,6 +120,7 @@ def sling_table(plan):
             f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
             f"({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m",
         ]
+    lines += girder_lines(plan, plan.girder, plan.girder_over)
     unit, scale = ("[t]", 1.0) if plan.objective == "spread" else ("[%]", 100.0)
     lines += ["", f"{'rank':<6}{'worst ' + unit:>12}  slings (crane)"]
     for k, slings, value in _ranking(plan):

@@ -55,6 +55,7 @@ from liftplan.planner.plans.slings.rigs import crane_rigs
 from liftplan.planner.problem.definition import Candidate
 from liftplan.planner.search.evaluator import Interrupted
 from liftplan.planner.search.methods import search
+from liftplan.planner.search.scenarios import Scenario
 
 #: Heel x trim points per axis of the grid the leg tensions are taken over (with the CG vertices).
 LEG_GRID = 9
@@ -320,9 +321,7 @@ class ApexSlingPlan(SlingLift):
         the box grid: each sling's statics under its hook load along the world vertical, the
         hook where the rig puts it at that attitude."""
         problem = self.problem
-        heel = np.linspace(-problem.heel_tolerance, problem.heel_tolerance, LEG_GRID)
-        trim = np.linspace(-problem.trim_tolerance, problem.trim_tolerance, LEG_GRID)
-        hh, tt = (v.ravel() for v in np.meshgrid(heel, trim, indexing="ij"))
+        hh, tt = self._box_grid
         offsets = problem.cog_envelope.offsets()
         shares = np.vstack([self.inner.tensions_at(hh, tt, tuple(o)) for o in offsets])[:, self._order]
         rots = [rotation_matrix(h, t, problem.yaw) for h, t in zip(hh, tt)] * len(offsets)
@@ -343,6 +342,39 @@ class ApexSlingPlan(SlingLift):
             worst.append(grid.max(axis=0) * ratio)
             least.append(float(grid.min()))
         return tuple(level), tuple(worst), least, tuple(tops)
+
+    @cached_property
+    def _box_grid(self):
+        """Heel and trim [deg] of the :data:`LEG_GRID` x :data:`LEG_GRID` grid over the
+        tolerance box, flattened (heel major)."""
+        problem = self.problem
+        heel = np.linspace(-problem.heel_tolerance, problem.heel_tolerance, LEG_GRID)
+        trim = np.linspace(-problem.trim_tolerance, problem.trim_tolerance, LEG_GRID)
+        return tuple(v.ravel() for v in np.meshgrid(heel, trim, indexing="ij"))
+
+    @property
+    def held_poses(self):
+        """(CG offset [m], boom shifts [m]) of every state the worst legs are taken over: each
+        vertex of the CG envelope at each attitude of the box grid, the hooks moved as the
+        held-preload search moves them to bring the body there (the level preload held,
+        :meth:`~liftplan.planner.search.scenarios.LugSet.hook_shifts`). The rigging model's
+        free hooks and elastic legs hang the body near, not exactly at, that attitude: each
+        :class:`~.lift.HungState` carries the solved heel and trim."""
+        inner = self.inner
+        offsets = [tuple(float(v) for v in o) for o in self.problem.cog_envelope.offsets()]
+        scenarios = [Scenario(float(h), float(t), o) for o in offsets for h, t in zip(*self._box_grid)]
+        shifts = inner.lugset.hook_shifts(np.asarray(inner.chosen.preload, dtype=float), scenarios)
+        return [(s.cog_offset, row) for s, row in zip(scenarios, shifts[:, self._order])]
+
+    @property
+    def girder_over(self):
+        """The states of the girder's worst, in words."""
+        errors = (
+            "; hook height errors not included"
+            if len(self.problem.fleet) > 3 and self.inner.lugset.hook_uncertain
+            else ""
+        )
+        return f"over the tolerance box and the CG envelope (rigging model){errors}"
 
     def sling_legs(self, c, load, rot):
         """Crane c's lug legs (and a spreader's top legs, else None) under a vertical hook load

@@ -6,24 +6,34 @@ body frame), radius and chart SWL, hook loads and leg tensions. From those this 
 builds the labels, the rules' design-load chain per crane and per lug (the leg's sling angle
 in the lug's design load; a spreader bar's weight as rigging on its hook), the checks, the
 rigging scene that ``liftplan solve`` re-checks, and the contract's JSON keys.
+
+With a weight curve and ``[strength]`` the hull girder is checked too: the rigging scene is
+solved at every state the plan holds (:attr:`SlingLift.hung`, the states each subclass names in
+``held_poses``), where the legs pull the lugs along their lines, and the largest |M| and |Q|
+against the allowables over those states become the plan's ``bending_moment`` and
+``shear_force`` checks (:mod:`liftplan.planner.plans.girder`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from liftplan.model.checks import Check
-from liftplan.model.errors import InvalidScene
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
-from liftplan.model.scene.objects import Analysis, Attitude, Body, Crane, Lug, Scene
+from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
 from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner.plans.common import InFileFrame, contract_json
+from liftplan.planner.plans.girder import applies as girder_applies
+from liftplan.planner.plans.girder import girder_json, moved_body, solved_worst, worst_of
+from liftplan.planner.search.scenarios import Scenario
 
 
 def bar_weight(crane):
@@ -41,6 +51,52 @@ def rules_with_bars(problem):
     return dataclasses.replace(rules, rigging_weight=weights)
 
 
+@dataclass(frozen=True)
+class HungState(Scenario):
+    """A state a sling plan holds, as the rigging model hung the body there.
+
+    Parameters
+    ----------
+    heel, trim : float  [deg]
+        The solved pose's (where the body hung, not a target).
+    cog_offset : tuple of 3 float  [m]
+        From the nominal CG, body frame (z up).
+    boom_shifts : tuple of float  [m]
+        Each crane's boom tip (and so its hook) raised from the plan's, fleet order.
+    """
+
+    boom_shifts: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
+class Hung:
+    """One state of a sling plan solved on the rigging model.
+
+    Parameters
+    ----------
+    state : HungState
+        Its heel and trim the solved pose's (NaN when the solve failed).
+    scene : Scene
+        The plan's rigging scene posed so (:meth:`SlingLift.posed_scene`).
+    eq : Equilibrium or None
+        None when the rigging model did not solve it.
+    error : EquilibriumNotFound or None
+        Why it did not.
+    """
+
+    state: HungState
+    scene: object
+    eq: object = None
+    error: EquilibriumNotFound | None = None
+
+    @property
+    def solved(self):
+        """The Equilibrium; raises the solve's :class:`EquilibriumNotFound` when it failed."""
+        if self.error is not None:
+            raise self.error
+        return self.eq
+
+
 class SlingLift(InFileFrame):
     """Shared outputs of a sling plan; subclasses set ``problem`` and the per-crane arrays.
 
@@ -48,7 +104,9 @@ class SlingLift(InFileFrame):
     ``hook_radius``, ``hook_swl``, ``hook_nominal``, ``hook_worst`` (n,) [m, t, t, t],
     ``leg_angles``, ``legs_nominal``, ``legs_worst`` (tuples of (k,) arrays [deg, t, t]),
     ``top_legs``/``top_angles`` (per crane, None without a spreader), ``tilt_shares`` and
-    ``tilt_note`` (each crane's body share at the rules' tilt) and ``lift_text``.
+    ``tilt_note`` (each crane's body share at the rules' tilt), ``lift_text``, ``held_poses``
+    (the states the plan holds, to solve on the rigging model) and ``girder_over`` (those
+    states in words).
     """
 
     kind = "slings"
@@ -256,7 +314,96 @@ class SlingLift(InFileFrame):
                     note="rigging model hook load vs the plan's",
                 )
             )
+        return out + self._girder_checks()
+
+    # -- the hull girder -------------------------------------------------------------------------
+    @cached_property
+    def hung(self):
+        """Every state of ``held_poses`` solved on the rigging model (list of :class:`Hung`): a
+        failed solve is kept with its error, never with a number."""
+        return [self.hang(offset, shifts) for offset, shifts in self.held_poses]
+
+    def hang(self, cog_offset, boom_shifts):
+        """The plan's rigging scene posed (:meth:`posed_scene`) and solved.
+
+        Parameters
+        ----------
+        cog_offset : (3,)  [m]
+            From the nominal CG, body frame (z up).
+        boom_shifts : (n,)  [m]
+            Each crane's boom tip raised, fleet order.
+
+        Returns
+        -------
+        Hung
+            The solved pose's heel and trim in its state; the error when it did not solve.
+        """
+        offset = tuple(float(v) for v in cog_offset)
+        shifts = tuple(float(v) for v in boom_shifts)
+        scene = self.posed_scene(offset, shifts)
+        try:
+            eq = solve_rigging(scene)
+        except EquilibriumNotFound as err:
+            return Hung(HungState(float("nan"), float("nan"), offset, shifts), scene, error=err)
+        state = HungState(float(eq.pose.heel), float(eq.pose.trim), offset, shifts)
+        return Hung(state, scene, eq)
+
+    def posed_scene(self, cog_offset, boom_shifts):
+        """The rigging scene with the CG moved by ``cog_offset`` [m] and each crane's boom tip
+        raised by ``boom_shifts`` [m]; its weight curve moved with the CG
+        (:func:`~..girder.moved_body`) when the girder is checked, else left out with
+        ``[strength]`` (the rigging solve does not use them)."""
+        scene = self.scene
+        if not girder_applies(self.problem):
+            scene = dataclasses.replace(
+                scene, body=dataclasses.replace(scene.body, weight_curve=None), strength=None
+            )
+        cranes = tuple(
+            dataclasses.replace(
+                crane, boom_height=crane.boom_height + shift, tip=(*crane.tip[:2], crane.tip[2] + shift)
+            )
+            for crane, shift in zip(scene.cranes, boom_shifts)
+        )
+        return dataclasses.replace(scene, body=moved_body(scene.body, cog_offset), cranes=cranes)
+
+    @cached_property
+    def girder(self):
+        """The hull girder's largest |M| and |Q| against the allowables over the solved states
+        (:class:`~..girder.GirderWorst`, bending first; empty when not checked)."""
+        if not girder_applies(self.problem):
+            return ()
+        return worst_of(solved_worst(h.scene, h.eq, h.state) for h in self.hung if h.error is None)
+
+    def _girder_checks(self):
+        """The girder's checks, and a failed one when states did not solve (their girder unknown)."""
+        if not girder_applies(self.problem):
+            return []
+        out = [w.check(self.girder_over) for w in self.girder]
+        failed = [h for h in self.hung if h.error is not None]
+        if failed:
+            first = failed[0].state
+            out.append(
+                Check.upper(
+                    "girder_states",
+                    "rigging model",
+                    len(failed),
+                    0,
+                    "-",
+                    note=(
+                        f"{len(failed)} of {len(self.hung)} states not solved, their hull girder "
+                        f"unknown; first: CG offset {tuple(round(v, 3) for v in first.cog_offset)} m, "
+                        f"boom shifts {tuple(round(v, 4) for v in first.boom_shifts)} m: {failed[0].error}"
+                    ),
+                )
+            )
         return out
+
+    def scenario_json(self, scenario):
+        """A hung state as JSON: heel, trim [deg], CG offset and position [m] in the file's frame,
+        and each crane's boom shift [m]."""
+        return super().scenario_json(scenario) | {
+            "boom_shifts": dict(zip(self.crane_names, scenario.boom_shifts))
+        }
 
     # -- the rigging scene ---------------------------------------------------------------------
     @cached_property
@@ -296,7 +443,7 @@ class SlingLift(InFileFrame):
                 )
             )
         return Scene(
-            body=Body(problem.body.weight, problem.body.cog),
+            body=problem.body,
             lugs=tuple(lugs),
             cranes=tuple(cranes),
             attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
@@ -304,6 +451,7 @@ class SlingLift(InFileFrame):
             rigging=RiggingLimits(min_sling_angle=problem.min_sling_angle),
             name=f"{problem.name or 'plan'}: chosen slings",
             frame=problem.frame,
+            strength=problem.strength,
         )
 
     @cached_property
@@ -329,4 +477,5 @@ class SlingLift(InFileFrame):
                 if t is not None
             },
             "design_loads": design,
+            "girder": girder_json(self.girder, self.scenario_json),
         }

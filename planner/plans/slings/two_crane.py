@@ -34,7 +34,6 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene, PlanInfeasible
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import TiltGeometry, governing_tilt
-from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
 from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
 from liftplan.planner.plans.slings.rigs import crane_rigs, turned_hooks
@@ -387,34 +386,38 @@ class SlingPlan(SlingLift):
     def posed_legs(self):
         """Each lug leg's largest tension solved on the rigging model  [t] (per crane, (k,)).
 
-        The plan's rigging scene with the CG at each vertex of the CG envelope and the hooks
-        set for the tilt along the hook line at -tol, 0 and +tol: the body then rolls about
-        the hook line by gravity, as it hangs, and loads the low-side leg more (issue 29:
-        an equal split of the worst hook load at the level geometry was 4.4 % low). A pose
-        the rigging model does not solve raises :class:`EquilibriumNotFound`: no number is
-        given for it.
+        The plan's rigging scene at each of :attr:`held_poses` (:attr:`hung`): the body then
+        rolls about the hook line by gravity, as it hangs, and loads the low-side leg more
+        (issue 29: an equal split of the worst hook load at the level geometry was 4.4 % low).
+        A pose the rigging model does not solve raises its :class:`EquilibriumNotFound`: no
+        number is given for it.
         """
-        scene, problem = self.scene, self.problem
-        tilt = self.tolerances[0]
-        span = float(np.linalg.norm(self.chosen.apex[1, :2] - self.chosen.apex[0, :2]))
+        problem = self.problem
         out = [np.zeros(len(g)) for g in self.groups]
         keys = [[f"{name}/{problem.names[i]}" for i in g] for name, g in zip(self.crane_names, self.groups)]
-        for offset in problem.cog_envelope.offsets():
-            body = dataclasses.replace(scene.body, cog=tuple(float(v) for v in problem.body.cog + offset))
-            for angle in (-tilt, 0.0, tilt):
-                drop = 0.5 * span * np.tan(np.radians(angle))  # hook 2 down, hook 1 up
-                cranes = tuple(
-                    dataclasses.replace(
-                        crane,
-                        boom_height=crane.boom_height + shift,
-                        tip=(*crane.tip[:2], crane.tip[2] + shift),
-                    )
-                    for crane, shift in zip(scene.cranes, (drop, -drop))
-                )
-                eq = solve_rigging(dataclasses.replace(scene, body=body, cranes=cranes))
-                for c, names in enumerate(keys):
-                    out[c] = np.maximum(out[c], [eq.rigging.legs[k] for k in names])
+        for hung in self.hung:
+            legs = hung.solved.rigging.legs
+            for c, names in enumerate(keys):
+                out[c] = np.maximum(out[c], [legs[k] for k in names])
         return tuple(out)
+
+    @property
+    def held_poses(self):
+        """(CG offset [m], boom shifts [m]) of every state the plan holds: the CG at each vertex
+        of the CG envelope, the hooks set for the tilt along the hook line at -tol, 0 and +tol
+        (hook 1 raised and hook 2 lowered by half the span x tan(tilt))."""
+        tilt = self.tolerances[0]
+        for offset in self.problem.cog_envelope.offsets():
+            for angle in (-tilt, 0.0, tilt):
+                drop = 0.5 * self._span * np.tan(np.radians(angle))
+                yield offset, (drop, -drop)
+
+    @property
+    def _span(self):
+        """Horizontal distance between the two hooks  [m]."""
+        return float(np.linalg.norm(self.chosen.apex[1, :2] - self.chosen.apex[0, :2]))
+
+    girder_over = "over the CG envelope and the tilt along the hook line (rigging model)"
 
     @property
     def top_legs(self):
