@@ -495,6 +495,12 @@ class PlanProblem:
                 'expected objective = "strength"'
             )
         if self.objective not in STRENGTH_OBJECTIVES:
+            if self.strength is not None and self.body.weight_curve is None:
+                raise InvalidScene(
+                    "[strength]: given without body.weight_curve; the hull girder's |M| and |Q| need "
+                    "the weight along the body; expected body.weight_curve = [[x m, t/m], ...], or "
+                    "no [strength]"
+                )
             if controls[0] == "force":
                 raise InvalidScene(
                     f'cranes.control = "force" with plan.objective = {self.objective!r}; '

@@ -194,8 +194,14 @@ def test_moved_body_moves_the_centroid_and_keeps_the_weight():
 def test_allowables_without_a_weight_curve_are_refused():
     """[strength] with no body.weight_curve: refused with the reason, not ignored."""
     text = planning_text("block_sling_plan.toml", 0.4, TWO_CURVE).replace(f"weight_curve = {TWO_CURVE}\n", "")
-    with pytest.raises(InvalidScene, match="no body.weight_curve"):
-        _ = plan(loads_problem(text)).checks
+    with pytest.raises(InvalidScene, match=r"\[strength\]: given without body.weight_curve"):
+        loads_problem(text)
+    # a held plan's too
+    held = (EXAMPLES / "tanker_plan.toml").read_text(encoding="utf-8")
+    allowable = "[strength]\nshear_force = [[0.0, 350.0], [82.05, 350.0]]\n\n"
+    held = held.replace("[attitude]", allowable + "[attitude]", 1)
+    with pytest.raises(InvalidScene, match=r"\[strength\]: given without body.weight_curve"):
+        loads_problem(held)
 
 
 def test_a_state_the_rigging_model_does_not_solve_fails_a_check(three, monkeypatch):
