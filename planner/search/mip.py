@@ -683,4 +683,7 @@ def _incumbent(problem, started):
 
     if problem.equal_cranes:
         return search_local(problem, started)
-    return search_exact(dataclasses.replace(problem, gap=0.0, time_limit=1e-9), time.perf_counter(), 1)
+    # the work limit stops the exact search at its first plan (a time limit would stop it
+    # before any plan is found)
+    first = dataclasses.replace(problem, gap=0.0, time_limit=None, work_limit=1)
+    return search_exact(first, time.perf_counter(), 1)
