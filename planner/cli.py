@@ -179,6 +179,7 @@ def _solve(args):
     from liftplan.model.solve import solve
     from liftplan.model.solve_checks import equilibrium_checks
     from liftplan.model.statics.rigging import rigging_checks
+    from liftplan.model.water.breakout import bed_warnings
     from liftplan.planner.output.console.tables import equilibrium_table
 
     figure = None
@@ -193,7 +194,7 @@ def _solve(args):
             "expected a scene with a weight curve (the figure draws its shear force and "
             "bending moment)"
         )
-    _warn(scene_warnings(scene))
+    _warn(scene_warnings(scene) + bed_warnings(scene))
     eq = solve(scene, model=args.model, method=args.method)
     _warn(equilibrium_warnings(scene, eq))
     checks = equilibrium_checks(scene, eq) + rigging_checks(scene, eq)
@@ -329,11 +330,12 @@ def _lift(args):
     from liftplan.model.lift import load_curve
     from liftplan.model.scene.file import load_scene
     from liftplan.model.scene.plausibility import scene_warnings
+    from liftplan.model.water.breakout import bed_warnings
     from liftplan.planner.output.console.lift import lift_table
     from liftplan.planner.output.figures.lift import lift_figure as draw
 
     scene = load_scene(scene_path)
-    _warn(scene_warnings(scene))
+    _warn(scene_warnings(scene) + bed_warnings(scene))
     curve = load_curve(scene, stop=args.to, step=args.step, speed=args.speed)
     swl = min((c.swl for c in scene.cranes if c.swl), default=None)
     unwritten = None

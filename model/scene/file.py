@@ -531,11 +531,18 @@ class _Breakout(Table):
     shear_strength: Num | None = Key(
         None,
         doc=(
-            "soil model: the seabed's undrained shear strength s_u. F_b = 1.5 (pull_time / "
-            "embedded_time)^-0.07 x F_r (Liu 1969, NCEL R-635, fitted for time ratios 1e-3 to 10; a "
-            "ratio outside that is refused), F_r = bearing_factor x s_u x area (the static soil "
-            "resistance, taken as the reverse undrained bearing capacity with suction under the base; "
-            'our reading of R-635\'s "static soil resistance due to shear and tension")'
+            "a soil model: the cohesive seabed's undrained shear strength s_u at the hull's base. "
+            "Without `pull_time` and `embedded_time` the NCEL immediate breakout (model `ncel`): "
+            "F_b = area x s_u x bearing_factor x (1 + 0.2 D/B)(1 + 0.2 B/L), D the `embedment`, B "
+            "and L the `width` and `length` (Lee 1973, NCEL R-755; NCEL Handbook for Marine "
+            "Geotechnical Engineering, 1985: the force that frees a partly embedded object at once, "
+            "full suction under its base; +-50 %; the depth term stops at D/B = 2.5, Skempton). With "
+            "`pull_time` and `embedded_time` the model of before (`soil`), kept as it was: F_b = 1.5 "
+            "(pull_time / embedded_time)^-0.07 x bearing_factor x s_u x area (Liu 1969, NCEL R-635, "
+            "fitted for time ratios 1e-3 to 10, a ratio outside refused); bearing_factor x s_u x area "
+            "is already the full-suction immediate force, so it likely counts suction twice and "
+            "liftplan warns. Either way liftplan warns when the bed cannot carry the hull at rest "
+            "(submerged weight / area above bearing_factor x s_u x the two terms)"
         ),
         unit="kPa",
         values="number >= 0",
@@ -544,8 +551,8 @@ class _Breakout(Table):
     area: Num | None = Key(
         None,
         doc=(
-            "soil model: the contact area (Muga 1968, NCEL R-591: the horizontal projection of the "
-            "largest contact area)"
+            "soil models: the contact area A (Muga 1968, NCEL R-591: the horizontal projection of "
+            "the largest contact area)"
         ),
         unit="m2",
         values="number > 0",
@@ -555,8 +562,9 @@ class _Breakout(Table):
     bearing_factor: Num = Key(
         Breakout.bearing_factor,
         doc=(
-            "soil model: N_c; 5.14 is Prandtl's for a long footing, about 6.2 (Skempton) for a square "
-            "or circle"
+            "soil models: N_c; 5.14 is Prandtl's for a long footing (the `ncel` model adds its own "
+            "shape and depth terms; the `soil` model none, so about 6.2, Skempton, for a square or "
+            "circle there)"
         ),
         unit="-",
         values="number > 0",
@@ -564,17 +572,40 @@ class _Breakout(Table):
     )
     pull_time: Num | None = Key(
         None,
-        doc="soil model: the time allowed for the breakout pull (Liu's T)",
+        doc="`soil` model: the time allowed for the breakout pull (Liu's T)",
         unit="h",
         values="number > 0",
         example="pull_time = 1.0",
     )
     embedded_time: Num | None = Key(
         None,
-        doc="soil model: how long the hull has lain bedded (Liu's T_e)",
+        doc="`soil` model: how long the hull has lain bedded (Liu's T_e)",
         unit="h",
         values="number > 0",
         example="embedded_time = 100.0",
+    )
+    embedment: Num = Key(
+        Breakout.embedment,
+        doc="`ncel` model: D, how deep the hull's underside lies below the seabed surface",
+        unit="m",
+        values="number >= 0; not with `pull_time`, `embedded_time`",
+        example="embedment = 0.5",
+    )
+    width: Num | None = Key(
+        None,
+        doc="`ncel` model: B, the contact's shorter plan side",
+        unit="m",
+        values="number > 0; not with `pull_time`, `embedded_time`",
+        absent="the underside's plan extent across the hull's heading at rest (the shorter of the two)",
+        example="width = 12.0",
+    )
+    length: Num | None = Key(
+        None,
+        doc="`ncel` model: L, the contact's longer plan side",
+        unit="m",
+        values="number > 0; not with `pull_time`, `embedded_time`",
+        absent="the underside's plan extent along the hull's heading at rest (the longer of the two)",
+        example="length = 60.0",
     )
     clear: Num = Key(
         Breakout.clear,
@@ -609,7 +640,8 @@ class _Ground(Table):
     breakout: _Breakout | None = Key(
         None,
         doc=(
-            "how hard the seabed holds the bedded hull down: either `factor`, or the soil model "
+            "how hard the seabed holds the bedded hull down: `factor`, the NCEL immediate breakout "
+            "(`shear_strength`, `embedment`, `width`, `length`) or the soil model of before "
             "(`shear_strength`, `pull_time`, `embedded_time`). The breakout force F_b acts down at "
             "the contact: the hull stays on the bed until the ropes carry W + trapped water - B + F_b "
             "(the peak, `liftplan lift` event `breakout`), then rises with F_b still pulling until "

@@ -483,12 +483,17 @@ class Breakout:
     """How hard the seabed holds a bedded hull (``[ground] breakout``); the force itself is
     :func:`liftplan.model.water.breakout.breakout_force`.
 
-    One of two models:
+    One of three models (:attr:`model`):
 
     * ``factor``: the breakout force is this factor x the submerged weight at rest;
-    * the soil model (``shear_strength`` and the two times): the static soil resistance
-      ``bearing_factor`` x undrained shear strength x contact area, times Liu's (1969)
-      1.5 (pull_time / embedded_time)^-0.07.
+    * ``ncel`` (``shear_strength`` without the two times): the immediate breakout force of
+      a cohesive seabed, NCEL (Lee 1973, R-755; the NCEL Handbook for Marine Geotechnical
+      Engineering), ``bearing_factor`` x s_u x area x (1 + 0.2 D/B)(1 + 0.2 B/L), D the
+      ``embedment``, B and L the contact's ``width`` and ``length``;
+    * ``soil`` (``shear_strength`` with ``pull_time`` and ``embedded_time``, the model of
+      before, kept as it was): ``bearing_factor`` x s_u x area times Liu's (1969)
+      1.5 (pull_time / embedded_time)^-0.07. N_c s_u A is already the full-suction
+      immediate force, so this likely counts suction twice; liftplan warns when it is used.
 
     Parameters
     ----------
@@ -499,12 +504,17 @@ class Breakout:
     area : float or None  [m2]
         Contact area; default the plan area of the hull's underside at rest.
     bearing_factor : float  [-]
-        N_c of the reverse bearing capacity, > 0 (5.14: Prandtl, a long footing; about 6.2
-        for a square or circle, Skempton).
+        N_c of the reverse bearing capacity, > 0 (5.14: Prandtl, a long footing; the
+        ``ncel`` model adds its own shape and depth factors to it).
     pull_time : float or None  [h]
-        Time allowed for the breakout pull, > 0.
+        ``soil`` model: time allowed for the breakout pull, > 0.
     embedded_time : float or None  [h]
-        Time the hull has lain bedded, > 0.
+        ``soil`` model: time the hull has lain bedded, > 0.
+    embedment : float  [m]
+        ``ncel`` model: D, how deep the underside lies below the seabed surface, >= 0.
+    width, length : float or None  [m]
+        ``ncel`` model: B and L, the contact's shorter and longer plan sides, > 0; default
+        the extents of the hull's underside at rest across and along its heading.
     clear : float  [m]
         The soil holds on with the full breakout force until the contact has risen this
         far above its bed, >= 0.
@@ -517,6 +527,16 @@ class Breakout:
     pull_time: float | None = None
     embedded_time: float | None = None
     clear: float = 0.1
+    embedment: float = 0.0
+    width: float | None = None
+    length: float | None = None
+
+    @property
+    def model(self):
+        """``"factor"``, ``"ncel"`` (immediate breakout) or ``"soil"`` (Liu's time factor)."""
+        if self.factor is not None:
+            return "factor"
+        return "ncel" if self.pull_time is None and self.embedded_time is None else "soil"
 
     def __post_init__(self):
         key = "ground.breakout"
@@ -525,13 +545,17 @@ class Breakout:
             "area": self.area,
             "pull_time": self.pull_time,
             "embedded_time": self.embedded_time,
+            "width": self.width,
+            "length": self.length,
         }
         given = [name for name, value in soil.items() if value is not None]
+        if self.embedment != 0.0:
+            given.append("embedment")
         if self.factor is not None:
             if given:
                 raise InvalidScene(
                     f"{key}: factor and the soil model's {', '.join(given)} both given; expected "
-                    "either factor (x the submerged weight) or the soil model, not both"
+                    "either factor (x the submerged weight) or a soil model, not both"
                 )
             factor = finite(f"{key}.factor", self.factor)
             if factor < 0.0:
@@ -540,31 +564,54 @@ class Breakout:
         elif self.shear_strength is None:
             raise InvalidScene(
                 f"{key}: expected factor = ... (x the submerged weight) or shear_strength = ... kPa "
-                "with pull_time and embedded_time (the soil model)"
+                "(the NCEL immediate breakout, with embedment; or with pull_time and embedded_time, "
+                "the soil model of Liu's time factor)"
             )
         else:
             strength = finite(f"{key}.shear_strength", self.shear_strength)
             if strength < 0.0:
                 raise InvalidScene(f"{key}.shear_strength = {self.shear_strength!r}: expected kPa >= 0")
             _set(self, "shear_strength", strength)
-            for name in ("pull_time", "embedded_time"):
-                if getattr(self, name) is None:
-                    raise InvalidScene(f"{key}.{name}: missing, expected hours > 0 for the soil model")
-                _set(self, name, positive(f"{key}.{name}", getattr(self, name)))
             if self.area is not None:
                 _set(self, "area", positive(f"{key}.area", self.area))
-            ratio = self.pull_time / self.embedded_time
-            low, high = LIU_RANGE
-            if not low <= ratio <= high:
-                raise InvalidScene(
-                    f"{key}: pull_time / embedded_time = {ratio:.3g}: outside {low:g} to {high:g}, the range "
-                    "Liu's (1969) time correlation was fitted to; expected times within it, or factor"
-                )
+            if self.model == "soil":
+                self._check_times(key)
+            else:
+                embedment = finite(f"{key}.embedment", self.embedment)
+                if embedment < 0.0:
+                    raise InvalidScene(f"{key}.embedment = {self.embedment!r}: expected m >= 0")
+                _set(self, "embedment", embedment)
+                for name in ("width", "length"):
+                    if getattr(self, name) is not None:
+                        _set(self, name, positive(f"{key}.{name}", getattr(self, name)))
         _set(self, "bearing_factor", positive(f"{key}.bearing_factor", self.bearing_factor))
         clear = finite(f"{key}.clear", self.clear)
         if clear < 0.0:
             raise InvalidScene(f"{key}.clear = {self.clear!r}: expected m >= 0")
         _set(self, "clear", clear)
+
+    def _check_times(self, key):
+        """The ``soil`` model's two times and their ratio (Liu's fitted range)."""
+        ncel = [name for name in ("width", "length") if getattr(self, name) is not None]
+        if self.embedment != 0.0:
+            ncel.append("embedment")
+        if ncel:
+            raise InvalidScene(
+                f"{key}: {', '.join(ncel)} with pull_time and embedded_time; expected the NCEL "
+                "immediate breakout (shear_strength with embedment, width, length; no times) or "
+                "the soil model of Liu's time factor (pull_time and embedded_time), not both"
+            )
+        for name in ("pull_time", "embedded_time"):
+            if getattr(self, name) is None:
+                raise InvalidScene(f"{key}.{name}: missing, expected hours > 0 for the soil model")
+            _set(self, name, positive(f"{key}.{name}", getattr(self, name)))
+        ratio = self.pull_time / self.embedded_time
+        low, high = LIU_RANGE
+        if not low <= ratio <= high:
+            raise InvalidScene(
+                f"{key}: pull_time / embedded_time = {ratio:.3g}: outside {low:g} to {high:g}, the range "
+                "Liu's (1969) time correlation was fitted to; expected times within it, or factor"
+            )
 
 
 @dataclass(frozen=True)

@@ -29,6 +29,12 @@ def contract_json(plan):
     return {key: getattr(plan, key) for key in CONTRACT_KEYS}
 
 
+def weight_json(problem):
+    """The plan JSON's ``weight``: W [t] and its basis (``"air"``, ``"water"`` or
+    ``"not stated"``, ``[body] weight_basis``)."""
+    return {"value": problem.body.weight, "basis": problem.weight_basis or "not stated"}
+
+
 #: What each objective keeps small, in words.
 OBJECTIVE_TEXT = {name: objective.text for name, objective in OBJECTIVES.items()}
 

@@ -20,7 +20,7 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.planner.plans.breakout import breakout_json
-from liftplan.planner.plans.common import InFileFrame, contract_json
+from liftplan.planner.plans.common import InFileFrame, contract_json, weight_json
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
@@ -549,6 +549,7 @@ class Plan(InFileFrame):
         return (
             contract_json(self)
             | {
+                "weight": weight_json(self.problem),
                 "ranking": [
                     self._ranking_entry(r, d, g)
                     for r, d, g in zip(self.ranking, self.ranked_design, self.ranked_girder)

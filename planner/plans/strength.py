@@ -39,7 +39,7 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redundant, Scene
 from liftplan.model.strength.girder import attitude_matrix
-from liftplan.planner.plans.common import InFileFrame
+from liftplan.planner.plans.common import InFileFrame, weight_json
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.evaluator import GapMixin
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
@@ -788,6 +788,7 @@ class StrengthPlan(InFileFrame):
             "worst_spread": self.worst_spread,
             "objective": self.objective,
             "control": self.control,
+            "weight": weight_json(self.problem),
             "strength_weights": {
                 "bending": objective_weights(self.problem)[0],
                 "shear": objective_weights(self.problem)[1],

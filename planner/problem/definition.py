@@ -51,6 +51,8 @@ CONTROLS = ("hoist", "force")
 #: search (planner/search/local.py) and ``"exact"`` is refused.
 MAX_SETS = 5_000_000
 SEARCHES = ("auto", "exact", "local", "mip")
+#: ``body.weight_basis``: the weight in air, in water, or not stated (None).
+WEIGHT_BASES = ("air", "water", None)
 
 
 def _set(obj, name, value):
@@ -258,6 +260,9 @@ class PlanProblem:
         :class:`~liftplan.model.statics.model.HingedLayout` (a 2-leg sling or spreader bar hinged
         about its pair; ``at`` is then its hook at level). Set by the sling planner on its
         derived problem (``planner/plans/slings/apex.py``), not read from files.
+    weight_basis : str or None
+        ``"air"`` or ``"water"``: what ``body.weight`` is (the plan says it beside W); None,
+        not stated.
     """
 
     body: Body
@@ -290,8 +295,11 @@ class PlanProblem:
     controls: tuple[str, ...] = ()
     breakout_scene: Scene | None = None
     hinges: tuple[tuple[float, ...], ...] = ()
+    weight_basis: str | None = None
 
     def __post_init__(self):
+        if self.weight_basis not in WEIGHT_BASES:
+            raise InvalidScene(f'body.weight_basis = {self.weight_basis!r}: expected "air" or "water"')
         candidates = tuple(self.candidates)
         names = [c.name for c in candidates]
         for name in names:
@@ -590,6 +598,18 @@ class PlanProblem:
             return None
 
         return breakout_load(self.breakout_scene)
+
+    @property
+    def weight_basis_text(self):
+        """``"in air"``, ``"in water"`` or ``"not stated"``: what ``body.weight`` is."""
+        return "not stated" if self.weight_basis is None else f"in {self.weight_basis}"
+
+    @property
+    def weight_text(self):
+        """W and its basis in words, as the console and the report print it."""
+        basis = self.weight_basis_text
+        basis = "in air or in water: not stated" if self.weight_basis is None else basis
+        return f"weight W {self.body.weight:.2f} t ({basis})"
 
     @property
     def goal(self):

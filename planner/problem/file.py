@@ -41,6 +41,17 @@ Count = Annotated[int, Strict(), Field(ge=1)]
 
 class _Body(Table):
     weight: Num = Key(doc="total weight W", unit="t", values="number > 0", example="weight = 904.0")
+    weight_basis: Literal["air", "water"] | None = Key(
+        None,
+        doc=(
+            "what `weight` is: `air`, the body's weight in air, or `water`, its weight in water "
+            "(less its buoyancy, flooded compartments included); the plan says it beside W in the "
+            "console, the report's basis table and the JSON (`weight.basis`). The planner uses W as "
+            "given either way"
+        ),
+        absent='not stated: the plan says "not stated"',
+        example='weight_basis = "water"',
+    )
     cog: Point = Key(
         doc="nominal centre of gravity", unit="m", frame="body, file frame", example="cog = [35.86, 2.5, 6.0]"
     )
@@ -792,6 +803,7 @@ def _to_problem(data, base):
         cranes = len(fleet)
     return PlanProblem(
         body=Body(weight=data.body.weight, cog=to_zup(data.body.cog), weight_curve=data.body.weight_curve),
+        weight_basis=data.body.weight_basis,
         candidates=tuple(
             Candidate(name=c.name, at=to_zup(c.at), bulkhead=c.bulkhead, capacity=c.capacity)
             for c in data.candidates

@@ -8,6 +8,7 @@ as m) and the heel/trim tolerance box.
 from __future__ import annotations
 
 from liftplan.model.scene.plausibility import coordinate_warnings, height_warnings, weight_warnings
+from liftplan.model.water.breakout import bed_warnings
 from liftplan.model.water.equilibrium import WaterSetup
 
 #: A hook-height tolerance above this is likely in mm  [m].
@@ -47,6 +48,8 @@ def problem_warnings(problem):
         *coordinate_warnings("candidates", [(c.name, c.at) for c in problem.candidates]),
     ]
     out += _undrained_water(problem)
+    if problem.breakout_scene is not None:
+        out += bed_warnings(problem.breakout_scene, "plan.breakout_scene: ground.breakout")
     if problem.hook_tolerance > MAX_HOOK_TOLERANCE:
         out.append(
             f"plan.hook_tolerance = {problem.hook_tolerance:g} m: more than "

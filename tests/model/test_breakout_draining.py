@@ -152,6 +152,70 @@ def test_breakout_peak_equals_the_soil_closed_form():
     assert curve.breakout.time_factor == pytest.approx(1.5 * 0.01**-0.07, rel=1e-12)
 
 
+def test_ncel_immediate_breakout_against_a_hand_calculation():
+    """Issue 29 item 3: the NCEL immediate breakout F_b = A s_u N_c (1 + 0.2 D/B)(1 + 0.2 B/L)
+    (Lee 1973, R-755; the NCEL Handbook). R-755's own worked example was not readable here, so
+    the check is a hand calculation from the formula for the box (underside 20 m x 8 m):
+    s_u 4 kPa, N_c 5.14, D 2 m: A s_u N_c / g = 160 x 4 x 5.14 / 9.80665 = 335.444 t,
+    depth 1 + 0.2 x 2 / 8 = 1.05, shape 1 + 0.2 x 8 / 20 = 1.08: F_b = 380.396 t."""
+    scene = box_scene(breakout="breakout = { shear_strength = 4.0, embedment = 2.0 }", tank=False)
+    load = breakout_load(scene)
+    force = load.breakout
+    assert force.model == "ncel" and force.time_factor is None
+    assert (force.area, force.width, force.length) == pytest.approx((160.0, 8.0, 20.0), rel=1e-12)
+    assert (force.depth_factor, force.shape_factor) == pytest.approx((1.05, 1.08), rel=1e-12)
+    assert force.force == pytest.approx(380.396, abs=5e-4)  # the hand calculation above
+    expected = scene.body.weight - steel_buoyancy(scene) + force.force
+    assert abs(load.total - expected) <= 1e-9 * scene.body.weight
+    curve = load_curve(scene, stop=1.0, step=0.1)
+    assert abs(curve.peak_crane_load[0] - expected) <= 1e-9 * scene.body.weight
+    assert json.loads(json.dumps(force.to_json()))["model"] == "ncel"
+
+
+def test_ncel_sides_follow_the_heading_and_the_depth_term_stops_at_2_5():
+    from liftplan.model.water.breakout import ncel_factors
+
+    scene = box_scene(breakout="breakout = { shear_strength = 4.0 }", tank=False)
+    turned = dataclasses.replace(scene, attitude=dataclasses.replace(scene.attitude, yaw=90.0))
+    for s in (scene, turned):
+        force = breakout_load(s).breakout
+        assert (force.width, force.length) == pytest.approx((8.0, 20.0), abs=1e-9)
+    assert ncel_factors(100.0, 8.0, 20.0) == pytest.approx((1.5, 1.08))  # Skempton's D/B = 2.5
+    assert ncel_factors(0.0, 20.0, 8.0) == pytest.approx((1.0, 1.08))  # B is the shorter side
+    given = box_scene(
+        breakout="breakout = { shear_strength = 4.0, area = 100.0, width = 5.0, length = 20.0 }", tank=False
+    )
+    force = breakout_load(given).breakout
+    assert force.force == pytest.approx(5.14 * 4.0 / G * 100.0 * 1.05, rel=1e-12)
+
+
+def test_the_sunken_block_example_and_the_bed_warnings():
+    """The example's numbers (its comment): 474.9 t on 398.7 t, and a bed that carries the
+    block; the example of before (0.5 kPa, Liu's factor) gave 458.2 t, and is now warned
+    twice: its bed cannot carry the block (5.43 kPa on 2.67 kPa) and the time factor on N_c
+    s_u A likely counts suction twice (the NCEL force at zero embedment: 196.2 t)."""
+    from pathlib import Path
+
+    from liftplan.model.scene.file import load_scene
+    from liftplan.model.water.breakout import bed_warnings
+
+    path = Path(__file__).parents[2] / "examples" / "sunken_block_breakout.toml"
+    scene = load_scene(path)
+    load = breakout_load(scene)
+    assert load.breakout.force == pytest.approx(474.89, abs=0.01)
+    assert load.total == pytest.approx(873.55, abs=0.01)
+    assert bed_warnings(scene) == []
+    before = path.read_text().replace(
+        "breakout = { shear_strength = 1.2, embedment = 0.5, clear = 0.1 }",
+        "breakout = { shear_strength = 0.5, pull_time = 9.0, embedded_time = 8760.0, clear = 0.1 }",
+    )
+    old = loads_scene(before)
+    assert breakout_load(old).breakout.force == pytest.approx(458.16, abs=0.01)  # kept as it was
+    bed, twice = bed_warnings(old)
+    assert "bearing pressure 5.43 kPa" in bed and "= 2.67 kPa" in bed
+    assert "likely counts suction twice" in twice and "gives 196.2 t" in twice
+
+
 ZERO_SOIL = "breakout = { shear_strength = 0.0, pull_time = 1.0, embedded_time = 10.0 }"
 
 
@@ -282,6 +346,14 @@ def test_time_axis_and_json_keys():
     "breakout, openings, message",
     [
         ("breakout = { factor = -0.5 }", None, "ground.breakout.factor = -0.5: expected a number >= 0"),
+        ("breakout = { factor = 1.0, embedment = 1.0 }", None, "not both"),
+        ("breakout = { shear_strength = 3.0, embedment = -1.0 }", None, "embedment = -1.0: expected m >= 0"),
+        ("breakout = { shear_strength = 3.0, width = 0.0 }", None, "width = 0.0: expected a number > 0"),
+        (
+            "breakout = { shear_strength = 3.0, embedment = 1.0, pull_time = 1.0, embedded_time = 10.0 }",
+            None,
+            "embedment with pull_time and embedded_time",
+        ),
         ("breakout = { factor = 1.0, shear_strength = 3.0 }", None, "not both"),
         ("breakout = { shear_strength = 3.0, pull_time = 1.0 }", None, "embedded_time: missing"),
         (

@@ -110,8 +110,9 @@ def test_breakout_load_is_the_scenes_once_for_the_plan(block):
     b = breakout_load(load_scene(SCENE))
     case = block.design_loads.breakout
     assert case.load.total == b.total and case.load.point == b.point
-    # the example's numbers (scene comment): 398.7 t submerged + 458.2 t soil breakout
-    assert case.load.total == pytest.approx(856.81, abs=0.01)
+    # the example's numbers (scene comment): 398.7 t submerged + 474.9 t NCEL immediate
+    # breakout (issue 29 item 3; Liu's factor on 0.5 kPa clay gave 458.2 t, total 856.81 t)
+    assert case.load.total == pytest.approx(873.55, abs=0.01)
     assert all(d.breakout.load is case.load for d in block.ranked_design)
 
 
@@ -194,14 +195,22 @@ def test_example_runs_and_json_carries_the_breakout(block):
     assert names.count("breakout_hook_load") == 4 and "breakout_min_tension" in names
 
 
+def test_console_report_and_json_say_the_weight_is_in_air(block):
+    """Issue 29 item 8: the file's body.weight_basis beside W in all three outputs."""
+    assert "weight W 600.00 t (in air)" in plan_table(block).splitlines()
+    page = render_html(block)
+    assert "weight W is" in page and "in air" in page
+    assert json.loads(json.dumps(block.to_json()))["weight"] == {"value": 600.0, "basis": "air"}
+
+
 def test_console_and_report_show_it(block):
     text = plan_table(block)
     assert "breakout from the seabed" in text
-    assert "peak total hook load 856.81 t" in text
-    assert "breakout 263.5 t governs over the worst in the box" in text
+    assert "peak total hook load 873.55 t" in text  # 856.81 t before issue 29 item 3
+    assert "breakout 267.7 t governs over the worst in the box" in text
     assert "max(worst, breakout)" in text
     page = render_html(block)
-    assert "Breakout from the seabed" in page and "856.81 t" in page
+    assert "Breakout from the seabed" in page and "873.55 t" in page
     assert "at breakout, held level [t]" in page
 
 
@@ -291,4 +300,19 @@ def test_the_report_prints_the_breakout_within_the_text_width(block, tmp_path):
     first, last = ink_extent_mm(images[page])
     _, right, _, left = MARGINS_MM
     assert last <= A4_WIDTH_MM - right + EDGE_MM and first >= left - EDGE_MM
-    assert "856.81" in " ".join(texts[page].split())
+    assert "873.55" in " ".join(texts[page].split())
+
+
+def test_a_plan_warns_when_its_seabed_cannot_carry_the_body(tmp_path):
+    """Issue 29 item 3: the example of before (0.5 kPa clay, Liu's time factor) gets both bed
+    warnings in a plan too; the example as it is now gets neither."""
+    from liftplan.planner.problem.plausibility import problem_warnings
+
+    def bed(problem):
+        return [w for w in problem_warnings(problem) if w.startswith("plan.breakout_scene: ground.breakout")]
+
+    assert bed(load_problem(PLAN)) == []
+    old = "breakout = { shear_strength = 0.5, pull_time = 9.0, embedded_time = 8760.0, clear = 0.1 }"
+    lines = bed(load_problem(_files(tmp_path, old)))
+    assert len(lines) == 2 and "cannot carry the hull at rest" in lines[0]
+    assert "likely counts suction twice" in lines[1]

@@ -46,6 +46,7 @@ def plan_table(plan):
         f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)"
         if stats.summary is None
         else stats.summary,
+        problem.weight_text,
         f"tolerance box: heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g}"
         f" deg; tensions {problem.min_tension:g} t to {swl_text}",
         "objective: " + OBJECTIVE_TEXT[plan.objective],
@@ -256,9 +257,7 @@ def _breakout_lines(plan, design):
     if case is None:
         return []
     load, force = case.load, case.load.breakout
-    model = {"soil": "soil model", "factor": "factor on the submerged weight", "none": "no breakout model"}[
-        force.model
-    ]
+    model = force.describe()
     lines = [
         "",
         f"breakout from the seabed ({plan.problem.breakout_scene.name or 'breakout scene'}):",

@@ -25,12 +25,7 @@ def lift_table(scene, curve, rows=25):
             )
     b = curve.breakout
     if b is not None:
-        how = (
-            f"{b.time_factor:.3f} x F_r = N_c s_u A = {b.static_resistance:.1f} t over {b.area:.1f} m2 "
-            "(Liu 1969: 1.5 (T / T_e)^-0.07)"
-            if b.model == "soil"
-            else f"{b.force / b.submerged_weight if b.submerged_weight else 0.0:g} x the submerged weight"
-        )
+        how = b.describe()
         lines.append(
             f"breakout force F_b = {b.force:.1f} t ({how}); submerged weight at rest "
             f"{b.submerged_weight:.1f} t; held until the contact is {b.clear:g} m off its bed"

@@ -57,6 +57,7 @@ def sling_table(plan):
     design = plan.design_hook_loads
     lines = [
         problem.name or "lift plan",
+        problem.weight_text,
         *_search_lines(plan),
         "",
         f"{'crane':<13}{'lugs (below)':<17}{'R [m]':>7}{'SWL [t]':>8}{'H [m]':>8}"

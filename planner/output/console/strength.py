@@ -29,6 +29,7 @@ def strength_table(plan):
     lines = [
         f"{p.name or 'plan'}: {p.cranes} lifting points of {len(p.candidates)} candidates, "
         f"{plan.control} control",
+        p.weight_text,
         f"objective: {p.objective} ({WHAT[p.objective]}"
         + (f"; w_M = {weights[0]:g}, w_Q = {weights[1]:g})" if p.objective == "strength" else ")"),
         "",

@@ -237,6 +237,7 @@ def _basis(plan):
         ["quantity", "value", "unit"],
         [
             ("weight W", f"{problem.body.weight:.2f}", "t"),
+            ("weight W is", problem.weight_basis_text, "-"),
             ("location (the DAF column of 0027/ND Table 5-1)", problem.rules.location_text, "-"),
             ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
             (
@@ -718,18 +719,7 @@ def _breakout_section(plan):
         return []
     load, force = case.load, case.load.breakout
     problem = plan.problem
-    model = {
-        "soil": (
-            f"soil model: 1.5 (T/T_e)^-0.07 = {force.time_factor:.3f} x N_c s_u A = "
-            f"{force.static_resistance:.2f} t over {force.area:.1f} m2"
-            if force.model == "soil"
-            else ""
-        ),
-        "factor": f"a factor {force.force / force.submerged_weight:.3g} on the submerged weight"
-        if force.submerged_weight > 0
-        else "a factor on the submerged weight",
-        "none": "no breakout model in the scene",
-    }[force.model]
+    model = force.describe()
     text = (
         f"<p>The hull rests on the seabed as in the scene &ldquo;"
         f"{html.escape(problem.breakout_scene.name)}&rdquo;. Breaking it out takes a peak total "

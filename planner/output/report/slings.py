@@ -260,6 +260,7 @@ def render_html(plan, today=None):
     )
     rows = [
         ("weight W", f"{problem.body.weight:.2f}", "t"),
+        ("weight W is", problem.weight_basis_text, "-"),
         ("location (the DAF column of 0027/ND Table 5-1)", problem.rules.location_text, "-"),
         ("CG (nominal)", _xyz(problem, problem.body.cog), "m"),
         (

@@ -449,6 +449,7 @@ def render_html(plan, today=None):
         ["quantity", "value", "unit"],
         [
             ("weight W", f"{p.body.weight:.2f}", "t"),
+            ("weight W is", p.weight_basis_text, "-"),
             ("CG (nominal)", _xyz(plan, p.body.cog), "m"),
             (
                 "CG envelope half-widths (x, y, z)",

@@ -30,7 +30,7 @@ from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
 from liftplan.model.statics.rigging import solve_rigging
-from liftplan.planner.plans.common import InFileFrame, contract_json
+from liftplan.planner.plans.common import InFileFrame, contract_json, weight_json
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, moved_body, solved_worst, worst_of
 from liftplan.planner.search.scenarios import Scenario
@@ -465,6 +465,7 @@ class SlingLift(InFileFrame):
         design = None if isinstance(self.design, str) else self.design.to_json()
 
         return contract_json(self) | {
+            "weight": weight_json(self.problem),
             "lift": self.lift_text,
             "hook_loads": dict(zip(names, np.asarray(self.hook_nominal, dtype=float).tolist())),
             "worst_hook_loads": dict(zip(names, np.asarray(self.hook_worst, dtype=float).tolist())),
