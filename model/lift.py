@@ -473,7 +473,34 @@ def _with_brackets(lift, points):
     return [by_hoist[h] for h in sorted(by_hoist)]
 
 
-def load_curve(scene, stop=None, step=0.25, speed=None):
+def _check_stop(scene, stop):
+    """A last hoist (``--to``) in (0, the shortest rope]: hauled in by its whole length, a rope's
+    hook is at its boom tip, and no crane hoists further (``--to 1e308`` ended in an
+    OverflowError)."""
+    crane = min(scene.cranes, key=lambda c: c.rope_length or np.inf)
+    reach = crane.rope_length
+    if reach is None:  # the model refuses the scene itself, naming the crane
+        return
+    if not (np.isfinite(stop) and 0.0 < stop <= reach):
+        raise InvalidScene(
+            f"lift: --to {stop:g} m: expected a hoist in (0, {reach:g}] m (hoisted {reach:g} m, "
+            f"crane {crane.label}'s hook reaches its boom tip: its rope_length)"
+        )
+
+
+def _bar(progress, total, desc, unit):
+    """A tqdm bar on stderr from the first second (None without ``progress``); its
+    remaining time is tqdm's, from the rate so far."""
+    if not progress:
+        return None
+    import sys
+
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
+
+
+def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
     """The load curve of a lift from the scene's pose.
 
     Parameters
@@ -488,6 +515,9 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
         Hoist speed: the curve carries time, and compartments with openings drain in it.
         Without it they are carried full (never drain; the conservative bound), except
         those with an opening of infinite area (drain at once).
+    progress : bool
+        Progress bars on stderr: the draining's lift time integrated (its work grows as
+        the speed falls: 17 s at 2 m/min, over 250 s at 0.02 m/min), then the hoist steps.
 
     Returns
     -------
@@ -495,6 +525,8 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
     """
     if scene.hull is None or not scene.n:
         raise InvalidScene("lift: expected a scene with [hull], [water] and three or more cranes")
+    if stop is not None:
+        _check_stop(scene, stop)
     stop = default_stop(scene) if stop is None else float(stop)
     if not (step > 0 and np.isfinite(step)) or not stop > 0:
         raise InvalidScene(f"lift: hoist to {stop:g} m in steps of {step:g} m; expected both > 0")
@@ -504,7 +536,7 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
     if not steps <= MAX_STEPS:
         raise InvalidScene(
             f"lift: hoist to {stop:g} m in steps of {step:g} m is {steps:.3g} steps; expected at most "
-            f"{MAX_STEPS} (a larger step or a lower --to)"
+            f"{MAX_STEPS} (--step at least {stop / MAX_STEPS:.3g} m, or a lower --to)"
         )
     count = int(np.floor(steps + 1e-9)) + 1
     lift = _Lift(scene, speed)
@@ -520,7 +552,13 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
             )
         elif drainage.timed:
             seconds = hoists[-1] * 60.0 / speed
-            lift.history = integrate(drainage, seconds, step * 60.0 / speed) if seconds > 0 else None
+            if seconds > 0:
+                bar = _bar(progress, seconds, "draining", "s of lift")
+                try:
+                    lift.history = integrate(drainage, seconds, step * 60.0 / speed, bar)
+                finally:
+                    if bar is not None:
+                        bar.close()
             note = f"drained by orifice flow at {speed:g} m/min"
             if lift.history is not None and lift.history.failure:
                 note += f"; {lift.history.failure}"
@@ -528,17 +566,26 @@ def load_curve(scene, stop=None, step=0.25, speed=None):
             note += ("; " if note else "") + "openings of infinite area drain at once"
     end = lift.history.end * speed / 60.0 if lift.history is not None else np.inf
     start = None
-    for hoist in hoists:
-        if hoist > end * (1 + 1e-12):
-            failed.append((float(hoist), f"no water state beyond hoist {end:.4g} m ({lift.history.failure})"))
-            continue
-        try:
-            point = lift.at(hoist, start)
-        except EquilibriumNotFound as err:
-            failed.append((float(hoist), str(err)))
-            continue
-        points.append(point)
-        start = point.start
+    bar = _bar(progress, len(hoists), "hoist steps", "step")
+    try:
+        for hoist in hoists:
+            if bar is not None:
+                bar.update(1)
+            if hoist > end * (1 + 1e-12):
+                failed.append(
+                    (float(hoist), f"no water state beyond hoist {end:.4g} m ({lift.history.failure})")
+                )
+                continue
+            try:
+                point = lift.at(hoist, start)
+            except EquilibriumNotFound as err:
+                failed.append((float(hoist), str(err)))
+                continue
+            points.append(point)
+            start = point.start
+    finally:
+        if bar is not None:
+            bar.close()
     if not points:
         raise EquilibriumNotFound(f"lift: no hoist step solved; first failure: {failed[0][1]}")
     events = _events(lift, points, failed)

@@ -20,6 +20,7 @@ import json
 import math
 import os
 import sys
+import warnings
 
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene, LiftPlanError, PlanInfeasible
 from liftplan.model.extras import MissingExtra
@@ -241,7 +242,7 @@ def _plan(args):
 
     if args.top is not None and args.top < 1:
         raise InvalidScene(f"--top {args.top}: expected an integer >= 1")
-    report = output_folder(args.report, "--report") if args.report else None
+    report = output_folder(args.report, "--report") if args.report is not None else None
     from liftplan.planner.problem.file import load_problem
     from liftplan.planner.problem.plausibility import problem_warnings
 
@@ -251,6 +252,8 @@ def _plan(args):
             f"{args.scene}: attitude.yaw = {problem.yaw!r}: expected a value in "
             f"[-{MAX_YAW:g}, {MAX_YAW:g}] deg"
         )
+    if args.top is not None:
+        problem.check_top(args.top, "--top")
     _warn(problem_warnings(problem))
     from liftplan.planner.plan import plan
     from liftplan.planner.search.evaluator import Interrupted
@@ -326,7 +329,8 @@ def _lift(args):
             unit = "m/min" if option == "--speed" else "m"
             raise InvalidScene(f"{option} {value:g}: expected a finite number of {unit} > 0")
     scene_path = Path(args.scene)
-    figure = output_file(args.figure or f"{scene_path.stem}_load_curve.png", "--figure", FIGURE_TYPES)
+    default = f"{scene_path.stem}_load_curve.png"
+    figure = output_file(default if args.figure is None else args.figure, "--figure", FIGURE_TYPES)
     from liftplan.model.lift import load_curve
     from liftplan.model.scene.file import load_scene
     from liftplan.model.scene.plausibility import scene_warnings
@@ -336,7 +340,9 @@ def _lift(args):
 
     scene = load_scene(scene_path)
     _warn(scene_warnings(scene) + bed_warnings(scene))
-    curve = load_curve(scene, stop=args.to, step=args.step, speed=args.speed)
+    # progress from the first second where someone watches: a slow hoist speed makes the
+    # draining's integration minutes long (its work grows as 1 / speed)
+    curve = load_curve(scene, stop=args.to, step=args.step, speed=args.speed, progress=sys.stderr.isatty())
     swl = min((c.swl for c in scene.cranes if c.swl), default=None)
     unwritten = None
     try:
@@ -362,6 +368,19 @@ def _batch(args):
 
     if args.workers is not None and args.workers < 1:
         raise InvalidScene(f"--workers {args.workers}: expected an integer >= 1")
+    workers = args.workers
+    cores = _cores()
+    if workers is not None and args.scheduler is None and workers > cores:
+        # accepted, with as many workers as cores: each local worker is a process running one
+        # CPU-bound case at a time, so more of them than cores only add memory (a Python
+        # process with casadi each) and start-up (each warms up its solvers), never speed
+        _warn(
+            [
+                f"--workers {workers}: more than the {cores} cores this process may use; "
+                f"running {cores} (more workers than cores add memory and start-up, not speed)"
+            ]
+        )
+        workers = cores
     if args.output is not None:
         output_file(args.output, "--output")
     study = load_study(args.study)
@@ -371,7 +390,7 @@ def _batch(args):
         summary = run_study(
             study,
             scheduler=args.scheduler,
-            workers=args.workers,
+            workers=workers,
             restart=args.restart,
             progress=not args.no_progress,
             output=args.output,
@@ -383,6 +402,14 @@ def _batch(args):
         )
         return INTERRUPTED
     print(batch_table(study, summary))
+
+
+def _cores():
+    """CPU cores this process may run on (its affinity where the system tells it)."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except AttributeError:  # not on macOS or Windows
+        return os.cpu_count() or 1
 
 
 def _interrupt(err):
@@ -401,7 +428,13 @@ def _run(args):
     command = {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command]
     try:
         try:
-            return command(args) or 0
+            # numpy's RuntimeWarnings (an overflow in a trial step, 0/0 in a row the search
+            # then rules out, matplotlib's ticks on a huge axis) are not for the user: every
+            # result the command prints is checked as finite or said to be missing, and the
+            # warnings turned one-line error messages into several lines (issue 29 item 13)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                return command(args) or 0
         except Exception as err:
             if _interrupt(err):
                 raise KeyboardInterrupt from None

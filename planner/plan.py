@@ -80,4 +80,8 @@ def plan(problem: PlanProblem, top: int | None = None) -> LiftPlan:
     Interrupted
         Ctrl-C: ``plan`` holds the best plan found so far (None when none was).
     """
+    if top is None:
+        problem.check_top(problem.top)
+    else:
+        problem.check_top(top, "top")
     return plan_kind(problem).make(problem, top)

@@ -749,6 +749,8 @@ class Scene:
             )
         if self.ground is not None and self.hull is None:
             raise InvalidScene("ground: a ground contact needs [hull] and [water]; expected them too")
+        if self.ground is not None:
+            _check_contact(self.ground.contact, self.hull)
         _set(self, "openings", tuple(self.openings))
         if self.openings:
             _check_openings(self)
@@ -950,6 +952,26 @@ def _convex_hull(points):
 
     lower, upper = chain(order), chain(reversed(order))
     return lower[:-1] + upper[:-1]
+
+
+#: How far a ground contact may lie outside the hull's bounding box, as a share of the hull's
+#: largest side: a keel point or a bilge keel just off the modelled envelope is accepted, a
+#: contact metres away is a typing error (450 m out, the hull pivots about a point in the water).
+CONTACT_REACH = 0.05
+
+
+def _check_contact(contact, hull):
+    """Refuse a ground contact outside the hull's extent by more than :data:`CONTACT_REACH`."""
+    lower, upper = hull.bounds
+    outside = float(np.max(np.maximum(lower - contact, np.asarray(contact) - upper)))
+    allowed = CONTACT_REACH * hull.size
+    if outside > allowed:
+        box = ", ".join(f"{a:g}..{b:g}" for a, b in zip(lower, upper, strict=True))
+        raise InvalidScene(
+            f"ground.contact = ({', '.join(f'{c:g}' for c in contact)}) m: {outside:.3g} m outside "
+            f"the hull's extent (x, y, z {box} m, z-up body frame); expected a point on the hull, "
+            f"within {allowed:.3g} m of it ({CONTACT_REACH:.0%} of its largest side)"
+        )
 
 
 def _check_support(scene):

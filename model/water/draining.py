@@ -296,7 +296,7 @@ class DrainHistory:
         return np.abs(self.timed(time) + self.drained(time) - self.initial) / self.initial
 
 
-def integrate(drainage, duration, max_step):
+def integrate(drainage, duration, max_step, bar=None):
     """Integrate the timed tanks' volumes over ``duration`` [s] at the drainage's speed.
 
     Parameters
@@ -305,6 +305,9 @@ def integrate(drainage, duration, max_step):
     duration : float  [s]
     max_step : float  [s]
         The integrator never steps further (a hoist step's time).
+    bar : tqdm, optional
+        A progress bar whose total is ``duration``: moved on to each time the integrator
+        reaches (its work per second of lift grows as the hoist speed falls).
 
     Returns
     -------
@@ -329,6 +332,8 @@ def integrate(drainage, duration, max_step):
         return cache[key]
 
     def rhs(t, y):
+        if bar is not None and t > bar.n:
+            bar.update(float(t) - bar.n)
         pose = state(t, y).start
         flows = np.array([tank.flow(pose.rotation, pose.zo, v)[0] for tank, v in zip(tanks, y[:count])])
         return np.concatenate([-flows, flows])  # the volumes, and the water each has lost

@@ -242,8 +242,51 @@ def _connect(client, scheduler, workers):
     finally:
         if main:
             signal.signal(signal.SIGINT, previous)
-    with cluster, Client(cluster) as client:
-        yield client
+    with _quiet_close() as quiet, cluster, Client(cluster) as client:
+        try:
+            yield client
+        finally:
+            quiet(client)
+
+
+#: Dask's loggers (and those of the event loops under it) that report a closing cluster.
+DASK_LOGGERS = ("distributed", "tornado", "asyncio")
+
+
+def _silence_dask():
+    """Dask's loggers in this process to CRITICAL; their levels before (a Dask task too)."""
+    previous = {name: logging.getLogger(name).level for name in DASK_LOGGERS}
+    for name in DASK_LOGGERS:
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+    return previous
+
+
+@contextmanager
+def _quiet_close():
+    """A local cluster closed without Dask's shutdown noise.
+
+    Closing a cluster races its workers' last heartbeats and result messages: a worker
+    whose connection closes under it logs a ``CommClosedError`` traceback at ERROR (seen
+    around a successful study with one row per chunk). None of it concerns the study, whose
+    rows are all in by then, so stderr is kept for liftplan's own lines: yields a function
+    that, given the client, turns Dask's loggers to CRITICAL in every worker, every nanny
+    and this process (the scheduler's) just before the close; this process's levels are put
+    back after it. (A local cluster's nannies live in this process.)
+    """
+    previous = {}
+
+    def quiet(client):
+        previous.update(_silence_dask())
+        try:
+            client.run(_silence_dask)
+        except Exception:  # noqa: BLE001, S110 - a worker already gone has nothing to say
+            pass
+
+    try:
+        yield quiet
+    finally:
+        for name, level in previous.items():
+            logging.getLogger(name).setLevel(level)
 
 
 #: Seconds a scheduler has to answer the connection handshake.
@@ -258,19 +301,15 @@ def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
     A Dask scheduler greets each connection with a small msgpack handshake frame. Anything
     else (an HTTP server waiting for a request, a service sending text) is refused here in
     one line, where Dask itself would wait for ever or read the text as a frame length of
-    exabytes. Only ``tcp://`` addresses (and bare ``host:port``) are probed; other
-    protocols are left to Dask's own connect timeout.
+    exabytes. ``tcp://`` addresses (and bare ``host:port``) are probed so; other protocols
+    (``tls://``, ``inproc://``, ...) by connecting a Dask client with its own configuration
+    and closing it: either way before the base plan is computed and any journal written.
 
     Raises
     ------
     LiftPlanError
         Naming the address and what answered.
     """
-    import socket
-    import struct
-
-    import msgpack
-    from distributed.comm.addressing import parse_address, parse_host_port
 
     def refuse(why):
         return LiftPlanError(
@@ -278,9 +317,18 @@ def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
             "scheduler, e.g. tcp://10.0.0.5:8786"
         )
 
+    if str(address).startswith("inproc://"):  # a scheduler inside this very process: a command has none
+        raise refuse("an inproc:// scheduler lives inside one Python process, never another's")
+    import socket
+    import struct
+
+    import msgpack
+    from distributed.comm.addressing import parse_address, parse_host_port
+
     try:
         scheme, location = parse_address(address)
         if scheme != "tcp":
+            _probe_client(address, timeout, refuse)
             return
         host, port = parse_host_port(location)
     except (ValueError, TypeError) as err:
@@ -316,6 +364,18 @@ def probe_scheduler(address, timeout=HANDSHAKE_SECONDS):
         ok = False
     if not ok:
         raise refuse("something answered, but not a Dask scheduler (not its handshake)")
+
+
+def _probe_client(address, timeout, refuse):
+    """Connect a Dask client to ``address`` and close it; a :class:`LiftPlanError` (from
+    ``refuse``) naming why it could not connect."""
+    from dask.distributed import Client
+
+    try:
+        with Client(address, timeout=f"{timeout}s"):
+            pass
+    except Exception as err:  # noqa: BLE001 - whatever failed, one line naming it
+        raise refuse(f"cannot connect ({_one_line(err)})") from None
 
 
 def _tasks(study, pending, base):

@@ -50,6 +50,8 @@ CONTROLS = ("hoist", "force")
 #: Lug sets the exact search will enumerate; beyond this ``search = "auto"`` takes the local
 #: search (planner/search/local.py) and ``"exact"`` is refused.
 MAX_SETS = 5_000_000
+#: Lug sets ranked unless ``[plan] top`` says otherwise.
+DEFAULT_TOP = 5
 SEARCHES = ("auto", "exact", "local", "mip")
 #: ``body.weight_basis``: the weight in air, in water, or not stated (None).
 WEIGHT_BASES = ("air", "water", None)
@@ -276,7 +278,7 @@ class PlanProblem:
     yaw: float = 0.0
     hook_tolerance: float = 0.0
     cog_envelope: CogEnvelope = field(default_factory=CogEnvelope)
-    top: int = 5
+    top: int = DEFAULT_TOP
     outline: tuple[tuple[float, float], ...] = ()
     crane_clearance: float = DEFAULT_CLEARANCE
     name: str = ""
@@ -682,3 +684,35 @@ class PlanProblem:
     def set_count(self):
         """Number of lug sets: candidates choose cranes."""
         return math.comb(len(self.candidates), self.cranes)
+
+    @property
+    def row_count(self):
+        """Number of (lug set, crane assignment) rows a ranking can hold: the sets times the
+        distinct ways to put the fleet's crane classes on a set's lugs."""
+        sizes = [len(group) for group in self.crane_classes]
+        if sum(sizes) != self.cranes:  # a fleet to choose from: the ordered choices, a bound
+            return self.set_count * max(math.perm(sum(sizes), self.cranes), 1)
+        ways = math.factorial(self.cranes)
+        for size in sizes:
+            ways //= math.factorial(size)
+        return self.set_count * ways
+
+    def check_top(self, top, key="plan.top"):
+        """Refuse a ranking longer than there are rows to rank (and than the default 5).
+
+        Ranking K rows proves the K best, so a K beyond the rows makes the search evaluate
+        every row, and allocate for K: ``--top 1000000000`` ran 214 s for the 1 820 rows of
+        the tanker's plan. ``key`` names the value in the message. Cranes on slings are
+        not checked: their search ranks pairings of lugs, counted otherwise, and is
+        exhaustive whatever the ranking's length (a large K costs it nothing)."""
+        if any(c.sling is not None for c in self.fleet):
+            return
+        rows = self.row_count
+        if top > max(rows, DEFAULT_TOP):
+            what = "lug sets" if rows == self.set_count else "(lug set, crane assignment) rows"
+            given = f"{key} {top}" if key.startswith("-") else f"{key} = {top}"
+            raise InvalidScene(
+                f"{given}: more than the {rows} {what} there are to rank "
+                f"({len(self.candidates)} candidates choose {self.cranes}); expected at most "
+                f"{max(rows, DEFAULT_TOP)}"
+            )

@@ -215,6 +215,15 @@ class FleetCrane:
             radii = [p[0] for p in points]
             if any(b <= a for a, b in zip(radii, radii[1:])):
                 raise InvalidScene(f"{key}.load_chart radii {radii}: expected strictly increasing")
+            for (r0, s0), (r1, s1) in zip(points, points[1:]):
+                # a crane lifts less the further out it reaches (the overturning moment grows
+                # with the radius): a rising SWL is a chart typed in the wrong order or column
+                if s1 > s0:
+                    raise InvalidScene(
+                        f"{key}.load_chart: SWL rises from {s0:g} t at {r0:g} m to {s1:g} t at "
+                        f"{r1:g} m; expected an SWL that never rises with radius (check the "
+                        "order of the points and of [radius, SWL] in each)"
+                    )
             _set(self, "load_chart", tuple(points))
         for name in ("boom_min", "boom_max"):
             value = getattr(self, name)

@@ -41,11 +41,21 @@ def test_a_solve_with_an_infinite_utilisation_writes_strict_json(tmp_path, capsy
     assert out[NOT_FINITE_KEY]["utilisation.T1"] == "Infinity"
 
 
-@pytest.mark.parametrize(("option", "value"), [("--to", "1e308"), ("--step", "5e-324")])
-def test_a_lift_too_long_to_compute_is_refused_in_one_line(option, value, capsys):
-    assert main(["lift", str(EXAMPLES / "sunken_block_lift.toml"), option, value]) == 2
+@pytest.mark.parametrize(
+    ("option", "value", "fragment"),
+    [
+        # --to beyond the shortest rope: the option and its range (was "is inf steps")
+        ("--to", "1e308", "--to 1e+308 m: expected a hoist in (0, 44] m"),
+        ("--step", "5e-324", "expected at most 100000 (--step at least 0.00021 m, or a lower --to)"),
+    ],
+)
+def test_a_lift_too_long_to_compute_is_refused_in_one_line(option, value, fragment, tmp_path, capsys):
+    figure = tmp_path / "curve.png"
+    scene = EXAMPLES / "sunken_block_lift.toml"
+    assert main(["lift", str(scene), option, value, "--figure", str(figure)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "expected at most 100000" in err[0]
+    assert len(err) == 1 and err[0].startswith("liftplan: error:") and fragment in err[0]
+    assert not figure.exists()
 
 
 @pytest.mark.parametrize(

@@ -433,3 +433,16 @@ def test_lift_command_speed_json_and_bad_speed(tmp_path, capsys):
     assert main(["lift", str(path), "--speed", "0"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--speed 0: expected a finite number of m/min > 0" in err[0]
+
+
+def test_slow_hoist_shows_progress_from_the_first_second(capsys):
+    """Issue 29 item 13: ``lift --speed 1e-6`` ran for minutes with no word (the draining's
+    integration grows as 1 / speed): with ``progress`` the draining and the hoist steps each
+    show a bar on stderr from the start, and the curve is the same as without."""
+    scene = clear_scene(0.02)
+    quiet = load_curve(scene, stop=4.0, step=0.5, speed=1.0)
+    assert capsys.readouterr().err == ""
+    shown = load_curve(scene, stop=4.0, step=0.5, speed=1.0, progress=True)
+    err = capsys.readouterr().err
+    assert "draining" in err and "s of lift" in err and "hoist steps" in err
+    assert np.array_equal(shown.tensions, quiet.tensions)

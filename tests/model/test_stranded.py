@@ -10,6 +10,7 @@ from helpers import EXAMPLES
 from numpy.testing import assert_allclose
 
 from liftplan.model import solve
+from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.hull import Hull
 from liftplan.model.scene.objects import Attitude, Body, Ground, Scene, Water
 
@@ -117,6 +118,15 @@ def test_intact_hull_names_its_forces():
     assert "state: grounded (resting on the ground contact)" in text and "trapped" not in text
     data = eq.to_json()
     assert data["displaced_volume"] == data["immersed_volume"] and data["trapped_water"] == 0.0
+
+
+def test_contact_far_outside_the_hull_is_refused():
+    """Issue 29 item 13: a ground contact 450 m outside the hull was accepted without a word
+    (the hull pivoting about a point in open water); a keel point 1 m below the box (within
+    5 % of its 100 m length) is still accepted."""
+    with pytest.raises(InvalidScene, match=r"ground.contact = \(500, 0, -5\) m: 450 m outside the hull"):
+        barge((500.0, 0.0, -5.0))
+    assert barge((30.0, -2.0, -6.0)).ground.contact == (30.0, -2.0, -6.0)
 
 
 def test_sinking_hull_is_reported():

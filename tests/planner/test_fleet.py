@@ -103,6 +103,11 @@ def test_crane_that_reaches_no_candidate():
     [
         ({"load_chart": ((20.0, 700.0), (20.0, 600.0))}, "radii .* expected strictly increasing"),
         ({"load_chart": ((20.0, 700.0), (30.0, 0.0))}, "SWL 0 t at radius 30 m: expected > 0"),
+        # issue 29 item 13: a chart whose SWL rises with radius was accepted without a word
+        (
+            {"load_chart": ((20.0, 300.0), (30.0, 450.0))},
+            "SWL rises from 300 t at 20 m to 450 t at 30 m; expected an SWL that never rises",
+        ),
         ({"load_chart": (), "swl": None}, "expected exactly one of load_chart"),
         ({"swl": 300.0}, "expected exactly one of load_chart"),
         ({"EA": -1.0}, r"cranes\[Big aft\]\.EA = -1.0"),
