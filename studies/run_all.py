@@ -1,6 +1,6 @@
 """Run every study in order; each writes its data to studies/out/ first, then its summary.
 
-Run:  python studies/run_all.py            (about 40 minutes on 2 cores)
+Run:  python studies/run_all.py            (about 55 minutes on 2 cores, 15 of them combinations)
       python studies/run_all.py --skip report_screenshot   (no Chromium on this machine)
 """
 
@@ -31,6 +31,7 @@ STUDIES = [
     "rope_lengths",
     "hook_montecarlo",
     "ferry_strength",
+    "combinations",
     "planner_scale",
     "many_ropes_timing",
     "benchmarks",
