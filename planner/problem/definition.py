@@ -440,6 +440,11 @@ class PlanProblem:
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
+        if self.search == "local" and len(crane_classes(fleet)) > 1:
+            raise InvalidScene(
+                'plan.search = "local": the local search plans a fleet of equal cranes only (its '
+                'swaps do not reassign cranes); expected search = "exact" or "mip", or one [crane] table'
+            )
         if self.work_limit is not None:
             kind = (
                 "cranes on slings (the sling search is exhaustive)"
@@ -549,6 +554,23 @@ class PlanProblem:
             raise InvalidScene(
                 f"plan.objective = {self.objective!r}: planned for equal cranes on single "
                 "ropes (one [crane] class, no slings); expected [crane] with plan.cranes"
+            )
+        # keys the strength planner would not use: refused, not ignored
+        if self.search != "auto":
+            raise InvalidScene(
+                f'plan.search = "{self.search}": the strength objectives have their own search (a MIP '
+                "over the candidates with each set's exact LP); expected no plan.search (auto)"
+            )
+        if any(c.rope_length_range is not None for c in fleet):
+            raise InvalidScene(
+                f"crane.rope_length = {{ min, max }}: a range with plan.objective = {self.objective!r}, "
+                "whose planner takes one rope length; expected a fixed rope_length"
+            )
+        if controls[0] == "force" and self.hook_tolerance > 0.0:
+            raise InvalidScene(
+                f'plan.hook_tolerance = {self.hook_tolerance:g} m with control = "force": jacks hold '
+                "their forces, so hook heights do not change them; expected hook_tolerance = 0, or "
+                'control = "hoist"'
             )
 
     def _check_breakout(self, fleet):

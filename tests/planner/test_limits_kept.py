@@ -14,7 +14,7 @@ import dataclasses
 import numpy as np
 import pytest
 from support.planning import EXAMPLES, larger_fleet
-from support.strength import small_problem
+from support.strength import small_problem, small_text
 
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.planner import plan
@@ -79,4 +79,31 @@ def test_rope_length_trials_share_one_time_limit():
 def test_scene_tables_in_a_planning_file_are_refused_with_the_reason(table, said):
     text = (EXAMPLES / "tanker_plan.toml").read_text(encoding="utf-8") + "\n" + table
     with pytest.raises(InvalidScene, match=said):
+        loads_problem(text)
+
+
+@pytest.mark.parametrize(
+    ("extra", "said"),
+    [
+        ('search = "mip"', r'plan.search = "mip": the strength objectives have their own search'),
+        ("hook_tolerance = 0.02", r'plan.hook_tolerance = 0.02 m with control = "force": jacks hold'),
+    ],
+)
+def test_keys_the_strength_planner_would_not_use_are_refused(extra, said):
+    """Found by studies/combinations.py: these were planned without them, silently."""
+    with pytest.raises(InvalidScene, match=said):
+        small_problem(control="force", plan_extra=extra)
+
+
+def test_a_rope_length_range_with_a_strength_objective_is_refused():
+    text = small_text(control="hoist")
+    text = text.replace("rope_length = 25.0", "rope_length = { min = 20.0, max = 30.0 }")
+    with pytest.raises(InvalidScene, match=r"crane.rope_length = \{ min, max \}: a range with"):
+        loads_problem(text)
+
+
+def test_the_local_search_with_a_fleet_is_bad_input():
+    text = (EXAMPLES / "tanker_fleet.toml").read_text(encoding="utf-8")
+    text = text.replace("top = 5", 'top = 5\nsearch = "local"')
+    with pytest.raises(InvalidScene, match=r'plan.search = "local": the local search plans a fleet'):
         loads_problem(text)
