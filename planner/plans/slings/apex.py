@@ -430,6 +430,7 @@ class ApexSlingPlan(SlingLift):
             "lower_bound": stats.lower_bound,
             "gap": stats.gap,
             "search": {
+                "method": stats.method,
                 "stopped": stats.stopped,
                 "rows": stats.rows,
                 "evaluated": stats.evaluated,

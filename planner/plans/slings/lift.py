@@ -461,7 +461,7 @@ class SlingLift(InFileFrame):
         return solve_rigging(self.scene)
 
     def _lift_json(self):
-        names = self.crane_names
+        names, problem = self.crane_names, self.problem
         design = None if isinstance(self.design, str) else self.design.to_json()
 
         return contract_json(self) | {
@@ -479,4 +479,17 @@ class SlingLift(InFileFrame):
             },
             "design_loads": design,
             "girder": girder_json(self.girder, self.scenario_json),
+            # the inputs that shape the plan, echoed so a reader sees them honoured
+            "hooks": {
+                "tolerance": {
+                    c.name: problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
+                    for c in problem.fleet
+                }
+            },
+            "limits": {
+                "search": problem.search,
+                "gap": problem.gap,
+                "time_limit": problem.time_limit,
+                "work_limit": problem.work_limit,
+            },
         }
