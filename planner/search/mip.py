@@ -59,12 +59,12 @@ from liftplan.planner.search.evaluator import (
     SearchStats,
     SetEvaluator,
     SetInfeasible,
-    progress_bar,
     tolerance,
 )
 from liftplan.planner.search.exact import search_exact
 from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.local import search_local
+from liftplan.planner.search.progress import best_bound, progress_bar
 from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
 from liftplan.planner.search.screen import REASONS
 
@@ -568,14 +568,14 @@ def search_mip(problem, started, top=1, progress=None):
     """
     from collections import Counter
 
-    ranking, first = _incumbent(problem, started)
+    ranking, first = _incumbent(problem, started, progress)
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
     scenarios = [Cut(s) for s in first_scenarios(problem)]
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
-    bar = progress_bar(MAX_ROUNDS, progress)
+    bar = progress_bar(MAX_ROUNDS, progress, desc="MIP search", unit="rounds", ticker=True)
 
     def stats_now():
         best = ranking[0].worst_value
@@ -630,7 +630,7 @@ def search_mip(problem, started, top=1, progress=None):
             lower = max(min(solution.bound, best), first.lower_bound)
             if bar is not None:
                 bar.update(1)
-                bar.set_postfix_str(f"best {best:.4g}, bound {lower:.4g}", refresh=False)
+                bar.set_postfix_str(best_bound(best, lower), refresh=False)
             if solution.status == "time_limit":
                 stopped = "time_limit"
                 break
@@ -676,11 +676,13 @@ def _cut(mip, solution, lugset, scenario, kind):
     )
 
 
-def _incumbent(problem, started):
+def _incumbent(problem, started, progress=None):
     """A first plan to cut off with, (ranking, stats): the local search's for equal cranes,
     the exact search's first evaluated (set, assignment) for a fleet."""
     import dataclasses
 
     if problem.equal_cranes:
-        return search_local(problem, started)
-    return search_exact(dataclasses.replace(problem, gap=0.0, time_limit=1e-9), time.perf_counter(), 1)
+        return search_local(problem, started, progress=progress)
+    return search_exact(
+        dataclasses.replace(problem, gap=0.0, time_limit=1e-9), time.perf_counter(), 1, progress
+    )
