@@ -314,9 +314,7 @@ def _finish_plan(result, args, report):
     except KeyboardInterrupt:
         if printed:  # the plan is on stdout already
             raise
-        stop = Interrupted(
-            plan=result, phase="after the search (design loads, report, output)", finished=True
-        )
+        stop = Interrupted(plan=result, phase="design loads, report and output", finished=True)
         return _interrupted(stop, args)
 
 
