@@ -215,7 +215,7 @@ def plan_lengths(problem, top=None):
             bar.update(1)
             found = [float(r.chosen.worst_value) for r in results.values() if r is not None]
             low = min((t.lower_bound for t in trials), default=None)
-            bar.set_postfix_str(best_bound(min(found, default=None), low), refresh=False)
+            bar.set_postfix_str(best_bound(min(found, default=None), low))
         return result
 
     def value(key):

@@ -489,8 +489,9 @@ def _bar(weights):
 
 def _show(bar, best, bound):
     if bar is not None:
-        bar.update(1)
         bar.set_postfix_str(best_bound(None if best is None else best.value, bound), refresh=False)
+        bar.update(1)
+        bar.refresh()
 
 
 # -- over the candidates --------------------------------------------------------------------------

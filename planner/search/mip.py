@@ -630,7 +630,7 @@ def search_mip(problem, started, top=1, progress=None):
             lower = max(min(solution.bound, best), first.lower_bound)
             if bar is not None:
                 bar.update(1)
-                bar.set_postfix_str(best_bound(best, lower), refresh=False)
+                bar.set_postfix_str(best_bound(best, lower))
             if solution.status == "time_limit":
                 stopped = "time_limit"
                 break
