@@ -6,10 +6,11 @@ known, the best value so far and the bound; it appears after :data:`DELAY` secon
 phase shows nothing) and is removed when the phase ends.
 
 The bar has a fixed width and comes before the numbers, so a narrow terminal cuts the numbers'
-tail, never the bar, and a terminal whose width is unknown (a pty without a size: 0 columns)
-is drawn :data:`FALLBACK_WIDTH` wide. A phase without natural steps (one long MIP solve, the
-design loads) is redrawn every :data:`TICK` seconds by a background thread, so its elapsed
-time moves.
+tail, never the bar. A terminal whose size is unknown (a pty with no size set: 0 columns and
+0 lines) is drawn :data:`FALLBACK_WIDTH` wide and taken as :data:`FALLBACK_HEIGHT` lines high:
+tqdm alone draws no bar at 0 columns and no line at all at 0 lines. A phase without natural
+steps (one long MIP solve, the design loads) is redrawn every :data:`TICK` seconds by a
+background thread, so its elapsed time moves.
 """
 
 from __future__ import annotations
@@ -26,6 +27,8 @@ DELAY = 1.0
 TICK = 0.5
 #: Columns assumed where the terminal's width is unknown.
 FALLBACK_WIDTH = 100
+#: Lines assumed where the terminal's height is unknown.
+FALLBACK_HEIGHT = 24
 #: The line: phase, share done with a fixed-width bar, count, elapsed time, then best / bound.
 BAR_FORMAT = "{desc}: {percentage:3.0f}% |{bar:20}| {n_fmt}/{total_fmt} {unit} [{elapsed}]{postfix}"
 #: The line of a phase of unknown length (no bar: nothing to fill).
@@ -46,16 +49,26 @@ def shown(progress, file=None):
 
 def width(file):
     """Columns of the terminal ``file`` writes to; :data:`FALLBACK_WIDTH` where unknown."""
+    return _size(file, "columns", "COLUMNS", FALLBACK_WIDTH)
+
+
+def height(file):
+    """Lines of the terminal ``file`` writes to; :data:`FALLBACK_HEIGHT` where unknown (tqdm
+    takes a terminal of 0 lines for one with no room and draws nothing)."""
+    return _size(file, "lines", "LINES", FALLBACK_HEIGHT)
+
+
+def _size(file, what, variable, fallback):
     try:
-        columns = os.get_terminal_size(file.fileno()).columns
+        value = getattr(os.get_terminal_size(file.fileno()), what)
     except (AttributeError, OSError, ValueError):
-        columns = 0
-    if not columns:
+        value = 0
+    if value <= 0:
         try:
-            columns = int(os.environ.get("COLUMNS", "0"))
+            value = int(os.environ.get(variable, "0"))
         except ValueError:
-            columns = 0
-    return columns if columns > 0 else FALLBACK_WIDTH
+            value = 0
+    return value if value > 0 else fallback
 
 
 class _Ticker(threading.Thread):
@@ -103,6 +116,7 @@ def progress_bar(total, progress, desc="plan", unit="set", ticker=False):
         delay=DELAY,
         leave=False,
         ncols=width(sys.stderr),
+        nrows=height(sys.stderr),
         bar_format=BAR_FORMAT if total else OPEN_FORMAT,
     )
     if ticker:

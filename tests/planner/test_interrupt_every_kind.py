@@ -99,9 +99,13 @@ def test_after_the_search_finished_the_plan_is_printed(monkeypatch, capsys):
     assert printed["interrupted_in"] == "design loads, report and output"
     assert printed["search"]["stopped"] in ("proved", "gap")  # as the search ended
     assert printed["design_loads"] is not None  # computed for the printing, as in any plan
-    assert err.strip().splitlines()[-1].startswith(
-        "liftplan: interrupted; the plan above is the search's answer (the search had finished; "
-        "Ctrl-C in the design loads, report and output)"
+    assert (
+        err.strip()
+        .splitlines()[-1]
+        .startswith(
+            "liftplan: interrupted; the plan above is the search's answer (the search had finished; "
+            "Ctrl-C in the design loads, report and output)"
+        )
     )
 
 

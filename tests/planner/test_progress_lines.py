@@ -63,12 +63,22 @@ def test_unknown_width_still_gets_a_bar(monkeypatch, capsys):
     assert "best 91.74, bound 80" in line
 
 
-def test_a_terminal_of_zero_columns_uses_the_fallback(monkeypatch):
+def test_a_terminal_of_no_size_still_gets_its_line(monkeypatch, capsys):
+    """A pty with no size set reports 0 x 0: tqdm alone drew nothing there (it took 0 lines
+    for no room), which is how hull154's first minute showed nothing."""
     monkeypatch.setattr(os, "get_terminal_size", lambda fd=None: os.terminal_size((0, 0)))
     monkeypatch.setenv("COLUMNS", "57")
     assert progress.width(None) == 57
     monkeypatch.delenv("COLUMNS")
+    monkeypatch.delenv("LINES", raising=False)
     assert progress.width(None) == progress.FALLBACK_WIDTH
+    assert progress.height(None) == progress.FALLBACK_HEIGHT
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    bar = progress.progress_bar(4, True, desc="local search: swaps", unit="starts")
+    bar.update(1)
+    bar.refresh()
+    bar.close()
+    assert re.search(r"local search: swaps:  25% \|.{20}\| 1/4 starts", capsys.readouterr().err)
 
 
 def test_not_shown_without_a_terminal(capsys):
