@@ -42,7 +42,7 @@ from liftplan.planner.search.evaluator import (
 )
 from liftplan.planner.search.line_cells import applies, cell_bound
 from liftplan.planner.search.lines import count_bounds, line_bound, two_lines
-from liftplan.planner.search.progress import best_bound, phase, progress_bar
+from liftplan.planner.search.progress import BAR_FORMAT, best_bound, phase, progress_bar
 from liftplan.planner.search.scenarios import Scenario, box_attitudes, first_scenarios
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
@@ -193,7 +193,8 @@ def local_search(
         if bar is not None:
             low = min(value, best[1])
             shown = low if math.isfinite(low) else None
-            bar.set_postfix_str(best_bound(shown, None, f"{moves + taken} swaps (screening value)"))
+            count = moves + taken
+            bar.set_postfix_str(best_bound(shown, None, f"{count} swap{'' if count == 1 else 's'}"))
 
     try:
         for begin in starts:
@@ -347,12 +348,12 @@ def search_local(problem, started, top=1, progress=None):
     if not problem.goal.peak and applies(problem) and bound < result.worst_value:
         deadline = None if limit is None else started + limit
         target = result.worst_value * (1.0 - problem.gap * (1.0 - 1e-9))  # gap <= target
-        bar = progress_bar(1, progress, desc="local search: bound by cells", unit="cells", ticker=True)
+        bar = progress_bar(None, progress, desc="local search: bound by cells", unit="cells", ticker=True)
         best, line = result.worst_value, bound
 
         def tick(done, total, low):
             if bar is not None:
-                bar.total, bar.n = total, done
+                bar.total, bar.n, bar.bar_format = total, done, BAR_FORMAT
                 bar.set_postfix_str(best_bound(best, low), refresh=False)
 
         cell_work = None if work is None else max(1, work - swap_work)
