@@ -311,8 +311,9 @@ def _finish_plan(result, args, report):
         printed = True
         code = _verdict(result.checks, table=not args.json)
         return _unwritten(unwritten) or code
-    except KeyboardInterrupt:
-        if printed:  # the plan is on stdout already
+    except (KeyboardInterrupt, Exception) as err:
+        # casadi hands a Ctrl-C back as a RuntimeError naming it (the rigging model's solves)
+        if printed or not _interrupt(err):  # the plan is on stdout already, or a real error
             raise
         stop = Interrupted(plan=result, phase="design loads, report and output", finished=True)
         return _interrupted(stop, args)

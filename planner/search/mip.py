@@ -568,7 +568,7 @@ def search_mip(problem, started, top=1, progress=None):
     """
     from collections import Counter
 
-    ranking, first = _incumbent(problem, started, progress)
+    ranking, first = _incumbent(problem, started)
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
     scenarios = [Cut(s) for s in first_scenarios(problem)]
@@ -676,13 +676,11 @@ def _cut(mip, solution, lugset, scenario, kind):
     )
 
 
-def _incumbent(problem, started, progress=None):
+def _incumbent(problem, started):
     """A first plan to cut off with, (ranking, stats): the local search's for equal cranes,
     the exact search's first evaluated (set, assignment) for a fleet."""
     import dataclasses
 
     if problem.equal_cranes:
-        return search_local(problem, started, progress=progress)
-    return search_exact(
-        dataclasses.replace(problem, gap=0.0, time_limit=1e-9), time.perf_counter(), 1, progress
-    )
+        return search_local(problem, started)
+    return search_exact(dataclasses.replace(problem, gap=0.0, time_limit=1e-9), time.perf_counter(), 1)
