@@ -128,14 +128,25 @@ def test_sling_plan_keeps_the_best_disjoint_sets(monkeypatch, capsys):
     assert "liftplan: interrupted; the plan above" in err
 
 
-def test_two_crane_sling_plan_after_its_search(monkeypatch, capsys):
+@pytest.mark.parametrize("disguised", [False, True])
+def test_two_crane_sling_plan_after_its_search(monkeypatch, capsys, disguised):
     """The two-crane sling planner is one vectorised pass; a Ctrl-C in what follows it (the
-    legs posed on the rigging model, for the output) still prints its plan."""
+    legs posed on the rigging model, for the output) still prints its plan, also when casadi
+    hands the Ctrl-C back as a RuntimeError naming it."""
     from liftplan.planner.plans.slings import lift
 
     problem = load_problem(EXAMPLES / "block_sling_plan.toml")
     lugs = json.loads(json.dumps(plan(problem).lugs))
-    interrupt_on(monkeypatch, lift, "solve_rigging", 1)
+    if disguised:
+        original = lift.solve_rigging
+
+        def casadi_style(*args, **kwargs):
+            monkeypatch.setattr(lift, "solve_rigging", original)
+            raise RuntimeError(".../casadi/core/function.cpp: Error in Function::call: KeyboardInterrupt")
+
+        monkeypatch.setattr(lift, "solve_rigging", casadi_style)
+    else:
+        interrupt_on(monkeypatch, lift, "solve_rigging", 1)
     code, out, err = cli(monkeypatch, capsys, problem, "--json")
     assert code == 130, err
     printed = json.loads(out)
