@@ -246,7 +246,7 @@ def plan_lengths(problem, top=None):
     except KeyboardInterrupt as stop:  # the best plan over the lengths tried so far
         partial = getattr(stop, "plan", None)  # the interrupted trial's best plan, if any
         if partial is not None and trying not in results:
-            trials.append(_trial(trying, partial))
+            trials.append(_trial(trying, partial, "interrupted: the best plan so far at these lengths"))
             results[trying] = partial
         what = f"rope lengths: trial {len(trials) + (partial is None)}"
         if not any(r is not None for r in results.values()):
@@ -268,11 +268,10 @@ def plan_lengths(problem, top=None):
     return _chosen(problem, classes, ranges, trials, results, best, start, stopped)
 
 
-def _trial(key, result):
+def _trial(key, result, reason=""):
     """The :class:`LengthTrial` of a plan at lengths ``key``."""
-    return LengthTrial(
-        key, float(result.chosen.worst_value), float(result.stats.lower_bound), tuple(result.chosen.lugs)
-    )
+    value, bound = float(result.chosen.worst_value), float(result.stats.lower_bound)
+    return LengthTrial(key, value, bound, tuple(result.chosen.lugs), reason)
 
 
 def _chosen(problem, classes, ranges, trials, results, best, start, stopped):

@@ -183,6 +183,7 @@ def test_rope_lengths_keep_the_best_length_so_far(monkeypatch, capsys):
     values = [t.value for t in result.lengths.trials]
     assert result.chosen.worst_value == min(values)
     assert result.lengths.chosen in [t.lengths for t in result.lengths.trials]
+    assert result.lengths.trials[-1].reason.startswith("interrupted")
 
     trials.clear()
     code, out, err = cli(monkeypatch, capsys, problem)
