@@ -481,10 +481,11 @@ def _stopped_stats(method, evaluator, started, rounds, bound, best, certified=Tr
     )
 
 
-def _bar(weights):
-    """The progress line of one strength search (MIP rounds; redrawn while a MIP runs)."""
+def _bar(weights, total=None):
+    """The progress line of one strength search (MIP rounds, ``total`` at most; redrawn while
+    a MIP runs)."""
     what = "spread-optimal partner" if tuple(weights) == SPREAD_WEIGHTS else "strength search"
-    return progress_bar(ROUNDS, None, desc=f"{what}: MIP rounds", unit="rounds", ticker=True)
+    return progress_bar(total, None, desc=f"{what}: MIP rounds", unit="rounds", ticker=True)
 
 
 def _show(bar, best, bound):
@@ -540,7 +541,7 @@ def _search_force(ctx, evaluator, weights, started, limit):
     limits = (np.full(count, p.min_tension), ctx.limit, np.minimum(ctx.limit, ctx.share))
     tensions = np.full(count, p.body.weight / n)
     best, rounds, bound = None, 0, -math.inf
-    bar = _bar(weights)
+    bar = _bar(weights, ROUNDS)
     try:
         while True:
             # the equilibrium attitudes from the force centre of the last solution (exact when
@@ -924,7 +925,8 @@ def plan_strength(problem, top=None):
     except StrengthInterrupted as stop:  # the plan is complete; its partner as far as it got
         partial = None if stop.best is None else stop.stats
         plan = StrengthPlan(problem, chosen, stats, spread_plan=stop.best, spread_stats=partial)
-        raise Interrupted([], stats, plan=plan, phase="spread-optimal partner search") from None
+        phase = "spread-optimal partner search"  # the plan's own search had finished
+        raise Interrupted([], stats, plan=plan, phase=phase, finished=True) from None
     # the spread plan's own peaks are reported in the same terms: evaluate it on the
     # strength weights with its tensions as found (its value under the strength objective)
     return StrengthPlan(

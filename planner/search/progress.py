@@ -31,8 +31,10 @@ FALLBACK_WIDTH = 100
 FALLBACK_HEIGHT = 24
 #: The line: phase, share done with a fixed-width bar, count, elapsed time, then best / bound.
 BAR_FORMAT = "{desc}: {percentage:3.0f}% |{bar:20}| {n_fmt}/{total_fmt} {unit} [{elapsed}]{postfix}"
-#: The line of a phase of unknown length (no bar: nothing to fill).
-OPEN_FORMAT = "{desc}: {elapsed}{postfix}"
+#: The line of a phase whose steps are counted but not known in advance (no bar to fill).
+OPEN_FORMAT = "{desc}: {n_fmt} {unit} [{elapsed}]{postfix}"
+#: The line of a phase without steps.
+PHASE_FORMAT = "{desc}: {elapsed}{postfix}"
 
 
 def shown(progress, file=None):
@@ -117,7 +119,7 @@ def progress_bar(total, progress, desc="plan", unit="set", ticker=False):
         leave=False,
         ncols=width(sys.stderr),
         nrows=height(sys.stderr),
-        bar_format=BAR_FORMAT if total else OPEN_FORMAT,
+        bar_format=BAR_FORMAT if total else (OPEN_FORMAT if unit else PHASE_FORMAT),
     )
     if ticker:
         thread = _Ticker(bar)

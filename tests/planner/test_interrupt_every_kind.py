@@ -193,7 +193,7 @@ def test_rope_lengths_keep_the_best_length_so_far(monkeypatch, capsys):
 
 def test_strength_plan_interrupted_in_its_partner_search(monkeypatch, capsys):
     """The pontoon, force control: the strength search ends (proved); Ctrl-C in the
-    spread-optimal partner's first MIP. The plan is the strength-optimal one, without a
+    spread-optimal partner's first MIP. The plan is the strength search's answer, without a
     partner; printed with '-' in the partner's column."""
     from liftplan.planner.search.strength import CandidateMIP
 
@@ -204,7 +204,7 @@ def test_strength_plan_interrupted_in_its_partner_search(monkeypatch, capsys):
         plan(problem)
     result = caught.value.plan
     assert result is not None and result.kind == "strength"
-    assert caught.value.phase == "spread-optimal partner search"
+    assert caught.value.phase == "spread-optimal partner search" and caught.value.finished
     assert result.spread_plan is None and result.spread_stats is None
     assert result.chosen.indices == expected.chosen.indices
     assert result.stats.stopped == expected.stats.stopped
@@ -212,7 +212,7 @@ def test_strength_plan_interrupted_in_its_partner_search(monkeypatch, capsys):
 
     interrupt_on(monkeypatch, CandidateMIP, "solve", 2)
     code, out, err = cli(monkeypatch, capsys, problem)
-    assert code == 130 and out.startswith("INTERRUPTED: best plan found so far")
+    assert code == 130 and out.startswith("INTERRUPTED: the search's plan (the search had finished")
     assert "spread-optimal plan: none" in out
 
 

@@ -74,7 +74,7 @@ def strength_table(plan):
     )
     t = plan.spread_stats
     if t is None:
-        lines.append("spread-optimal plan: none (Ctrl-C stopped the search before it found one)")
+        lines.append("spread-optimal plan: none (Ctrl-C came before its search found one)")
     else:
         lines.append(
             f"spread-optimal plan: {t.seconds:.1f} s, lower bound {t.lower_bound:.4g} t, gap "
