@@ -261,33 +261,66 @@ def _plan(args):
     try:
         result = plan(problem, top=args.top)
     except Interrupted as err:
-        if err.plan is None:  # nothing evaluated yet
-            raise KeyboardInterrupt from None
-        _print_plan(err.plan, args, interrupted=True)
-        print(
-            "liftplan: interrupted; the plan above is the best found so far, not the search's answer",
-            file=sys.stderr,
-        )
+        return _interrupted(err, args)
+    return _finish_plan(result, args, report)
+
+
+def _interrupted(err, args):
+    """Print the plan a Ctrl-C left (marked INTERRUPTED, with its status); exit code 130."""
+    if err.plan is None:  # nothing evaluated yet
+        print(f"liftplan: interrupted ({err.phase}) before any plan was found", file=sys.stderr)
         return INTERRUPTED
-    unwritten = None
-    if report is not None:
-        # start-up: matplotlib only when a report is asked for
-        from liftplan.planner.output.report.write import write_report
+    from liftplan.planner.search.progress import phase
 
-        try:
-            files = write_report(result, report)
-        except OSError as err:  # a full disk, a folder removed meanwhile: the plan still prints
-            unwritten = f"--report {report}: cannot write ({err.strerror or err})"
-        else:
-            written = [files.html, files.pdf, files.scene, files.json]
-            print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
-            if files.pdf is None:  # the HTML report is always written; the PDF is optional
-                from liftplan.model.extras import missing
+    try:
+        with phase("interrupted: the plan so far (Ctrl-C again to stop at once)", None):
+            text = _plan_text(err.plan, args, interrupted=err)
+    except KeyboardInterrupt:  # a second Ctrl-C: stop without the plan
+        print("liftplan: interrupted", file=sys.stderr)
+        return INTERRUPTED
+    print(text)
+    answer = "the search's answer" if err.finished else "the best found so far, not the search's answer"
+    print(f"liftplan: interrupted; the plan above is {answer} ({_where(err)})", file=sys.stderr)
+    return INTERRUPTED
 
-                _warn([f"no report.pdf: {missing('pdf', 'weasyprint') or 'WeasyPrint did not write it'}"])
-    _print_plan(result, args)
-    code = _verdict(result.checks, table=not args.json)
-    return _unwritten(unwritten) or code
+
+def _finish_plan(result, args, report):
+    """Design loads, the report and the plan on stdout; the exit code. The search has
+    finished: a Ctrl-C before the plan is printed still prints it, marked INTERRUPTED."""
+    from liftplan.planner.search.evaluator import Interrupted
+    from liftplan.planner.search.progress import phase
+
+    printed = False
+    try:
+        unwritten = None
+        if report is not None:
+            # start-up: matplotlib only when a report is asked for
+            from liftplan.planner.output.report.write import write_report
+
+            try:
+                with phase("report", None):
+                    files = write_report(result, report)
+            except OSError as err:  # a full disk, a folder removed meanwhile: the plan still prints
+                unwritten = f"--report {report}: cannot write ({err.strerror or err})"
+            else:
+                written = [files.html, files.pdf, files.scene, files.json]
+                print("liftplan: wrote " + ", ".join(str(f) for f in written if f), file=sys.stderr)
+                if files.pdf is None:  # the HTML report is always written; the PDF is optional
+                    from liftplan.model.extras import missing
+
+                    _warn([f"no report.pdf: {missing('pdf', 'weasyprint') or 'WeasyPrint did not write it'}"])
+        with phase("design loads and checks", None):
+            text = _plan_text(result, args)
+        print(text)
+        printed = True
+        code = _verdict(result.checks, table=not args.json)
+        return _unwritten(unwritten) or code
+    except (KeyboardInterrupt, Exception) as err:
+        # casadi hands a Ctrl-C back as a RuntimeError naming it (the rigging model's solves)
+        if printed or not _interrupt(err):  # the plan is on stdout already, or a real error
+            raise
+        stop = Interrupted(plan=result, phase="design loads, report and output", finished=True)
+        return _interrupted(stop, args)
 
 
 def _stamped(out):
@@ -305,18 +338,33 @@ def _unwritten(message):
     return BAD_INPUT
 
 
-def _print_plan(result, args, interrupted=False):
+def _plan_text(result, args, interrupted=None):
+    """The plan as printed: its table, or its JSON with ``--json``; ``interrupted`` the
+    :class:`~liftplan.planner.search.evaluator.Interrupted` that left it (marked so)."""
     from liftplan.planner.output.console.summary import summary as plan_table
 
     if args.json:
         out = {**result.to_json(), "checks": [c.to_json() for c in result.checks]}
-        if interrupted:
+        if interrupted is not None:
             out["interrupted"] = True
-        print(json.dumps(_stamped(out)))
+            out["interrupted_in"] = interrupted.phase
+            out["search_finished"] = interrupted.finished
+        return json.dumps(_stamped(out))
+    table = plan_table(result)
+    if interrupted is None:
+        return table
+    if interrupted.finished:
+        head = f"INTERRUPTED: the search's plan ({_where(interrupted)})"
     else:
-        if interrupted:
-            print("INTERRUPTED: best plan found so far (the search did not finish)")
-        print(plan_table(result))
+        head = f"INTERRUPTED: best plan found so far (the search did not finish; {_where(interrupted)})"
+    return f"{head}\n{table}"
+
+
+def _where(interrupted):
+    """Where a Ctrl-C landed, for the INTERRUPTED lines."""
+    if interrupted.finished:
+        return f"the search had finished; Ctrl-C in the {interrupted.phase}"
+    return f"Ctrl-C in the {interrupted.phase}"
 
 
 def _lift(args):

@@ -20,6 +20,7 @@ from liftplan.planner.plans.protocol import LiftPlan
 from liftplan.planner.plans.slings import plan_slings, uses_slings
 from liftplan.planner.plans.strength import plan_strength, uses_strength
 from liftplan.planner.problem.definition import PlanProblem
+from liftplan.planner.search.evaluator import Interrupted
 
 
 @dataclass(frozen=True)
@@ -78,10 +79,17 @@ def plan(problem: PlanProblem, top: int | None = None) -> LiftPlan:
         No lug set can hold the body within the tolerances and limits; the message names
         the causes and how many sets each ruled out.
     Interrupted
-        Ctrl-C: ``plan`` holds the best plan found so far (None when none was).
+        Ctrl-C, in every kind: ``plan`` holds the best plan found so far (None when none
+        was), ``phase`` where it landed, ``finished`` whether the search had ended.
     """
     if top is None:
         problem.check_top(problem.top)
     else:
         problem.check_top(top, "top")
-    return plan_kind(problem).make(problem, top)
+    kind = plan_kind(problem)
+    try:
+        return kind.make(problem, top)
+    except Interrupted:
+        raise
+    except KeyboardInterrupt:  # before the kind's planner had a plan to keep
+        raise Interrupted([], None, phase=f"{kind.name} plan") from None

@@ -28,6 +28,7 @@ from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
 from liftplan.planner.search.methods import search
+from liftplan.planner.search.progress import phase
 from liftplan.planner.search.scenarios import LugSet, Scenario
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
@@ -738,5 +739,15 @@ def plan_held(problem, top=None, girder_order=True):
             ranked, girders = girder_first(problem, stop.ranking) if girder_order else (stop.ranking, None)
             stop.plan = Plan(problem=problem, ranking=ranked, stats=stop.stats, girders=girders)
         raise
-    ranked, girders = girder_first(problem, ranking) if girder_order else (ranking, None)
+    try:
+        with phase("hull girder of the ranked sets", None):
+            ranked, girders = girder_first(problem, ranking) if girder_order else (ranking, None)
+    except KeyboardInterrupt:  # the search had finished: its plan (the girder checked when shown)
+        raise Interrupted(
+            ranking,
+            stats,
+            plan=Plan(problem=problem, ranking=ranking, stats=stats),
+            phase="hull girder of the ranked sets",
+            finished=True,
+        ) from None
     return Plan(problem=problem, ranking=ranked, stats=stats, girders=girders)

@@ -33,6 +33,8 @@ import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.plans.held import girder_first, plan_held
+from liftplan.planner.search.evaluator import Interrupted
+from liftplan.planner.search.progress import best_bound, progress_bar
 
 LENGTH_STEPS = 5
 #: Largest number of length combinations in the first pass (several classes with ranges).
@@ -172,6 +174,9 @@ def plan_lengths(problem, top=None):
     ------
     PlanInfeasible
         No length tried gives a feasible plan (the reason at the longest lengths).
+    Interrupted
+        Ctrl-C: ``plan`` is the best plan over the lengths tried so far (the interrupted
+        trial's best plan among them), ``stats.stopped = "interrupted"``.
     """
 
     start = time.perf_counter()
@@ -179,14 +184,18 @@ def plan_lengths(problem, top=None):
     ranges = tuple(problem.fleet[g[0]].rope_length_range for g in classes)
     results = {}
     trials = []
-
+    grids = first_pass(ranges)
+    most = len(_product(grids)) + 2 * REFINE_ROUNDS * len(ranges)  # trials at most
+    bar = progress_bar(most, None, desc="rope lengths: trials", unit="trials", ticker=True)
     timed_out = False
+    trying = None  # the lengths being tried
 
     def run(lengths):
-        nonlocal timed_out
+        nonlocal timed_out, trying
         key = tuple(round(float(v), 9) for v in lengths)
         if key in results:
             return results[key]
+        trying = key
         inner = with_lengths(problem, classes, key)
         if problem.time_limit is not None:  # the limit is the whole search's: each trial gets what is left
             left = problem.time_limit - (time.perf_counter() - start)
@@ -200,50 +209,75 @@ def plan_lengths(problem, top=None):
             result = None
             trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
         else:
-            trials.append(
-                LengthTrial(
-                    key,
-                    float(result.chosen.worst_value),
-                    float(result.stats.lower_bound),
-                    tuple(result.chosen.lugs),
-                )
-            )
+            trials.append(_trial(key, result))
         results[key] = result
+        if bar is not None:
+            bar.update(1)
+            found = [float(r.chosen.worst_value) for r in results.values() if r is not None]
+            low = min((t.lower_bound for t in trials), default=None)
+            bar.set_postfix_str(best_bound(min(found, default=None), low))
         return result
 
     def value(key):
         result = results[key]
         return math.inf if result is None else float(result.chosen.worst_value)
 
-    grids = first_pass(ranges)
-    for lengths in _product(grids):
-        run(lengths)
-    if not results:
-        raise PlanInfeasible(
-            f"rope lengths: no length set tried within the time limit {problem.time_limit:g} s "
-            f"({_ranges_text(problem, classes, ranges)}); expected a longer plan.time_limit"
-        )
-    best = min(results, key=value)  # first (shortest) of equals: dicts keep insertion order
-    steps = [(hi - lo) / max(len(g) - 1, 1) for (lo, hi), g in zip(ranges, grids)]
-    for _ in range(REFINE_ROUNDS):
-        for i, (lo, hi) in enumerate(ranges):
-            steps[i] /= 2.0
-            if steps[i] <= 0.0:
-                continue
-            for sign in (-1.0, 1.0):
-                trial = list(best)
-                trial[i] = best[i] + sign * steps[i]
-                if lo - 1e-9 <= trial[i] <= hi + 1e-9:
-                    run(trial)
-            best = min(results, key=value)
-    chosen = results[best]
-    if chosen is None:
+    try:
+        for lengths in _product(grids):
+            run(lengths)
+        if not results:
+            raise PlanInfeasible(
+                f"rope lengths: no length set tried within the time limit {problem.time_limit:g} s "
+                f"({_ranges_text(problem, classes, ranges)}); expected a longer plan.time_limit"
+            )
+        best = min(results, key=value)  # first (shortest) of equals: dicts keep insertion order
+        steps = [(hi - lo) / max(len(g) - 1, 1) for (lo, hi), g in zip(ranges, grids)]
+        for _ in range(REFINE_ROUNDS):
+            for i, (lo, hi) in enumerate(ranges):
+                steps[i] /= 2.0
+                if steps[i] <= 0.0:
+                    continue
+                for sign in (-1.0, 1.0):
+                    trial = list(best)
+                    trial[i] = best[i] + sign * steps[i]
+                    if lo - 1e-9 <= trial[i] <= hi + 1e-9:
+                        run(trial)
+                best = min(results, key=value)
+    except KeyboardInterrupt as stop:  # the best plan over the lengths tried so far
+        partial = getattr(stop, "plan", None)  # the interrupted trial's best plan, if any
+        if partial is not None and trying not in results:
+            trials.append(_trial(trying, partial, "interrupted: the best plan so far at these lengths"))
+            results[trying] = partial
+        what = f"rope lengths: trial {len(trials) + (partial is None)}"
+        if not any(r is not None for r in results.values()):
+            raise Interrupted([], None, phase=what) from None
+        best = min(results, key=value)
+        chosen = _chosen(problem, classes, ranges, trials, results, best, start, "interrupted")
+        raise Interrupted(chosen.ranking, chosen.stats, plan=chosen, phase=what) from None
+    finally:
+        if bar is not None:
+            bar.close()
+    if results[best] is None:
         longest = max(trials, key=lambda t: sum(t.lengths))
         raise PlanInfeasible(
             f"rope lengths: no feasible plan at any of {len(trials)} length sets tried within "
             f"{_ranges_text(problem, classes, ranges)}; at the longest ({_lengths_text(longest.lengths)}): "
             f"{longest.reason}"
         )
+    stopped = "time_limit" if timed_out else None
+    return _chosen(problem, classes, ranges, trials, results, best, start, stopped)
+
+
+def _trial(key, result, reason=""):
+    """The :class:`LengthTrial` of a plan at lengths ``key``."""
+    value, bound = float(result.chosen.worst_value), float(result.stats.lower_bound)
+    return LengthTrial(key, value, bound, tuple(result.chosen.lugs), reason)
+
+
+def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
+    """The plan at the best lengths, with the length search and the stats over every trial
+    (``stopped`` None: the chosen trial's own)."""
+    chosen = results[best]
     search = LengthSearch(
         classes=tuple(tuple(problem.fleet[j].name for j in g) for g in classes),
         ranges=ranges,
@@ -256,7 +290,7 @@ def plan_lengths(problem, top=None):
         lower_bound=min(search.lower_bound, chosen.stats.lower_bound),
         evaluated=sum(r.stats.evaluated for r in finished),
         seconds=time.perf_counter() - start,
-        stopped="time_limit" if timed_out else chosen.stats.stopped,
+        stopped=stopped or chosen.stats.stopped,
     )
     ranking, girders = girder_first(chosen.problem, chosen.ranking)
     return dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)

@@ -41,7 +41,8 @@ from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redunda
 from liftplan.model.strength.girder import attitude_matrix
 from liftplan.planner.plans.common import InFileFrame, weight_json
 from liftplan.planner.problem.fleet import rule_limits
-from liftplan.planner.search.evaluator import GapMixin
+from liftplan.planner.search.evaluator import GapMixin, Interrupted
+from liftplan.planner.search.progress import best_bound, progress_bar
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.strength import (
     STABLE_HEIGHT,
@@ -73,6 +74,9 @@ ROUNDS = 40
 #: Time for the spread-optimal plan beside a strength plan  [s]: it is the comparison, not the
 #: plan, and its MIP (min - max over the chosen points) is weak; its gap is stated.
 PARTNER_TIME = 30.0
+#: How each control's search works, as its stats say.
+FORCE_METHOD = "MIP (HiGHS) over every candidate"
+HOIST_METHOD = "MIP relaxation (HiGHS) + exact set LP, no-good cuts"
 
 
 def uses_strength(problem):
@@ -453,6 +457,44 @@ class StrengthEvaluator:
         return spread, (float((tensions - margin).min()), float((tensions + margin).max()))
 
 
+class StrengthInterrupted(KeyboardInterrupt):
+    """Ctrl-C during :func:`search_strength`: ``best`` the best set evaluated so far (None
+    when none was), ``stats`` the search so far (``stopped = "interrupted"``)."""
+
+    def __init__(self, best, stats):
+        super().__init__("strength search interrupted")
+        self.best, self.stats = best, stats
+
+
+def _stopped_stats(method, evaluator, started, rounds, bound, best, certified=True):
+    """:class:`StrengthStats` of a search Ctrl-C stopped."""
+    value = math.nan if best is None else best.value
+    return StrengthStats(
+        method=method,
+        lower_bound=min(bound, value) if best is not None else bound,
+        seconds=time.perf_counter() - started,
+        rounds=rounds,
+        evaluated=evaluator.count,
+        stopped="interrupted",
+        certified=certified,
+        best=value,
+    )
+
+
+def _bar(weights, total=None):
+    """The progress line of one strength search (MIP rounds, ``total`` at most; redrawn while
+    a MIP runs)."""
+    what = "spread-optimal partner" if tuple(weights) == SPREAD_WEIGHTS else "strength search"
+    return progress_bar(total, None, desc=f"{what}: MIP rounds", unit="rounds", ticker=True)
+
+
+def _show(bar, best, bound):
+    if bar is not None:
+        bar.set_postfix_str(best_bound(None if best is None else best.value, bound), refresh=False)
+        bar.update(1)
+        bar.refresh()
+
+
 # -- over the candidates --------------------------------------------------------------------------
 def search_strength(problem, weights, context=None, time_limit=None):
     """The best lug set and tensions for the weights (bending, shear, spread).
@@ -499,45 +541,54 @@ def _search_force(ctx, evaluator, weights, started, limit):
     limits = (np.full(count, p.min_tension), ctx.limit, np.minimum(ctx.limit, ctx.share))
     tensions = np.full(count, p.body.weight / n)
     best, rounds, bound = None, 0, -math.inf
-    while True:
-        # the equilibrium attitudes from the force centre of the last solution (exact when
-        # every candidate is at one height: the centre's height is then that height)
-        centre_z = ctx.points[:, 2] @ tensions / tensions.sum()
-        up, _ = force_attitude(
-            np.column_stack([ctx.points[:, :2], np.full(count, centre_z)]),
-            tensions,
-            tensions.sum(),
-            p.body.cog,
-            ctx.offsets,
-        )
-        states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
-        blocks = _mip_rows(ctx, states, sections)
-        stacked = (
-            tuple(np.concatenate([b[0][j] for b in blocks]) for j in range(2)),
-            tuple(np.concatenate([b[1][j] for b in blocks]) for j in range(2)),
-        )
-        mip = CandidateMIP(count, n, len(stacked[0][1]), len(stacked[1][1]), 1, shared=True)
-        remaining = None if limit is None else limit - (time.perf_counter() - started)
-        result = mip.solve(weights, statics, [stacked], limits, centre, time_limit=remaining)
-        rounds += 1
-        bound = result.value
-        current = evaluator.evaluate(result.chosen, weights)
-        if best is None or current.value < best.value:
-            best = current
-        tensions = result.forces
-        done = best.value <= bound * (1 + CONVERGED) + 1e-9
-        timed_out = (limit is not None and time.perf_counter() - started > limit) or not result.complete
-        if done or timed_out or rounds >= ROUNDS:
-            break
-        peaks = (current.bending.x, current.shear.x)
-        sections = sections.add(np.repeat(peaks, 2), np.tile([False, True], 2))
+    bar = _bar(weights, ROUNDS)
+    try:
+        while True:
+            # the equilibrium attitudes from the force centre of the last solution (exact when
+            # every candidate is at one height: the centre's height is then that height)
+            centre_z = ctx.points[:, 2] @ tensions / tensions.sum()
+            up, _ = force_attitude(
+                np.column_stack([ctx.points[:, :2], np.full(count, centre_z)]),
+                tensions,
+                tensions.sum(),
+                p.body.cog,
+                ctx.offsets,
+            )
+            states = [State(tuple(u), tuple(o)) for u, o in zip(up, ctx.offsets)]
+            blocks = _mip_rows(ctx, states, sections)
+            stacked = (
+                tuple(np.concatenate([b[0][j] for b in blocks]) for j in range(2)),
+                tuple(np.concatenate([b[1][j] for b in blocks]) for j in range(2)),
+            )
+            mip = CandidateMIP(count, n, len(stacked[0][1]), len(stacked[1][1]), 1, shared=True)
+            remaining = None if limit is None else limit - (time.perf_counter() - started)
+            result = mip.solve(weights, statics, [stacked], limits, centre, time_limit=remaining)
+            rounds += 1
+            bound = result.value
+            current = evaluator.evaluate(result.chosen, weights)
+            if best is None or current.value < best.value:
+                best = current
+            _show(bar, best, bound)
+            tensions = result.forces
+            done = best.value <= bound * (1 + CONVERGED) + 1e-9
+            timed_out = (limit is not None and time.perf_counter() - started > limit) or not result.complete
+            if done or timed_out or rounds >= ROUNDS:
+                break
+            peaks = (current.bending.x, current.shear.x)
+            sections = sections.add(np.repeat(peaks, 2), np.tile([False, True], 2))
+    except KeyboardInterrupt:
+        stats = _stopped_stats(FORCE_METHOD, evaluator, started, rounds, bound, best, equal_height)
+        raise StrengthInterrupted(best, stats) from None
+    finally:
+        if bar is not None:
+            bar.close()
     stopped = (
         "proved"
         if best.value <= bound * (1 + CONVERGED) + 1e-9
         else ("time_limit" if timed_out else "rounds")
     )
     return best, StrengthStats(
-        method="MIP (HiGHS) over every candidate",
+        method=FORCE_METHOD,
         lower_bound=min(bound, best.value),
         seconds=time.perf_counter() - started,
         rounds=rounds,
@@ -563,38 +614,47 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
     rows = _mip_rows(ctx, states, sections)
     mip = CandidateMIP(count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False)
     best, cuts, rounds, bound, stopped = None, [], 0, -math.inf, "proved"
-    while True:
-        remaining = None if limit is None else limit - (time.perf_counter() - started)
-        if remaining is not None and remaining <= 0:
-            stopped = "time_limit"
-            break
-        try:
-            result = mip.solve(weights, statics, rows, limits, cuts=cuts, time_limit=remaining)
-        except PlanInfeasible:
-            if best is None:
-                raise
-            bound = best.value  # every set is cut off: the best found is the optimum
-            break
-        rounds += 1
-        bound = result.value
-        if not result.complete:
-            stopped = "time_limit"
-        if best is not None and bound >= best.value * (1 - p.gap) - 1e-9:
-            stopped = "proved" if bound >= best.value - 1e-9 else "gap"
-            break
-        try:
-            current = evaluator.evaluate(result.chosen, weights)
-        except PlanInfeasible:
-            current = None
-        if current is not None and (best is None or current.value < best.value):
-            best = current
-        cuts.append(result.chosen)
-        if not result.complete:
-            break
+    bar = _bar(weights)
+    try:
+        while True:
+            remaining = None if limit is None else limit - (time.perf_counter() - started)
+            if remaining is not None and remaining <= 0:
+                stopped = "time_limit"
+                break
+            try:
+                result = mip.solve(weights, statics, rows, limits, cuts=cuts, time_limit=remaining)
+            except PlanInfeasible:
+                if best is None:
+                    raise
+                bound = best.value  # every set is cut off: the best found is the optimum
+                break
+            rounds += 1
+            bound = result.value
+            if not result.complete:
+                stopped = "time_limit"
+            if best is not None and bound >= best.value * (1 - p.gap) - 1e-9:
+                stopped = "proved" if bound >= best.value - 1e-9 else "gap"
+                break
+            try:
+                current = evaluator.evaluate(result.chosen, weights)
+            except PlanInfeasible:
+                current = None
+            if current is not None and (best is None or current.value < best.value):
+                best = current
+            _show(bar, best, bound)
+            cuts.append(result.chosen)
+            if not result.complete:
+                break
+    except KeyboardInterrupt:
+        stats = _stopped_stats(HOIST_METHOD, evaluator, started, rounds, bound, best)
+        raise StrengthInterrupted(best, stats) from None
+    finally:
+        if bar is not None:
+            bar.close()
     if best is None:
         raise PlanInfeasible("no lug set holds the body within the limits over the box")
     return best, StrengthStats(
-        method="MIP relaxation (HiGHS) + exact set LP, no-good cuts",
+        method=HOIST_METHOD,
         lower_bound=min(bound, best.value),
         seconds=time.perf_counter() - started,
         rounds=rounds,
@@ -614,8 +674,9 @@ class StrengthPlan(InFileFrame):
     problem : PlanProblem
     chosen : StrengthSet   the strength-optimal set (the plan)
     stats : StrengthStats
-    spread_plan : StrengthSet   the spread-optimal set (max - min tension), same limits
-    spread_stats : StrengthStats
+    spread_plan : StrengthSet or None   the spread-optimal set (max - min tension), same
+        limits; None only in a plan Ctrl-C stopped before the partner found a set
+    spread_stats : StrengthStats or None
     """
 
     kind = "strength"
@@ -623,8 +684,8 @@ class StrengthPlan(InFileFrame):
     problem: object
     chosen: StrengthSet
     stats: StrengthStats
-    spread_plan: StrengthSet
-    spread_stats: StrengthStats
+    spread_plan: StrengthSet | None
+    spread_stats: StrengthStats | None
     labels: tuple[str, ...] = field(init=False)
 
     def __post_init__(self):
@@ -799,7 +860,9 @@ class StrengthPlan(InFileFrame):
             "gap": self.stats.gap,
             "relative_gap": self.stats.relative_gap,
             "strength": self._set_json(c, self.stats),
-            "spread_optimal": self._set_json(self.spread_plan, self.spread_stats),
+            "spread_optimal": (
+                None if self.spread_plan is None else self._set_json(self.spread_plan, self.spread_stats)
+            ),
         }
 
 
@@ -836,6 +899,12 @@ def plan_strength(problem, top=None):
     Returns
     -------
     StrengthPlan
+
+    Raises
+    ------
+    Interrupted
+        Ctrl-C: ``plan`` the best set so far (without the spread-optimal partner when the
+        strength search was stopped; with the partner's best so far when it was), or None.
     """
     del top
     started = time.perf_counter()
@@ -844,9 +913,21 @@ def plan_strength(problem, top=None):
     # partner what is left (at least the other 20 %)
     total = problem.time_limit
     main_limit = None if total is None else MAIN_SHARE * total
-    chosen, stats = search_strength(problem, objective_weights(problem), context, time_limit=main_limit)
+    try:
+        chosen, stats = search_strength(problem, objective_weights(problem), context, time_limit=main_limit)
+    except StrengthInterrupted as stop:  # the best set so far; no spread-optimal partner searched
+        plan = None
+        if stop.best is not None:
+            plan = StrengthPlan(problem, stop.best, stop.stats, spread_plan=None, spread_stats=None)
+        raise Interrupted([], stop.stats, plan=plan, phase="strength search") from None
     limit = PARTNER_TIME if total is None else min(PARTNER_TIME, total - (time.perf_counter() - started))
-    partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
+    try:
+        partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
+    except StrengthInterrupted as stop:  # the plan is complete; its partner as far as it got
+        partial = None if stop.best is None else stop.stats
+        plan = StrengthPlan(problem, chosen, stats, spread_plan=stop.best, spread_stats=partial)
+        phase = "spread-optimal partner search"  # the plan's own search had finished
+        raise Interrupted([], stats, plan=plan, phase=phase, finished=True) from None
     # the spread plan's own peaks are reported in the same terms: evaluate it on the
     # strength weights with its tensions as found (its value under the strength objective)
     return StrengthPlan(

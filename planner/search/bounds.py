@@ -68,11 +68,61 @@ def run_highs(problem, what, **options):
     there), the "inaccurate" warning of a time or gap limit silenced (the caller reads the
     status and the dual bound), a solver error raised as :class:`SolverFailed` naming ``what``."""
     try:
-        with _stdout_silenced(), warnings.catch_warnings():
+        with _stdout_silenced(), warnings.catch_warnings(), _interruptible_highs():
             warnings.simplefilter("ignore", UserWarning)
             problem.solve(solver=cp.HIGHS, **options)
     except cp.error.SolverError as err:
         raise SolverFailed(f"{what}: HiGHS failed ({err})") from None
+
+
+#: Seconds between the main thread's looks for Ctrl-C while HiGHS solves in its thread.
+WAIT = 0.1
+
+
+@contextlib.contextmanager
+def _interruptible_highs():
+    """HiGHS that stops on Ctrl-C within a fraction of a second.
+
+    cvxpy calls ``highspy.Highs().run()``, native code that holds the main thread until the
+    solve ends (a MIP at its time limit: 30 s later), so Python sees the Ctrl-C only then.
+    Meanwhile ``highspy.Highs`` is a subclass whose ``run`` solves in highspy's own solver
+    thread (``startSolve``) while the main thread waits in short steps; on Ctrl-C it asks
+    HiGHS to stop (``cancelSolve``: its interrupt callbacks), waits for that, and raises the
+    KeyboardInterrupt. Off the main thread (no Ctrl-C arrives there) ``run`` is HiGHS's own.
+    """
+    import threading
+
+    import highspy
+
+    original = highspy.Highs
+    if threading.current_thread() is not threading.main_thread() or getattr(original, "_liftplan", False):
+        yield
+        return
+
+    class Interruptible(original):
+        _liftplan = True
+
+        def run(self):
+            if threading.current_thread() is not threading.main_thread():
+                return super().run()
+            self.HandleUserInterrupt = True
+            self.startSolve()
+            try:
+                while True:
+                    done, status = self.wait(WAIT)
+                    if done:
+                        return status
+            except KeyboardInterrupt:
+                self.cancelSolve()
+                while not self.wait(WAIT)[0]:  # HiGHS stops at its next interrupt check
+                    pass
+                raise
+
+    highspy.Highs = Interruptible
+    try:
+        yield
+    finally:
+        highspy.Highs = original
 
 
 @contextlib.contextmanager

@@ -14,7 +14,6 @@
 from __future__ import annotations
 
 import math
-import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -22,6 +21,7 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.problem.objectives import OBJECTIVES
 from liftplan.planner.search.bounds import PreloadMinimax
+from liftplan.planner.search.progress import best_bound
 from liftplan.planner.search.rows import row_spread
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 from liftplan.planner.search.screen import (
@@ -529,22 +529,16 @@ class SetEvaluator:
 
 
 class Interrupted(KeyboardInterrupt):
-    """Ctrl-C during the search; ``ranking`` and ``stats`` hold the best found so far (the
-    ranking may be empty), ``plan`` is set by :func:`liftplan.planner.plan.plan`."""
+    """Ctrl-C during a plan; ``ranking`` and ``stats`` hold the best found so far (the
+    ranking may be empty), ``plan`` the best plan so far (None when none was found; set by
+    each kind's planner), ``phase`` where the interrupt landed and ``finished`` whether the
+    search had already ended (then ``plan`` is the search's answer, only what came after it,
+    such as the report, was cut short)."""
 
-    def __init__(self, ranking, stats):
+    def __init__(self, ranking=(), stats=None, plan=None, phase="search", finished=False):
         super().__init__("search interrupted")
-        self.ranking, self.stats, self.plan = ranking, stats, None
-
-
-def progress_bar(total, progress):
-    if progress is False or (progress is None and not sys.stderr.isatty()):
-        return None
-    from tqdm import tqdm
-
-    return tqdm(
-        total=total, desc="plan", unit="set", file=sys.stderr, delay=1.0, leave=False, dynamic_ncols=True
-    )
+        self.ranking, self.stats, self.plan = list(ranking), stats, plan
+        self.phase, self.finished = phase, finished
 
 
 def tick(bar, ranking, lower_bound):
@@ -552,10 +546,4 @@ def tick(bar, ranking, lower_bound):
         return
     bar.update(1)
     if ranking:
-        best, low = ranking[0].worst_value, min(lower_bound(), ranking[0].worst_value)
-        bar.set_postfix_str(
-            f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %"
-            if best > 0
-            else f"best {best:.4g}",
-            refresh=False,
-        )
+        bar.set_postfix_str(best_bound(ranking[0].worst_value, lower_bound()), refresh=False)

@@ -24,10 +24,10 @@ from liftplan.planner.search.evaluator import (
     SearchStats,
     SetEvaluator,
     SetInfeasible,
-    progress_bar,
     tick,
 )
 from liftplan.planner.search.lines import line_bound
+from liftplan.planner.search.progress import phase, progress_bar
 from liftplan.planner.search.screen import (
     FEASIBLE,
     FULL_COLUMNS,
@@ -66,7 +66,8 @@ def search_exact(problem, started, top, progress=None):
                 "expected cranes placed apart, or more candidates"
             )
         raise PlanInfeasible(_unreachable(problem))
-    screening = screen(problem, sets, cranes)
+    with phase(f"exact search: screening {len(sets)} rows", progress):
+        screening = screen(problem, sets, cranes)
     evaluator = SetEvaluator(problem)
     reasons = Counter(
         dict(
@@ -90,7 +91,7 @@ def search_exact(problem, started, top, progress=None):
     ranking, evaluated, refine_count = [], 0, 0
     evaluated_bound = math.inf  # least LP bound of the rows evaluated feasible
     stopped = "proved"
-    bar = progress_bar(feasible_rows, progress)
+    bar = progress_bar(feasible_rows, progress, desc="exact search", unit="rows", ticker=True)
 
     def lower_bound():
         return min(evaluated_bound, heap[0][0] if heap else math.inf)

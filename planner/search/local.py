@@ -39,10 +39,10 @@ from liftplan.planner.search.evaluator import (
     SearchStats,
     SetEvaluator,
     SetInfeasible,
-    progress_bar,
 )
 from liftplan.planner.search.line_cells import applies, cell_bound
 from liftplan.planner.search.lines import count_bounds, line_bound, two_lines
+from liftplan.planner.search.progress import BAR_FORMAT, best_bound, phase, progress_bar
 from liftplan.planner.search.scenarios import Scenario, box_attitudes, first_scenarios
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
 
@@ -98,6 +98,15 @@ def line_starts(problem, spread=2):
     return [tuple(sorted(int(i) for i in np.r_[a, b])) for a in options[0] for b in options[1]]
 
 
+class SwapsInterrupted(KeyboardInterrupt):
+    """Ctrl-C during the swaps: ``indices`` is the best set reached so far (None when no
+    start was feasible yet), ``value`` its screening value, ``moves`` the swaps taken."""
+
+    def __init__(self, indices, value, moves):
+        super().__init__("local search interrupted")
+        self.indices, self.value, self.moves = indices, value, moves
+
+
 def swaps(current, count):
     """Every set one swap away from ``current`` (ascending indices), shape (n (C - n), n)."""
     chosen = np.array(current)
@@ -108,7 +117,16 @@ def swaps(current, count):
     return np.sort(out, axis=1)
 
 
-def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=None, seed=0, work_limit=None):
+def local_search(
+    problem,
+    start=None,
+    time_limit=None,
+    max_moves=200,
+    restarts=None,
+    seed=0,
+    work_limit=None,
+    progress=False,
+):
     """The best set one swap at a time (module docstring), from several starts; equal cranes.
 
     Parameters
@@ -127,6 +145,9 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
         Further starts, each the first start with a third of its candidates swapped for
         others at random (seeded), default :data:`RESTARTS`.
     seed : int
+    progress : bool, optional
+        A progress line on stderr (:mod:`~liftplan.planner.search.progress`; None: when
+        stderr is a terminal): starts done, best value, swaps.
 
     Returns
     -------
@@ -142,6 +163,8 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
     ------
     PlanInfeasible
         Every start and every swap from them are infeasible.
+    SwapsInterrupted
+        Ctrl-C: with the best set reached so far.
     """
     if not problem.equal_cranes:
         raise PlanInfeasible(
@@ -163,14 +186,39 @@ def local_search(problem, start=None, time_limit=None, max_moves=200, restarts=N
         others = np.setdiff1d(np.arange(count), kept)
         starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)].tolist())))
     best, moves, reason = (None, math.inf), 0, None
-    for begin in dict.fromkeys(starts):  # a repeated start is run once
-        if budget.out() and best[0] is not None:
-            break
-        current, value, taken, why = _descend(problem, begin, budget, max_moves, plane)
-        moves += taken
-        reason = reason or why
-        if value < best[1]:
-            best = (current, value)
+    starts = list(dict.fromkeys(starts))  # a repeated start is run once
+    bar = progress_bar(len(starts), progress, desc="local search: swaps", unit="starts", ticker=True)
+
+    def seen(current, value, taken):  # each swap taken: the line shows the best so far
+        if bar is not None:
+            low = min(value, best[1])
+            shown = low if math.isfinite(low) else None
+            count = moves + taken
+            bar.set_postfix_str(best_bound(shown, None, f"{count} swap{'' if count == 1 else 's'}"))
+
+    try:
+        for begin in starts:
+            if budget.out() and best[0] is not None:
+                break
+            try:
+                current, value, taken, why = _descend(problem, begin, budget, max_moves, plane, seen)
+            except SwapsInterrupted as stop:  # the descent's set so far against the best
+                if stop.indices is not None and stop.value < best[1]:
+                    best = (stop.indices, stop.value)
+                raise SwapsInterrupted(best[0], best[1], moves + stop.moves) from None
+            moves += taken
+            reason = reason or why
+            if value < best[1]:
+                best = (current, value)
+            if bar is not None:
+                bar.update(1)
+    except KeyboardInterrupt as err:
+        if isinstance(err, SwapsInterrupted):
+            raise
+        raise SwapsInterrupted(best[0], best[1], moves) from None
+    finally:
+        if bar is not None:
+            bar.close()
     if best[0] is None:
         raise PlanInfeasible(
             f"the local search found no feasible set one swap from its starts "
@@ -200,43 +248,51 @@ def _plane_lp(problem):
     )
 
 
-def _descend(problem, current, budget, max_moves, plane=None):
+def _descend(problem, current, budget, max_moves, plane=None, seen=None):
     """Swaps from one start while they lower the value: (set, value, swaps, why not).
 
     The value is the screening bound, or with ``plane`` its exact LP over the same scenarios.
+    ``seen(set, value, swaps)`` is called after each swap. Ctrl-C raises
+    :class:`SwapsInterrupted` with the set reached (None before the start was screened).
     """
     count = len(problem.candidates)
-    first = screen(problem, np.array([current]), dual=True)
-    value = float(first.bound[0]) if first.reason[0] == FEASIBLE else math.inf
-    why = None if first.reason[0] == FEASIBLE else REASONS.get(int(first.reason[0]))
-    if plane is not None and math.isfinite(value):
-        value = plane.value(current)
-    moves = 0
-    while moves < max_moves:
-        if budget.out():
-            break
-        near = swaps(current, count)
-        target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
-        found = screen(problem, near, dual=True, target=target)
-        ok = np.flatnonzero((found.reason == FEASIBLE) & (found.bound < target))
-        if not len(ok):
-            break
-        if plane is None:
-            k = int(ok[np.argmin(found.bound[ok])])
-            best = float(found.bound[k])
-        else:  # exact values in order of the bound, until the bound passes the best found
-            k, best = None, target
-            for j in ok[np.argsort(found.bound[ok], kind="stable")]:
-                if found.bound[j] >= best or budget.out() == "time_limit":
-                    break
-                exact = plane.value(near[j])
-                if exact < best:
-                    k, best = int(j), exact
-            if k is None:
+    value, moves = math.inf, 0
+    try:
+        first = screen(problem, np.array([current]), dual=True)
+        start_value = float(first.bound[0]) if first.reason[0] == FEASIBLE else math.inf
+        why = None if first.reason[0] == FEASIBLE else REASONS.get(int(first.reason[0]))
+        if plane is not None and math.isfinite(start_value):
+            start_value = plane.value(current)
+        value = start_value
+        while moves < max_moves:
+            if budget.out():
                 break
-        current, value = tuple(int(i) for i in near[k]), best
-        moves += 1
-        budget.spend()
+            near = swaps(current, count)
+            target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
+            found = screen(problem, near, dual=True, target=target)
+            ok = np.flatnonzero((found.reason == FEASIBLE) & (found.bound < target))
+            if not len(ok):
+                break
+            if plane is None:
+                k = int(ok[np.argmin(found.bound[ok])])
+                best = float(found.bound[k])
+            else:  # exact values in order of the bound, until the bound passes the best found
+                k, best = None, target
+                for j in ok[np.argsort(found.bound[ok], kind="stable")]:
+                    if found.bound[j] >= best or budget.out() == "time_limit":
+                        break
+                    exact = plane.value(near[j])
+                    if exact < best:
+                        k, best = int(j), exact
+                if k is None:
+                    break
+            current, value = tuple(int(i) for i in near[k]), best
+            moves += 1
+            budget.spend()
+            if seen is not None:
+                seen(current, value, moves)
+    except KeyboardInterrupt:
+        raise SwapsInterrupted(current if math.isfinite(value) else None, value, moves) from None
     return current, value, moves, why
 
 
@@ -245,60 +301,96 @@ def search_local(problem, started, top=1, progress=None):
     lower bound that holds for every set: the two-line bound, refined cell by cell where the
     lugs are stations on two lines in one plane (:mod:`~liftplan.planner.search.line_cells`)
     towards the plan's value less the gap aimed at. With a time limit the search takes half of
-    it and the bound the rest; Ctrl-C during the bound keeps the plan with the bound so far
-    (:class:`Interrupted`). One plan: ``top`` is not used."""
+    it and the bound the rest. Ctrl-C keeps a plan (:class:`Interrupted`): during the swaps the
+    best set reached so far, checked over the box (a second Ctrl-C stops at once, without a
+    plan); during the bound the plan with the bound so far. One plan: ``top`` is not used."""
 
     limit, work = problem.time_limit, problem.work_limit
     swap_work = None if work is None else max(1, work // 2)  # half for the swaps, half for the cells
-    indices, moves, _ = local_search(
-        problem, time_limit=None if limit is None else 0.5 * limit, work_limit=swap_work
-    )
+    interrupted = None  # the phase Ctrl-C ended: the plan is then the best set so far, checked
+    try:
+        indices, moves, _ = local_search(
+            problem,
+            time_limit=None if limit is None else 0.5 * limit,
+            work_limit=swap_work,
+            progress=progress,
+        )
+    except SwapsInterrupted as stop:
+        if stop.indices is None:  # no feasible set reached yet
+            raise Interrupted([], None, phase="local search: swaps") from None
+        indices, moves, interrupted = stop.indices, stop.moves, "local search: swaps"
     stopped = "work_limit" if swap_work is not None and moves >= swap_work else "local"
     evaluator = SetEvaluator(problem)
+    what = "local search: checking its set over the box"
     try:
-        result = evaluator.evaluate(indices)
+        with phase(what, progress):
+            result = _checked_set(problem, evaluator, indices, moves)
+    except KeyboardInterrupt:
+        if interrupted is not None:  # a second Ctrl-C: stop at once
+            raise
+        interrupted = what  # the swaps had ended: their set is the plan, checked once more
+        with phase(what, progress):
+            result = _checked_set(problem, evaluator, indices, moves)
+    if problem.goal.peak:  # every rope shares W: max T_i / SWL_i >= W / sum SWL
+        bound = problem.body.weight / float(np.sum(result.swl))
+    else:  # candidates on two lines: what each line carries is fixed by the statics
+        try:
+            with phase("local search: two-line bound", progress, best_bound(result.worst_value)):
+                bound = line_bound(problem, evaluator.dense)
+        except KeyboardInterrupt:
+            if interrupted is not None:
+                raise
+            interrupted, bound = "local search: two-line bound", 0.0  # no bound but the trivial one
+    if interrupted is not None:
+        raise Interrupted(
+            [result], _local_stats(problem, started, moves, bound, result, "interrupted"), phase=interrupted
+        )
+    if not problem.goal.peak and applies(problem) and bound < result.worst_value:
+        deadline = None if limit is None else started + limit
+        target = result.worst_value * (1.0 - problem.gap * (1.0 - 1e-9))  # gap <= target
+        bar = progress_bar(None, progress, desc="local search: bound by cells", unit="cells", ticker=True)
+        best, line = result.worst_value, bound
+
+        def tick(done, total, low):
+            if bar is not None:
+                bar.total, bar.n, bar.bar_format = total, done, BAR_FORMAT
+                bar.set_postfix_str(best_bound(best, low), refresh=False)
+
+        cell_work = None if work is None else max(1, work - swap_work)
+        try:
+            cells = cell_bound(problem, evaluator.dense, target, deadline, tick, work=cell_work)
+        except KeyboardInterrupt:  # outside a cell (between counts): the two-line bound
+            raise Interrupted(
+                [result],
+                _local_stats(problem, started, moves, line, result, "interrupted"),
+                phase="local search: bound by cells",
+            ) from None
+        finally:
+            if bar is not None:
+                bar.close()
+        bound = max(bound, cells.value)
+        if cells.interrupted:  # Ctrl-C: the plan, with the bound so far
+            raise Interrupted(
+                [result],
+                _local_stats(problem, started, moves, bound, result, "interrupted"),
+                phase="local search: bound by cells",
+            )
+        if not cells.complete:  # a limit left cells open: which one
+            ran_out = cell_work is not None and cells.searched >= cell_work
+            stopped = "work_limit" if ran_out else "time_limit"
+    return [result], _local_stats(problem, started, moves, bound, result, stopped)
+
+
+def _checked_set(problem, evaluator, indices, moves):
+    """The local search's set evaluated exactly (:class:`SetResult`)."""
+    try:
+        return evaluator.evaluate(indices)
     except SetInfeasible as err:
         raise PlanInfeasible(
             f"the local search ended on {', '.join(problem.names[i] for i in indices)}"
             f" after {moves} swaps, which is infeasible over the box: "
             f"{REASONS[err.code]}"
         ) from None
-    if problem.goal.peak:  # every rope shares W: max T_i / SWL_i >= W / sum SWL
-        bound = problem.body.weight / float(np.sum(result.swl))
-    else:  # candidates on two lines: what each line carries is fixed by the statics
-        bound = line_bound(problem, evaluator.dense)
-        if applies(problem) and bound < result.worst_value:
-            deadline = None if limit is None else started + limit
-            target = result.worst_value * (1.0 - problem.gap * (1.0 - 1e-9))  # gap <= target
-            bar = progress_bar(None, progress)
-            best = result.worst_value
-            if bar is not None:
-                bar.set_description("bound: cells")
-                bar.unit = "cell"
-
-            def tick(done, total, low):
-                if bar is not None:
-                    bar.total, bar.n = total, done
-                    bar.set_postfix_str(
-                        f"best {best:.4g}, bound {low:.4g}, gap {100 * (best - low) / best:.2g} %",
-                        refresh=True,
-                    )
-
-            try:
-                cell_work = None if work is None else max(1, work - swap_work)
-                cells = cell_bound(problem, evaluator.dense, target, deadline, tick, work=cell_work)
-            finally:
-                if bar is not None:
-                    bar.close()
-            bound = max(bound, cells.value)
-            if cells.interrupted:  # Ctrl-C: the plan, with the bound so far
-                raise Interrupted(
-                    [result], _local_stats(problem, started, moves, bound, result, "interrupted")
-                )
-            if not cells.complete:  # a limit left cells open: which one
-                ran_out = cell_work is not None and cells.searched >= cell_work
-                stopped = "work_limit" if ran_out else "time_limit"
-    return [result], _local_stats(problem, started, moves, bound, result, stopped)
 
 
 def _local_stats(problem, started, moves, bound, result, stopped):

@@ -59,12 +59,12 @@ from liftplan.planner.search.evaluator import (
     SearchStats,
     SetEvaluator,
     SetInfeasible,
-    progress_bar,
     tolerance,
 )
 from liftplan.planner.search.exact import search_exact
 from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.local import search_local
+from liftplan.planner.search.progress import best_bound, progress_bar
 from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
 from liftplan.planner.search.screen import REASONS
 
@@ -575,7 +575,7 @@ def search_mip(problem, started, top=1, progress=None):
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
-    bar = progress_bar(MAX_ROUNDS, progress)
+    bar = progress_bar(MAX_ROUNDS, progress, desc="MIP search", unit="rounds", ticker=True)
 
     def stats_now():
         best = ranking[0].worst_value
@@ -630,7 +630,7 @@ def search_mip(problem, started, top=1, progress=None):
             lower = max(min(solution.bound, best), first.lower_bound)
             if bar is not None:
                 bar.update(1)
-                bar.set_postfix_str(f"best {best:.4g}, bound {lower:.4g}", refresh=False)
+                bar.set_postfix_str(best_bound(best, lower))
             if solution.status == "time_limit":
                 stopped = "time_limit"
                 break

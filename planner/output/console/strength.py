@@ -35,18 +35,34 @@ def strength_table(plan):
         "",
         f"{'':28s}{'strength-optimal':>20s}{'spread-optimal':>20s}",
     ]
-    rows = [
-        ("peak |M| [t m]", c.bending.value, o.bending.value, ".0f"),
-        ("peak |M| / allowable", c.bending.ratio, o.bending.ratio, ".3f"),
-        ("peak |Q| [t]", c.shear.value, o.shear.value, ".0f"),
-        ("peak |Q| / allowable", c.shear.ratio, o.shear.ratio, ".3f"),
-        ("level spread [t]", c.spread, o.spread, ".1f"),
-        ("worst spread [t]", c.worst_spread, o.worst_spread, ".1f"),
-        ("lowest tension [t]", c.tension_range[0], o.tension_range[0], ".1f"),
-        ("highest tension [t]", c.tension_range[1], o.tension_range[1], ".1f"),
-    ]
-    for name, a, b, fmt in rows:
-        lines.append(f"{name:28s}{a:>20{fmt}}{b:>20{fmt}}")
+
+    def values(s):  # a plan Ctrl-C stopped may have no spread-optimal partner
+        if s is None:
+            return (None,) * 8
+        return (
+            s.bending.value,
+            s.bending.ratio,
+            s.shear.value,
+            s.shear.ratio,
+            s.spread,
+            s.worst_spread,
+            s.tension_range[0],
+            s.tension_range[1],
+        )
+
+    names = (
+        ("peak |M| [t m]", ".0f"),
+        ("peak |M| / allowable", ".3f"),
+        ("peak |Q| [t]", ".0f"),
+        ("peak |Q| / allowable", ".3f"),
+        ("level spread [t]", ".1f"),
+        ("worst spread [t]", ".1f"),
+        ("lowest tension [t]", ".1f"),
+        ("highest tension [t]", ".1f"),
+    )
+    for (name, fmt), a, b in zip(names, values(c), values(o)):
+        other = "-" if b is None else format(b, fmt)
+        lines.append(f"{name:28s}{a:>20{fmt}}{other:>20s}")
     lines.append("")
     lines.append(f"peak |M| at x = {c.bending.x:.2f} m, {_state(plan, c, c.bending)}")
     lines.append(f"peak |Q| at x = {c.shear.x:.2f} m, {_state(plan, c, c.shear)}")
@@ -58,10 +74,13 @@ def strength_table(plan):
         + ("" if s.certified else " (not certified: candidates at different heights)")
     )
     t = plan.spread_stats
-    lines.append(
-        f"spread-optimal plan: {t.seconds:.1f} s, lower bound {t.lower_bound:.4g} t, gap "
-        f"{t.gap:.3g} t, {t.stopped}"
-    )
+    if t is None:
+        lines.append("spread-optimal plan: none (Ctrl-C came before its search found one)")
+    else:
+        lines.append(
+            f"spread-optimal plan: {t.seconds:.1f} s, lower bound {t.lower_bound:.4g} t, gap "
+            f"{t.gap:.3g} t, {t.stopped}"
+        )
     lines.append("")
     heights = plan.boom_heights
     head = f"{'lug':5s}{'candidate':>12s}{'x [m]':>9s}{'tension [t]':>13s}"
@@ -70,5 +89,5 @@ def strength_table(plan):
         i = c.indices[k]
         row = f"{label:5s}{c.names[k]:>12s}{p.points[i][0]:>9.2f}{c.preload[k]:>13.1f}"
         lines.append(row + (f"{heights[label]:>10.3f}" if heights else ""))
-    lines.append(f"spread-optimal lugs: {' '.join(o.names)}")
+    lines.append(f"spread-optimal lugs: {'-' if o is None else ' '.join(o.names)}")
     return "\n".join(lines)

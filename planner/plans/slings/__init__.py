@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from liftplan.planner.plans.slings.apex import ApexSlingPlan, plan_apex_slings
 from liftplan.planner.plans.slings.two_crane import SlingOption, SlingPlan, plan_two_slings, uses_slings
+from liftplan.planner.search.progress import phase
 
 __all__ = ["ApexSlingPlan", "SlingOption", "SlingPlan", "plan_slings", "plan_two_slings", "uses_slings"]
 
@@ -24,6 +25,7 @@ __all__ = ["ApexSlingPlan", "SlingOption", "SlingPlan", "plan_slings", "plan_two
 def plan_slings(problem, top=None):
     """Plan a lift whose cranes carry sling sets: two cranes by :func:`plan_two_slings`, three
     or more (3/4-leg slings) by :func:`~.apex.plan_apex_slings`."""
-    if problem.cranes == 2:
-        return plan_two_slings(problem, top)
+    if problem.cranes == 2:  # one vectorised pass: no plan before it ends (Ctrl-C: none)
+        with phase("sling plan: every pair of rigs", None):
+            return plan_two_slings(problem, top)
     return plan_apex_slings(problem, top)

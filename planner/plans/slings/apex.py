@@ -137,6 +137,8 @@ def plan_apex_slings(problem, top=None):
     Raises
     ------
     PlanInfeasible
+    Interrupted
+        Ctrl-C: ``plan`` the best sets with disjoint slings ranked so far (None when none).
     """
 
     top = top or problem.top
@@ -145,7 +147,13 @@ def plan_apex_slings(problem, top=None):
     while True:
         try:
             ranking, stats = search(derived, ask)
-        except Interrupted:
+        except Interrupted as stop:  # the best disjoint sets ranked so far, if any
+            keep = [r for r in stop.ranking if _disjoint(rigs, r.indices)]
+            if keep:
+                inner = Plan(problem=derived, ranking=keep[:top], stats=stop.stats)
+                ruled_out = {**rigs.ruled_out, "sets sharing a lug (dropped from the ranking)": shared}
+                stop.plan = ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out)
+            stop.phase = f"sling plan: {stop.phase}"
             raise
         keep = [r for r in ranking if _disjoint(rigs, r.indices)]
         shared = len(ranking) - len(keep)
