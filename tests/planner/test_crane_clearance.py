@@ -116,6 +116,7 @@ def test_bad_clearance_and_a_crane_on_the_hull_are_refused():
         loads_problem(inside)
 
 
+@pytest.mark.slow  # 5-6 s; the default run keeps under 10 minutes
 def test_cli_reports_the_clearance(tmp_path):
     out = run("plan", str(FLEET), "--json")
     assert out.returncode == 0, out.stderr
