@@ -60,15 +60,15 @@ def run():
     from liftplan.planner import load_problem
     from liftplan.planner.plans.strength import (
         SPREAD_WEIGHTS,
-        SetEvaluator,
         StrengthContext,
+        StrengthEvaluator,
         objective_weights,
         search_strength,
     )
 
     problem = load_problem(EXAMPLE)
     ctx = StrengthContext(problem)
-    evaluator = SetEvaluator(ctx)
+    evaluator = StrengthEvaluator(ctx)
     stations = sorted({int(round(k)) for k in np.linspace(0, 15, 12)})
     experience_set = [2 * k + side for k in stations for side in (0, 1)]
     experience = evaluator.evaluate(experience_set, SPREAD_WEIGHTS)

@@ -36,7 +36,7 @@ from pathlib import Path
 
 import casadi as ca
 
-from liftplan.model import compiled
+from liftplan.model.statics import compiled
 
 HERE = Path(__file__).parent
 EXAMPLES = HERE.parent / "examples"
