@@ -204,7 +204,9 @@ class _StudyFile(Table):
             'hook-height error draws on the planned file (only with `kind = "montecarlo"`): each draw '
             "moves every hook off its planned height by an independent error and solves the full "
             "elastic model; the table has one row per draw: `error.L1..Ln` (m), `status` (`ok`; "
-            "`unsafe`: a rope over its SWL or slack; `failed`: no stable upright equilibrium), "
+            "`unsafe`: a rope over the plan's limit (its chart SWL through the rules' chain: SWL / "
+            "DAF, less the rigging, over the contingency) or slack; `failed`: no stable upright "
+            "equilibrium), "
             "`reason`, `tension.L1..Ln` (t), `heel`, `trim` (deg), `spread`, `max_tension` (t), "
             "`above_plan_worst`, `above_design_load`, `above_swl` (0 or 1), `slack` (ropes) and "
             "`above_design_tension` (0 or 1). `above_design_tension`: a drawn (static) tension above "
