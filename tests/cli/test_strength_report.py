@@ -172,6 +172,7 @@ def test_scene_file_solves_to_the_planned_forces(force_report):
     assert json.loads((out / "plan.json").read_text())["tensions"] == data["tensions"]
 
 
+@pytest.mark.slow  # 8-12 s: the default run keeps under 10 minutes
 def test_hoist_scene_solves_to_the_preload_at_level(tmp_path):
     """Hoist control: the elastic model at the planned boom heights gives T* and a level pose."""
     from liftplan.model import load_scene, solve

@@ -59,6 +59,7 @@ def test_line_totals_are_the_statics_of_every_set():
         assert bound <= np.ptp(tensions, axis=1).max() + 1e-9
 
 
+@pytest.mark.slow  # 15 s: the default run keeps under 10 minutes (the bound's other tests stay)
 def test_count_bound_never_above_any_sets_optimum():
     """The 40 best sets of 4 among the tanker's 16 candidates (the exact search's ranking):
     each set's preload LP (scipy HiGHS, a 5 x 5 grid per CG vertex) is at least B(n1) over the

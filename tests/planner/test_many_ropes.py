@@ -271,6 +271,7 @@ def needs_pdf():
         pytest.skip(missing())
 
 
+@pytest.mark.slow  # 8-12 s: the default run keeps under 10 minutes
 def test_report_26_ropes_within_the_page(tmp_path):
     needs_pdf()
     result, files, images, texts = printed_report("26", tmp_path)

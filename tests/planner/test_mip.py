@@ -107,7 +107,9 @@ def test_hook_plane_bounds_hold_for_sets_that_beat_the_cutoff():
     assert checked >= 5
 
 
-@pytest.mark.parametrize("cranes", [3, 4, pytest.param(5, marks=pytest.mark.slow)])  # 5: 8 s
+@pytest.mark.parametrize(
+    "cranes", [3, pytest.param(4, marks=pytest.mark.slow), pytest.param(5, marks=pytest.mark.slow)]
+)  # 4: 11 s, 5: 8 s+
 def test_mip_finds_the_brute_force_optimum(cranes):
     problem = small_problem(cranes)
     brute = brute_force(problem)
@@ -138,6 +140,7 @@ def test_mip_assigns_unequal_cranes_as_brute_force(objective):
     assert stats.stopped == "proved" and stats.lower_bound <= best + 1e-6
 
 
+@pytest.mark.slow  # 11 s: the default run keeps under 10 minutes
 def test_gap_target_and_an_independent_dense_check():
     """With gap = 10 % the reported gap is >= 0 and within it; the plan's worst case,
     re-checked on a grid the search never used, never exceeds the reported worst, and the
@@ -160,6 +163,7 @@ def test_gap_target_and_an_independent_dense_check():
     assert stats.lower_bound <= chosen.worst_spread
 
 
+@pytest.mark.slow  # 8-12 s: the default run keeps under 10 minutes
 def test_time_limit_returns_an_honest_gap():
     problem = small_problem(5)
     best = min(brute_force(problem).values())

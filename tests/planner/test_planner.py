@@ -33,7 +33,10 @@ def tanker_plan(tanker_problem):
     return plan(tanker_problem)
 
 
-@pytest.mark.parametrize("cranes", [3, 4, 5, 6])
+# 5 and 6 with -m slow (9 s and more each): the default run keeps under 10 minutes
+@pytest.mark.parametrize(
+    "cranes", [3, 4, pytest.param(5, marks=pytest.mark.slow), pytest.param(6, marks=pytest.mark.slow)]
+)
 def test_search_finds_the_brute_force_optimum(cranes):
     problem = small_problem(cranes)
     brute = brute_force(problem)

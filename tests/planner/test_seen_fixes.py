@@ -257,6 +257,7 @@ def _numbers(eq):
     ]
 
 
+@pytest.mark.slow  # 8-12 s: the default run keeps under 10 minutes
 def test_flexible_hull_in_water_builds_its_model_once_per_discretisation():
     """A second scene of the same discretisation (another EI, other hook heights) solves on the
     model built for the first (no new build: ~1.8 s a scene before), and gives what a fresh
