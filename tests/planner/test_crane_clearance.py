@@ -14,7 +14,7 @@ import pytest
 from support.cli import run
 from support.planning import EXAMPLES
 
-from liftplan.model.errors import InvalidScene
+from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.planner import plan
 from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.file import load_problem, loads_problem
@@ -124,3 +124,15 @@ def test_cli_reports_the_clearance(tmp_path):
     assert data["search"]["clashing"] > 0
     checks = [c for c in data["checks"] if c["name"] == "crane_clearance"]
     assert len(checks) == 4 and all(c["ok"] and c["unit"] == "m" and c["limit"] == 3.0 for c in checks)
+
+
+def test_two_crane_sling_plans_keep_the_clearance_too():
+    """The two-crane sling search has its own enumeration: the clearance holds there as well."""
+    problem = load_problem(EXAMPLES / "block_sling_plan.toml")
+    base = plan(problem)
+    a, b = (np.asarray(c.position, dtype=float) for c in problem.fleet)
+    tips = [(np.asarray(h, dtype=float))[:2] for h in base.chosen.apex]  # level hooks, yaw 0 here
+    least = float(segment_distance(a, tips[0], b, tips[1]))
+    assert clear(np.array(least), problem.crane_clearance)
+    with pytest.raises(PlanInfeasible, match=r"booms crossing or within plan.crane_clearance"):
+        plan(dataclasses.replace(problem, crane_clearance=1000.0))

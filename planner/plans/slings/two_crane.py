@@ -37,6 +37,7 @@ from liftplan.model.rules import TiltGeometry, governing_tilt
 from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
 from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
 from liftplan.planner.plans.slings.rigs import crane_rigs, turned_hooks
+from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.fleet import rule_limits
 
 
@@ -169,6 +170,7 @@ def plan_two_slings(problem, top=None):
         "roll about the hook line beyond the tolerance": 0,
         "the two hooks (nearly) coincide": 0,
         "a hook unloaded (the CG beyond a hook)": 0,
+        "booms crossing or within plan.crane_clearance in plan": 0,
     }
     per_crane = []
     for crane in fleet:
@@ -256,6 +258,7 @@ def plan_two_slings(problem, top=None):
         (np.any(nominal > level, axis=1), "hook load over the rules' level limit (code margin)"),
         (np.any(worst_share > in_box, axis=1), "hook load over the rules' limit within the tolerance"),
         (roll > roll_tol + 1e-9, "roll about the hook line beyond the tolerance"),
+        (~_booms_clear(problem, hook1, hook2, yaw), "booms crossing or within plan.crane_clearance in plan"),
     ]
     for k, (failed, text) in enumerate(checks, start=1):
         fresh = failed & (bad == 0)
@@ -305,6 +308,18 @@ def plan_two_slings(problem, top=None):
         options=int(len(i1)),
         ruled_out={t: n for t, n in counts.items() if n},
     )
+
+
+def _booms_clear(problem, hook1, hook2, yaw):
+    """Per option: the two booms (slew centre to the hook above the rig, in plan) apart by
+    ``plan.crane_clearance`` and never crossing (:mod:`liftplan.planner.problem.clearance`);
+    all True when a crane has no position."""
+    positions = [c.position for c in problem.fleet]
+    if any(p is None for p in positions):
+        return np.ones(len(hook1), dtype=bool)
+    tips = [(h @ yaw.T)[:, :2] for h in (hook1, hook2)]
+    starts = [np.broadcast_to(np.asarray(p, dtype=float), t.shape) for p, t in zip(positions, tips)]
+    return clear(segment_distance(starts[0], tips[0], starts[1], tips[1]), problem.crane_clearance)
 
 
 def _no_plan(problem, counts):
