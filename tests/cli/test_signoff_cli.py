@@ -24,6 +24,7 @@ from liftplan.model.solve_checks import equilibrium_checks
 from liftplan.planner import load_problem
 from liftplan.planner.batch.run import probe_scheduler
 from liftplan.planner.cli import main
+from liftplan.planner.plans import held
 from liftplan.planner.problem.plausibility import problem_warnings
 
 TANKER = EXAMPLES / "tanker_upright.toml"
@@ -270,13 +271,16 @@ def test_ctrl_c_during_batch_is_one_line_exit_130(tmp_path):
     assert (tmp_path / "study.csv.partial").exists()
 
 
+def _no_search(*args, **kwargs):
+    raise AssertionError("the search ran: the input should have been refused before it")
+
+
 # -- item 10: output paths ------------------------------------------------------------------
-def test_report_naming_an_existing_file_is_refused_before_planning(tmp_path, capsys):
+def test_report_naming_an_existing_file_is_refused_before_planning(tmp_path, capsys, monkeypatch):
     target = tmp_path / "report"
     target.write_text("keep me")
-    start = time.perf_counter()
+    monkeypatch.setattr(held, "search", _no_search)  # refused before the ~2 s plan
     assert main(["plan", str(TANKER_PLAN), "--report", str(target)]) == 2
-    assert time.perf_counter() - start < 1.0  # refused before the ~2 s plan
     err = capsys.readouterr().err
     assert one_error_line(err) and "is a file; expected a folder" in err
     assert target.read_text() == "keep me"
@@ -404,7 +408,7 @@ def test_silent_scheduler_times_out_naming_it():
         start = time.perf_counter()
         with pytest.raises(LiftPlanError, match=f"{server.address}: no Dask handshake within 1 s"):
             probe_scheduler(server.address, timeout=1.0)
-        assert time.perf_counter() - start < 5.0
+        assert time.perf_counter() - start < 30.0  # at its 1 s timeout, not hanging (wide: no chance)
     finally:
         server.close()
 

@@ -246,7 +246,7 @@ def market_split(rows=4, columns=40, seed=3):
 
 def test_highs_stops_promptly_on_sigint():
     """A real SIGINT 1 s into a MIP HiGHS cannot finish (time limit 60 s): KeyboardInterrupt
-    within a few seconds of it, not at the time limit."""
+    well before the time limit."""
     from liftplan.planner.search.bounds import run_highs
 
     problem = market_split()
@@ -266,5 +266,7 @@ def test_highs_stops_promptly_on_sigint():
         timer.cancel()
     stopped = time.perf_counter()
     assert "at" in sent, "the MIP ended before the signal: not a test of stopping"
-    assert stopped - sent["at"] < 5.0, f"stopped {stopped - sent['at']:.1f} s after SIGINT"
-    assert stopped - started < 10.0
+    # without the stop HiGHS runs to its 60 s limit; the margins are wide so that a loaded
+    # machine cannot fail it by chance (it stops within 1 s when idle)
+    assert stopped - sent["at"] < 20.0, f"stopped {stopped - sent['at']:.1f} s after SIGINT"
+    assert stopped - started < 30.0
