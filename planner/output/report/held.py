@@ -728,7 +728,9 @@ def _breakout_section(plan):
         f"breakout force {force.force:.2f} t ({html.escape(model)}), held until the hull is "
         f"{force.clear:g} m clear of its bed, on a line through ({_xyz(problem, load.point)}) m. "
         "Each crane's share is its tension with the plan's preload held and the body level, "
-        "the hooks moved together as a rigid pattern by the hook shift below; the larger of it "
+        "the hooks moved together as a rigid pattern by the hook shift below, at its worst "
+        "over every hook within the plan's hook tolerance (the same closed form as in the "
+        "box: what the errors add is in the table); the larger of it "
         "and the worst in the box is the crane's static input to the design-load chain above. "
         "The breakout hook load (tension + rigging, no dynamic factor) is checked against the "
         "chart SWL.</p>"
@@ -738,6 +740,7 @@ def _breakout_section(plan):
             c.label,
             c.crane,
             f"{c.breakout:.2f}",
+            f"{w:.2f}",
             f"{r:.2f}",
             f"{h:.2f}",
             f"{c.swl:.1f}",
@@ -747,8 +750,8 @@ def _breakout_section(plan):
             c.governs,
             "ok" if check.ok else "FAIL",
         )
-        for c, r, h, d, check in zip(
-            design.cranes, case.rigging, case.hook_loads, case.hook_shift, case.checks
+        for c, w, r, h, d, check in zip(
+            design.cranes, case.hook_widening, case.rigging, case.hook_loads, case.hook_shift, case.checks
         )
     ]
     table = _table(
@@ -756,6 +759,7 @@ def _breakout_section(plan):
             "lug",
             "crane",
             "tension at breakout [t]",
+            "of it, hook errors [t]",
             "rigging [t]",
             "breakout hook load [t]",
             "chart SWL [t]",
@@ -767,7 +771,7 @@ def _breakout_section(plan):
         ],
         rows,
         "Breakout from the seabed: each crane's held share of the peak load",
-        text_columns=(1, 9, 10),
+        text_columns=(1, 10, 11),
     )
     return ["<h3>Breakout from the seabed</h3>", text, table]
 
