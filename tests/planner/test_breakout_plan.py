@@ -19,6 +19,7 @@ with the plan's preload held (planner/plans/breakout.py). Shown here:
 from __future__ import annotations
 
 import dataclasses
+import html
 import json
 import re
 
@@ -356,3 +357,16 @@ def test_a_plan_warns_when_its_seabed_cannot_carry_the_body(tmp_path):
     lines = bed(load_problem(_files(tmp_path, old)))
     assert len(lines) == 2 and "cannot carry the hull at rest" in lines[0]
     assert "likely counts suction twice" in lines[1]
+
+
+def test_the_report_carries_the_plans_warnings(block):
+    """Issue 29 item 9: the water the in-air case takes as drained was warned of on the
+    console only; page 1 of the report carries every warning of the planning file too."""
+    from liftplan.planner.problem.plausibility import problem_warnings
+
+    lines = problem_warnings(block.problem)
+    assert any("147.6 t of water" in line for line in lines)
+    page = render_html(block)
+    head = page[: page.index("<h2>1 Recommendation")]
+    for line in lines:
+        assert f'<p class="warning"><b>Warning:</b> {html.escape(line)}</p>' in head

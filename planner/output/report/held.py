@@ -98,6 +98,7 @@ def render_html(plan, today=None):
         "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
         "lengths in m.</p>",
         report_page.status(plan.checks),
+        report_page.warnings(plan.problem),
     ]
     body = "\n".join(head + [part for section in SECTIONS for part in section(plan)])
     return report_page.document(

@@ -333,6 +333,7 @@ def render_html(plan, today=None):
             f"<p>All coordinates are in the planning file's frame: {html.escape(FRAME_TEXT[problem.frame])}. "
             f"{how} Forces in t (tonne-force), lengths in m.</p>",
             report_page.status(plan.checks),
+            report_page.warnings(plan.problem),
             "<h2>1 Recommendation</h2>",
             cranes,
             legs,
