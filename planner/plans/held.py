@@ -112,6 +112,19 @@ class CrewMargin:
         """Every rope within its limit and above zero."""
         return bool(np.all(self.rope_max <= self.limit + 1e-9) and self.lowest > 0.0)
 
+    def verdict(self, labels):
+        """``"within the limits"``, or ``"EXCEEDS"`` with what: the rope furthest over its
+        limit (``L2 387.9 t > 317.5 t``) and a rope going slack."""
+        if self.within_limits:
+            return "within the limits"
+        what = []
+        k = int(np.argmax(self.rope_max - self.limit))
+        if self.rope_max[k] > self.limit[k] + 1e-9:
+            what.append(f"{labels[k]} {self.rope_max[k]:.1f} t > {self.limit[k]:.1f} t")
+        if self.lowest <= 0.0:
+            what.append(f"a rope slack (lowest {self.lowest:.1f} t)")
+        return "EXCEEDS: " + ", ".join(what)
+
 
 @dataclass(frozen=True)
 class Plan(InFileFrame):

@@ -318,12 +318,14 @@ def _checks(plan):
                     f"{c.worst_spread:.1f}",
                     *(f"{v:.1f}" for v in c.rope_max),
                     f"{c.lowest:.1f}",
-                    "within limits" if c.within_limits else "EXCEEDS",
+                    c.verdict(plan.labels),
                 )
                 for c in crew
-            ],
-            "Hook accuracy: the plan held, the hooks as planned and worse (limits: chart SWL / DAF, "
-            "less rigging, over contingency)",
+            ]
+            + [("limit", "", "", *(f"{v:.1f}" for v in plan.lugset.limit), "> 0", "")],
+            "Hook accuracy: the plan held, the hooks as planned and worse, "
+            + ("in the box and at breakout " if plan.design_loads.breakout is not None else "")
+            + "(limits: chart SWL / DAF, less rigging, over contingency)",
             text_columns=(0, 4 + len(plan.labels)),
             ropes=(3, len(plan.labels)),
         )
