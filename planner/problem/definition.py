@@ -440,11 +440,6 @@ class PlanProblem:
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
-        if self.search == "local" and len(crane_classes(fleet)) > 1:
-            raise InvalidScene(
-                'plan.search = "local": the local search plans a fleet of equal cranes only (its '
-                'swaps do not reassign cranes); expected search = "exact" or "mip", or one [crane] table'
-            )
         if self.work_limit is not None:
             kind = (
                 "cranes on slings (the sling search is exhaustive)"

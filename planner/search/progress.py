@@ -25,6 +25,8 @@ import time
 DELAY = 1.0
 #: Seconds between redraws of a line by its ticker thread.
 TICK = 0.5
+#: Least time between two redraws of a line  [s] (tqdm's default).
+MININTERVAL = 0.1
 #: Columns assumed where the terminal's width is unknown.
 FALLBACK_WIDTH = 100
 #: Lines assumed where the terminal's height is unknown.
@@ -119,6 +121,7 @@ def progress_bar(total, progress, desc="plan", unit="set", ticker=False):
         unit=unit,
         file=sys.stderr,
         delay=DELAY,
+        mininterval=MININTERVAL,
         leave=False,
         ncols=width(sys.stderr),
         nrows=height(sys.stderr),
