@@ -18,8 +18,8 @@ from liftplan.planner.output.view.figure import lift_figure
 DIV_ID = "liftplan-view"
 #: The element id of the embedded geometry (fixed by the outside contract).
 SCENE_ID = "liftplan-scene"
-#: plotly's configuration: no logo, no link to plotly's site, images saved as PNG.
-CONFIG = {"displaylogo": False, "showLink": False, "toImageButtonOptions": {"format": "png"}}
+#: plotly's configuration: no logo, images saved as PNG.
+CONFIG = {"displaylogo": False, "toImageButtonOptions": {"format": "png"}}
 
 
 def scene_element(view):

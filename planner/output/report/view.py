@@ -1,0 +1,42 @@
+"""The report's 3D view: the interactive page on screen, two still images in print.
+
+The section carries the same plot and ``liftplan-scene`` element as ``liftplan view`` writes
+(:mod:`liftplan.planner.output.view.page`); the PDF (WeasyPrint runs no script) prints the
+stills of the same scene instead (:mod:`liftplan.planner.output.view.stills`).
+"""
+
+from __future__ import annotations
+
+import html
+
+from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.view.page import fragment
+from liftplan.planner.output.view.states import plan_view
+from liftplan.planner.output.view.stills import stills
+
+#: On screen the interactive plot, in print the stills.
+_STYLE = """<style>
+@media print { .view-screen { display: none; } }
+@media screen { .view-print { display: none; } }
+</style>"""
+
+
+def view_section(plan):
+    """The 3D view of ``plan`` as report HTML (list of parts), under a level-3 heading."""
+    view = plan_view(plan)
+    states = "; ".join(f"{k + 1}: {html.escape(s.name)}" for k, s in enumerate(view.states))
+    still = report_page.figure(
+        stills(view),
+        "3D view of the rigged lift",
+        f"The rigged lift at its level state, from two viewpoints; ropes coloured by "
+        f"{view.colour_title}; body: {view.body_source}. The HTML report shows it in 3D with the "
+        "other states.",
+    )
+    return [
+        _STYLE,
+        "<h3>3D view</h3>",
+        f"<p>The chosen lugs, the cranes' boom tips and the ropes coloured by "
+        f"{html.escape(view.colour_title)}, in the planning file's frame. States: {states}.</p>",
+        f'<div class="view-screen">{fragment(view)}</div>',
+        f'<div class="view-print">{still}</div>',
+    ]
