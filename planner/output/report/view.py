@@ -21,6 +21,24 @@ _STYLE = """<style>
 </style>"""
 
 
+#: Around the interactive plot: what :func:`for_print` takes out of the page the PDF is made
+#: from (WeasyPrint runs no script, and parsing plotly's 4.6 MB of it took it 20 times longer).
+SCREEN_START, SCREEN_END = "<!-- liftplan-view: screen only -->", "<!-- /liftplan-view -->"
+
+
+def for_print(page):
+    """The report page without its interactive plot (what the PDF is made from)."""
+    out, start = [], 0
+    while (begin := page.find(SCREEN_START, start)) >= 0:
+        end = page.find(SCREEN_END, begin)
+        if end < 0:
+            break
+        out.append(page[start:begin])
+        start = end + len(SCREEN_END)
+    out.append(page[start:])
+    return "".join(out)
+
+
 def view_section(plan):
     """The 3D view of ``plan`` as report HTML (list of parts), under a level-3 heading."""
     view = plan_view(plan)
@@ -37,6 +55,6 @@ def view_section(plan):
         "<h3>3D view</h3>",
         f"<p>The chosen lugs, the cranes' boom tips and the ropes coloured by "
         f"{html.escape(view.colour_title)}, in the planning file's frame. States: {states}.</p>",
-        f'<div class="view-screen">{fragment(view)}</div>',
+        f'{SCREEN_START}<div class="view-screen">{fragment(view)}</div>{SCREEN_END}',
         f'<div class="view-print">{still}</div>',
     ]

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import os
 import sys
-import tomllib
 from pathlib import Path
 
 from liftplan.model.errors import InvalidScene
@@ -17,8 +16,6 @@ from liftplan.planner.output.paths import make_parent, output_file, replaced
 
 #: What a view can be written as: a stand-alone HTML page, or binary glTF.
 VIEW_TYPES = (".html", ".glb")
-#: The TOML tables that make a file a planning file rather than a scene.
-PLANNING_TABLES = ("candidates", "plan")
 
 
 def add_parser(commands):
@@ -97,6 +94,9 @@ def run(args):
     out = checked(args.output or f"{source.stem}_view.html", "--output")
     if args.lift and source.suffix.lower() == ".json":
         raise InvalidScene(f"--lift with {source}: expected a scene file with [hull], [water] and cranes")
+    # start-up: the solvers, the planner and plotly only when the command runs
+    from liftplan.planner.output.view.load import load_view
+
     unwritten = save_view(out, lambda: load_view(source, lift=args.lift), "--output")
     if unwritten is not None:
         print(f"liftplan: error: {unwritten}", file=sys.stderr)
@@ -113,76 +113,3 @@ def has_display():
     return sys.platform in ("darwin", "win32") or bool(
         os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
     )
-
-
-def load_view(source, lift=False):
-    """The LiftView of a scene file (solved, or its load curve with ``lift``), a planning file
-    (planned) or a plan JSON (its ``plan_scene.toml`` solved)."""
-    # start-up: the solvers and the planner only when a view is drawn
-    from liftplan.planner.output.view import states
-
-    source = Path(source)
-    if source.suffix.lower() == ".json":
-        return _plan_json_view(source)
-    if _is_planning(source):
-        if lift:
-            raise InvalidScene(f"--lift with {source}: a planning file; expected a scene file")
-        from liftplan.planner.plan import plan  # start-up: cvxpy only when planning
-        from liftplan.planner.problem.file import load_problem
-
-        return states.plan_view(plan(load_problem(source)))
-    from liftplan.model.scene.file import load_scene
-
-    scene = load_scene(source)
-    if lift:
-        from liftplan.model.lift import load_curve  # start-up: only for --lift
-
-        return states.lift_view(scene, load_curve(scene))
-    from liftplan.model.solve import solve
-
-    return states.scene_view(scene, solve(scene))
-
-
-def _is_planning(source):
-    try:
-        with open(source, "rb") as handle:
-            data = tomllib.load(handle)
-    except (OSError, tomllib.TOMLDecodeError):
-        return False  # the scene reader says what is wrong with it
-    return any(key in data for key in PLANNING_TABLES)
-
-
-def _plan_json_view(source):
-    """A plan JSON's level state: the ``plan_scene.toml`` written beside it solved, each rope
-    keyed by the plan's lug label (``L1``, ...) as the JSON keys its tensions."""
-    import dataclasses
-    import json
-
-    from liftplan.model.scene.file import load_scene
-    from liftplan.model.solve import solve
-    from liftplan.planner.output.view import states
-
-    scene_file = source.with_name("plan_scene.toml")
-    try:
-        data = json.loads(source.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as err:
-        raise InvalidScene(f"{source}: cannot read as JSON ({err}); expected a plan JSON") from None
-    if not isinstance(data, dict) or not isinstance(data.get("lugs"), dict):
-        raise InvalidScene(
-            f'{source}: no "lugs" object; expected a plan JSON (liftplan plan --json or --report)'
-        )
-    if not scene_file.is_file():
-        raise InvalidScene(
-            f"{source}: no plan_scene.toml beside it; expected the folder liftplan plan --report wrote "
-            "(a plan JSON alone holds no geometry: view the planning file instead)"
-        )
-    scene = load_scene(scene_file)
-    view = states.scene_view(scene, solve(scene), title=f"{scene.name or 'plan'} ({source.name})")
-    labels = {str(name): label for label, name in data["lugs"].items()}
-    state = view.states[0]
-    ropes = tuple(
-        dataclasses.replace(r, key=labels[r.lug]) if r.lug in labels and r.role in ("rope", "leg") else r
-        for r in state.ropes
-    )
-    level = dataclasses.replace(state, name="level (plan_scene.toml solved)", ropes=ropes)
-    return dataclasses.replace(view, states=(level,), labels={n: labels.get(n, n) for n in view.lugs})

@@ -75,6 +75,8 @@ class ViewState:
         Crane name and the world ends of its spreader bar  [m].
     tips : dict of str to 3-tuple
         Boom tip of each crane (by crane name), world  [m].
+    hoist : float or None  [m]
+        A lift's state: its hoist on the load curve.
     """
 
     name: str
@@ -84,6 +86,7 @@ class ViewState:
     ropes: tuple[Rope, ...]
     spreaders: tuple = ()
     tips: dict | None = None
+    hoist: float | None = None
 
     def world(self, body_points):
         """Body-frame points (k, 3) at this state's pose, world  [m]."""
@@ -195,6 +198,7 @@ class LiftView:
             states.append(
                 {
                     "name": state.name,
+                    **({} if state.hoist is None else {"hoist": state.hoist}),
                     "lugs": {r.key: xyz(r.lower) for r in on_lugs},
                     "hooks": {r.key: xyz(r.upper) for r in on_lugs},
                     "tensions": {r.key: float(r.tension) for r in on_lugs},

@@ -220,7 +220,8 @@ def lift_view(scene, curve, title=None):
         if k in seen:
             continue
         seen.add(k)
-        states.append(solved_state(scene, curve.equilibria[k], name))
+        state = solved_state(scene, curve.equilibria[k], name)
+        states.append(dataclasses.replace(state, hoist=float(hoists[k])))
     return _scene_view(scene, tuple(states), title or f"{scene.name or 'lift'}: load curve")
 
 
