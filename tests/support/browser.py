@@ -10,6 +10,7 @@ the 3D view as a desktop does.
 from __future__ import annotations
 
 import base64
+import fcntl
 import json
 import os
 import shutil
@@ -25,12 +26,21 @@ def chromium():
     return shutil.which("chromium")
 
 
+def _high(fd):
+    """``fd`` moved to a descriptor number >= 10 (the original closed)."""
+    moved = fcntl.fcntl(fd, fcntl.F_DUPFD, 10)
+    os.close(fd)
+    return moved
+
+
 class Browser:
     """One headless Chromium with one page (use as a context manager)."""
 
     def __init__(self, profile, width=1200, height=900):
         to_browser_r, self._to_browser = os.pipe()
         self._from_browser, from_browser_w = os.pipe()
+        # the child's ends above 9, so that moving them to 3 and 4 overwrites neither
+        to_browser_r, from_browser_w = (_high(fd) for fd in (to_browser_r, from_browser_w))
         args = [
             chromium(),
             "--headless",
@@ -48,10 +58,11 @@ class Browser:
             f"--window-size={width},{height}",
             "about:blank",
         ]
-        # the protocol's pipe is fds 3 (to the browser) and 4 (from it): set by the shell
+        # the protocol's pipe is fds 3 (to the browser) and 4 (from it), set by bash (dash
+        # takes no fd above 9)
         script = f'exec "$0" "$@" 3<&{to_browser_r} 4>&{from_browser_w}'
         self.process = subprocess.Popen(
-            ["sh", "-c", script, *args],
+            ["bash", "-c", script, *args],
             pass_fds=(to_browser_r, from_browser_w),
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
@@ -148,6 +159,8 @@ class Browser:
         )
 
     def click(self, x, y):
+        """A left click at (x, y), CSS pixels of the viewport (the mouse moved there first)."""
+        self.call("Input.dispatchMouseEvent", {"type": "mouseMoved", "x": x, "y": y})
         for kind in ("mousePressed", "mouseReleased"):
             self.call(
                 "Input.dispatchMouseEvent",
