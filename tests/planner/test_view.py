@@ -11,9 +11,11 @@ import pytest
 from helpers import EXAMPLES
 from support.cli import run
 
+from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.lift import load_curve
 from liftplan.model.scene.file import load_scene
+from liftplan.model.solve import solve
 from liftplan.planner.cli import main
 from liftplan.planner.output.view.figure import lift_figure
 from liftplan.planner.output.view.page import page
@@ -220,3 +222,23 @@ def test_hull154_page_under_five_megabytes(tmp_path):
     assert size < 5_000_000, size
     data = scene_data(out.read_text(encoding="utf-8"))
     assert len(data["states"][0]["tensions"]) == 26
+
+
+def test_python_api_returns_the_figure(tmp_path):
+    """``view_figure`` gives the plotly Figure (what a notebook shows), ``write_view`` the file."""
+    import plotly.graph_objects as go
+
+    from liftplan.planner import view_figure, write_view
+
+    scene = load_scene(EXAMPLES / "block_two_slings.toml")
+    eq = solve(scene)
+    fig = view_figure(eq, scene)
+    assert isinstance(fig, go.Figure) and fig.layout.scene.aspectmode == "data"
+    assert fig.layout.scene.zaxis.title.text == "z [m], up"
+    path = write_view(eq, tmp_path / "slings.html", scene)
+    (state,) = scene_data(path.read_text(encoding="utf-8"))["states"]
+    assert state["tensions"] == {k: v for k, v in eq.rigging.legs.items() if "/top" not in k}
+    with pytest.raises(InvalidScene, match="expected its scene too"):
+        view_figure(eq)
+    with pytest.raises(InvalidScene, match="expected one of .html, .glb"):
+        write_view(eq, tmp_path / "x.png", scene)
