@@ -20,6 +20,8 @@ from liftplan.planner.output.view.geometry import AXIS_TITLES, UP_AXIS, to_file_
 LABELS_SHOWN = 16
 #: The colour scale of rope tension / utilisation (low blue, high red).
 COLOUR_SCALE = "Turbo"
+#: The camera's distance in the plan and elevation views (plotly's units: the scene's half size).
+DISTANCE = 1.8
 
 
 def _xyz(points, frame):
@@ -248,7 +250,7 @@ def _camera(frame, direction):
     up = UP_AXIS[frame]
     eye = np.zeros(3)
     if direction == "plan":
-        eye[up] = 2.5
+        eye[up] = DISTANCE
         upvec = np.zeros(3)
         upvec[1 if up == 2 else 2] = 1.0 if up == 2 else -1.0  # plan: +y (port) up the screen
     else:
@@ -256,15 +258,19 @@ def _camera(frame, direction):
         upvec[up] = 1.0
         horizontal = 1 if up == 2 else 2  # the file's transverse axis
         if direction == "side":
-            eye[horizontal] = -2.5 if up == 2 else 2.5  # from starboard
+            eye[horizontal] = -DISTANCE if up == 2 else DISTANCE  # from starboard
         elif direction == "end":
-            eye[0] = -2.5  # from aft
+            eye[0] = -DISTANCE  # from aft
         else:
-            eye[0], eye[horizontal], eye[up] = -1.6, (-1.6 if up == 2 else 1.6), 1.0
+            eye[0], eye[horizontal], eye[up] = -1.4, (-1.4 if up == 2 else 1.4), 0.9
+    # orthographic: in a plan view a tall rope does not lean out in perspective (and plotly
+    # does not switch projections on a relayout: every view has the same one)
+    projection = "orthographic"
     return {
         "eye": dict(zip("xyz", eye.tolist())),
         "up": dict(zip("xyz", upvec.tolist())),
         "center": {"x": 0, "y": 0, "z": 0},
+        "projection": {"type": projection},
     }
 
 
@@ -321,7 +327,7 @@ def lift_figure(view):
             "aspectmode": "data",
             "camera": _camera(frame, "3d"),
         },
-        margin={"l": 0, "r": 0, "t": 60, "b": 0},
+        margin={"l": 0, "r": 0, "t": 60, "b": 50},
         legend={"x": 0.0, "y": 1.0},
         height=720,
         uirevision="liftplan",
@@ -332,7 +338,7 @@ def lift_figure(view):
                 "x": 0.0,
                 "y": 0.0,
                 "xanchor": "left",
-                "yanchor": "bottom",
+                "yanchor": "top",
                 "buttons": [
                     {"label": label, "method": "relayout", "args": [{"scene.camera": _camera(frame, d)}]}
                     for label, d in (
@@ -349,7 +355,7 @@ def lift_figure(view):
                 "x": 1.0,
                 "y": 0.0,
                 "xanchor": "right",
-                "yanchor": "bottom",
+                "yanchor": "top",
                 "buttons": [
                     {
                         "label": "labels on",
@@ -382,7 +388,7 @@ def lift_figure(view):
                 {
                     "active": 0,
                     "currentvalue": {"prefix": "state "},
-                    "pad": {"t": 40},
+                    "pad": {"t": 50},
                     "steps": steps,
                 }
             ]
