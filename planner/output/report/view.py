@@ -50,11 +50,14 @@ def view_section(plan):
         f"{view.colour_title}; body: {view.body_source}. The HTML report shows it in 3D with the "
         "other states.",
     )
+    heading = (
+        "<h3>3D view</h3>"
+        f"<p>The chosen lugs, the cranes' boom tips and the ropes coloured by "
+        f"{html.escape(view.colour_title)}, in the planning file's frame. States: {states}.</p>"
+    )
     return [
         _STYLE,
-        "<h3>3D view</h3>",
-        f"<p>The chosen lugs, the cranes' boom tips and the ropes coloured by "
-        f"{html.escape(view.colour_title)}, in the planning file's frame. States: {states}.</p>",
-        f'{SCREEN_START}<div class="view-screen">{fragment(view)}</div>{SCREEN_END}',
-        f'<div class="view-print">{still}</div>',
+        f'{SCREEN_START}<div class="view-screen">{heading}{fragment(view)}</div>{SCREEN_END}',
+        # in print the heading stays with its figure
+        f'<div class="view-print" style="break-inside: avoid">{heading}{still}</div>',
     ]

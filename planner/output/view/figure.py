@@ -21,7 +21,10 @@ LABELS_SHOWN = 16
 #: The colour scale of rope tension / utilisation (low blue, high red).
 COLOUR_SCALE = "Turbo"
 #: The camera's distance in the plan and elevation views (plotly's units: the scene's half size).
-DISTANCE = 1.8
+DISTANCE = 2.5
+#: The longest side of the scene, plotly's units (its orthographic zoom): what fits the plot
+#: in every view, the 3D view's diagonal included.
+ZOOM = 1.6
 
 
 def _xyz(points, frame):
@@ -262,7 +265,7 @@ def _camera(frame, direction):
         elif direction == "end":
             eye[0] = -DISTANCE  # from aft
         else:
-            eye[0], eye[horizontal], eye[up] = -1.4, (-1.4 if up == 2 else 1.4), 0.9
+            eye[0], eye[horizontal], eye[up] = -1.7, (-1.7 if up == 2 else 1.7), 1.1
     # orthographic: in a plan view a tall rope does not lean out in perspective (and plotly
     # does not switch projections on a relayout: every view has the same one)
     projection = "orthographic"
@@ -272,6 +275,14 @@ def _camera(frame, direction):
         "center": {"x": 0, "y": 0, "z": 0},
         "projection": {"type": projection},
     }
+
+
+def _aspect(low, high, zoom):
+    """The scene's aspect ratio: true proportions, its longest side ``zoom`` (plotly's
+    orthographic camera scales the picture by the aspect ratio, not by its distance)."""
+    sides = np.asarray(high, dtype=float) - np.asarray(low, dtype=float)
+    sides = np.maximum(sides, 1e-3 * float(sides.max())) / float(sides.max())
+    return dict(zip("xyz", (zoom * sides).tolist()))
 
 
 def lift_figure(view):
@@ -286,6 +297,8 @@ def lift_figure(view):
     lower, upper = view.bounds()
     pad = 0.1 * float(np.max(upper - lower))
     lower, upper = lower - pad, upper + pad
+    corners = to_file_frame(np.array([lower, upper]), frame)
+    shown_low, shown_high = corners.min(axis=0), corners.max(axis=0)
     fixed = []
     if view.water_level is not None:
         fixed.append(_plane(view.water_level, lower, upper, frame, "water level", "#3a7bd5"))
@@ -321,10 +334,12 @@ def lift_figure(view):
     fig.update_layout(
         title={"text": f"{view.title}<br><sub>{view.states[0].name}; body: {view.body_source}</sub>"},
         scene={
-            "xaxis": {"title": {"text": titles[0]}},
-            "yaxis": {"title": {"text": titles[1]}},
-            "zaxis": {"title": {"text": titles[2]}},
-            "aspectmode": "data",
+            **{
+                f"{axis}axis": {"title": {"text": title}, "range": [float(lo), float(hi)]}
+                for axis, title, lo, hi in zip("xyz", titles, shown_low, shown_high)
+            },
+            "aspectmode": "manual",
+            "aspectratio": _aspect(shown_low, shown_high, ZOOM),
             "camera": _camera(frame, "3d"),
         },
         margin={"l": 0, "r": 0, "t": 60, "b": 50},
@@ -340,7 +355,13 @@ def lift_figure(view):
                 "xanchor": "left",
                 "yanchor": "top",
                 "buttons": [
-                    {"label": label, "method": "relayout", "args": [{"scene.camera": _camera(frame, d)}]}
+                    {
+                        "label": label,
+                        "method": "relayout",
+                        # the camera only: a relayout of the aspect ratio too resets its up
+                        # vector (plotly), turning a choi plan view upside down
+                        "args": [{"scene.camera": _camera(frame, d)}],
+                    }
                     for label, d in (
                         ("3D", "3d"),
                         ("plan view", "plan"),
