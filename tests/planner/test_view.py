@@ -35,15 +35,14 @@ def close(a, b, tol=TOL):
     return np.allclose(np.asarray(a, dtype=float), np.asarray(b, dtype=float), rtol=0.0, atol=tol)
 
 
-def test_solved_slings_scene_carries_the_solve_json(tmp_path):
+def test_solved_slings_scene_carries_the_solve_json(tmp_path, capsys):
     """Every leg's lug, upper end (hook) and tension in the page equal ``solve --json``'s: the
     lug from the JSON's pose and position applied to the file's lug, the hook from
     ``hook_positions``, the tension from ``legs``; the hoist ropes' from ``hook_loads``."""
     path = EXAMPLES / "block_two_slings.toml"
     out = tmp_path / "view.html"
-    result = run("solve", str(path), "--json", "--view", str(out))
-    assert result.returncode == 0, result.stderr
-    solved = json.loads(result.stdout)
+    assert main(["solve", str(path), "--json", "--view", str(out)]) == 0
+    solved = json.loads(capsys.readouterr().out)
     data = scene_data(out.read_text(encoding="utf-8"))
     assert data["frame"] == solved["frame"] == "z-up"
     (state,) = data["states"]
@@ -82,14 +81,13 @@ def _planned_lugs(path, planned, level):
         assert close(level["hooks"][label], [lug[0], lug[1], planned["boom_heights"][label]])
 
 
-def test_plan_view_carries_the_plan_json(tmp_path):
+def test_plan_view_carries_the_plan_json(tmp_path, capsys):
     """``plan --json --view FILE``: the page's level state holds the plan JSON's tensions, lugs
     and boom heights; its second state is the worst case the JSON names."""
     path = EXAMPLES / "sunken_block_plan.toml"
     out = tmp_path / "plan.html"
-    result = run("plan", str(path), "--json", "--view", str(out))
-    assert result.returncode == 0, result.stderr
-    planned = json.loads(result.stdout)
+    assert main(["plan", str(path), "--json", "--view", str(out)]) == 0
+    planned = json.loads(capsys.readouterr().out)
     level, worst = scene_data(out.read_text(encoding="utf-8"))["states"]
     assert level["name"] == "level" and worst["name"].startswith("worst case")
     _planned_lugs(path, planned, level)
@@ -233,7 +231,11 @@ def test_python_api_returns_the_figure(tmp_path):
     scene = load_scene(EXAMPLES / "block_two_slings.toml")
     eq = solve(scene)
     fig = view_figure(eq, scene)
-    assert isinstance(fig, go.Figure) and fig.layout.scene.aspectmode == "data"
+    assert isinstance(fig, go.Figure)
+    axes = [getattr(fig.layout.scene, f"{a}axis").range for a in "xyz"]
+    ratio = fig.layout.scene.aspectratio
+    sides = [hi - lo for lo, hi in axes]
+    assert close([ratio.x, ratio.y, ratio.z], np.array(sides) * ratio.x / sides[0])  # true proportions
     assert fig.layout.scene.zaxis.title.text == "z [m], up"
     path = write_view(eq, tmp_path / "slings.html", scene)
     (state,) = scene_data(path.read_text(encoding="utf-8"))["states"]
@@ -242,3 +244,24 @@ def test_python_api_returns_the_figure(tmp_path):
         view_figure(eq)
     with pytest.raises(InvalidScene, match="expected one of .html, .glb"):
         write_view(eq, tmp_path / "x.png", scene)
+
+
+def test_64_ropes_stay_readable():
+    """At 64 ropes the lug labels start hidden (a button shows them), every rope still names
+    itself on hover, and the plan and elevation buttons turn the camera."""
+    scene = load_scene(EXAMPLES / "hull154_64_points.toml")
+    view = scene_view(scene, solve(scene))
+    fig = lift_figure(view)
+    lugs = [t for t in fig.data if t.name == "lugs (chosen)"]
+    assert len(lugs) == 1 and lugs[0].mode == "markers" and len(lugs[0].text) == 64
+    (labels,) = [m for m in fig.layout.updatemenus if m.buttons[0].label == "labels on"]
+    index = fig.data.index(lugs[0])
+    assert labels.buttons[0].args[0] == {"mode": "markers+text"} and list(labels.buttons[0].args[1]) == [
+        index
+    ]
+    (ropes,) = [t for t in fig.data if t.name.startswith("ropes")]
+    named = {h.split(" ")[0] for h in ropes.hovertext if h}
+    assert named == set(scene.lug_names)
+    cameras = {b.label: b.args[0]["scene.camera"] for b in fig.layout.updatemenus[0].buttons}
+    assert cameras["plan view"]["eye"]["z"] > 0 and cameras["plan view"]["up"]["y"] == 1.0
+    assert cameras["elevation (side)"]["eye"]["y"] < 0 and cameras["elevation (side)"]["up"]["z"] == 1.0
