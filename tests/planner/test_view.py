@@ -212,7 +212,7 @@ def test_view_refusals(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_hull154_page_under_five_megabytes(tmp_path):
-    """The 26-point hull's plan as one page: under 5 MB (plotly's script is 4.6 MB of it)."""
+    """The 26-point hull's plan as one page: under 5 MB (plotly's script is 4.8 MB of it)."""
     out = tmp_path / "hull154.html"
     result = run("view", str(EXAMPLES / "hull154_plan.toml"), "--output", str(out), "--no-open")
     assert result.returncode == 0, result.stderr

@@ -246,7 +246,7 @@ def plan_view(plan):
     half = np.asarray(problem.cog_envelope.half_widths, dtype=float)
     cog = np.asarray(problem.body.cog, dtype=float)
     chosen = {name: label for label, name in plan.lugs.items()}
-    if plan.kind == "slings":  # legs keyed as the plan's JSON keys them: by lug label
+    if plan.kind not in ("held", "lengths"):  # scenes by candidate name: keyed as the plan's JSON
         states = tuple(_legs_by_label(s, chosen) for s in states)
     return LiftView(
         title=f"{problem.name or 'plan'}: chosen lugs",
@@ -268,7 +268,7 @@ def plan_view(plan):
 
 def _legs_by_label(state, labels):
     ropes = tuple(
-        dataclasses.replace(r, key=labels[r.lug]) if r.role == "leg" and r.lug in labels else r
+        dataclasses.replace(r, key=labels[r.lug]) if r.role in ("rope", "leg") and r.lug in labels else r
         for r in state.ropes
     )
     return dataclasses.replace(state, ropes=ropes)
