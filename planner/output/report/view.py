@@ -48,8 +48,8 @@ def view_section(plan):
         stills(view),
         "3D view of the rigged lift",
         f"The rigged lift at its level state, from two viewpoints; ropes coloured by "
-        f"{view.colour_title}; body: {view.body_source}. The HTML report shows it in 3D with the "
-        "other states.",
+        f"{view.colour_title}; body: {view.body_source}. The HTML report shows it in 3D"
+        + (" with the other states." if len(view.states) > 1 else "."),
     )
     heading = (
         "<h3>3D view</h3>"
