@@ -19,6 +19,7 @@ from liftplan.model.version import __version__
 from liftplan.planner.batch.montecarlo import hook_monte_carlo
 from liftplan.planner.output.figures import plan as figures
 from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
 
@@ -413,7 +414,7 @@ def _figures(plan):
             "position of the envelope and the worst hook errors; the star marks the worst case.",
         ),
     ]
-    return ["<h2>4 Figures</h2>", *figs]
+    return ["<h2>4 Figures</h2>", *figs, *view_section(plan)]
 
 
 def _girder_cell(worst):

@@ -16,6 +16,7 @@ from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.console.slings import _ranking
 from liftplan.planner.output.figures.plan import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.report.view import view_section
 
 
 def _in_file(problem, point):
@@ -361,6 +362,7 @@ def render_html(plan, today=None):
                 "plan view",
                 "Plan view, seen from above: each crane's lugs, its hook and the CG.",
             ),
+            *view_section(plan),
             "<h2>5 Alternatives</h2>",
             ranking,
             '<h2 class="appendix">Engineering appendix</h2>',
