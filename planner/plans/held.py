@@ -24,6 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.watch_basis import watch_basis
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
@@ -611,6 +612,7 @@ class Plan(InFileFrame):
                 },
                 "checks": [c.to_json() for c in self.checks],
                 "girder": girder_json(self.girder, self.scenario_json),
+                "watch": watch_basis(self).to_json(),  # what `liftplan watch PLAN.json` reads
             }
             | (
                 {}
