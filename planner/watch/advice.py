@@ -29,6 +29,7 @@ import cvxpy as cp
 import numpy as np
 
 from liftplan.model.errors import EquilibriumNotFound
+from liftplan.planner.watch.estimate import AXIS_WORDS
 
 #: Weight of a tonne (or degree) of violation against a square centimetre of hook motion.
 PENALTY = 1e4
@@ -41,8 +42,6 @@ BAND_TOL = 1e-3
 
 #: The CG is outside the envelope when it is more than this many sigma beyond it.
 CONFIDENCE = 2.0
-
-AXIS_WORDS = ("CG x (forward)", "CG y (to port)", "CG height")
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,8 @@ ALONG = 1e-2
 MAX_STEPS = 30
 STEP_TOL = 1e-9
 
-AXES = ("x", "y", "z")
+#: The CG's axes in words (body frame, whatever the file's frame).
+AXIS_WORDS = ("CG x (forward)", "CG y (to port)", "CG height")
 
 
 @dataclass(frozen=True)
@@ -112,7 +113,7 @@ class Estimate:
 
 def quantity_names(labels):
     """Names of the state's entries, in words."""
-    return ["the weight"] + [f"CG {a}" for a in AXES] + [f"hook {label}" for label in labels]
+    return ["the weight", *AXIS_WORDS] + [f"hook {label}" for label in labels]
 
 
 class Estimator:

@@ -73,7 +73,7 @@ class Update:
                 line=self.reading.line,
             )
             return out
-        cog, cog_sigma, unobservable = _file_frame(e, frame)
+        cog, cog_sigma, unobservable = file_frame(e, frame)
         hook = {
             label: (None if e.reasons[4 + k] else float(e.state[4 + k])) for k, label in enumerate(labels)
         }
@@ -87,7 +87,7 @@ class Update:
             cog_sigma=cog_sigma,
             hook_errors=hook,
             advice=dict(zip(labels, a.moves.tolist())),
-            stop=a.stop,
+            stop=bool(a.stop),
             reason=self.reason,
             flagged=False,
             line=self.reading.line,
@@ -95,7 +95,7 @@ class Update:
             hook_errors_sigma={
                 label: (None if e.reasons[4 + k] else float(e.sigma[4 + k])) for k, label in enumerate(labels)
             },
-            hook_errors_about_mean=e.relative,
+            hook_errors_about_mean=bool(e.relative),
             unobservable=unobservable,
             directions=list(e.directions),
             heel=e.heel,
@@ -111,7 +111,7 @@ class Update:
         return out
 
 
-def _file_frame(e, frame):
+def file_frame(e, frame):
     """The CG and its sigma in the file's frame (None where unobservable) and the reasons."""
     value = [None if e.reasons[1 + k] else float(e.cog[k]) for k in range(3)]
     sigma = [None if e.reasons[1 + k] else float(e.sigma[1 + k]) for k in range(3)]
