@@ -1,19 +1,25 @@
 """What the readings say: the weight, the CG and the hook errors that best explain them.
 
 Weighted least squares on the plan's own forward model (:mod:`.forward`): the state
-``theta = [W, x_c, y_c, z_c, e_1 .. e_n]`` minimising sum ((y_k - f_k(theta)) / sigma_k)^2
+``theta = [W, x_c, y_c, z_c, e_1 .. e_n]`` minimising::
+
+    sum ((y_k - f_k(theta)) / sigma_k)^2 + sum ((theta_j - theta0_j) / s_j)^2
+
 over the readings y (each load cell's tension, the inclinometer's heel and trim, measured
-hook heights), sigma_k each reading's accuracy (``[readings]``). Gauss-Newton from the last
-estimate (the plan's nominal state at the first reading), each step the least-norm solution of
-the linearised problem in scaled units (W / 20, the CG envelope's half-widths, the hook
-tolerance), so a direction the readings do not see is left where it started, never guessed.
+hook heights), sigma_k each reading's accuracy (``[readings]``), with the plan's own state
+theta0 (planned weight and CG, no hook error) as a prior of scale s: W / 20, the CG
+envelope's half-widths, each hook's tolerance (at least 1 % of the lugs' plan diameter and
+1 cm). Gauss-Newton from the last estimate. The prior is what keeps a direction the readings
+do not see at the plan's value instead of a guess, and what makes the uncertainty of a
+quantity that the readings see only together with such a direction honest (the CG across the
+hull and an unread tilt of the hooks, without an inclinometer): the covariance is
+(J^T Sigma^-1 J + S^-2)^-1 at the estimate.
 
 Observability: the weighted, scaled Jacobian's singular directions whose singular value is
-below :data:`RESOLVE` (a change of the state's own scale moves the readings by less than a
-tenth of their accuracy) are what the readings cannot tell apart: said in words
+below :data:`RESOLVE` (a change of one prior scale moves the readings by less than a tenth of
+their accuracy) are what the readings cannot tell apart: said in words
 (:attr:`Estimate.directions`), and every quantity with a part along them is reported
-unobservable (None in JSON, with its reason) instead of a number. The covariance of the
-rest is (J^T Sigma^-1 J)^+ on the observed directions.
+unobservable (None in JSON, with its reason) instead of a number.
 """
 
 from __future__ import annotations
@@ -165,38 +171,47 @@ class Estimator:
         EquilibriumNotFound
             When the fit leaves the states the ropes can hold, or does not converge.
         """
-        state = np.array(self.forward.nominal if start is None else start, dtype=float)
-        residual, jacobian, fs = self._observe(reading, state)
-        steps = 0
+        prior = self.forward.nominal
+        state = np.array(prior if start is None else start, dtype=float)
+
+        def fit(state):
+            residual, jacobian, fs = self._observe(reading, state)
+            # the plan's own state as a prior of one scale unit: what no reading sees stays there
+            full = np.concatenate([residual, (prior - state) / self.scale])
+            return full, np.vstack([jacobian, np.eye(state.size)]), residual, jacobian, fs
+
+        current = fit(state)
+        steps, size, step = 0, 1.0, np.zeros(state.size)
         while steps < MAX_STEPS:
             steps += 1
-            step = _least_norm(jacobian, residual)
-            cost = residual @ residual
+            step = np.linalg.lstsq(current[1], current[0], rcond=None)[0]
+            cost = current[0] @ current[0]
             size = 1.0
             while True:  # backtrack while the model cannot hold the body or the fit worsens
                 trial = state + size * self.scale * step
                 try:
-                    t_res, t_jac, t_fs = self._observe(reading, trial)
+                    candidate = fit(trial)
                 except EquilibriumNotFound:
-                    t_res = None
-                if t_res is not None and t_res @ t_res <= cost * (1 + 1e-12) + 1e-18:
+                    candidate = None
+                if candidate is not None and candidate[0] @ candidate[0] <= cost * (1 + 1e-12) + 1e-18:
                     break
                 size *= 0.5
                 if size < 1e-4:
                     if np.max(np.abs(step)) < 1e-6:  # at the minimum already
-                        t_res, t_jac, t_fs, trial = residual, jacobian, fs, state
+                        candidate, trial = current, state
                         break
                     raise EquilibriumNotFound(
                         f"line {reading.line}: the fit of the readings found no state the ropes can "
                         "hold that explains them better"
                     )
-            state, residual, jacobian, fs = trial, t_res, t_jac, t_fs
+            state, current = trial, candidate
             if np.max(np.abs(size * step)) < STEP_TOL:
                 break
         if np.max(np.abs(size * step)) >= STEP_TOL:
             raise EquilibriumNotFound(
                 f"line {reading.line}: the fit of the readings did not converge in {MAX_STEPS} steps"
             )
+        _, _, residual, jacobian, fs = current
         return self._result(reading, state, residual, jacobian, fs, steps)
 
     def _result(self, reading, state, residual, jacobian, fs, steps):
@@ -204,13 +219,13 @@ class Estimator:
         values = np.zeros(vt.shape[0])
         values[: singular.size] = singular
         seen = values >= RESOLVE
-        kept, null = vt[seen], vt[~seen]
+        null = vt[~seen]
         heave, relative = self._heave(null)
         # what is reported: the state, its hook errors about their mean when a common error is unseen
         report = np.eye(state.size)
         if relative:
             report[4:, 4:] -= 1.0 / self.n
-        covariance_scaled = kept.T @ np.diag(1.0 / values[seen] ** 2) @ kept
+        covariance_scaled = np.linalg.inv(jacobian.T @ jacobian + np.eye(state.size))
         covariance = report @ (covariance_scaled * np.outer(self.scale, self.scale)) @ report.T
         directions = self._directions(null, heave, reading)
         rows = report * self.scale[None, :]  # each reported quantity in scaled units
@@ -297,11 +312,3 @@ class Estimator:
         weight = np.linalg.norm(rest, axis=0)
         names = [self.names[k] for k in np.flatnonzero(weight >= 0.05 * weight.max())]
         return f"{rest.shape[0]} independent changes of {', '.join(names)} leave every reading the same{why}"
-
-
-def _least_norm(jacobian, residual):
-    """The least-norm least-squares step, the unobserved directions (singular values below
-    :data:`RESOLVE`) left out."""
-    u, singular, vt = np.linalg.svd(jacobian, full_matrices=False)
-    keep = singular >= RESOLVE
-    return vt[keep].T @ ((u[:, keep].T @ residual) / singular[keep])

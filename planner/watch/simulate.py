@@ -27,12 +27,13 @@ class Errors:
     Parameters
     ----------
     hook : float  [m]   each hook's height error
-    cog : float  [m]    each CG coordinate's offset (x, y, z)
+    cog : float or sequence of 3 float  [m]    each CG coordinate's offset (x, y, z; body frame,
+        ``z-up``)
     weight : float  [-] the weight error, a fraction of the planned weight
     """
 
     hook: float = 0.02
-    cog: float = 0.1
+    cog: float | tuple = 0.1
     weight: float = 0.02
 
 
@@ -103,7 +104,7 @@ def simulate(
             raise InvalidScene(f"--{name} {value!r}: expected a number > 0")
     for name, value in (
         ("errors.hook", errors.hook),
-        ("errors.cog", errors.cog),
+        ("errors.cog", float(np.min(errors.cog))),
         ("errors.weight", errors.weight),
         ("noise.load_cell", noise.load_cell),
         ("noise.inclinometer", noise.inclinometer),
@@ -117,7 +118,7 @@ def simulate(
     n = basis.n
     state = forward.nominal
     state[0] *= 1.0 + errors.weight * rng.standard_normal()
-    state[1:4] += errors.cog * rng.standard_normal(3)
+    state[1:4] += np.asarray(errors.cog, dtype=float) * rng.standard_normal(3)
     state[4:] += errors.hook * rng.standard_normal(n)
     dt = 1.0 / rate
     readings, states, heel, trim, tensions = [], [], [], [], []
