@@ -152,8 +152,14 @@ class Advisor:
                     True,
                     f"stop: the move problem was not solved ({self.problem.status})",
                 )
-            violation = self._violation(fs, low, high, design_limit)
+            violation = self._overloaded(fs, estimate.weight) or self._violation(fs, low, high, design_limit)
             if violation:
+                planned = basis.weight
+                if abs(estimate.weight - planned) > 2.0 * estimate.sigma[0]:
+                    violation += (
+                        f"; the estimated weight {estimate.weight:.1f} t is "
+                        f"{100.0 * (estimate.weight / planned - 1.0):+.1f} % from the planned {planned:.1f} t"
+                    )
                 return Advice(zeros, estimate.fitted, low, high, None, True, violation)
             total = total + self.move.value / 100.0
         else:
@@ -205,6 +211,26 @@ class Advisor:
         spread = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", gain, estimate.covariance, gain), 0.0))
         margin = np.minimum(2.0 * spread, 0.25 * np.maximum(high - low, 0.0))
         return low + margin, high - margin, design_limit
+
+    def _overloaded(self, fs, weight):
+        """The stop reason when a crane's design hook load passes its SWL even after the least
+        violating move (the move problem needed a slack), else ""."""
+        if max(self.s_low.value.max(), self.s_high.value.max(), self.s_angle.value.max()) <= SLACK_TOL:
+            return ""
+        predicted = fs.tensions + self.gain.value @ self.move.value
+        chain = self.basis.design_chain(predicted, weight)
+        if isinstance(chain, str):
+            return ""
+        loads = np.array([r.design_hook_load for r in chain.results])
+        over = loads - self.basis.swl
+        if not np.any(over > 0.0):
+            return ""
+        k = int(np.argmax(over))
+        return (
+            f"stop: {self.basis.labels[k]} ({self.basis.cranes[k]}): its design hook load at the "
+            f"estimated weight {weight:.1f} t is {loads[k]:.1f} t, over its SWL {self.basis.swl[k]:g} t, "
+            "whatever the hooks do"
+        )
 
     def _violation(self, fs, low, high, design_limit):
         """The stop reason when the move problem needed a slack, else ""."""
