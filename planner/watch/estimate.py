@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from liftplan.model.errors import EquilibriumNotFound
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.planner.plans.watch_basis import WatchBasis, watch_basis
 from liftplan.planner.watch.forward import Forward
 
 #: A direction is observed when a change of one scale unit moves the readings by at least this
@@ -312,3 +313,28 @@ class Estimator:
         weight = np.linalg.norm(rest, axis=0)
         names = [self.names[k] for k in np.flatnonzero(weight >= 0.05 * weight.max())]
         return f"{rest.shape[0]} independent changes of {', '.join(names)} leave every reading the same{why}"
+
+
+def as_basis(plan):
+    """A :class:`WatchBasis` from itself or from a plan (:func:`watch_basis`)."""
+    return plan if isinstance(plan, WatchBasis) else watch_basis(plan)
+
+
+def estimate(plan, reading):
+    """The weight, CG and hook errors that best explain one reading (:class:`Estimate`).
+
+    Parameters
+    ----------
+    plan : Plan or WatchBasis
+    reading : Reading
+
+    Raises
+    ------
+    InvalidScene
+        For a flagged reading (its flag is the message).
+    EquilibriumNotFound
+        When no state the ropes can hold explains it.
+    """
+    if reading.flag is not None:
+        raise InvalidScene(reading.flag)
+    return Estimator(as_basis(plan)).estimate(reading)

@@ -2,7 +2,7 @@
 
 :class:`Watcher` holds one plan's forward model, estimator and move problem (each built once)
 and turns readings into :class:`Update` objects, each fit starting from the last estimate;
-:func:`estimate` and :func:`advise` are the one-reading forms.
+:func:`~.estimate.estimate` and :func:`advise` are the one-reading forms.
 """
 
 from __future__ import annotations
@@ -11,17 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from liftplan.model.errors import EquilibriumNotFound, InvalidScene
-from liftplan.planner.plans.watch_basis import WatchBasis, watch_basis
+from liftplan.model.errors import EquilibriumNotFound
+from liftplan.planner.plans.watch_basis import WatchBasis
 from liftplan.planner.watch.advice import Advice, Advisor
-from liftplan.planner.watch.estimate import Estimate, Estimator
+from liftplan.planner.watch.estimate import Estimate, Estimator, as_basis
 from liftplan.planner.watch.forward import Forward
 from liftplan.planner.watch.readings import Reading
-
-
-def as_basis(plan):
-    """A :class:`WatchBasis` from itself or from a plan (:func:`watch_basis`)."""
-    return plan if isinstance(plan, WatchBasis) else watch_basis(plan)
 
 
 @dataclass(frozen=True)
@@ -146,26 +141,6 @@ class Watcher:
         self.last = estimate.raw
         advice = self.advisor.advise(estimate)
         return Update(self.basis, reading, estimate, advice, advice.reason)
-
-
-def estimate(plan, reading):
-    """The weight, CG and hook errors that best explain one reading (:class:`Estimate`).
-
-    Parameters
-    ----------
-    plan : Plan or WatchBasis
-    reading : Reading
-
-    Raises
-    ------
-    InvalidScene
-        For a flagged reading (its flag is the message).
-    EquilibriumNotFound
-        When no state the ropes can hold explains it.
-    """
-    if reading.flag is not None:
-        raise InvalidScene(reading.flag)
-    return Estimator(as_basis(plan)).estimate(reading)
 
 
 def advise(plan, estimate):

@@ -10,7 +10,7 @@ import pytest
 from support.watching import plan_json, tanker_basis
 
 from liftplan.planner.cli import main
-from liftplan.planner.watch.command import _followed
+from liftplan.planner.watch.handlers import _followed
 from liftplan.planner.watch.update import Watcher
 
 HEADER = "time,L1,L2,L3,L4,heel,trim\n"

@@ -27,10 +27,10 @@ import pytest
 from support.watching import tanker_basis, tanker_plan
 
 from liftplan.planner.problem.readings_accuracy import ReadingsAccuracy
+from liftplan.planner.watch import estimate
 from liftplan.planner.watch.estimate import Estimator
 from liftplan.planner.watch.forward import Forward
 from liftplan.planner.watch.simulate import Errors, Noise, simulate
-from liftplan.planner.watch.update import estimate
 
 CASES = 200
 # the truth drawn as the plan expects it (its prior): each hook within its tolerance (0.02 m, one
@@ -93,6 +93,7 @@ def test_hook_heights_make_every_hook_observable():
     _calibrated(fraction, squares)
 
 
+@pytest.mark.slow
 def test_watch_coverage_1000():
     # 1000 cases: 95.45 +- 0.66 % inside 2 sigma for a calibrated estimate, mean square 1 +- 0.045
     fraction, squares, _, _ = _coverage(inclinometer=True, hooks=False, cases=1000)
