@@ -1,4 +1,5 @@
-"""``liftplan watch`` and ``liftplan simulate``: their options and handlers.
+"""``liftplan watch`` and ``liftplan simulate``: their options (the handlers, loaded when a
+command runs, are in :mod:`.handlers`).
 
 ``watch PLAN --readings FILE``: PLAN is a planning file (the plan is made first) or a plan
 JSON (``liftplan plan --json``, or ``plan.json`` of ``--report``, which carries the plan's

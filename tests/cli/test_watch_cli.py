@@ -191,3 +191,18 @@ def test_plan_json_without_watch_object(tmp_path, capsys):
     other.write_text(HEADER)
     code, _, err = _watch(capsys, path, other)
     assert code == 2 and 'no "watch" object' in err
+
+
+def test_hook_height_columns_make_the_hooks_absolute(tmp_path, plan_file, capsys):
+    readings, truth = tmp_path / "r.csv", tmp_path / "truth.json"
+    argv = ["simulate", str(plan_file), "--hook-heights", "--seed", "5", "--steps", "3"]
+    assert main([*argv, "--output", str(readings), "--truth", str(truth)]) == 0
+    capsys.readouterr()
+    assert readings.read_text().splitlines()[0].endswith("hook:L1,hook:L2,hook:L3,hook:L4")
+    code, out, _ = _watch(capsys, plan_file, readings, "--json")
+    lines = [json.loads(line) for line in out.splitlines()]
+    rows = json.loads(truth.read_text())["rows"]
+    for line, row in zip(lines, rows):
+        assert line["hook_errors_about_mean"] is False  # a common error is read: no mean taken off
+        for label, value in line["hook_errors"].items():
+            assert abs(value - row["hook_errors"][label]) <= 4 * line["hook_errors_sigma"][label]
