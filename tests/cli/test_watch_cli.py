@@ -156,14 +156,17 @@ def test_follow_reads_lines_as_they_come(tmp_path):
     assert next(updates).reading.time == 1.0
 
 
-def test_follow_stops_after_idle_and_ctrl_c_exits_130(tmp_path, plan_file):
+def test_follow_stops_after_idle(tmp_path):
+    path = tmp_path / "r.csv"
+    path.write_text(HEADER + ROW.format(t=0))
+    updates = list(_followed(Watcher(tanker_basis()), path, idle=0.2))  # nothing more comes
+    assert [u.reading.time for u in updates] == [0.0]
+
+
+def test_follow_ctrl_c_exits_130(tmp_path, plan_file):
     path = tmp_path / "r.csv"
     path.write_text(HEADER + ROW.format(t=0))
     command = [sys.executable, "-m", "liftplan.planner.cli", "watch", str(plan_file), "--readings", str(path)]
-    done = subprocess.run(
-        [*command, "--follow", "--idle", "0.5", "--json"], capture_output=True, text=True, timeout=120
-    )
-    assert done.returncode == 0 and len(done.stdout.splitlines()) == 1
     process = subprocess.Popen(
         [*command, "--follow"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
     )
@@ -206,3 +209,13 @@ def test_hook_height_columns_make_the_hooks_absolute(tmp_path, plan_file, capsys
         assert line["hook_errors_about_mean"] is False  # a common error is read: no mean taken off
         for label, value in line["hook_errors"].items():
             assert abs(value - row["hook_errors"][label]) <= 4 * line["hook_errors_sigma"][label]
+
+
+@pytest.mark.parametrize(
+    "extra, expected", [(["--idle", "1"], "only with --follow"), (["--follow", "--idle", "0"], "> 0")]
+)
+def test_idle_option_refused(tmp_path, plan_file, capsys, extra, expected):
+    path = tmp_path / "r.csv"
+    path.write_text(HEADER)
+    code, _, err = _watch(capsys, plan_file, path, *extra)
+    assert code == 2 and expected in err
