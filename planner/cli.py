@@ -145,7 +145,7 @@ def _parser():
         "--restart", action="store_true", help="discard an interrupted run's rows instead of resuming it"
     )
     batch_cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
-    # start-up: the watch module's top imports only the error classes (its handlers load the rest)
+    # start-up: the watch options' module imports nothing (its handlers load when a command runs)
     from liftplan.planner.watch.command import add_parser as add_watch
 
     add_watch(commands)
