@@ -407,6 +407,12 @@ class Plan(InFileFrame):
         every CG vertex (the design loads' grid): (m, n) [t], (m, n, n) [t/m]."""
         return self.lugset.tensions_and_gain(self.chosen.preload, self._design_builder.dense)
 
+    @property
+    def dense_held(self):
+        """Tensions (m, n) [t] and dT/dH (m, n, n) [t/m], preload held, on the design loads'
+        dense grid of the box for every CG vertex (computed once per plan)."""
+        return self._dense_held
+
     def crew_margin(self, factors=(1.0, 2.0, 5.0)):
         """The plan as it stands (lugs, boom heights, preload) with the hook tolerance
         multiplied by each factor: what a crew worse than assumed would see.

@@ -19,7 +19,6 @@ import numpy as np
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.rules import CraneLoads, DesignLoadChain, Rules
-from liftplan.planner.plans.design_loads import DesignBuilder
 from liftplan.planner.problem.readings_accuracy import ReadingsAccuracy
 
 #: Plan kinds a watch follows: single vertical ropes, one per crane.
@@ -262,8 +261,7 @@ def watch_basis(plan):
         )
     problem, chosen = plan.problem, plan.chosen
     lugset = plan.lugset
-    dense = DesignBuilder(problem).dense
-    tensions, gain = lugset.tensions_and_gain(chosen.preload, dense)
+    tensions, gain = plan.dense_held  # the design loads' dense grid, every CG vertex
     reach = np.abs(gain) @ lugset.hook_tolerance
     design = plan.design_loads
     tilt_ratio, skew = [], []
