@@ -29,8 +29,11 @@ TICK = 0.5
 FALLBACK_WIDTH = 100
 #: Lines assumed where the terminal's height is unknown.
 FALLBACK_HEIGHT = 24
-#: The line: phase, share done with a fixed-width bar, count, elapsed time, then best / bound.
-BAR_FORMAT = "{desc}: {percentage:3.0f}% |{bar:20}| {n_fmt}/{total_fmt} {unit} [{elapsed}]{postfix}"
+#: The line: phase, share done with a fixed-width bar, count, elapsed time, best / bound, then
+#: the time left (tqdm's estimate from the rate so far; last, so a narrow terminal cuts it first).
+BAR_FORMAT = (
+    "{desc}: {percentage:3.0f}% |{bar:20}| {n_fmt}/{total_fmt} {unit} [{elapsed}]{postfix}, {remaining} left"
+)
 #: The line of a phase whose steps are counted but not known in advance (no bar to fill).
 OPEN_FORMAT = "{desc}: {n_fmt} {unit} [{elapsed}]{postfix}"
 #: The line of a phase without steps.

@@ -120,6 +120,8 @@ def test_exact_search_shows_screening_and_rows(terminal, monkeypatch, capsys):
     json.loads(out)
     assert "exact search: screening 35 rows" in err
     assert re.search(r"exact search: +\d+% \|", err)
+    # an estimate of the time left from the first line (tqdm's "?" before a rate is known)
+    assert re.search(r"exact search: +\d+% \|.*, (\?|[0-9:]+) left", err)
 
 
 def test_rope_lengths_show_their_trials(terminal, monkeypatch, capsys):

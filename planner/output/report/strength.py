@@ -550,6 +550,7 @@ def render_html(plan, today=None):
             "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
             "lengths in m, moments in t m.</p>",
             report_page.status(plan.checks),
+            report_page.warnings(plan.problem),
             "<h2>1 Recommendation</h2>",
             lugs,
             summary,
