@@ -152,6 +152,10 @@ def _parser():
         "--restart", action="store_true", help="discard an interrupted run's rows instead of resuming it"
     )
     batch_cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    # start-up: the watch options' module imports nothing (its handlers load when a command runs)
+    from liftplan.planner.watch.command import add_parser as add_watch
+
+    add_watch(commands)
     return parser
 
 
@@ -512,8 +516,23 @@ def _interrupt(err):
     return False
 
 
+def _watch(args):
+    # start-up: the watch commands' modules load only when they run
+    from liftplan.planner.watch.command import run_simulate, run_watch
+
+    return run_watch(args) if args.command == "watch" else run_simulate(args)
+
+
 def _run(args):
-    command = {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch, "view": _view}[args.command]
+    command = {
+        "plan": _plan,
+        "lift": _lift,
+        "solve": _solve,
+        "batch": _batch,
+        "view": _view,
+        "watch": _watch,
+        "simulate": _watch,
+    }[args.command]
     try:
         try:
             # numpy's RuntimeWarnings (an overflow in a trial step, 0/0 in a row the search

@@ -24,6 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.watch_basis import watch_basis
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
@@ -420,6 +421,12 @@ class Plan(InFileFrame):
         every CG vertex (the design loads' grid): (m, n) [t], (m, n, n) [t/m]."""
         return self.lugset.tensions_and_gain(self.chosen.preload, self._design_builder.dense)
 
+    @property
+    def dense_held(self):
+        """Tensions (m, n) [t] and dT/dH (m, n, n) [t/m], preload held, on the design loads'
+        dense grid of the box for every CG vertex (computed once per plan)."""
+        return self._dense_held
+
     def crew_margin(self, factors=(1.0, 2.0, 5.0)):
         """The plan as it stands (lugs, boom heights, preload) with the hook tolerance
         multiplied by each factor: what a crew worse than assumed would see.
@@ -639,6 +646,7 @@ class Plan(InFileFrame):
                 },
                 "checks": [c.to_json() for c in self.checks],
                 "girder": girder_json(self.girder, self.scenario_json),
+                "watch": watch_basis(self).to_json(),  # what `liftplan watch PLAN.json` reads
             }
             | (
                 {}

@@ -29,6 +29,7 @@ from liftplan.planner.problem.fleet import (
     reach_table,
 )
 from liftplan.planner.problem.objectives import OBJECTIVES, STRENGTH_OBJECTIVES
+from liftplan.planner.problem.readings_accuracy import ReadingsAccuracy
 from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
@@ -265,6 +266,8 @@ class PlanProblem:
     weight_basis : str or None
         ``"air"`` or ``"water"``: what ``body.weight`` is (the plan says it beside W); None,
         not stated.
+    readings : ReadingsAccuracy
+        The live readings' accuracies (``[readings]``) that ``liftplan watch`` weighs them by.
     """
 
     body: Body
@@ -298,6 +301,7 @@ class PlanProblem:
     breakout_scene: Scene | None = None
     hinges: tuple[tuple[float, ...], ...] = ()
     weight_basis: str | None = None
+    readings: ReadingsAccuracy = field(default_factory=ReadingsAccuracy)
 
     def __post_init__(self):
         if self.weight_basis not in WEIGHT_BASES:
