@@ -102,8 +102,9 @@ def test_a_rope_length_range_with_a_strength_objective_is_refused():
         loads_problem(text)
 
 
-def test_the_local_search_with_a_fleet_is_bad_input():
+def test_the_local_search_with_a_fleet_is_accepted():
+    """Refused until issue 24 item 3; the local search now plans a fleet
+    (tests/planner/test_local_fleet.py)."""
     text = (EXAMPLES / "tanker_fleet.toml").read_text(encoding="utf-8")
     text = text.replace("top = 5", 'top = 5\nsearch = "local"')
-    with pytest.raises(InvalidScene, match=r'plan.search = "local": the local search plans a fleet'):
-        loads_problem(text)
+    assert loads_problem(text).search == "local"

@@ -40,7 +40,7 @@ CASES = {
     # name: (planning file, extra TOML, expected page range)
     "tanker_plan": ("tanker_plan.toml", "", (5, 9)),
     "tanker_fleet": ("tanker_fleet.toml", "", (5, 9)),
-    "block_sling_plan": ("block_sling_plan.toml", SLING_REPORT, (2, 4)),
+    "block_sling_plan": ("block_sling_plan.toml", SLING_REPORT, (2, 5)),  # 5: the 3D view's stills
 }
 
 
