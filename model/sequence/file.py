@@ -1,0 +1,195 @@
+"""Read sequence files (TOML) into :class:`~liftplan.model.sequence.objects.Sequence`.
+
+A sequence file is a scene's body, lugs and cranes (the scene file's own tables, read by the
+same schemas) and either one ``[sequence]`` table or a list of ``[[stages]]``; an optional
+``[rules]`` table sets the design-load chain. Every failure is one
+:class:`~liftplan.model.errors.InvalidScene` line naming the key, as for scene files.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Annotated, Literal
+
+from pydantic import Field, Strict, ValidationError
+from pydantic.fields import FieldInfo
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.rules import RulesTable, rules_from_table
+from liftplan.model.scene.file import (
+    Key,
+    Num,
+    Point,
+    Table,
+    Text,
+    _Body,
+    _Crane,
+    _Lug,
+    _Ropes,
+    _to_crane,
+    load_with,
+    one_line,
+    parse_toml,
+    to_lug,
+)
+from liftplan.model.scene.objects import Body
+from liftplan.model.sequence.objects import Sequence, Stage, crane_key
+
+
+def _aliased(key, alias):
+    """A :func:`Key` read from a TOML key that is a Python keyword (``from``)."""
+    return FieldInfo.merge_field_infos(key, Field(alias=alias))
+
+
+class _Operation(Table):
+    kind: Literal["upend", "turnover"] = Key(
+        doc=(
+            '`"upend"`: the head crane lifts one end while the other rests on the ground at `pivot` '
+            'or hangs from a tailing crane; `"turnover"`: the body hangs from two or more cranes and '
+            "turns in the air"
+        ),
+        example='kind = "upend"',
+    )
+    axis: Literal["x", "y"] = Key(
+        "y",
+        doc=(
+            'the body axis it turns about; for `"y"` the angle is how far the body\'s +x end is raised '
+            'above the horizontal, for `"x"` how far its +y side is raised'
+        ),
+        example='axis = "y"',
+    )
+    start: Num = _aliased(
+        Key(0.0, doc="first angle (0: the body as the file gives it)", unit="deg", example="from = 0.0"),
+        "from",
+    )
+    stop: Num = _aliased(Key(doc="last angle", unit="deg", example="to = 90.0"), "to")
+    step: Num = Key(
+        5.0,
+        doc="the grid of reported angles; every maximum is searched between its points too",
+        unit="deg",
+        values="number > 0",
+        example="step = 5.0",
+    )
+    pivot: Point | None = Key(
+        None,
+        doc="upend: the body point that rests on the ground; the body turns about it",
+        unit="m",
+        frame="body, file frame",
+        absent="no ground contact (an upend then needs a tailing crane)",
+        example="pivot = [0.0, 0.0, 0.0]",
+    )
+    friction: Num | None = Key(
+        None,
+        doc="friction coefficient at the pivot: the horizontal force it can hold is friction x reaction",
+        unit="-",
+        values="number >= 0",
+        absent="no friction limit checked",
+        example="friction = 0.3",
+    )
+    plumb: Annotated[bool, Strict()] = Key(
+        True,
+        doc="each hook follows its lug (or its sling's apex) so its rope stays vertical; only `true`",
+        example="plumb = true",
+    )
+    cranes: list[Text] | None = Key(
+        None,
+        doc="the cranes that hold the body (their names, or lugs for unnamed cranes); the rest are released",
+        absent="every crane of the file",
+        example='cranes = ["Head", "Tail"]',
+    )
+
+
+class _Stage(_Operation):
+    name: Text = Key("", doc="the stage's label in outputs", example='name = "turn to 90"')
+
+
+class _SequenceFile(Table):
+    name: Text = Key("", doc="a label for the sequence, shown in outputs", example='name = "Mast upend"')
+    frame: Literal["z-up"] = Key(
+        "z-up",
+        doc="the axes every coordinate is read in; sequences are written in `z-up` (x forward, y to port, z up)",
+        example='frame = "z-up"',
+    )
+    body: _Body = Key(doc="the lifted body, as in a scene file", example="[body]")
+    lugs: list[_Lug] = Key(doc="the lugs, as in a scene file (any number)", example="[[lugs]]")
+    ropes: _Ropes = Key(_Ropes(), doc="defaults for every crane's rope", example="[ropes]")
+    cranes: list[_Crane] = Key(
+        doc="the cranes, each on one `lug` or on a 2-leg `sling`; `name` is its key in the results",
+        example="[[cranes]]",
+    )
+    sequence: _Operation | None = Key(
+        None,
+        doc="one operation (exactly one of `[sequence]` and `[[stages]]`)",
+        example="[sequence]",
+    )
+    stages: list[_Stage] | None = Key(
+        None,
+        doc="several operations in order, each with the keys of `[sequence]` and a `name`",
+        example="[[stages]]",
+    )
+    rules: RulesTable | None = Key(
+        None, doc="the design-load chain's settings, as in a planning file", absent="the defaults", example="[rules]"
+    )
+
+
+def load_sequence(path: str | os.PathLike[str]) -> Sequence:
+    """Read and validate a sequence file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        TOML sequence file.
+
+    Returns
+    -------
+    Sequence
+        In the ``z-up`` frame.
+
+    Raises
+    ------
+    InvalidScene
+        One line naming the file, the key, the value and what is expected.
+    """
+    return load_with(path, loads_sequence)
+
+
+def loads_sequence(text: str) -> Sequence:
+    """Validate a sequence given as TOML text; see :func:`load_sequence`."""
+    raw = parse_toml(text)
+    try:
+        data = _SequenceFile.model_validate(raw)
+    except ValidationError as err:
+        raise InvalidScene(one_line(err, _SequenceFile)) from None
+    if (data.sequence is None) == (data.stages is None):
+        raise InvalidScene("sequence: expected exactly one of a [sequence] table and [[stages]]")
+    to_zup = tuple
+    cranes = tuple(_to_crane(c, data, to_zup) for c in data.cranes)
+    keys = [crane_key(c) for c in cranes]
+    if data.sequence is not None:
+        stages = (_to_stage(data.sequence, "", keys, to_zup),)
+    else:
+        stages = tuple(_to_stage(s, s.name or f"{k + 1}", keys, to_zup) for k, s in enumerate(data.stages))
+    return Sequence(
+        body=Body(weight=data.body.weight, cog=to_zup(data.body.cog), weight_curve=data.body.weight_curve),
+        lugs=tuple(to_lug(lug, to_zup) for lug in data.lugs),
+        cranes=cranes,
+        stages=stages,
+        rules=rules_from_table(data.rules),
+        name=data.name,
+        frame=data.frame,
+    )
+
+
+def _to_stage(spec, name, keys, to_zup):
+    return Stage(
+        kind=spec.kind,
+        axis=spec.axis,
+        start=spec.start,
+        stop=spec.stop,
+        step=spec.step,
+        cranes=tuple(spec.cranes) if spec.cranes is not None else tuple(keys),
+        pivot=to_zup(spec.pivot) if spec.pivot is not None else None,
+        friction=spec.friction,
+        plumb=spec.plumb,
+        name=name,
+    )
