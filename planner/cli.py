@@ -145,6 +145,9 @@ def _parser():
         "--restart", action="store_true", help="discard an interrupted run's rows instead of resuming it"
     )
     batch_cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    from liftplan.planner.sequence.command import add_parser as add_sequence  # start-up: argparse only
+
+    add_sequence(commands)
     return parser
 
 
@@ -452,6 +455,12 @@ def _batch(args):
     print(batch_table(study, summary))
 
 
+def _sequence(args):
+    from liftplan.planner.sequence.command import run  # start-up: loaded when the command runs
+
+    return run(args)
+
+
 def _cores():
     """CPU cores this process may run on (its affinity where the system tells it)."""
     try:
@@ -473,7 +482,9 @@ def _interrupt(err):
 
 
 def _run(args):
-    command = {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command]
+    command = {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch, "sequence": _sequence}[
+        args.command
+    ]
     try:
         try:
             # numpy's RuntimeWarnings (an overflow in a trial step, 0/0 in a row the search

@@ -107,7 +107,7 @@ class _SequenceFile(Table):
     name: Text = Key("", doc="a label for the sequence, shown in outputs", example='name = "Mast upend"')
     frame: Literal["z-up"] = Key(
         "z-up",
-        doc="the axes every coordinate is read in; sequences are written in `z-up` (x forward, y to port, z up)",
+        doc="the axes every coordinate is read in; a sequence is written in `z-up` (x fwd, y port, z up)",
         example='frame = "z-up"',
     )
     body: _Body = Key(doc="the lifted body, as in a scene file", example="[body]")
@@ -128,7 +128,10 @@ class _SequenceFile(Table):
         example="[[stages]]",
     )
     rules: RulesTable | None = Key(
-        None, doc="the design-load chain's settings, as in a planning file", absent="the defaults", example="[rules]"
+        None,
+        doc="the design-load chain's settings, as in a planning file",
+        absent="the defaults",
+        example="[rules]",
     )
 
 

@@ -222,8 +222,8 @@ class HeldAngle:
                 )
             return np.linalg.solve(a, rhs), 0.0, rot, hooks
         psi = self._tilt_root(active, angle, start)
-        if psi is None:
-            return self._pair_unheld(active, angle, start)
+        if psi is None:  # the CG cannot be brought into the pair's plane: handled as unheld
+            return None
         rot = pose_matrix(self.axis, angle, psi)
         hooks = [self.hook(s, rot) for s in active]
         return self._lever(hooks, rot), psi, rot, hooks
@@ -284,10 +284,6 @@ class HeldAngle:
             return None
         return min(roots, key=abs)
 
-    def _pair_unheld(self, active, angle, start):
-        """Two supports that cannot put the CG in their plane: the angle is not held."""
-        return None
-
     def _single(self, active, angle, slack, start):
         rot = pose_matrix(self.axis, angle, 0.0)
         if not active:
@@ -305,9 +301,13 @@ class HeldAngle:
         g = self.world(rot, self.cog)[0][:2]
         off = float(np.linalg.norm(hooks[0].at[:2] - g))
         held = off < 1e-9 * self.size
-        note = "" if held else (
-            f"only {only.key} carries the body, {off:.3g} m in plan from its centre of gravity: "
-            "the body swings (the angle is not held)"
+        note = (
+            ""
+            if held
+            else (
+                f"only {only.key} carries the body, {off:.3g} m in plan from its centre of gravity: "
+                "the body swings (the angle is not held)"
+            )
         )
         return self._result(angle, 0.0, rot, active, np.array([self.weight]), hooks, slack, held, note)
 

@@ -20,7 +20,6 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.sequence.maxima import Peak, Sampler, adaptive_samples, continuous_maxima
-from liftplan.model.sequence.objects import crane_key
 from liftplan.model.sequence.statics import HeldAngle, Support
 
 #: Chord tolerance of the adaptive sampling, x W.
@@ -211,7 +210,9 @@ class SequenceResult:
                 "lug_out_of_plane": table("lug_out"),
                 "sling_tensions": table("leg"),
                 "ground_reaction": (
-                    {"value": ground[0].value, "angle": ground[0].angle, "stage": ground[1]} if ground else None
+                    {"value": ground[0].value, "angle": ground[0].angle, "stage": ground[1]}
+                    if ground
+                    else None
                 ),
             },
             "slack": [r.to_json() for s in self.stages for r in s.slack],
@@ -268,7 +269,9 @@ class StageModel:
             name: np.array(sequence.lug(name).normal or stage.axis_vector, dtype=float) for name in self.lugs
         }
         self.legs = [
-            f"{key}/{lug}" for key in stage.cranes if sequence.crane(key).sling is not None
+            f"{key}/{lug}"
+            for key in stage.cranes
+            if sequence.crane(key).sling is not None
             for lug in sequence.crane(key).lugs
         ]
 
@@ -335,7 +338,9 @@ def run_stage(sequence, stage):
     curves = {"angle": angles}
     for name in names:
         curves[name] = np.array([sampler.values(a)[name] for a in angles])
-    slack = _ranges(sampler, angles, stage, lambda st, what: what in st.slack, _slack_names(model, angles, sampler))
+    slack = _ranges(
+        sampler, angles, stage, lambda st, what: what in st.slack, _slack_names(model, angles, sampler)
+    )
     not_held = _ranges(sampler, angles, stage, lambda st, what: not st.held, ["angle not held"])
     design = _design(sequence, stage, model, maxima, sampler)
     checks = _checks(sequence, stage, model, maxima, design, not_held, sampler, angles)

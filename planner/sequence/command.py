@@ -1,0 +1,67 @@
+"""``liftplan sequence FILE [--json] [--figure F] [--report DIR]``: argparse set-up and handler."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+#: Exit code when a check failed (the command line's, planner/cli.py).
+CHECK_FAILED = 4
+
+
+def add_parser(commands):
+    """Register ``sequence`` on the command line's sub-parsers."""
+    cmd = commands.add_parser(
+        "sequence", help="turnover and upending: every angle an equilibrium, the worst loads between steps"
+    )
+    cmd.add_argument("file", help="sequence file (TOML with [sequence] or [[stages]])")
+    cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    cmd.add_argument("--figure", metavar="F", help="hook and lug loads against the angle, .png, .pdf or .svg")
+    cmd.add_argument(
+        "--report", metavar="DIR", help="write report.html and sequence.json into DIR (created if missing)"
+    )
+    return cmd
+
+
+def run(args):
+    """Run ``liftplan sequence``; returns the exit code (4 when a check failed)."""
+    from liftplan.planner.output.paths import FIGURE_TYPES, make_parent, output_file, output_folder, replaced
+
+    figure = output_file(args.figure, "--figure", FIGURE_TYPES) if args.figure is not None else None
+    folder = output_folder(args.report, "--report") if args.report is not None else None
+    from liftplan.model.sequence import load_sequence, run_sequence
+    from liftplan.model.version import stamped
+    from liftplan.planner.sequence.console import sequence_table
+
+    result = run_sequence(load_sequence(args.file))
+    payload = stamped(result.to_json())
+    if figure is not None:
+        from liftplan.planner.sequence.figure import sequence_figure
+
+        make_parent(figure)
+        with replaced(figure) as temporary:
+            sequence_figure(result).savefig(temporary, dpi=130)
+        print(f"liftplan: wrote {figure}", file=sys.stderr)
+    if folder is not None:
+        from liftplan.planner.sequence.report import write_sequence_report
+
+        for path in write_sequence_report(result, folder, payload):
+            print(f"liftplan: wrote {path}", file=sys.stderr)
+    if args.json:
+        print(json.dumps(payload))
+    else:
+        print(sequence_table(result))
+        for check in result.checks:
+            if not check.ok:
+                print(check.line())
+        failed = sum(not c.ok for c in result.checks)
+        print(
+            f"checks: {len(result.checks) - failed} of {len(result.checks)} met"
+            + (f", {failed} FAILED" if failed else "")
+        )
+    failed = [c for c in result.checks if not c.ok]
+    if failed:
+        names = ", ".join(f"{c.name} {c.subject}" for c in failed[:5])
+        print(f"liftplan: {len(failed)} check(s) failed: {names} (exit {CHECK_FAILED})", file=sys.stderr)
+        return CHECK_FAILED
+    return 0
