@@ -153,37 +153,6 @@ class _Lug(Table):
     at: Point = Key(
         doc="where the lug is", unit="m", frame="body, file frame", example="at = [16.2, 6.0, 12.0]"
     )
-    capacity: Num | None = Key(
-        None,
-        doc=(
-            "the lug's allowed load in the plane of its plate; `liftplan sequence` checks the design "
-            "lug load (rules' factors x consequence) at every angle against it"
-        ),
-        unit="t",
-        values="number > 0",
-        absent="no in-plane lug check",
-        example="capacity = 120.0",
-    )
-    capacity_out_of_plane: Num | None = Key(
-        None,
-        doc=(
-            "the lug's allowed load across its plate (the component along `normal`); `liftplan "
-            "sequence` checks the design out-of-plane load (with the rules' lateral allowance) against it"
-        ),
-        unit="t",
-        values="number > 0",
-        absent="no out-of-plane lug check",
-        example="capacity_out_of_plane = 25.0",
-    )
-    normal: Point | None = Key(
-        None,
-        doc="the lug plate's normal (its pin axis), scaled to a unit vector",
-        unit="-",
-        values="[x, y, z], not all 0",
-        frame="body, file frame",
-        absent="the turning axis of the sequence (the plate in the plane of the turn)",
-        example="normal = [0.0, 1.0, 0.0]",
-    )
 
 
 class _Ropes(Table):
@@ -943,13 +912,15 @@ def _to_scene(data, base):
 
 
 def to_lug(spec, to_zup):
-    """One ``[[lugs]]`` table to a :class:`Lug` in z-up (its normal turned like a point)."""
+    """One ``[[lugs]]`` table to a :class:`Lug` in z-up; a sequence file's lugs also carry
+    ``capacity``, ``capacity_out_of_plane`` and ``normal`` (its normal turned like a point)."""
+    normal = getattr(spec, "normal", None)
     return Lug(
         name=spec.name,
         at=to_zup(spec.at),
-        capacity=spec.capacity,
-        capacity_out_of_plane=spec.capacity_out_of_plane,
-        normal=to_zup(spec.normal) if spec.normal is not None else None,
+        capacity=getattr(spec, "capacity", None),
+        capacity_out_of_plane=getattr(spec, "capacity_out_of_plane", None),
+        normal=to_zup(normal) if normal is not None else None,
     )
 
 

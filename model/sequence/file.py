@@ -41,6 +41,40 @@ def _aliased(key, alias):
     return FieldInfo.merge_field_infos(key, Field(alias=alias))
 
 
+class _SequenceLug(_Lug):
+    capacity: Num | None = Key(
+        None,
+        doc=(
+            "the lug's allowed load in the plane of its plate; `liftplan sequence` checks the design "
+            "lug load (rules' factors x consequence) at every angle against it"
+        ),
+        unit="t",
+        values="number > 0",
+        absent="no in-plane lug check",
+        example="capacity = 120.0",
+    )
+    capacity_out_of_plane: Num | None = Key(
+        None,
+        doc=(
+            "the lug's allowed load across its plate (the component along `normal`); `liftplan "
+            "sequence` checks the design out-of-plane load (with the rules' lateral allowance) against it"
+        ),
+        unit="t",
+        values="number > 0",
+        absent="no out-of-plane lug check",
+        example="capacity_out_of_plane = 25.0",
+    )
+    normal: Point | None = Key(
+        None,
+        doc="the lug plate's normal (its pin axis), scaled to a unit vector",
+        unit="-",
+        values="[x, y, z], not all 0",
+        frame="body, file frame",
+        absent="the turning axis of the sequence (the plate in the plane of the turn)",
+        example="normal = [0.0, 1.0, 0.0]",
+    )
+
+
 class _Operation(Table):
     kind: Literal["upend", "turnover"] = Key(
         doc=(
@@ -94,6 +128,7 @@ class _Operation(Table):
     cranes: list[Text] | None = Key(
         None,
         doc="the cranes that hold the body (their names, or lugs for unnamed cranes); the rest are released",
+        values="array of strings",
         absent="every crane of the file",
         example='cranes = ["Head", "Tail"]',
     )
@@ -111,7 +146,10 @@ class _SequenceFile(Table):
         example='frame = "z-up"',
     )
     body: _Body = Key(doc="the lifted body, as in a scene file", example="[body]")
-    lugs: list[_Lug] = Key(doc="the lugs, as in a scene file (any number)", example="[[lugs]]")
+    lugs: list[_SequenceLug] = Key(
+        doc="the lugs, as in a scene file (any number), with their capacities and plate normals",
+        example="[[lugs]]",
+    )
     ropes: _Ropes = Key(_Ropes(), doc="defaults for every crane's rope", example="[ropes]")
     cranes: list[_Crane] = Key(
         doc="the cranes, each on one `lug` or on a 2-leg `sling`; `name` is its key in the results",

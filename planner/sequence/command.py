@@ -25,25 +25,28 @@ def add_parser(commands):
 
 def run(args):
     """Run ``liftplan sequence``; returns the exit code (4 when a check failed)."""
-    from liftplan.planner.output.paths import FIGURE_TYPES, make_parent, output_file, output_folder, replaced
+    # start-up: this module is imported for the parser (liftplan --help); the rest when it runs
+    from liftplan.planner.output import paths  # start-up
 
-    figure = output_file(args.figure, "--figure", FIGURE_TYPES) if args.figure is not None else None
-    folder = output_folder(args.report, "--report") if args.report is not None else None
-    from liftplan.model.sequence import load_sequence, run_sequence
-    from liftplan.model.version import stamped
-    from liftplan.planner.sequence.console import sequence_table
+    figure = (
+        paths.output_file(args.figure, "--figure", paths.FIGURE_TYPES) if args.figure is not None else None
+    )
+    folder = paths.output_folder(args.report, "--report") if args.report is not None else None
+    from liftplan.model.sequence import load_sequence, run_sequence  # start-up
+    from liftplan.model.version import stamped  # start-up
+    from liftplan.planner.sequence.console import sequence_table  # start-up
 
     result = run_sequence(load_sequence(args.file))
     payload = stamped(result.to_json())
     if figure is not None:
-        from liftplan.planner.sequence.figure import sequence_figure
+        from liftplan.planner.sequence.figure import sequence_figure  # start-up: matplotlib
 
-        make_parent(figure)
-        with replaced(figure) as temporary:
+        paths.make_parent(figure)
+        with paths.replaced(figure) as temporary:
             sequence_figure(result).savefig(temporary, dpi=130)
         print(f"liftplan: wrote {figure}", file=sys.stderr)
     if folder is not None:
-        from liftplan.planner.sequence.report import write_sequence_report
+        from liftplan.planner.sequence.report import write_sequence_report  # start-up: matplotlib
 
         for path in write_sequence_report(result, folder, payload):
             print(f"liftplan: wrote {path}", file=sys.stderr)
