@@ -36,6 +36,7 @@ STUDIES = [
     "many_ropes_timing",
     "benchmarks",
     "jit_cache",
+    "sequence_speed",
     "report_screenshot",
 ]
 
