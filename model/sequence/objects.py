@@ -192,6 +192,8 @@ class Sequence:
                 raise InvalidScene(f"cranes.name = {key!r}: names two cranes; expected unique crane names")
             keys.append(key)
             _check_crane(crane, names)
+            if crane.sling is not None:
+                check_sling_reach(crane, {lug.name: lug for lug in lugs})
         if not stages:
             raise InvalidScene("sequence: no stages; expected a [sequence] table or [[stages]]")
         for stage in stages:
@@ -248,4 +250,15 @@ def _check_crane(crane, names):
             + (", equalised" if sling.equalised else "")
             + "; a sequence models 2-leg slings of fixed leg lengths (the hook's place is then the "
             "apex of the legs' triangle); expected two legs, no spreader, not equalised"
+        )
+
+
+def check_sling_reach(crane, lugs):
+    """Refuse a 2-leg sling whose legs cannot meet above its two lugs (``lugs``: name -> Lug)."""
+    (a, b), (l1, l2) = crane.lugs, (leg.length for leg in crane.sling.legs)
+    gap = math.dist(lugs[a].at, lugs[b].at)
+    if not (abs(l1 - l2) < gap < l1 + l2):
+        raise InvalidScene(
+            f"cranes[{crane_key(crane)}].sling: legs {l1:g} m and {l2:g} m on lugs {gap:.4g} m apart "
+            "cannot meet at a hook above both; expected |l1 - l2| < spacing < l1 + l2"
         )

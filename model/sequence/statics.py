@@ -29,6 +29,7 @@ unless the centre of gravity is already there: the state says ``held = False``.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -187,22 +188,33 @@ class HeldAngle:
         return _sling_apex(support, pts)
 
     def state(self, angle, tilt=None):
-        """Solve the body at turning ``angle``  [deg]; ``tilt`` starts the tilt's Newton."""
-        active = list(self.supports)
-        slack = []
-        while True:
-            start = self._tilt if tilt is None else tilt
-            solved = self._solve(active, angle, start)
-            if solved is None:  # one support: only held if the CG is on its line
-                return self._single(active, angle, slack, start)
-            forces, psi, rot, hooks = solved
-            worst = min(range(len(active)), key=lambda k: forces[k])
-            if forces[worst] >= -SLACK_TOL * self.weight:
-                break
-            slack.append(active.pop(worst).key)
-        if len(active) == 2:
-            self._tilt = psi
-        return self._result(angle, psi, rot, active, forces, hooks, slack, True, "")
+        """Solve the body at turning ``angle``  [deg]; ``tilt`` starts the tilt's Newton.
+
+        The largest set of supports that holds the body with no negative force carries it
+        (among sets of one size, the one with the least tilt); the rest are slack. When no
+        two supports can, the body hangs from the support nearest its centre of gravity in
+        plan and the angle is not held.
+        """
+        start = self._tilt if tilt is None else tilt
+        supports = list(self.supports)
+        for size in range(len(supports), 1, -1):
+            found = []
+            for subset in itertools.combinations(supports, size):
+                solved = self._solve(list(subset), angle, start)
+                if solved is not None and min(solved[0]) >= -SLACK_TOL * self.weight:
+                    found.append((abs(solved[1]), subset, solved))
+            if found:
+                _, subset, (forces, psi, rot, hooks) = min(found, key=lambda item: item[0])
+                chosen = {s.key for s in subset}
+                slack = [s.key for s in supports if s.key not in chosen]
+                if size == 2:
+                    self._tilt = psi
+                return self._result(angle, psi, rot, list(subset), forces, hooks, slack, True, "")
+        rot = pose_matrix(self.axis, angle, 0.0)
+        g = self.world(rot, self.cog)[0][:2]
+        only = min(supports, key=lambda s: float(np.linalg.norm(self.hook(s, rot).at[:2] - g)))
+        slack = [s.key for s in supports if s.key != only.key]
+        return self._single(only, angle, slack)
 
     # -- the equilibrium with a set of supports ------------------------------------------------
     def _solve(self, active, angle, start):
@@ -222,7 +234,7 @@ class HeldAngle:
                 )
             return np.linalg.solve(a, rhs), 0.0, rot, hooks
         psi = self._tilt_root(active, angle, start)
-        if psi is None:  # the CG cannot be brought into the pair's plane: handled as unheld
+        if psi is None:  # the CG cannot be brought into the pair's plane: this pair cannot hold it
             return None
         rot = pose_matrix(self.axis, angle, psi)
         hooks = [self.hook(s, rot) for s in active]
@@ -284,19 +296,9 @@ class HeldAngle:
             return None
         return min(roots, key=abs)
 
-    def _single(self, active, angle, slack, start):
+    def _single(self, only, angle, slack):
+        """The body on one support: held only if its centre of gravity is on that line."""
         rot = pose_matrix(self.axis, angle, 0.0)
-        if not active:
-            raise EquilibriumNotFound(f"angle {angle:g} deg: no support carries the body")
-        if len(active) == 2:  # a pair whose plane cannot take the CG: the body rolls away
-            hooks = [self.hook(s, rot) for s in active]
-            forces = np.clip(self._lever_safe(hooks, rot), 0.0, self.weight)
-            note = (
-                f"the centre of gravity cannot be brought into the vertical plane of "
-                f"{active[0].key} and {active[1].key} within {MAX_TILT:g} deg of tilt: the body rolls"
-            )
-            return self._result(angle, 0.0, rot, active, forces, hooks, slack, False, note)
-        only = active[0]
         hooks = [self.hook(only, rot)]
         g = self.world(rot, self.cog)[0][:2]
         off = float(np.linalg.norm(hooks[0].at[:2] - g))
@@ -304,18 +306,10 @@ class HeldAngle:
         note = (
             ""
             if held
-            else (
-                f"only {only.key} carries the body, {off:.3g} m in plan from its centre of gravity: "
-                "the body swings (the angle is not held)"
-            )
+            else f"only {only.key} can carry the body, {off:.3g} m in plan from its centre of "
+            "gravity: the body swings (the angle is not held)"
         )
-        return self._result(angle, 0.0, rot, active, np.array([self.weight]), hooks, slack, held, note)
-
-    def _lever_safe(self, hooks, rot):
-        d = hooks[1].at[:2] - hooks[0].at[:2]
-        if float(np.dot(d, d)) < (COINCIDENT * self.size) ** 2:
-            return np.array([self.weight / 2, self.weight / 2])
-        return self._lever(hooks, rot)
+        return self._result(angle, 0.0, rot, [only], np.array([self.weight]), hooks, slack, held, note)
 
     def _result(self, angle, psi, rot, active, forces, hooks, slack, held, note):
         out_forces = {s.key: 0.0 for s in self.supports}

@@ -162,6 +162,24 @@ class StageResult:
     checks: tuple
     evaluations: int
 
+    @property
+    def hook_travel(self):
+        """Each crane's hook motion over the stage  [m]: ``{crane: {"rise": ..., "lowest": ...,
+        "highest": ..., "plan": ...}}``, from its first grid state (rise: the last height less
+        the first; plan: the largest horizontal distance from where it started)."""
+        out = {}
+        first = self.states[0].hooks
+        for key in first:
+            pts = np.array([s.hooks[key] for s in self.states])
+            start = pts[0]
+            out[key] = {
+                "rise": float(pts[-1, 2] - start[2]),
+                "lowest": float(pts[:, 2].min()),
+                "highest": float(pts[:, 2].max()),
+                "plan": float(np.max(np.hypot(pts[:, 0] - start[0], pts[:, 1] - start[1]))),
+            }
+        return out
+
 
 @dataclass(frozen=True)
 class SequenceResult:
@@ -228,6 +246,7 @@ class SequenceResult:
                     "cranes": list(s.stage.cranes),
                     "pivot": list(s.stage.pivot) if s.stage.pivot is not None else None,
                     "evaluations": s.evaluations,
+                    "hook_travel": s.hook_travel,
                     "design_loads": s.design.to_json(),
                 }
                 for s in self.stages

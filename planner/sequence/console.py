@@ -50,6 +50,11 @@ def sequence_table(result):
                 "leg": "sling leg",
             }[kind]
             lines.append(f"  {label} {name}".rstrip() + f": {peak.value:.3f} t at {peak.angle:.4f} deg")
+        for key, travel in stage.hook_travel.items():
+            lines.append(
+                f"  hook {key}: rises {travel['rise']:+.2f} m (height {travel['lowest']:.2f} to "
+                f"{travel['highest']:.2f} m), travels up to {travel['plan']:.2f} m in plan"
+            )
         for r in stage.slack:
             lines.append(f"  slack: {r.what} from {r.start:.4f} to {r.stop:.4f} deg")
         for r in stage.not_held:

@@ -67,6 +67,7 @@ def sequence_figure(result):
             ax.set_ylabel("load [t]", fontsize=_FONT)
             ax.tick_params(labelsize=_SMALL)
             ax.grid(True, lw=0.3)
+            ax.margins(x=0.1)
             ax.set_ylim(bottom=0.0, top=max(1.0, ax.get_ylim()[1] * 1.12))
             ax.legend(fontsize=_SMALL, loc="best")
     return fig

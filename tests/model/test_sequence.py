@@ -124,6 +124,34 @@ def test_as2550_tailing_figures_50_72_100_percent(tail):
         assert model(angle)[0].hook_loads["Head"] == pytest.approx(share * W, abs=1e-9 * W)
 
 
+def test_three_ropes_share_the_weight_by_the_three_equations_until_one_goes_slack():
+    """Three vertical ropes not in one vertical plane: at psi = 0 the vertical force and the
+    two moments give the three tensions (written here with the lugs' horizontal coordinates
+    x' = x cos t - z sin t, y' = y); past the angle where A's tension reaches 0 it is slack,
+    and B1 and B2 carry the body, tilted so the CG is in their vertical plane."""
+    lugs = {"A": (10.0, 0.0, 0.0), "B1": (-10.0, 3.0, -1.0), "B2": (-10.0, -3.0, -3.0)}
+    cog = (0.0, 0.3, 0.0)
+    text = sequence_text(
+        [(k, v, "") for k, v in lugs.items()],
+        [f'lug = "{k}"' for k in lugs],
+        'kind = "turnover"\nfrom = 0.0\nto = 85.0\nstep = 5.0',
+        cog=cog,
+    )
+    model = model_of(text)
+    for angle in (0.0, 20.0, 45.0, 70.0, 78.0):
+        c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        xs = [p[0] * c - p[2] * s for p in lugs.values()]
+        matrix = np.array([[1.0, 1.0, 1.0], xs, [p[1] for p in lugs.values()]])
+        expected = np.linalg.solve(matrix, W * np.array([1.0, cog[0] * c - cog[2] * s, cog[1]]))
+        state = model(angle)[0]
+        assert state.tilt == 0.0 and state.held
+        assert [state.hook_loads[k] for k in lugs] == pytest.approx(list(expected), abs=1e-9 * W)
+    state = model(82.0)[0]
+    assert state.held and state.slack == ("A",) and state.tilt != 0.0
+    assert state.hook_loads["A"] == 0.0
+    assert state.hook_loads["B1"] + state.hook_loads["B2"] == pytest.approx(W, abs=1e-9 * W)
+
+
 # -- slack ropes and angles not held --------------------------------------------------------------
 
 
