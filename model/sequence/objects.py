@@ -196,6 +196,7 @@ class Sequence:
                 check_sling_reach(crane, {lug.name: lug for lug in lugs})
         if not stages:
             raise InvalidScene("sequence: no stages; expected a [sequence] table or [[stages]]")
+        by_name = {lug.name: lug for lug in lugs}
         for stage in stages:
             unknown = [c for c in stage.cranes if c not in keys]
             if unknown:
@@ -213,6 +214,8 @@ class Sequence:
                             "expected each lug on one crane in a stage"
                         )
                     held[lug] = key
+            points = [np.mean([by_name[g].at for g in self.crane(k).lugs], axis=0) for k in stage.cranes]
+            check_supports_plane(stage, points + ([np.array(stage.pivot)] if stage.pivot is not None else []))
         if not isinstance(self.rules, Rules):
             raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
 
@@ -261,4 +264,53 @@ def check_sling_reach(crane, lugs):
         raise InvalidScene(
             f"cranes[{crane_key(crane)}].sling: legs {l1:g} m and {l2:g} m on lugs {gap:.4g} m apart "
             "cannot meet at a hook above both; expected |l1 - l2| < spacing < l1 + l2"
+        )
+
+
+#: Crane keys a scene file uses that a sequence does not: the hooks follow their lugs, so the
+#: boom height, the rope's length and stiffness and a fixed tip position play no part.
+UNUSED_CRANE_KEYS = ("boom_height", "rope_length", "EA", "tip")
+
+
+def sequence_warnings(sequence):
+    """One line per crane key a sequence reads but does not use (the hooks follow the lugs).
+
+    Returns
+    -------
+    list of str
+    """
+    out = []
+    for crane in sequence.cranes:
+        given = [key for key in UNUSED_CRANE_KEYS if getattr(crane, key) is not None]
+        if given:
+            out.append(
+                f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (each hook "
+                "follows its lug or sling apex to keep its rope vertical; only swl is checked)"
+            )
+    return out
+
+
+def check_supports_plane(stage, points):
+    """Refuse three supports in one vertical plane at every angle of the turn.
+
+    Parameters
+    ----------
+    stage : Stage
+    points : list of array (3,)  [m]
+        Each support's body point (a lug, a sling's lug midpoint, the pivot).
+    """
+    if len(points) != 3:
+        return
+    pts = np.asarray(points, dtype=float)
+    across = AXES.index(stage.axis)  # the turning axis: its coordinate is the plan's other one
+    along = 1 - across  # the horizontal body axis that turns (x for a turn about y)
+    ones = np.ones(3)
+    d1 = np.linalg.det(np.vstack([ones, pts[:, along], pts[:, across]]))
+    d2 = np.linalg.det(np.vstack([ones, pts[:, 2], pts[:, across]]))
+    size = max(float(np.ptp(pts, axis=0).max()), 1.0)
+    if abs(d1) < 1e-9 * size**2 and abs(d2) < 1e-9 * size**2:
+        raise InvalidScene(
+            f"{stage.where}: its three supports are in one vertical plane at every angle; the split "
+            "between them is statically indeterminate; expected two of them (release one) or the third "
+            "out of that plane"
         )

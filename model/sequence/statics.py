@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.errors import InvalidScene
 
 #: A force above -this x W is taken as zero, not as a slack rope (rounding of the solves).
 SLACK_TOL = 1e-9
@@ -227,11 +227,8 @@ class HeldAngle:
             a = np.vstack([np.ones(3), [h.at[0] for h in hooks], [h.at[1] for h in hooks]])
             rhs = self.weight * np.array([1.0, g[0], g[1]])
             scale = self.size**2
-            if abs(np.linalg.det(a)) < COINCIDENT * scale:
-                raise EquilibriumNotFound(
-                    f"angle {angle:g} deg: the three supports' lines of action are in one vertical "
-                    "plane; the split is statically indeterminate at a held angle"
-                )
+            if abs(np.linalg.det(a)) < COINCIDENT * scale:  # in one vertical plane at this angle
+                return None
             return np.linalg.solve(a, rhs), 0.0, rot, hooks
         psi = self._tilt_root(active, angle, start)
         if psi is None:  # the CG cannot be brought into the pair's plane: this pair cannot hold it

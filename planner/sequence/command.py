@@ -33,10 +33,14 @@ def run(args):
     )
     folder = paths.output_folder(args.report, "--report") if args.report is not None else None
     from liftplan.model.sequence import load_sequence, run_sequence  # start-up
+    from liftplan.model.sequence.objects import sequence_warnings  # start-up
     from liftplan.model.version import stamped  # start-up
     from liftplan.planner.sequence.console import sequence_table  # start-up
 
-    result = run_sequence(load_sequence(args.file))
+    sequence = load_sequence(args.file)
+    for line in sequence_warnings(sequence):
+        print(f"liftplan: warning: {line}", file=sys.stderr)
+    result = run_sequence(sequence)
     payload = stamped(result.to_json())
     if figure is not None:
         from liftplan.planner.sequence.figure import sequence_figure  # start-up: matplotlib

@@ -299,6 +299,30 @@ def test_bad_sequences_are_refused_in_one_line(operation, message):
         loads_sequence(text)
 
 
+def test_head_tail_and_pivot_in_one_vertical_plane_are_refused_as_indeterminate():
+    text = sequence_text(
+        [("H", (40.0, 0.0, 0.0), ""), ("T", (1.0, 0.0, 0.5), "")],
+        ['name = "Head"\nlug = "H"', 'name = "Tail"\nlug = "T"'],
+        'kind = "upend"\nfrom = 0.0\nto = 90.0\npivot = [0.0, 0.0, 0.0]',
+        cog=(20.0, 0.0, 0.0),
+    )
+    with pytest.raises(InvalidScene, match="statically indeterminate"):
+        loads_sequence(text)
+
+
+def test_crane_keys_a_sequence_does_not_use_are_named_in_a_warning():
+    from liftplan.model.sequence.objects import sequence_warnings
+
+    text = sequence_text(
+        [("H", (40.0, 0.0, 0.0), "")],
+        ['name = "Head"\nlug = "H"\nboom_height = 60.0\nrope_length = 20.0\nswl = 200.0'],
+        'kind = "upend"\nfrom = 0.0\nto = 90.0\npivot = [0.0, 0.0, 0.0]',
+        cog=(20.0, 0.0, 0.0),
+    )
+    (line,) = sequence_warnings(loads_sequence(text))
+    assert "boom_height, rope_length not used" in line
+
+
 def test_a_three_leg_sling_is_refused_with_its_reason():
     text = sequence_text(
         [("A", (10.0, 0.0, 0.0), ""), ("B", (-10.0, 1.0, 0.0), ""), ("C", (-10.0, -1.0, 0.0), "")],
