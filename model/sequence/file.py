@@ -33,7 +33,7 @@ from liftplan.model.scene.file import (
     to_lug,
 )
 from liftplan.model.scene.objects import Body
-from liftplan.model.sequence.objects import Sequence, Stage, crane_key
+from liftplan.model.sequence.objects import LugChoice, Sequence, Stage, crane_key
 
 
 def _aliased(key, alias):
@@ -41,7 +41,7 @@ def _aliased(key, alias):
     return FieldInfo.merge_field_infos(key, Field(alias=alias))
 
 
-class _SequenceLug(_Lug):
+class _StrongPoint(_Lug):
     capacity: Num | None = Key(
         None,
         doc=(
@@ -73,6 +73,30 @@ class _SequenceLug(_Lug):
         absent="the turning axis of the sequence (the plate in the plane of the turn)",
         example="normal = [0.0, 1.0, 0.0]",
     )
+
+
+class _SequenceLug(_StrongPoint):
+    at: Point | None = Key(
+        None,
+        doc="where the lug is; exactly one of `at` and `on`",
+        unit="m",
+        frame="body, file frame",
+        example="at = [16.2, 6.0, 12.0]",
+    )
+    on: list[Text] | None = Key(
+        None,
+        doc=(
+            "instead of `at`: the `[[candidates]]` the planner may put this lug on; `liftplan sequence` "
+            "picks the candidates whose worst design lug load over the whole sequence is least"
+        ),
+        values="array of strings",
+        absent="the lug is at `at`",
+        example='on = ["E1", "E2", "E3"]',
+    )
+
+
+class _SequenceCandidate(_StrongPoint):
+    pass
 
 
 class _Operation(Table):
@@ -150,6 +174,14 @@ class _SequenceFile(Table):
         doc="the lugs, as in a scene file (any number), with their capacities and plate normals",
         example="[[lugs]]",
     )
+    candidates: list[_SequenceCandidate] = Key(
+        [],
+        doc=(
+            "strong points a lug given `on` may go on, each with its own capacities and plate normal; "
+            "the same candidate may serve two lugs that no stage holds at once"
+        ),
+        example="[[candidates]]",
+    )
     ropes: _Ropes = Key(_Ropes(), doc="defaults for every crane's rope", example="[ropes]")
     cranes: list[_Crane] = Key(
         doc="the cranes, each on one `lug` or on a 2-leg `sling`; `name` is its key in the results",
@@ -195,7 +227,35 @@ def load_sequence(path: str | os.PathLike[str]) -> Sequence:
 
 
 def loads_sequence(text: str) -> Sequence:
-    """Validate a sequence given as TOML text; see :func:`load_sequence`."""
+    """Validate a sequence given as TOML text; see :func:`load_sequence`.
+
+    Raises
+    ------
+    InvalidScene
+        Also when a lug is to be planned (``on``): :func:`loads_lug_choice` reads those.
+    """
+    read = _read(text)
+    if isinstance(read, LugChoice):
+        name = read.open[0][0]
+        raise InvalidScene(
+            f"lugs[{name}].on: the file plans its lugs; expected `liftplan sequence` (which plans them) "
+            "or load_lug_choice / loads_lug_choice"
+        )
+    return read
+
+
+def loads_lug_choice(text: str):
+    """A sequence file as a :class:`LugChoice` (lugs given ``on`` candidates) or, when every
+    lug has its ``at``, as a :class:`Sequence`."""
+    return _read(text)
+
+
+def load_lug_choice(path: str | os.PathLike[str]):
+    """Read a sequence file that may plan its lugs; see :func:`loads_lug_choice`."""
+    return load_with(path, loads_lug_choice)
+
+
+def _read(text):
     raw = parse_toml(text)
     try:
         data = _SequenceFile.model_validate(raw)
@@ -210,15 +270,34 @@ def loads_sequence(text: str) -> Sequence:
         stages = (_to_stage(data.sequence, "", keys, to_zup),)
     else:
         stages = tuple(_to_stage(s, s.name or f"{k + 1}", keys, to_zup) for k, s in enumerate(data.stages))
-    return Sequence(
+    parts = dict(
         body=Body(weight=data.body.weight, cog=to_zup(data.body.cog), weight_curve=data.body.weight_curve),
-        lugs=tuple(to_lug(lug, to_zup) for lug in data.lugs),
         cranes=cranes,
         stages=stages,
         rules=rules_from_table(data.rules),
         name=data.name,
         frame=data.frame,
     )
+    fixed, open_lugs = [], []
+    for lug in data.lugs:
+        if (lug.at is None) == (lug.on is None):
+            raise InvalidScene(
+                f"lugs[{lug.name}]: expected exactly one of at = [x, y, z] and on = [candidates]"
+            )
+        if lug.at is not None:
+            fixed.append(to_lug(lug, to_zup))
+        else:
+            open_lugs.append((lug.name, tuple(lug.on)))
+    candidates = {c.name: to_lug(c, to_zup) for c in data.candidates}
+    if len(candidates) != len(data.candidates):
+        raise InvalidScene("candidates.name: duplicate, expected unique candidate names")
+    if not open_lugs:
+        if candidates:
+            raise InvalidScene(
+                "candidates: given but no lug is placed on them; expected on = [...] in a [[lugs]] table"
+            )
+        return Sequence(lugs=tuple(fixed), **parts)
+    return LugChoice(parts=parts, fixed=tuple(fixed), open=tuple(open_lugs), candidates=candidates)
 
 
 def _to_stage(spec, name, keys, to_zup):

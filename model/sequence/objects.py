@@ -314,3 +314,58 @@ def check_supports_plane(stage, points):
             "between them is statically indeterminate; expected two of them (release one) or the third "
             "out of that plane"
         )
+
+
+@dataclass(frozen=True)
+class LugChoice:
+    """A sequence whose lugs given ``on`` are to be placed on candidates.
+
+    Parameters
+    ----------
+    parts : dict
+        The :class:`Sequence`'s other fields (body, cranes, stages, rules, name, frame).
+    fixed : tuple of Lug
+        Lugs with their positions.
+    open : tuple of (str, tuple of str)
+        Each lug to place and the candidates it may go on.
+    candidates : dict of str to Lug
+        The candidates (as lugs named by the candidate: position, capacities, normal).
+    """
+
+    parts: dict
+    fixed: tuple
+    open: tuple
+    candidates: dict
+
+    def __post_init__(self):
+        for name, options in self.open:
+            if not options:
+                raise InvalidScene(f"lugs[{name}].on = []: expected one or more candidates")
+            unknown = [c for c in options if c not in self.candidates]
+            if unknown:
+                raise InvalidScene(
+                    f"lugs[{name}].on = {unknown[0]!r}: no such candidate, expected one of "
+                    f"{name_list(self.candidates)}"
+                )
+
+    def sequence(self, chosen):
+        """The :class:`Sequence` with each open lug on its chosen candidate.
+
+        Parameters
+        ----------
+        chosen : dict of str to str
+            Open lug -> candidate.
+        """
+        placed = []
+        for name, _ in self.open:
+            spot = self.candidates[chosen[name]]
+            placed.append(
+                Lug(
+                    name=name,
+                    at=spot.at,
+                    capacity=spot.capacity,
+                    capacity_out_of_plane=spot.capacity_out_of_plane,
+                    normal=spot.normal,
+                )
+            )
+        return Sequence(lugs=self.fixed + tuple(placed), **self.parts)

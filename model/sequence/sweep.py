@@ -361,7 +361,7 @@ def run_stage(sequence, stage):
         sampler, angles, stage, lambda st, what: what in st.slack, _slack_names(model, angles, sampler)
     )
     not_held = _ranges(sampler, angles, stage, lambda st, what: not st.held, ["angle not held"])
-    design = _design(sequence, stage, model, maxima, sampler)
+    design = design_chain(sequence, stage, model, maxima, sampler)
     checks = _checks(sequence, stage, model, maxima, design, not_held, sampler, angles)
     return StageResult(
         stage=stage,
@@ -424,7 +424,7 @@ def _edge(sampler, outside, inside, test, what):
     return inside
 
 
-def _design(sequence, stage, model, maxima, sampler):
+def design_chain(sequence, stage, model, maxima, sampler):
     """The rules' chain on the stage's maxima: each crane's largest hook load, each lug's
     largest load (taken along itself, at its angle to the plate there)."""
     cranes = []

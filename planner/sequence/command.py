@@ -32,16 +32,28 @@ def run(args):
         paths.output_file(args.figure, "--figure", paths.FIGURE_TYPES) if args.figure is not None else None
     )
     folder = paths.output_folder(args.report, "--report") if args.report is not None else None
-    from liftplan.model.sequence import load_sequence, run_sequence  # start-up
-    from liftplan.model.sequence.objects import sequence_warnings  # start-up
+    from liftplan.model.sequence import run_sequence  # start-up
+    from liftplan.model.sequence.file import load_lug_choice  # start-up
+    from liftplan.model.sequence.lugplan import plan_lugs  # start-up
+    from liftplan.model.sequence.objects import LugChoice, sequence_warnings  # start-up
     from liftplan.model.version import stamped  # start-up
-    from liftplan.planner.sequence.console import sequence_table  # start-up
+    from liftplan.planner.sequence.console import lug_plan_lines, sequence_table  # start-up
 
-    sequence = load_sequence(args.file)
-    for line in sequence_warnings(sequence):
-        print(f"liftplan: warning: {line}", file=sys.stderr)
-    result = run_sequence(sequence)
-    payload = stamped(result.to_json())
+    read = load_lug_choice(args.file)
+    plan = None
+    if isinstance(read, LugChoice):
+        for line in sequence_warnings(read.sequence({n: c[0] for n, c in read.open})):
+            print(f"liftplan: warning: {line}", file=sys.stderr)
+        plan = plan_lugs(read)
+        result = plan.result
+    else:
+        for line in sequence_warnings(read):
+            print(f"liftplan: warning: {line}", file=sys.stderr)
+        result = run_sequence(read)
+    out = result.to_json()
+    if plan is not None:
+        out["lug_plan"] = plan.to_json()
+    payload = stamped(out)
     if figure is not None:
         from liftplan.planner.sequence.figure import sequence_figure  # start-up: matplotlib
 
@@ -57,6 +69,8 @@ def run(args):
     if args.json:
         print(json.dumps(payload))
     else:
+        if plan is not None:
+            print(lug_plan_lines(plan))
         print(sequence_table(result))
         for check in result.checks:
             if not check.ok:

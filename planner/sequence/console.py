@@ -60,3 +60,29 @@ def sequence_table(result):
         for r in stage.not_held:
             lines.append(f"  angle NOT held from {r.start:.4f} to {r.stop:.4f} deg")
     return "\n".join(lines)
+
+
+def lug_plan_lines(plan):
+    """The planned lug set: which candidate each lug goes on, and how it was found.
+
+    Parameters
+    ----------
+    plan : liftplan.model.sequence.lugplan.LugPlan
+    """
+    best = plan.best
+    lines = [
+        "lugs planned: " + ", ".join(f"{lug} on {cand}" for lug, cand in best.lugs.items()),
+        f"  worst design lug load {best.worst:.2f} t ({best.where}); every check met: "
+        f"{'yes' if best.ok else 'NO'}",
+        f"  {plan.options} assignments: {plan.swept} swept, {plan.options - plan.refused - plan.swept} "
+        f"ruled out by their grid bound, {plan.refused} not a valid sequence; "
+        f"{plan.seconds:.1f} s",
+    ]
+    for k, option in enumerate(plan.ranking[1:], start=2):
+        lines.append(
+            f"  {k}. "
+            + ", ".join(f"{lug} on {cand}" for lug, cand in option.lugs.items())
+            + f": {option.worst:.2f} t"
+            + ("" if option.ok else " (a check fails)")
+        )
+    return "\n".join(lines) + "\n"

@@ -31,11 +31,11 @@ def write_sequence_report(result, folder, payload):
     with replaced(data) as tmp:
         tmp.write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
     with replaced(page) as tmp:
-        tmp.write_text(_page(result), encoding="utf-8")
+        tmp.write_text(_page(result, payload), encoding="utf-8")
     return [page, data]
 
 
-def _page(result):
+def _page(result, payload):
     seq = result.sequence
     esc = html.escape
     parts = [f"<h1>{esc(seq.name or 'Lift sequence')}</h1>"]
@@ -55,6 +55,19 @@ def _page(result):
         "rope carries nothing, a pivot only pushes); each maximum is the largest over the whole "
         "range of angles, found between the grid points as well.</p>"
     )
+    plan = payload.get("lug_plan")
+    if plan is not None:
+        rows = [[lug, cand] for lug, cand in plan["lugs"].items()]
+        parts.append(
+            one_table(
+                ["lug", "candidate"],
+                rows,
+                f"Lugs planned: worst design lug load {plan['worst_design_lug_load']:.2f} t "
+                f"({plan['where']}), {plan['options']} assignments, {plan['swept']} swept",
+                full=False,
+                text_columns=(0, 1),
+            )
+        )
     parts.append(figure(sequence_figure(result), "hook and lug loads against the turning angle"))
     for stage in result.stages:
         st = stage.stage

@@ -78,3 +78,13 @@ def test_figure_and_report_are_written(tmp_path, capsys):
     assert "Continuous maxima" in (report / "report.html").read_text()
     data = json.loads((report / "sequence.json").read_text())
     assert {s["name"] for s in data["stages"]} == {"tailing", "on the pivot"}
+
+
+def test_a_file_that_plans_its_lugs_prints_the_choice_and_reports_it(tmp_path, capsys):
+    report = tmp_path / "rep"
+    code = main(["sequence", str(EXAMPLES / "block_turnover_plan.toml"), "--json", "--report", str(report)])
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["lug_plan"]["lugs"] == {"B1": "TP3", "B2": "TS3", "C1": "BP3", "C2": "BS3"}
+    assert out["lug_plan"]["all_checks_met"] is True
+    assert "Lugs planned" in (report / "report.html").read_text()

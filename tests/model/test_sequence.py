@@ -334,3 +334,70 @@ def test_a_three_leg_sling_is_refused_with_its_reason():
     )
     with pytest.raises(InvalidScene, match="2-leg slings"):
         loads_sequence(text)
+
+
+# -- planning the lugs ----------------------------------------------------------------------------
+
+PLANNED = """
+[body]
+weight = 100.0
+cog = [0.0, 0.0, 0.0]
+[[lugs]]
+name = "A"
+at = [10.0, 0.0, 0.0]
+capacity = 200.0
+[[lugs]]
+name = "B"
+on = ["K1", "K2", "K3", "K4"]
+[[candidates]]
+name = "K1"
+at = [-10.0, 0.0, 1.5]
+[[candidates]]
+name = "K2"
+at = [-8.0, 0.0, 1.0]
+capacity_out_of_plane = 1.0
+normal = [1.0, 0.0, 0.0]
+[[candidates]]
+name = "K3"
+at = [-10.0, 0.0, -1.0]
+[[candidates]]
+name = "K4"
+at = [-6.0, 0.0, 0.0]
+[[cranes]]
+name = "East"
+lug = "A"
+[[cranes]]
+name = "West"
+lug = "B"
+[sequence]
+kind = "turnover"
+from = 0.0
+to = 60.0
+step = 15.0
+"""
+
+
+def test_the_planned_lug_is_the_best_of_every_candidate_swept():
+    """Every assignment swept in full, ranked as the planner ranks them (every check met, then
+    the worst design lug load): the planner's choice is that one, and the bound it prunes by is
+    never above an assignment's swept value."""
+    from liftplan.model.sequence.file import loads_lug_choice
+    from liftplan.model.sequence.lugplan import plan_lugs, worst_design_load
+
+    choice = loads_lug_choice(PLANNED)
+    plan = plan_lugs(choice)
+    full = {}
+    for cand in ("K1", "K2", "K3", "K4"):
+        result = run_sequence(choice.sequence({"B": cand}))
+        worst, _, mine = worst_design_load({s.stage.where: s.design for s in result.stages}, {"B"})
+        full[cand] = (not all(c.ok for c in result.checks), round(worst, 6), round(mine[0], 6))
+    assert plan.best.lugs == {"B": min(full, key=full.get)}
+    assert plan.best.ok
+    for option in plan.ranking:
+        assert option.bound <= option.worst + 1e-9
+    assert plan.options == 4
+
+
+def test_a_file_that_plans_its_lugs_is_refused_by_the_plain_reader():
+    with pytest.raises(InvalidScene, match="plans its lugs"):
+        loads_sequence(PLANNED)
