@@ -432,6 +432,8 @@ def design_chain(sequence, stage, model, maxima, sampler):
     for key in stage.cranes:
         crane = sequence.crane(key)
         worst = maxima[f"hook:{key}"].value
+        if not worst > 0.0 and len(stage.cranes) > 1:
+            continue  # slack all through the stage: nothing to factor (the DAF table needs a load)
         lugs = []
         for name in crane.lugs:
             peak = maxima[f"lug:{name}"]

@@ -54,6 +54,22 @@ def test_prism_turned_by_two_vertical_ropes_on_end_lugs_matches_the_lever_rule()
         assert state.lug_loads["A"].in_plane == pytest.approx(W * share, abs=1e-9 * W)
 
 
+def test_turning_about_x_is_turning_about_y_with_the_body_turned_a_quarter():
+    """The prism of the lever-rule test laid along y and turned about x (its +y end raised):
+    the same shares, W (1/2 + h/L tan theta) on the raised end."""
+    text = sequence_text(
+        [("A", (0.0, 10.0, 1.0), ""), ("B", (0.0, -10.0, 1.0), "")],
+        ['name = "Port"\nlug = "A"', 'name = "Stbd"\nlug = "B"'],
+        'kind = "turnover"\naxis = "x"\nfrom = 0.0\nto = 80.0\nstep = 5.0',
+    )
+    model = model_of(text)
+    for angle in (0.0, 30.0, 75.0):
+        share = 0.5 + 1.0 / 20.0 * math.tan(math.radians(angle))
+        state = model(angle)[0]
+        assert state.hook_loads["Port"] == pytest.approx(W * share, abs=1e-9 * W)
+        assert state.lug_loads["A"].out_of_plane == pytest.approx(0.0, abs=1e-12)
+
+
 def test_a_vertical_rope_turns_out_of_the_plane_of_a_lug_across_the_turn():
     """A lug plate with normal x: the rope, vertical in the world, is at theta to the body's
     z axis, so sin(theta) of its load is out of the plate's plane."""
