@@ -110,6 +110,30 @@ def test_tailing_upend_on_a_frictionless_pivot_matches_hand_statics():
         assert state.ground_reaction == pytest.approx(W - head_share, abs=1e-9 * W)
 
 
+def test_a_centre_of_gravity_off_the_line_of_two_supports_tilts_the_body_into_their_plane():
+    """Upend on a pivot with the CG 0.5 m to port of the pivot-head line: the body rolls about
+    that line (tilt across the turning axis) until the CG is in the supports' vertical plane,
+    and the two forces are the lever rule along it."""
+    text = sequence_text(
+        [("H", (38.0, 0.0, 0.0), "")],
+        ['name = "Head"\nlug = "H"'],
+        'kind = "upend"\nfrom = 0.0\nto = 70.0\nstep = 10.0\npivot = [0.0, 0.0, -1.0]',
+        cog=(18.0, 0.5, 0.0),
+    )
+    model = model_of(text)
+    for angle in (0.0, 35.0, 70.0):
+        held = model.statics.state(angle)
+        pivot = np.array([0.0, 0.0, -1.0])
+        cog = pivot + held.rotation @ (np.array([18.0, 0.5, 0.0]) - pivot)
+        hook = held.hooks["Head"]
+        line, off = hook[:2] - pivot[:2], cog[:2] - pivot[:2]
+        assert abs(line[0] * off[1] - line[1] * off[0]) < 1e-9 * 38.0
+        assert abs(held.tilt) > 0.1
+        share = float(np.dot(off, line) / np.dot(line, line))
+        assert held.forces["Head"] == pytest.approx(W * share, abs=1e-9 * W)
+        assert held.forces["pivot"] == pytest.approx(W * (1 - share), abs=1e-9 * W)
+
+
 def as2550(tail):
     """The AS 2550 tailing geometry: a uniform load of length L = 40 m (CG at L/2 on its
     axis), the head lug on the axis at the top end, the foot's lug (or pivot) at the bottom
