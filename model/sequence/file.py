@@ -120,7 +120,12 @@ class _Operation(Table):
         Key(0.0, doc="first angle (0: the body as the file gives it)", unit="deg", example="from = 0.0"),
         "from",
     )
-    stop: Num = _aliased(Key(doc="last angle", unit="deg", example="to = 90.0"), "to")
+    stop: Num = _aliased(
+        Key(
+            doc="last angle; equal to `from`: the stage holds that one angle", unit="deg", example="to = 90.0"
+        ),
+        "to",
+    )
     step: Num = Key(
         5.0,
         doc="the grid of reported angles; every maximum is searched between its points too",

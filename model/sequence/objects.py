@@ -46,7 +46,8 @@ class Stage:
         The body axis it turns about. For ``"y"`` the angle is how far the body's +x end is
         raised above the horizontal; for ``"x"``, how far its +y side is raised.
     start, stop : float  [deg]
-        First and last angle (either order).
+        First and last angle (either order); equal: the stage holds that one angle (a lift or
+        a set-down with the body at that angle).
     step : float  [deg]
         The reported grid; the maxima are searched between its points too.
     cranes : tuple of str
@@ -84,8 +85,6 @@ class Stage:
         step = finite(f"{where}.step", self.step)
         if not step > 0.0:
             raise InvalidScene(f"{where}.step = {self.step!r}: expected a step > 0 deg")
-        if start == stop:
-            raise InvalidScene(f"{where}.from = {start:g} = to: expected a range of angles")
         if abs(stop - start) / step > MOST_STEPS:
             raise InvalidScene(
                 f"{where}.step = {step:g}: {abs(stop - start) / step:.0f} steps from {start:g} to "
@@ -135,6 +134,8 @@ class Stage:
     def angles(self):
         """The reported grid  [deg]: from ``start`` by ``step`` towards ``stop``, ``stop`` included."""
         span = self.stop - self.start
+        if span == 0.0:
+            return np.array([self.start])
         count = int(math.floor(abs(span) / self.step + 1e-9))
         grid = self.start + math.copysign(self.step, span) * np.arange(count + 1)
         if abs(grid[-1] - self.stop) > 1e-9 * max(1.0, abs(self.stop)):

@@ -324,7 +324,6 @@ def test_a_sharp_peak_narrower_than_the_step_is_bracketed_and_refined():
     [
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\nplumb = false', "only plumb hooks"),
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\naxis = "z"', "axis"),
-        ('kind = "turnover"\nfrom = 0.0\nto = 0.0', "expected a range"),
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\nstep = 0.0', "step > 0"),
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\npivot = [0.0, 0.0, 0.0]', "hangs in the air"),
         ('kind = "upend"\nfrom = 0.0\nto = 90.0\ncranes = ["A"]', "two or three supports"),
@@ -361,6 +360,20 @@ def test_crane_keys_a_sequence_does_not_use_are_named_in_a_warning():
     )
     (line,) = sequence_warnings(loads_sequence(text))
     assert "boom_height, rope_length not used" in line
+
+
+def test_a_stage_of_one_angle_holds_the_body_there():
+    """from = to: a lift (or set-down) at one angle, one state, its loads the maxima."""
+    text = sequence_text(
+        [("A", (10.0, 0.0, 1.0), ""), ("B", (-10.0, 0.0, 1.0), "")],
+        ['name = "East"\nlug = "A"', 'name = "West"\nlug = "B"'],
+        'kind = "turnover"\nfrom = 30.0\nto = 30.0',
+    )
+    (stage,) = run_sequence(loads_sequence(text)).stages
+    (state,) = stage.states
+    share = W * (0.5 + 0.05 * math.tan(math.radians(30.0)))
+    assert state.angle == 30.0 and state.hook_loads["East"] == pytest.approx(share, abs=1e-9 * W)
+    assert stage.maxima["hook:East"].value == pytest.approx(share, abs=1e-9 * W)
 
 
 def test_a_three_leg_sling_is_refused_with_its_reason():
