@@ -68,6 +68,6 @@ def sequence_figure(result):
             ax.tick_params(labelsize=_SMALL)
             ax.grid(True, lw=0.3)
             ax.margins(x=0.1)
-            ax.set_ylim(bottom=0.0, top=max(1.0, ax.get_ylim()[1] * 1.12))
+            ax.set_ylim(bottom=0.0, top=max(1.0, ax.get_ylim()[1] * 1.22))
             ax.legend(fontsize=_SMALL, loc="best")
     return fig
