@@ -20,6 +20,11 @@ def add_parser(commands):
     cmd.add_argument(
         "--report", metavar="DIR", help="write report.html and sequence.json into DIR (created if missing)"
     )
+    cmd.add_argument(
+        "--view",
+        metavar="FILE",
+        help="also write the 3D view, each reported angle a state of its slider, .html or .glb",
+    )
     return cmd
 
 
@@ -32,6 +37,9 @@ def run(args):
         paths.output_file(args.figure, "--figure", paths.FIGURE_TYPES) if args.figure is not None else None
     )
     folder = paths.output_folder(args.report, "--report") if args.report is not None else None
+    from liftplan.planner.output.view import command as view_command  # start-up
+
+    view = view_command.checked(args.view)
     from liftplan.model.sequence import run_sequence  # start-up
     from liftplan.model.sequence.file import load_lug_choice  # start-up
     from liftplan.model.sequence.lugplan import plan_lugs  # start-up
@@ -66,6 +74,11 @@ def run(args):
 
         for path in write_sequence_report(result, folder, payload):
             print(f"liftplan: wrote {path}", file=sys.stderr)
+    unwritten = None
+    if view is not None:
+        from liftplan.planner.sequence.view import sequence_view  # start-up: plotly
+
+        unwritten = view_command.save_view(view, lambda: sequence_view(result))
     if args.json:
         print(json.dumps(payload))
     else:
@@ -80,6 +93,9 @@ def run(args):
             f"checks: {len(result.checks) - failed} of {len(result.checks)} met"
             + (f", {failed} FAILED" if failed else "")
         )
+    if unwritten is not None:
+        print(f"liftplan: error: {unwritten}", file=sys.stderr)
+        return 2
     failed = [c for c in result.checks if not c.ok]
     if failed:
         names = ", ".join(f"{c.name} {c.subject}" for c in failed[:5])

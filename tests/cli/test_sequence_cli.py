@@ -88,3 +88,18 @@ def test_a_file_that_plans_its_lugs_prints_the_choice_and_reports_it(tmp_path, c
     assert out["lug_plan"]["lugs"] == {"B1": "TP3", "B2": "TS3", "C1": "BP3", "C2": "BS3"}
     assert out["lug_plan"]["all_checks_met"] is True
     assert "Lugs planned" in (report / "report.html").read_text()
+
+
+def test_the_3d_view_has_one_state_per_reported_angle(tmp_path):
+    import re
+
+    view = tmp_path / "v.html"
+    assert main(["sequence", str(EXAMPLES / "mast_upend.toml"), "--view", str(view)]) == 0
+    found = re.search(
+        r'<script type="application/json" id="liftplan-scene">(.*?)</script>', view.read_text(), re.S
+    )
+    states = json.loads(found.group(1))["states"]
+    assert [s["name"] for s in states[:2]] == ["tailing: 0 deg", "tailing: 5 deg"]
+    assert len(states) == 10 + 10  # 0..45 by 5; 45..85 by 5, and 86
+    # the tailing lug's rope carries the Tail crane's hook load at 0 deg
+    assert states[0]["tensions"]["Tail"] == pytest.approx(32.0, abs=1e-9)
