@@ -213,3 +213,21 @@ def test_each_cranes_worst_is_where_its_hook_load_is_largest():
         side = np.sign(problem.fleet[c].position[0])
         assert np.sign(offset[0]) == side
     assert chosen.hook_worst_at[0] != chosen.hook_worst_at[1]
+
+
+def test_ruled_out_counts_add_up():
+    """The reviewer's sum: the ruled-out counts came to 12 769 against 10 426 options (rigs of
+    one crane and pairs mixed, the pairs sharing a lug counted before the options). Rigs and
+    pairs are told apart; the pairs ruled out are at most those considered, and the rest, the
+    feasible, hold the ranking."""
+    from liftplan.planner.output.console.summary import summary
+    from liftplan.planner.plans.slings.two_crane import SHARED
+
+    result = plan(load_problem(BLOCK))
+    out = result.ruled_out
+    assert set(result.rig_causes) == {"beyond the crane's reach", "sling angle below the limit"}
+    paired = sum(n for t, n in out.items() if t not in result.rig_causes and t != SHARED)
+    feasible = result.options - paired
+    assert len(result.ranking) <= feasible <= result.options
+    assert f"{result.options} considered" in " ".join(summary(result).split())
+    assert f"; {feasible} feasible" in " ".join(summary(result).split())

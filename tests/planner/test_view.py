@@ -172,7 +172,7 @@ def test_page_is_offline_and_the_slider_switches_states(lift):
 
 def test_glb_and_stills(tmp_path, lift):
     """The glTF reads back (trimesh) with the body, one cylinder per rope and the CG; the stills
-    are two 3D axes with the ropes' colour bar."""
+    are a 3D view and a 2-D elevation to scale, with the ropes' colour bar."""
     import trimesh
 
     from liftplan.planner.output.view.gltf import glb_bytes
@@ -186,7 +186,9 @@ def test_glb_and_stills(tmp_path, lift):
     assert {"body", "CG"} <= names
     assert {f"rope {r.key}" for r in view.states[0].ropes if r.lower != r.upper} <= names
     fig = stills(view, state=2)
-    assert sum(ax.name == "3d" for ax in fig.axes) == 2
+    assert sum(ax.name == "3d" for ax in fig.axes) == 1
+    (side,) = [ax for ax in fig.axes if ax.name == "rectilinear" and ax.get_title()]
+    assert side.get_aspect() == 1.0 and len(side.collections) >= 2  # to scale; body and ropes
     fig.savefig(tmp_path / "still.png", dpi=60)
     assert (tmp_path / "still.png").stat().st_size > 10_000
 

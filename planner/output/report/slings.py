@@ -17,6 +17,7 @@ from liftplan.planner.output.console.slings import _ranking
 from liftplan.planner.output.figures.plan import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 from liftplan.planner.output.report import page as report_page
 from liftplan.planner.output.report.view import view_section
+from liftplan.planner.plans.slings.two_crane import SHARED
 
 
 def _in_file(problem, point):
@@ -307,7 +308,16 @@ def render_html(plan, today=None):
             full=False,
             text_columns=(0,),
         )
-        search_rows = [("pairs of rigs considered", plan.options, "-")]
+        paired = [n for t, n in plan.ruled_out.items() if t not in plan.rig_causes and t != SHARED]
+        search_rows = [
+            ("pairs of rigs considered (each crane's rigs that pass its own checks)", plan.options, "pairs")
+        ]
+        # the pairs sharing a lug are dropped before the pairs are considered
+        after = [("feasible pairs (considered, less those ruled out)", plan.options - sum(paired), "pairs")]
+
+        def counted(text):
+            return "rigs of one crane" if text in plan.rig_causes else "pairs"
+
         how = (
             "Hook loads by the lever rule along the hook line (each hook where its rig puts it), "
             "checked on the rigging model with free hooks and elastic legs."
@@ -322,11 +332,18 @@ def render_html(plan, today=None):
             ("search stopped", stats.stopped, "-"),
             ("certified lower bound", f"{stats.lower_bound:.4g}", "objective"),
         ]
+        after = []
+
+        def counted(text):
+            return "-"
+
         how = plan.method_text
         title = f"Lift plan: {problem.cranes} cranes on slings, lugs chosen by liftplan"
     search = _table(
         ["quantity", "value", "unit"],
-        search_rows + [(f"ruled out: {text}", n, "options") for text, n in plan.ruled_out.items()],
+        search_rows
+        + [(f"ruled out: {text}", n, counted(text)) for text, n in plan.ruled_out.items()]
+        + after,
         "Search",
         full=False,
         text_columns=(0,),

@@ -96,6 +96,10 @@ class SlingOption:
     top_angles: tuple = (None, None)
 
 
+#: The cause of a pair of rigs dropped before the pairs are considered (a lug in both slings).
+SHARED = "lugs shared by both slings"
+
+
 def _where(loads, tilts, offsets):
     """(tilt [deg], CG offset [m]) of the largest of ``loads`` (CG vertex, tilt)."""
     cg, tilt = np.unravel_index(int(np.argmax(loads)), loads.shape)
@@ -175,7 +179,7 @@ def plan_two_slings(problem, top=None):
     limits_problem = dataclasses.replace(problem, rules=rules_with_bars(problem))
     counts = {
         "beyond the crane's reach": 0,
-        "lugs shared by both slings": 0,
+        SHARED: 0,
         "hook load over the rules' level limit (code margin)": 0,
         "hook load over the rules' limit within the tolerance": 0,
         "roll about the hook line beyond the tolerance": 0,
@@ -184,10 +188,12 @@ def plan_two_slings(problem, top=None):
         "booms crossing or within plan.crane_clearance in plan": 0,
     }
     per_crane = []
+    rig_causes = {"beyond the crane's reach"}  # counts of one crane's rigs, not of pairs
     for crane in fleet:
         rigs = crane_rigs(problem, crane, 0.5 * weight)
         for text, n in rigs.ruled_out.items():
             counts[text] = counts.get(text, 0) + n
+            rig_causes.add(text)
         plan_xy = (rigs.hook @ yaw.T)[:, :2]
         radius = crane.radius(plan_xy)
         swl = crane.swl_at(radius)
@@ -200,7 +206,7 @@ def plan_two_slings(problem, top=None):
     i1, i2 = np.meshgrid(np.arange(len(g1)), np.arange(len(g2)), indexing="ij")
     i1, i2 = i1.ravel(), i2.ravel()
     shared = (g1.lugs[i1][:, :, None] == g2.lugs[i2][:, None, :]).any(axis=(1, 2))
-    counts["lugs shared by both slings"] += int(np.sum(shared))
+    counts[SHARED] += int(np.sum(shared))
     i1, i2 = i1[~shared], i2[~shared]
     r1g, r2g = g1.take(i1), g2.take(i2)
     hook1, hook2 = r1g.hook, r2g.hook
@@ -319,6 +325,7 @@ def plan_two_slings(problem, top=None):
         ranking=ranking,
         options=int(len(i1)),
         ruled_out={t: n for t, n in counts.items() if n},
+        rig_causes=tuple(t for t in counts if counts[t] and t in rig_causes),
     )
 
 
@@ -349,15 +356,20 @@ class SlingPlan(SlingLift):
     ranking : list of SlingOption
         Best first.
     options : int
-        Pairs of rigs (with both assignments) considered.
+        Pairs of rigs (with both assignments) considered: each crane's rigs that pass its own
+        checks, paired.
     ruled_out : dict of str to int
-        Why the others were ruled out.
+        Why the others were ruled out: rigs of one crane for the causes in ``rig_causes``
+        (before pairing), pairs for the rest (each pair counted under its first cause).
+    rig_causes : tuple of str
+        The keys of ``ruled_out`` that count one crane's rigs.
     """
 
     problem: object
     ranking: list
     options: int
     ruled_out: dict
+    rig_causes: tuple = ()
 
     lift_text = "two-crane slings"
 
