@@ -29,6 +29,9 @@ TITLES = {
     "shear_force": "shear force within the allowable",
     "girder_states": "hull girder found at every state",
     "crane_clearance": "crane booms clear of each other in plan",
+    "angle_held": "turning angle held at every angle of the stage",
+    "lug_out_of_plane": "lug design load across its plate within its out-of-plane capacity",
+    "pivot_friction": "horizontal force at the pivot within its friction",
 }
 
 

@@ -156,6 +156,10 @@ def _parser():
     from liftplan.planner.watch.command import add_parser as add_watch
 
     add_watch(commands)
+
+    from liftplan.planner.sequence.command import add_parser as add_sequence  # start-up: argparse only
+
+    add_sequence(commands)
     return parser
 
 
@@ -496,6 +500,12 @@ def _batch(args):
     print(batch_table(study, summary))
 
 
+def _sequence(args):
+    from liftplan.planner.sequence.command import run  # start-up: loaded when the command runs
+
+    return run(args)
+
+
 def _cores():
     """CPU cores this process may run on (its affinity where the system tells it)."""
     try:
@@ -532,6 +542,7 @@ def _run(args):
         "view": _view,
         "watch": _watch,
         "simulate": _watch,
+        "sequence": _sequence,
     }[args.command]
     try:
         try:

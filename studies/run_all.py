@@ -38,6 +38,7 @@ STUDIES = [
     "jit_cache",
     "watch_speed",
     "watch_replay",
+    "sequence_speed",
     "report_screenshot",
 ]
 

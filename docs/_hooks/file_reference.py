@@ -42,11 +42,12 @@ from pathlib import Path
 from pydantic import BaseModel
 
 from liftplan.model.scene.file import _SceneFile
+from liftplan.model.sequence.file import _SequenceFile
 from liftplan.planner.batch.study import _StudyFile
 from liftplan.planner.problem.file import _PlanFile
 
 PAGE = Path(__file__).resolve().parents[1] / "scene-files.md"
-SCHEMAS = {"scene": _SceneFile, "plan": _PlanFile, "study": _StudyFile}
+SCHEMAS = {"scene": _SceneFile, "plan": _PlanFile, "study": _StudyFile, "sequence": _SequenceFile}
 COLUMNS = ("key", "type", "unit", "default", "frame", "meaning", "example")
 BLOCK = re.compile(r"^<!-- keys: (\w+)((?: \w+)+) -->$(.*?)^<!-- /keys -->$", re.MULTILINE | re.DOTALL)
 COMMAND = "python docs/_hooks/file_reference.py --write"

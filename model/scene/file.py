@@ -881,7 +881,7 @@ def _zup_box(box, to_zup):
 
 def _to_scene(data, base):
     to_zup = choi_to_zup if data.frame == "choi" else tuple
-    lugs = [Lug(name=lug.name, at=to_zup(lug.at)) for lug in data.lugs]
+    lugs = [to_lug(lug, to_zup) for lug in data.lugs]
     cranes = [_to_crane(c, data, to_zup) for c in data.cranes]
     red = data.analysis.redundant
     red = [] if red is None else [red] if isinstance(red, _Redundant) else red
@@ -908,6 +908,19 @@ def _to_scene(data, base):
             for o in c.openings
         ),
         girder=_to_girder(data.hull),
+    )
+
+
+def to_lug(spec, to_zup):
+    """One ``[[lugs]]`` table to a :class:`Lug` in z-up; a sequence file's lugs also carry
+    ``capacity``, ``capacity_out_of_plane`` and ``normal`` (its normal turned like a point)."""
+    normal = getattr(spec, "normal", None)
+    return Lug(
+        name=spec.name,
+        at=to_zup(spec.at),
+        capacity=getattr(spec, "capacity", None),
+        capacity_out_of_plane=getattr(spec, "capacity_out_of_plane", None),
+        normal=to_zup(normal) if normal is not None else None,
     )
 
 

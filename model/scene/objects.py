@@ -286,15 +286,36 @@ class Lug:
         Unique label, e.g. ``"T1"``.
     at : tuple of 3 float  [m]
         Position in the body frame.
+    capacity : float or None  [t]
+        The lug's allowed load in its plate's plane (checked by ``liftplan sequence``).
+    capacity_out_of_plane : float or None  [t]
+        The lug's allowed load across its plate (the out-of-plane component).
+    normal : tuple of 3 float or None  [-]
+        The lug plate's normal (its pin axis) in the body frame, a unit vector (scaled to
+        one when read); None: the turning axis of a sequence.
     """
 
     name: str
     at: tuple[float, float, float]
+    capacity: float | None = None
+    capacity_out_of_plane: float | None = None
+    normal: tuple[float, float, float] | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise InvalidScene(f"lugs.name = {self.name!r}: expected a non-empty string")
         _set(self, "at", point(f"lugs[{self.name}].at", self.at))
+        for key in ("capacity", "capacity_out_of_plane"):
+            if getattr(self, key) is not None:
+                _set(self, key, positive(f"lugs[{self.name}].{key}", getattr(self, key)))
+        if self.normal is not None:
+            n = point(f"lugs[{self.name}].normal", self.normal)
+            size = math.sqrt(sum(v * v for v in n))
+            if not size > 0.0:
+                raise InvalidScene(
+                    f"lugs[{self.name}].normal = {list(self.normal)!r}: expected a non-zero vector"
+                )
+            _set(self, "normal", tuple(v / size for v in n))
 
 
 @dataclass(frozen=True)

@@ -81,6 +81,11 @@ def scene_toml(scene: Scene, header: Sequence[str] = (), crane_notes: Mapping[st
             lines.append(f"GJ = {_pairs(scene.girder.GJ)}")
     for lug in scene.lugs:
         lines += ["", "[[lugs]]", f"name = {_string(lug.name)}", f"at = {vec(lug.at)}"]
+        for key in ("capacity", "capacity_out_of_plane"):
+            if getattr(lug, key) is not None:
+                lines.append(f"{key} = {_number(getattr(lug, key))}")
+        if lug.normal is not None:
+            lines.append(f"normal = {vec(lug.normal)}")
     notes = crane_notes or {}
     for crane in scene.cranes:
         note = notes.get(crane.label)

@@ -366,7 +366,7 @@ WRITTEN = {
         "girder",
     },
     Body: {"weight", "cog", "weight_curve"},
-    Lug: {"name", "at"},
+    Lug: {"name", "at", "capacity", "capacity_out_of_plane", "normal"},
     Crane: {"lug", "EA", "boom_height", "rope_length", "swl", "tip", "name", "sling"},
     Sling: {"legs", "spreader", "equalised"},
     Leg: {"lug", "length", "EA", "diameter", "end"},

@@ -27,6 +27,7 @@ from helpers import ROOT
 from pydantic import BaseModel
 
 from liftplan.model.scene.file import Key, Num, Table, _SceneFile, loads_scene
+from liftplan.model.sequence.file import _SequenceFile, loads_sequence
 from liftplan.planner.batch.study import _StudyFile, loads_study
 from liftplan.planner.problem.file import _PlanFile, loads_problem
 
@@ -38,6 +39,7 @@ SECTIONS = {
     "Scene files": (_SceneFile, lambda text: loads_scene(text, base=EXAMPLES)),
     "Planning files": (_PlanFile, loads_problem),
     "Study files": (_StudyFile, lambda text: loads_study(text, base=EXAMPLES, stem="doc")),
+    "Sequence files": (_SequenceFile, loads_sequence),
 }
 ROW = re.compile(r"^\|\s*`([^`]+)`\s*\|(.*)\|\s*$")
 REQUIRED = object()

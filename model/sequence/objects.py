@@ -1,0 +1,372 @@
+"""A lift sequence: the body, its lugs and cranes, and the stages that turn it.
+
+Frozen dataclasses in the ``z-up`` frame. A :class:`Stage` turns the body about one of its
+horizontal axes from one angle to another, held by the cranes it names (and, for an upend,
+by a pivot on the ground). :class:`Sequence` checks what needs the whole picture: names,
+which crane holds which lug, and that every stage is statically determinate at a held angle.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.rules import Rules
+from liftplan.model.scene.objects import Body, Crane, Lug, finite, name_list, point
+
+KINDS = ("upend", "turnover")
+AXES = ("x", "y")
+#: Most angles a stage may report (its range over its step): a finer grid is a typo.
+MOST_STEPS = 10_000
+#: Fewest and most supports (cranes, and the pivot) of a stage: two or three vertical forces
+#: and the three equations of a body on vertical ropes (vertical force, two moments) leave
+#: no hook height to choose; four or more would need the hook heights the sequence does not fix.
+SUPPORTS = (2, 3)
+
+
+def crane_key(crane):
+    """The key a crane's results are reported under: its name, else its lug."""
+    return crane.name if crane.name is not None else crane.lug
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One operation: the body turned about a body axis through a range of angles.
+
+    Parameters
+    ----------
+    kind : {"upend", "turnover"}
+        ``"upend"``: the head crane(s) lift one end while the other rests on the ground at
+        ``pivot`` or hangs from a tailing crane; ``"turnover"``: the body hangs from two or
+        more cranes and turns in the air.
+    axis : {"x", "y"}
+        The body axis it turns about. For ``"y"`` the angle is how far the body's +x end is
+        raised above the horizontal; for ``"x"``, how far its +y side is raised.
+    start, stop : float  [deg]
+        First and last angle (either order); equal: the stage holds that one angle (a lift or
+        a set-down with the body at that angle).
+    step : float  [deg]
+        The reported grid; the maxima are searched between its points too.
+    cranes : tuple of str
+        The cranes that hold the body in this stage (their keys); the others are released.
+    pivot : tuple of 3 float or None  [m]
+        Body point resting on the ground (``upend``); the body turns about it.
+    friction : float or None  [-]
+        Friction coefficient at the pivot.
+    plumb : bool
+        Each hook follows its lug (or its sling's apex) to keep the rope vertical.
+    name : str
+    """
+
+    kind: str
+    axis: str
+    start: float
+    stop: float
+    step: float
+    cranes: tuple[str, ...]
+    pivot: tuple[float, float, float] | None = None
+    friction: float | None = None
+    plumb: bool = True
+    name: str = ""
+
+    def __post_init__(self):
+        where = f"stages[{self.name}]" if self.name else "sequence"
+        if self.kind not in KINDS:
+            raise InvalidScene(f"{where}.kind = {self.kind!r}: expected one of {', '.join(KINDS)}")
+        if self.axis not in AXES:
+            raise InvalidScene(
+                f"{where}.axis = {self.axis!r}: expected one of {', '.join(AXES)} (a horizontal body "
+                "axis; turning about z is a slew, not a turnover)"
+            )
+        start, stop = finite(f"{where}.from", self.start), finite(f"{where}.to", self.stop)
+        step = finite(f"{where}.step", self.step)
+        if not step > 0.0:
+            raise InvalidScene(f"{where}.step = {self.step!r}: expected a step > 0 deg")
+        if abs(stop - start) / step > MOST_STEPS:
+            raise InvalidScene(
+                f"{where}.step = {step:g}: {abs(stop - start) / step:.0f} steps from {start:g} to "
+                f"{stop:g} deg; expected at most {MOST_STEPS}"
+            )
+        for key, value in (("from", start), ("to", stop)):
+            if abs(value) > 360.0:
+                raise InvalidScene(f"{where}.{key} = {value:g}: expected an angle within +-360 deg")
+        object.__setattr__(self, "start", start)
+        object.__setattr__(self, "stop", stop)
+        object.__setattr__(self, "step", step)
+        object.__setattr__(self, "cranes", tuple(self.cranes))
+        if self.pivot is not None:
+            object.__setattr__(self, "pivot", point(f"{where}.pivot", self.pivot))
+        if self.friction is not None:
+            mu = finite(f"{where}.friction", self.friction)
+            if mu < 0.0:
+                raise InvalidScene(f"{where}.friction = {self.friction!r}: expected a number >= 0")
+            if self.pivot is None:
+                raise InvalidScene(f"{where}.friction: given without a pivot; expected pivot = [x, y, z]")
+            object.__setattr__(self, "friction", mu)
+        if self.plumb is not True:
+            raise InvalidScene(
+                f"{where}.plumb = {self.plumb!r}: only plumb hooks are modelled (each hook follows "
+                "to keep its rope vertical); expected true"
+            )
+        if self.kind == "turnover" and self.pivot is not None:
+            raise InvalidScene(
+                f'{where}.pivot: a turnover hangs in the air; expected kind = "upend" for a body '
+                "resting on a pivot"
+            )
+        supports = len(self.cranes) + (self.pivot is not None)
+        if not SUPPORTS[0] <= supports <= SUPPORTS[1]:
+            held = f"{len(self.cranes)} crane(s)" + (" and the pivot" if self.pivot is not None else "")
+            raise InvalidScene(
+                f"{where}: held by {held}; expected two or three supports (cranes and the pivot): "
+                "one cannot hold an angle, and four or more share the load in a way the hook heights "
+                "decide, which a held-angle sequence does not fix"
+            )
+
+    @property
+    def where(self):
+        """The stage's key in messages and results."""
+        return self.name or "sequence"
+
+    @property
+    def angles(self):
+        """The reported grid  [deg]: from ``start`` by ``step`` towards ``stop``, ``stop`` included."""
+        span = self.stop - self.start
+        if span == 0.0:
+            return np.array([self.start])
+        count = int(math.floor(abs(span) / self.step + 1e-9))
+        grid = self.start + math.copysign(self.step, span) * np.arange(count + 1)
+        if abs(grid[-1] - self.stop) > 1e-9 * max(1.0, abs(self.stop)):
+            grid = np.append(grid, self.stop)
+        else:
+            grid[-1] = self.stop
+        return grid
+
+    @property
+    def axis_vector(self):
+        """The turning axis, a body unit vector."""
+        return np.eye(3)[AXES.index(self.axis)]
+
+
+@dataclass(frozen=True)
+class Sequence:
+    """A body turned by cranes through one or more stages, in the ``z-up`` frame.
+
+    Parameters
+    ----------
+    body : Body
+    lugs : tuple of Lug
+    cranes : tuple of Crane
+        Each on one lug (a vertical rope) or on a 2-leg sling (``sling``, legs of fixed
+        length); each crane named by :func:`crane_key`.
+    stages : tuple of Stage
+    rules : Rules
+        The design-load chain's settings, applied to each stage's maxima.
+    name : str
+    frame : str
+        The file's frame; coordinates are reported back in it.
+    """
+
+    body: Body
+    lugs: tuple[Lug, ...]
+    cranes: tuple[Crane, ...]
+    stages: tuple[Stage, ...]
+    rules: Rules = field(default_factory=Rules)
+    name: str = ""
+    frame: str = "z-up"
+
+    def __post_init__(self):
+        lugs, cranes, stages = tuple(self.lugs), tuple(self.cranes), tuple(self.stages)
+        object.__setattr__(self, "lugs", lugs)
+        object.__setattr__(self, "cranes", cranes)
+        object.__setattr__(self, "stages", stages)
+        names = [lug.name for lug in lugs]
+        if len(set(names)) != len(names):
+            dup = next(n for n in names if names.count(n) > 1)
+            raise InvalidScene(f"lugs.name = {dup!r}: duplicate, expected unique lug names")
+        keys = []
+        for crane in cranes:
+            key = crane_key(crane)
+            if key in keys:
+                raise InvalidScene(f"cranes.name = {key!r}: names two cranes; expected unique crane names")
+            keys.append(key)
+            _check_crane(crane, names)
+            if crane.sling is not None:
+                check_sling_reach(crane, {lug.name: lug for lug in lugs})
+        if not stages:
+            raise InvalidScene("sequence: no stages; expected a [sequence] table or [[stages]]")
+        by_name = {lug.name: lug for lug in lugs}
+        for stage in stages:
+            unknown = [c for c in stage.cranes if c not in keys]
+            if unknown:
+                raise InvalidScene(
+                    f"{stage.where}.cranes = {unknown[0]!r}: no such crane, expected one of {name_list(keys)}"
+                )
+            if len(set(stage.cranes)) != len(stage.cranes):
+                raise InvalidScene(f"{stage.where}.cranes: a crane named twice; expected each once")
+            held = {}
+            for key in stage.cranes:
+                for lug in self.crane(key).lugs:
+                    if lug in held:
+                        raise InvalidScene(
+                            f"{stage.where}: lug {lug!r} held by cranes {held[lug]} and {key} at once; "
+                            "expected each lug on one crane in a stage"
+                        )
+                    held[lug] = key
+            points = [np.mean([by_name[g].at for g in self.crane(k).lugs], axis=0) for k in stage.cranes]
+            check_supports_plane(stage, points + ([np.array(stage.pivot)] if stage.pivot is not None else []))
+        if not isinstance(self.rules, Rules):
+            raise InvalidScene(f"rules = {self.rules!r}: expected a Rules")
+
+    def crane(self, key):
+        """The crane reported under ``key``."""
+        for crane in self.cranes:
+            if crane_key(crane) == key:
+                return crane
+        raise InvalidScene(f"crane {key!r}: no such crane")
+
+    def lug(self, name):
+        """The lug named ``name``."""
+        for lug in self.lugs:
+            if lug.name == name:
+                return lug
+        raise InvalidScene(f"lug {name!r}: no such lug")
+
+    @property
+    def crane_keys(self):
+        return tuple(crane_key(c) for c in self.cranes)
+
+
+def _check_crane(crane, names):
+    where = f"cranes[{crane_key(crane)}]"
+    for lug in crane.lugs:
+        if lug not in names:
+            raise InvalidScene(f"{where}: lug {lug!r} unknown, expected one of {name_list(names)}")
+    if crane.sling is None:
+        return
+    sling = crane.sling
+    if len(sling.legs) != 2 or sling.spreader is not None or sling.equalised:
+        raise InvalidScene(
+            f"{where}.sling: {len(sling.legs)} legs"
+            + (", a spreader" if sling.spreader is not None else "")
+            + (", equalised" if sling.equalised else "")
+            + "; a sequence models 2-leg slings of fixed leg lengths (the hook's place is then the "
+            "apex of the legs' triangle); expected two legs, no spreader, not equalised"
+        )
+
+
+def check_sling_reach(crane, lugs):
+    """Refuse a 2-leg sling whose legs cannot meet above its two lugs (``lugs``: name -> Lug)."""
+    (a, b), (l1, l2) = crane.lugs, (leg.length for leg in crane.sling.legs)
+    gap = math.dist(lugs[a].at, lugs[b].at)
+    if not (abs(l1 - l2) < gap < l1 + l2):
+        raise InvalidScene(
+            f"cranes[{crane_key(crane)}].sling: legs {l1:g} m and {l2:g} m on lugs {gap:.4g} m apart "
+            "cannot meet at a hook above both; expected |l1 - l2| < spacing < l1 + l2"
+        )
+
+
+#: Crane keys a scene file uses that a sequence does not: the hooks follow their lugs, so the
+#: boom height, the rope's length and stiffness and a fixed tip position play no part.
+UNUSED_CRANE_KEYS = ("boom_height", "rope_length", "EA", "tip")
+
+
+def sequence_warnings(sequence):
+    """One line per crane key a sequence reads but does not use (the hooks follow the lugs).
+
+    Returns
+    -------
+    list of str
+    """
+    out = []
+    for crane in sequence.cranes:
+        given = [key for key in UNUSED_CRANE_KEYS if getattr(crane, key) is not None]
+        if given:
+            out.append(
+                f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (each hook "
+                "follows its lug or sling apex to keep its rope vertical; only swl is checked)"
+            )
+    return out
+
+
+def check_supports_plane(stage, points):
+    """Refuse three supports in one vertical plane at every angle of the turn.
+
+    Parameters
+    ----------
+    stage : Stage
+    points : list of array (3,)  [m]
+        Each support's body point (a lug, a sling's lug midpoint, the pivot).
+    """
+    if len(points) != 3:
+        return
+    pts = np.asarray(points, dtype=float)
+    across = AXES.index(stage.axis)  # the turning axis: its coordinate is the plan's other one
+    along = 1 - across  # the horizontal body axis that turns (x for a turn about y)
+    ones = np.ones(3)
+    d1 = np.linalg.det(np.vstack([ones, pts[:, along], pts[:, across]]))
+    d2 = np.linalg.det(np.vstack([ones, pts[:, 2], pts[:, across]]))
+    size = max(float(np.ptp(pts, axis=0).max()), 1.0)
+    if abs(d1) < 1e-9 * size**2 and abs(d2) < 1e-9 * size**2:
+        raise InvalidScene(
+            f"{stage.where}: its three supports are in one vertical plane at every angle; the split "
+            "between them is statically indeterminate; expected two of them (release one) or the third "
+            "out of that plane"
+        )
+
+
+@dataclass(frozen=True)
+class LugChoice:
+    """A sequence whose lugs given ``on`` are to be placed on candidates.
+
+    Parameters
+    ----------
+    parts : dict
+        The :class:`Sequence`'s other fields (body, cranes, stages, rules, name, frame).
+    fixed : tuple of Lug
+        Lugs with their positions.
+    open : tuple of (str, tuple of str)
+        Each lug to place and the candidates it may go on.
+    candidates : dict of str to Lug
+        The candidates (as lugs named by the candidate: position, capacities, normal).
+    """
+
+    parts: dict
+    fixed: tuple
+    open: tuple
+    candidates: dict
+
+    def __post_init__(self):
+        for name, options in self.open:
+            if not options:
+                raise InvalidScene(f"lugs[{name}].on = []: expected one or more candidates")
+            unknown = [c for c in options if c not in self.candidates]
+            if unknown:
+                raise InvalidScene(
+                    f"lugs[{name}].on = {unknown[0]!r}: no such candidate, expected one of "
+                    f"{name_list(self.candidates)}"
+                )
+
+    def sequence(self, chosen):
+        """The :class:`Sequence` with each open lug on its chosen candidate.
+
+        Parameters
+        ----------
+        chosen : dict of str to str
+            Open lug -> candidate.
+        """
+        placed = []
+        for name, _ in self.open:
+            spot = self.candidates[chosen[name]]
+            placed.append(
+                Lug(
+                    name=name,
+                    at=spot.at,
+                    capacity=spot.capacity,
+                    capacity_out_of_plane=spot.capacity_out_of_plane,
+                    normal=spot.normal,
+                )
+            )
+        return Sequence(lugs=self.fixed + tuple(placed), **self.parts)

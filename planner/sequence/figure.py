@@ -1,0 +1,73 @@
+"""Hook and lug loads against the turning angle, each load's maximum marked (matplotlib)."""
+
+from __future__ import annotations
+
+from matplotlib.figure import Figure
+
+_MM = 1 / 25.4
+_FONT = 7.5
+_SMALL = 6.5
+
+
+def sequence_figure(result):
+    """One row of two panels per stage: hook loads (and ground reaction) | lug loads.
+
+    Each curve is drawn from the adaptive samples the maxima were searched on; each maximum
+    is a marker labelled with its value and angle; grey bands are angles that are not held.
+
+    Parameters
+    ----------
+    result : liftplan.model.sequence.SequenceResult
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    rows = len(result.stages)
+    fig = Figure(figsize=(170 * _MM, (62 * rows + 8) * _MM), layout="constrained")
+    axes = fig.subplots(rows, 2, squeeze=False)
+    for (left, right), stage in zip(axes, result.stages):
+        curves, st = stage.curves, stage.stage
+        angle = curves["angle"]
+        for ax, kinds, title in (
+            (left, ("hook", "ground"), "hook loads"),
+            (right, ("lug", "lug_out"), "lug loads (dashed: out of plane)"),
+        ):
+            colours = {}
+            for k, (key, peak) in enumerate(
+                (k, p) for k, p in stage.maxima.items() if k.split(":")[0] in kinds
+            ):
+                kind, _, name = key.partition(":")
+                style = "--" if kind == "lug_out" else "-"
+                label = name or "ground reaction"
+                line = ax.plot(
+                    angle,
+                    curves[key],
+                    style,
+                    lw=1.0,
+                    color=colours.get(name),
+                    label=label if kind != "lug_out" else None,
+                )[0]
+                colours.setdefault(name, line.get_color())
+                if kind == "lug_out" and peak.value <= 1e-9:
+                    continue
+                ax.plot([peak.angle], [peak.value], "o", ms=3.5, color=line.get_color())
+                ax.annotate(
+                    f"{peak.value:.1f} t\n@ {peak.angle:.1f}°",
+                    (peak.angle, peak.value),
+                    textcoords="offset points",
+                    xytext=(3, 2 + 7 * (k % 2)),
+                    fontsize=_SMALL - 0.5,
+                    color=line.get_color(),
+                )
+            for r in stage.not_held:
+                ax.axvspan(r.start, r.stop, color="0.85", lw=0, zorder=0)
+            ax.set_title(f"{st.where}: {title}", fontsize=_FONT + 0.5)
+            ax.set_xlabel(f"turning angle about body {st.axis} [deg]", fontsize=_FONT)
+            ax.set_ylabel("load [t]", fontsize=_FONT)
+            ax.tick_params(labelsize=_SMALL)
+            ax.grid(True, lw=0.3)
+            ax.margins(x=0.1)
+            ax.set_ylim(bottom=0.0, top=max(1.0, ax.get_ylim()[1] * 1.22))
+            ax.legend(fontsize=_SMALL, loc="best")
+    return fig
