@@ -25,6 +25,13 @@ from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.results import Equilibrium
 from liftplan.model.scene.objects import MODELS, Scene, name_list
 from liftplan.model.statics.acceptance import Verdict
+from liftplan.model.statics.floating import (
+    check_floating,
+    scene_fleet,
+    solve_floating,
+    vessel_states,
+    with_vessels,
+)
 from liftplan.model.statics.inclined import solve_inclined
 from liftplan.model.statics.rigging import solve_rigging
 from liftplan.model.statics.vertical import (
@@ -120,6 +127,7 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
             f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
             "'inclined' (or no model: it is picked when a tip is given)"
         )
+    check_floating(scene, model)
     if scene.girder is not None and model not in HULL_STIFFNESS_MODELS:
         return _rigid_hull(scene, model, method)
     try:
@@ -138,7 +146,24 @@ def _hydrostatic(scene, method):
 
 
 def _elastic(scene, method):
+    if scene.vessels:
+        if scene.girder is not None:
+            raise InvalidScene(
+                "cranes.vessel with hull.EI: a flexible hull on floating cranes is not modelled; "
+                "expected one of them"
+            )
+        return solve_floating(scene)
     return solve_elastic(scene) if scene.girder is None else solve_hull_on_ropes(scene)
+
+
+def _rigid(scene, method):
+    """``rigid``; with crane vessels, their response to the tensions the operators hold."""
+    if scene.hull is not None:
+        return _given_in_water(scene, "rigid")
+    eq = solve_rigid(scene)
+    if not scene.vessels:
+        return eq
+    return with_vessels(eq, vessel_states(scene, scene_fleet(scene), list(eq.tensions.values())))
 
 
 def _given_attitude(name, solver):
@@ -153,7 +178,7 @@ def _given_attitude(name, solver):
 #: ``analysis.model`` -> ``solver(scene, method) -> Equilibrium``: the one table of rope
 #: models (the names a file may give are :data:`~liftplan.model.scene.objects.MODELS`).
 ROPE_MODELS = {
-    "rigid": _given_attitude("rigid", solve_rigid),
+    "rigid": _rigid,
     "paper-elastic": _given_attitude("paper-elastic", solve_paper_elastic),
     "elastic": _elastic,
     "inclined": lambda scene, method: solve_inclined(scene),

@@ -70,6 +70,7 @@ from liftplan.model.scene.objects import (
     Water,
 )
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.scene.vessel import Vessel
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -260,6 +261,80 @@ class _Sling(Table):
     )
 
 
+class _Vessel(Table):
+    displacement: Num = Key(
+        doc="the crane vessel's displacement before the lift (crane and ballast included)",
+        unit="t",
+        values="number > 0",
+        example="displacement = 9000.0",
+    )
+    waterplane_area: Num = Key(
+        doc="A_wp, its waterplane area: the hook load T sinks it by T / (density A_wp)",
+        unit="m2",
+        values="number > 0",
+        example="waterplane_area = 2800.0",
+    )
+    gm_t: Num = Key(
+        doc="transverse metacentric height GM_T: heel = T y_t / (displacement GM_T)",
+        unit="m",
+        values="number > 0",
+        example="gm_t = 6.0",
+    )
+    gm_l: Num = Key(
+        doc="longitudinal metacentric height GM_L: trim = T x_t / (displacement GM_L)",
+        unit="m",
+        values="number > 0",
+        example="gm_l = 180.0",
+    )
+    flotation: Pair = Key(
+        doc=(
+            "centre of flotation in plan: (x, y) in `z-up`, (x, z) in `choi`; the boom tip's offset "
+            "from it (x_t forward, y_t to starboard, in the vessel's axes) sets the heel and trim"
+        ),
+        unit="m",
+        frame="world plan, file frame",
+        example="flotation = [20.0, -45.0]",
+    )
+    heading: Num = Key(
+        0.0,
+        doc=(
+            "the bow's direction in plan, from +x towards the second plan axis of the file's frame "
+            "(+y, port, in `z-up`; +z, starboard, in `choi`)"
+        ),
+        unit="deg",
+        frame="world plan, file frame",
+        example="heading = 90.0",
+    )
+    density: Num = Key(
+        1.025, doc="water density", unit="t/m3", values="number > 0", example="density = 1.025"
+    )
+    max_heel: Num | None = Key(
+        None,
+        doc="the vessel's heel limit under the load (absolute): a check, flagged when exceeded",
+        unit="deg",
+        values="number in (0, 90)",
+        absent="not checked",
+        example="max_heel = 3.0",
+    )
+    max_trim: Num | None = Key(
+        None,
+        doc="the vessel's trim limit under the load (absolute): a check, flagged when exceeded",
+        unit="deg",
+        values="number in (0, 90)",
+        absent="not checked",
+        example="max_trim = 2.0",
+    )
+    ballast: Pair = Key(
+        (0.0, 0.0),
+        doc=(
+            "ballast moment set before the lift (heeling > 0 starboard down, trimming > 0 bow down); "
+            "the vessel's heel and trim under load include it, its tip drop does not change"
+        ),
+        unit="[t m, t m]",
+        example="ballast = [-3000.0, 0.0]",
+    )
+
+
 class _Crane(Table):
     lug: Text | None = Key(
         None, doc="the lug its rope is shackled to; exactly one of `lug` and `sling`", example='lug = "T1"'
@@ -317,6 +392,19 @@ class _Crane(Table):
         unit="t",
         values="number > 0",
         example="EA = 70000.0",
+    )
+    vessel: _Vessel | Text | None = Key(
+        None,
+        doc=(
+            "a floating crane: its vessel's particulars (the boom tip, above the lug at the level "
+            "pose, heaves, heels and trims with it under the hook load), or the name of the crane "
+            "whose vessel this crane shares"
+        ),
+        absent="a crane on land or a jack-up: the tip stays where it is",
+        example=(
+            "vessel = { displacement = 9000.0, waterplane_area = 2800.0, gm_t = 6.0, gm_l = 180.0, "
+            "flotation = [20.0, -45.0], heading = 90.0 }"
+        ),
     )
 
 
@@ -943,7 +1031,19 @@ def _to_crane(c, data, to_zup):
         tip=to_zup(c.tip) if c.tip is not None else None,
         name=c.name,
         sling=sling,
+        vessel=to_vessel(c.vessel, data.frame),
     )
+
+
+def to_vessel(spec, frame):
+    """A crane's ``vessel`` (table or shared name) in ``z-up``; None for none."""
+    if spec is None or isinstance(spec, str):
+        return spec
+    fields = spec.model_dump()
+    if frame == "choi":  # plan (x, z starboard) -> (x, y port); the heading turns the other way
+        fields["flotation"] = (spec.flotation[0], 0.0 - spec.flotation[1])
+        fields["heading"] = 0.0 - spec.heading
+    return Vessel(**fields)
 
 
 def _to_sling(spec):

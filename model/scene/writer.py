@@ -9,7 +9,7 @@ whole; an optional key the scene leaves at the reader's default (a crane's missi
 limits of a scene without slings, an empty ``name``) is left out, and reads back the same.
 
 What it writes: ``name``, ``frame``, ``[body]`` (weight, cog, weight_curve), ``[[lugs]]``,
-``[[cranes]]`` (lug or sling, name, boom_height, rope_length, EA, swl, tip; a sling's legs,
+``[[cranes]]`` (lug or sling, name, boom_height, rope_length, EA, swl, tip, vessel; a sling's legs,
 spreader bar and ``equalised``), ``[attitude]``, ``[analysis]`` (model, redundant tensions,
 hull), ``[rigging]``, ``[strength]`` and the hull girder's stiffness (``[hull] EI``, ``GJ``).
 
@@ -85,7 +85,7 @@ def scene_toml(scene: Scene, header: Sequence[str] = (), crane_notes: Mapping[st
     for crane in scene.cranes:
         note = notes.get(crane.label)
         title = "[[cranes]]" if note is None else f"[[cranes]]                   # {_comment(note, ' ')}"
-        lines += ["", title, *_crane(crane, vec)]
+        lines += ["", title, *_crane(crane, vec, scene.frame)]
     lines += ["", "[attitude]", *_attitude(scene.attitude)]
     analysis = _analysis(scene.analysis)
     if analysis:
@@ -106,7 +106,7 @@ def _refuse_unwritable(scene):
             )
 
 
-def _crane(crane, vec):
+def _crane(crane, vec, frame):
     lines = []
     if crane.name is not None:
         lines.append(f"name = {_string(crane.name)}")
@@ -118,6 +118,8 @@ def _crane(crane, vec):
             lines.append(f"{key} = {_number(value)}")
     if crane.tip is not None:
         lines.append(f"tip = {vec(crane.tip)}")
+    if crane.vessel is not None:
+        lines.append(f"vessel = {_vessel(crane.vessel, frame)}")
     sling = crane.sling
     if sling is None:
         return lines
@@ -134,6 +136,27 @@ def _crane(crane, vec):
         for leg in bar.top:
             lines += ["", "[[cranes.sling.spreader.top]]", *_leg(leg)]
     return lines
+
+
+def _vessel(vessel, frame):
+    """A crane's vessel as an inline table in the file's frame (or the shared vessel's name)."""
+    if isinstance(vessel, str):
+        return _string(vessel)
+    flotation, heading = vessel.flotation, vessel.heading
+    if frame == "choi":  # (x, y port) -> (x, z starboard); the heading turns the other way
+        flotation, heading = (flotation[0], 0.0 - flotation[1]), 0.0 - heading
+    items = [
+        f"{key} = {_number(getattr(vessel, key))}"
+        for key in ("displacement", "waterplane_area", "gm_t", "gm_l")
+    ]
+    items += [f"flotation = {_vector(flotation)}", f"heading = {_number(heading)}"]
+    items += [f"density = {_number(vessel.density)}", f"ballast = {_vector(vessel.ballast)}"]
+    items += [
+        f"{key} = {_number(getattr(vessel, key))}"
+        for key in ("max_heel", "max_trim")
+        if getattr(vessel, key) is not None
+    ]
+    return "{ " + ", ".join(items) + " }"
 
 
 def _leg(leg):
