@@ -29,6 +29,8 @@ TITLES = {
     "shear_force": "shear force within the allowable",
     "girder_states": "hull girder found at every state",
     "crane_clearance": "crane booms clear of each other in plan",
+    "vessel_heel": "crane vessel heel within its limit",
+    "vessel_trim": "crane vessel trim within its limit",
 }
 
 

@@ -292,6 +292,7 @@ class _Vessel(Table):
             "from it (x_t forward, y_t to starboard, in the vessel's axes) sets the heel and trim"
         ),
         unit="m",
+        values="[x, y] or [x, z]",
         frame="world plan, file frame",
         example="flotation = [20.0, -45.0]",
     )
@@ -331,6 +332,7 @@ class _Vessel(Table):
             "the vessel's heel and trim under load include it, its tip drop does not change"
         ),
         unit="[t m, t m]",
+        values="[heeling, trimming]",
         example="ballast = [-3000.0, 0.0]",
     )
 

@@ -301,6 +301,10 @@ FLOATING_MODELS = ("elastic", "rigid")
 def solve_floating(scene):
     """Body and crane vessels in one equilibrium (the ``elastic`` model with floating cranes).
 
+    One crane per vessel: the rope in series with its vessel (exact, module docstring), the
+    rope-only Newton with the series stiffness; a vessel under two cranes or more:
+    :func:`solve_coupled`.
+
     Parameters
     ----------
     scene : Scene
@@ -315,15 +319,25 @@ def solve_floating(scene):
     Raises
     ------
     EquilibriumNotFound
-        Neither Newton nor the energy fallback gave an accepted equilibrium.
+        No accepted equilibrium (residual, stability, upright).
     """
     fleet = scene_fleet(scene)
-    if np.all(fleet.membership.sum(axis=1) == 1.0):
-        # one crane per vessel: a spring in series with its rope, exactly (module docstring)
-        eq = solve_elastic(scene, stiffness=series_stiffness(scene, fleet))
-        method = eq.solver.method + " (series with the crane vessels)"
-        eq = dataclasses.replace(eq, solver=dataclasses.replace(eq.solver, method=method))
-        return with_vessels(eq, vessel_states(scene, fleet, list(eq.tensions.values())))
+    if not np.all(fleet.membership.sum(axis=1) == 1.0):
+        return solve_coupled(scene, fleet)
+    eq = solve_elastic(scene, stiffness=series_stiffness(scene, fleet))
+    method = eq.solver.method + " (series with the crane vessels)"
+    eq = dataclasses.replace(eq, solver=dataclasses.replace(eq.solver, method=method))
+    return with_vessels(eq, vessel_states(scene, fleet, list(eq.tensions.values())))
+
+
+def solve_coupled(scene, fleet=None):
+    """Body and vessels by Newton on the body's statics and every vessel's balance together.
+
+    Any number of cranes per vessel; the IPOPT fallback on the potential energy, polished by
+    Newton, when Newton's answer is not accepted. Returns and raises as
+    :func:`solve_floating`.
+    """
+    fleet = scene_fleet(scene) if fleet is None else fleet
     model = floating_model(scene.n, len(fleet.names))
     p = np.concatenate([pack_params(scene, "elastic"), fleet.params])
     start = time.perf_counter()
@@ -349,7 +363,7 @@ def solve_floating(scene):
             "expected three or more to hold the body"
         )
     eq = equilibrium_of(
-        scene, "elastic", z[:3], tensions, residual[:3], used + " (with crane vessels)", seconds, slack
+        scene, "elastic", z[:3], tensions, residual[:3], used + " (body and crane vessels)", seconds, slack
     )
     return with_vessels(eq, vessel_states(scene, fleet, tensions))
 
