@@ -129,12 +129,12 @@ def test_four_vessels_equal_the_series_stiffness():
 
 def _twin_scene():
     """T1 and T2 on one crane barge (a twin-crane vessel off the starboard side), T3 and T4 on
-    sheerlegs; a large heel of the barge (its GM_T small)."""
+    sheerlegs; the barge heels by degrees (both hooks 18 m to port of her centreline)."""
     scene = _tanker()
     barge = Vessel(
-        displacement=6000.0,
-        waterplane_area=1800.0,
-        gm_t=2.0,
+        displacement=12000.0,
+        waterplane_area=3000.0,
+        gm_t=8.0,
         gm_l=250.0,
         flotation=(40.9, -30.0),
         heading=0.0,
