@@ -18,6 +18,7 @@ STUDIES = [
     "table3",
     "stranded_methods",
     "least_model",
+    "vessel_speed",
     "speed_accuracy",
     "failure_modes",
     "fleet_objectives",
