@@ -261,7 +261,7 @@ class _Sling(Table):
     )
 
 
-class _Vessel(Table):
+class VesselTable(Table):
     displacement: Num = Key(
         doc="the crane vessel's displacement before the lift (crane and ballast included)",
         unit="t",
@@ -395,7 +395,7 @@ class _Crane(Table):
         values="number > 0",
         example="EA = 70000.0",
     )
-    vessel: _Vessel | Text | None = Key(
+    vessel: VesselTable | Text | None = Key(
         None,
         doc=(
             "a floating crane: its vessel's particulars (the boom tip, above the lug at the level "

@@ -26,10 +26,12 @@ from liftplan.model.scene.file import (
     Point,
     Table,
     Text,
+    VesselTable,
     load_scene,
     load_with,
     one_line,
     parse_toml,
+    to_vessel,
 )
 from liftplan.model.scene.objects import Body, Strength
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
@@ -519,6 +521,19 @@ class _FleetCrane(Table):
         absent="a single rope to one lug",
         example="sling = { legs = 4, length = 9.0, diameter = 56.0 }",
     )
+    vessel: VesselTable | None = Key(
+        None,
+        doc=(
+            "a floating crane: its vessel's particulars, the keys of a scene file's `cranes[].vessel` "
+            "(the boom tip above the crane's lug moves with the vessel under the hook load: the planner "
+            "puts the vessel in series with the rope); one rope of fixed length, no sling"
+        ),
+        absent="a crane on land or a jack-up: the tip stays where it is",
+        example=(
+            "vessel = { displacement = 9000.0, waterplane_area = 2800.0, gm_t = 6.0, gm_l = 180.0, "
+            "flotation = [20.0, -45.0], heading = 90.0 }"
+        ),
+    )
     hook_tolerance: Num | None = Key(
         None,
         doc="this hook's height tolerance, overriding the plan's",
@@ -767,6 +782,7 @@ def _fleet(data, to_zup):
                 boom_min=boom.min if boom else float("-inf"),
                 boom_max=boom.max if boom else float("inf"),
                 hook_tolerance=entry.hook_tolerance,
+                vessel=to_vessel(entry.vessel, data.frame),
                 sling=None
                 if entry.sling is None
                 else SlingSpec(
