@@ -19,6 +19,7 @@ STUDIES = [
     "stranded_methods",
     "least_model",
     "vessel_speed",
+    "vessel_plan",
     "speed_accuracy",
     "failure_modes",
     "fleet_objectives",
