@@ -18,6 +18,7 @@ from helpers import EXAMPLES
 from liftplan.model import solve
 from liftplan.model.scene.file import loads_scene
 from liftplan.model.scene.writer import scene_toml
+from liftplan.planner.output.report.held import _vessel_section
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.vessel_loads import VesselPlan
 from liftplan.planner.problem.file import load_problem
@@ -93,3 +94,15 @@ def test_worst_heel_is_checked_against_the_limit(floating):
     }
     assert isinstance(v, VesselPlan)
     assert np.all([c.ok for c in result.checks])
+
+
+def test_the_report_and_json_carry_the_vessels(floating):
+    """plan --json's "vessels" and the report's crane-vessel table name every floating crane."""
+    _, result = floating
+    data = result.to_json()
+    assert set(data["vessels"]) == {c.name for c in result.problem.fleet}
+    for entry in data["vessels"].values():
+        assert {"tip_drop", "extra_hoist", "ballast", "worst_heel", "worst_trim"} <= set(entry)
+    html = "".join(_vessel_section(result))
+    assert "Crane vessels" in html
+    assert all(c.name in html for c in result.problem.fleet)
