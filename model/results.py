@@ -289,6 +289,8 @@ class Equilibrium:
     vessels : dict of str to VesselState or None
         Floating cranes (``[[cranes]] vessel``): each crane vessel's heave, heel, trim and tip
         drops under the tensions.
+    tide : TideState or None
+        The tide the scene was solved at (``[tide]``).
     """
 
     model: str
@@ -306,6 +308,7 @@ class Equilibrium:
     frame: str = "z-up"
     flexible_hull: object | None = None
     vessels: dict[str, VesselState] | None = None
+    tide: object | None = None
 
     def file_point(self, point):
         """A world point (``z-up``) in the scene file's frame, as a list  [m]."""
@@ -378,4 +381,6 @@ class Equilibrium:
             out["flexible_hull"] = self.flexible_hull.to_json()
         if self.vessels is not None:
             out["vessels"] = {name: state.to_json() for name, state in self.vessels.items()}
+        if self.tide is not None:
+            out["tide"] = self.tide.to_json()
         return out

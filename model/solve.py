@@ -24,10 +24,12 @@ import numpy as np
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.results import Equilibrium
 from liftplan.model.scene.objects import MODELS, Scene, name_list
+from liftplan.model.scene.tide import apply_tide
 from liftplan.model.statics.acceptance import Verdict
 from liftplan.model.statics.floating import (
     check_floating,
     scene_fleet,
+    series_scene,
     solve_floating,
     vessel_states,
     with_vessels,
@@ -103,6 +105,9 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
         No equilibrium with all ropes in tension (given-attitude models), or the elastic
         solve did not converge.
     """
+    if scene.tide is not None:  # the floating cranes' tips and the water where the tide has them
+        scene, tide = apply_tide(scene)
+        return dataclasses.replace(solve(scene, model=model, method=method), tide=tide)
     model = model or pick_model(scene)
     if method != "newton" and model != "hydrostatic":
         raise InvalidScene(f"method = {method!r}: only for a stranded hull; expected 'newton'")
@@ -139,6 +144,10 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
 
 # -- the models ------------------------------------------------------------------------------
 def _hydrostatic(scene, method):
+    if scene.vessels:  # floating cranes: each rope in series with its vessel (one crane each)
+        fleet = scene_fleet(scene)
+        eq = _hydrostatic(series_scene(scene, fleet), method)
+        return with_vessels(eq, vessel_states(scene, fleet, list(eq.tensions.values())))
     if scene.girder is not None:  # a flexible hull in water
         return solve_hull_in_water(scene, method=method)
     # the water solvers build their results themselves: give them the file's frame here
@@ -147,11 +156,6 @@ def _hydrostatic(scene, method):
 
 def _elastic(scene, method):
     if scene.vessels:
-        if scene.girder is not None:
-            raise InvalidScene(
-                "cranes.vessel with hull.EI: a flexible hull on floating cranes is not modelled; "
-                "expected one of them"
-            )
         return solve_floating(scene)
     return solve_elastic(scene) if scene.girder is None else solve_hull_on_ropes(scene)
 

@@ -70,6 +70,7 @@ from liftplan.model.scene.objects import (
     Water,
 )
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.scene.tide import Tide
 from liftplan.model.scene.vessel import Vessel
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
@@ -334,6 +335,29 @@ class VesselTable(Table):
         unit="[t m, t m]",
         values="[heeling, trimming]",
         example="ballast = [-3000.0, 0.0]",
+    )
+
+
+class _Tide(Table):
+    table: list[Pair] = Key(
+        doc=(
+            "the water level over the operation, linear between points, times increasing; the boom "
+            "heights and `[water] level` are those at its first time"
+        ),
+        unit="[h, m]",
+        values="array of [time, level]",
+        frame="world height",
+        example="table = [[0.0, 0.0], [3.0, 1.1], [6.0, 1.6]]",
+    )
+    time: Num | None = Key(
+        None,
+        doc=(
+            "when the scene is solved: every floating crane's tip and the water have risen by the "
+            "level then less the level at the table's first time"
+        ),
+        unit="h",
+        absent="the table's first time",
+        example="time = 3.0",
     )
 
 
@@ -824,6 +848,15 @@ class _SceneFile(Table):
         absent="no envelope checks",
         example="[strength]",
     )
+    tide: _Tide | None = Key(
+        None,
+        doc=(
+            "the tide over the operation: the water level at times; floating cranes (`cranes[].vessel`) "
+            "and `[water]` rise with it"
+        ),
+        absent="no tide: the water stays at its level",
+        example="[tide]",
+    )
 
 
 # Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).
@@ -998,6 +1031,9 @@ def _to_scene(data, base):
             for o in c.openings
         ),
         girder=_to_girder(data.hull),
+        tide=Tide(table=tuple(map(tuple, data.tide.table)), time=data.tide.time)
+        if data.tide is not None
+        else None,
     )
 
 

@@ -17,6 +17,7 @@ import numpy as np
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.rigging_gear import RiggingLimits, Sling
+from liftplan.model.scene.tide import Tide
 from liftplan.model.scene.vessel import Vessel
 
 MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined", "rigging")
@@ -733,6 +734,10 @@ class Scene:
     girder : GirderStiffness or None
         Bending (and torsional) stiffness of the hull girder: the hull is an elastic beam
         (needs ``body.weight_curve``; every lug on its span).
+    openings : tuple of Opening
+    tide : Tide or None
+        The tide over the operation (:mod:`liftplan.model.scene.tide`): floating cranes and
+        the water rise with it.
     """
 
     body: Body
@@ -749,8 +754,11 @@ class Scene:
     strength: Strength | None = None
     girder: GirderStiffness | None = None
     openings: tuple[Opening, ...] = ()
+    tide: Tide | None = None
 
     def __post_init__(self):
+        if self.tide is not None and not isinstance(self.tide, Tide):
+            raise InvalidScene(f"tide = {self.tide!r}: expected a Tide")
         if self.frame not in FRAMES:
             raise InvalidScene(f"frame = {self.frame!r}: expected one of {', '.join(FRAMES)}")
         if self.strength is not None:

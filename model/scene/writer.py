@@ -92,6 +92,10 @@ def scene_toml(scene: Scene, header: Sequence[str] = (), crane_notes: Mapping[st
         lines += ["", "[analysis]", *analysis]
     if scene.slings or scene.rigging != _RIGGING:
         lines += ["", "[rigging]", f"min_sling_angle = {_number(scene.rigging.min_sling_angle)}"]
+    if scene.tide is not None:
+        lines += ["", "[tide]", f"table = {_pairs(scene.tide.table)}"]
+        if scene.tide.time is not None:
+            lines.append(f"time = {_number(scene.tide.time)}")
     return "\n".join(lines) + "\n"
 
 

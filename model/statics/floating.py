@@ -285,6 +285,18 @@ def check_floating(scene, model):
             f"{' or '.join(repr(m) for m in FLOATING_MODELS)} (or no model: elastic is picked when every "
             "crane has boom_height, rope_length and EA)"
         )
+    if scene.girder is not None:
+        raise InvalidScene(
+            "cranes.vessel with hull.EI: a flexible hull on floating cranes is not modelled; "
+            "expected one of them"
+        )
+    shared = [name for name, (_, on) in scene.vessels.items() if len(on) > 1]
+    if shared and model != "elastic":
+        raise InvalidScene(
+            f"cranes.vessel: {shared[0]!r} carries {len(scene.vessels[shared[0]][1])} cranes, whose "
+            f"coupling the {model} model does not take; expected the elastic model in air, or one "
+            "crane per vessel"
+        )
     slung = [c.label for c in scene.cranes if c.vessel is not None and c.sling is not None]
     if slung:
         raise InvalidScene(
@@ -294,8 +306,9 @@ def check_floating(scene, model):
 
 
 #: The models that move the boom tips with their vessels (``rigid`` takes the tensions as
-#: the operators hold them and reports the vessels' response to them).
-FLOATING_MODELS = ("elastic", "rigid")
+#: the operators hold them and reports the vessels' response to them; ``hydrostatic`` takes
+#: each rope in series with its vessel, one crane per vessel).
+FLOATING_MODELS = ("elastic", "rigid", "hydrostatic")
 
 
 def solve_floating(scene):
@@ -376,6 +389,15 @@ def series_stiffness(scene, fleet):
     length = np.array(scene.crane_values("rope_length", "elastic"))
     ea = np.array(scene.crane_values("EA", "elastic"))
     return length / (length / ea + fleet.own_compliance())
+
+
+def series_scene(scene, fleet=None):
+    """The scene with each floating crane's rope in series with its own vessel: its EA the
+    series stiffness, its vessel dropped (one crane per vessel; any vertical-rope model)."""
+    fleet = scene_fleet(scene) if fleet is None else fleet
+    ea = series_stiffness(scene, fleet)
+    cranes = tuple(dataclasses.replace(c, EA=float(e), vessel=None) for c, e in zip(scene.cranes, ea))
+    return dataclasses.replace(scene, cranes=cranes)
 
 
 def with_vessels(eq, states):

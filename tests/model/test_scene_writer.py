@@ -42,6 +42,7 @@ from liftplan.model.scene.objects import (
     curve_totals,
 )
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.scene.tide import Tide
 from liftplan.model.scene.vessel import Vessel
 from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.report import held as held_report
@@ -365,7 +366,9 @@ WRITTEN = {
         "rigging",
         "strength",
         "girder",
+        "tide",
     },
+    Tide: {"table", "time"},
     Body: {"weight", "cog", "weight_curve"},
     Lug: {"name", "at"},
     Crane: {"lug", "EA", "boom_height", "rope_length", "swl", "tip", "name", "sling", "vessel"},

@@ -34,6 +34,12 @@ def equilibrium_table(scene, eq, girder=None):
         f"(+ bow down), lift height {pose.lift_height:.3f} m",
         "",
     ]
+    if eq.tide is not None:
+        lines.insert(
+            -1,
+            f"tide: at {eq.tide.time:g} h the water is at {eq.tide.level:.3f} m, {eq.tide.rise:+.3f} m "
+            "since the table's first time (the floating cranes' tips and the water rose with it)",
+        )
     if eq.tensions and eq.rigging is None and len(eq.tensions) >= GROUPED_FROM:
         lines += rope_rows(scene, eq)  # many ropes: one line per station, port beside starboard
     else:
