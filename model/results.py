@@ -291,6 +291,9 @@ class Equilibrium:
         drops under the tensions.
     tide : TideState or None
         The tide the scene was solved at (``[tide]``).
+    wind : WindState or None
+        What the wind did (``[wind]``): its force on the body and the CG's downwind shift, its
+        forces on the booms and the vessels' heel and trim from them, the tips' drops.
     """
 
     model: str
@@ -309,6 +312,7 @@ class Equilibrium:
     flexible_hull: object | None = None
     vessels: dict[str, VesselState] | None = None
     tide: object | None = None
+    wind: object | None = None
 
     def file_point(self, point):
         """A world point (``z-up``) in the scene file's frame, as a list  [m]."""
@@ -383,4 +387,6 @@ class Equilibrium:
             out["vessels"] = {name: state.to_json() for name, state in self.vessels.items()}
         if self.tide is not None:
             out["tide"] = self.tide.to_json()
+        if self.wind is not None:
+            out["wind"] = self.wind.to_json()
         return out

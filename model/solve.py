@@ -25,12 +25,14 @@ from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.results import Equilibrium
 from liftplan.model.scene.objects import MODELS, Scene, name_list
 from liftplan.model.scene.tide import apply_tide
+from liftplan.model.scene.wind import apply_wind
 from liftplan.model.statics.acceptance import Verdict
 from liftplan.model.statics.floating import (
     check_floating,
     scene_fleet,
     series_scene,
     solve_floating,
+    tip_plan,
     vessel_states,
     with_vessels,
 )
@@ -108,6 +110,14 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
     if scene.tide is not None:  # the floating cranes' tips and the water where the tide has them
         scene, tide = apply_tide(scene)
         return dataclasses.replace(solve(scene, model=model, method=method), tide=tide)
+    if scene.wind is not None:  # the body's couple and the booms' moments on their vessels
+        if (model or pick_model(scene)) in ("inclined", "rigging"):
+            raise InvalidScene(
+                "wind: modelled for vertical ropes (its couple on the vertical tensions); expected "
+                "tips above the lugs, no slings"
+            )
+        scene, wind = apply_wind(scene, tip_plan(scene))
+        return dataclasses.replace(solve(scene, model=model, method=method), wind=wind)
     model = model or pick_model(scene)
     if method != "newton" and model != "hydrostatic":
         raise InvalidScene(f"method = {method!r}: only for a stranded hull; expected 'newton'")

@@ -72,6 +72,7 @@ from liftplan.model.scene.objects import (
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
 from liftplan.model.scene.tide import Tide
 from liftplan.model.scene.vessel import Vessel
+from liftplan.model.scene.wind import AIR_DENSITY, Wind, WindArea
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -358,6 +359,63 @@ class _Tide(Table):
         unit="h",
         absent="the table's first time",
         example="time = 3.0",
+    )
+
+
+class _WindArea(Table):
+    area: Num = Key(
+        doc="the area exposed to the wind", unit="m2", values="number > 0", example="area = 450.0"
+    )
+    cd: Num = Key(doc="its drag coefficient", unit="-", values="number > 0", example="cd = 1.2")
+    height: Num = Key(
+        doc=(
+            "its centre of pressure: on the body, its height in the body frame (the file's up "
+            "coordinate); on a boom, above the vessel's waterline"
+        ),
+        unit="m",
+        example="height = 9.0",
+    )
+
+
+class _BoomWind(_WindArea):
+    crane: Text = Key(
+        doc="the floating crane whose boom it is (its name, or its lug)", example='crane = "Sheerleg 1"'
+    )
+
+
+class _Wind(Table):
+    speed: Num = Key(
+        doc="the wind speed at the exposed areas", unit="m/s", values="number >= 0", example="speed = 20.0"
+    )
+    direction: Num = Key(
+        0.0,
+        doc=(
+            "where it blows towards, in plan from +x towards the second plan axis of the file's frame "
+            "(as a vessel's `heading`)"
+        ),
+        unit="deg",
+        frame="world plan, file frame",
+        example="direction = 90.0",
+    )
+    density: Num = Key(
+        AIR_DENSITY, doc="air density", unit="t/m3", values="number > 0", example="density = 0.001225"
+    )
+    body: _WindArea | None = Key(
+        None,
+        doc=(
+            "the body's exposed area: F = 1/2 rho Cd A V^2, its couple about the lugs' mean height "
+            "carried by the vertical tensions (the weight acts that much further downwind)"
+        ),
+        absent="no wind on the body",
+        example="body = { area = 450.0, cd = 1.2, height = 9.0 }",
+    )
+    booms: list[_BoomWind] = Key(
+        [],
+        doc=(
+            "floating cranes' booms: each one's force times its height heels and trims its vessel, "
+            "which moves the vessel's tips"
+        ),
+        example='booms = [{ crane = "Sheerleg 1", area = 120.0, cd = 1.5, height = 50.0 }]',
     )
 
 
@@ -857,6 +915,12 @@ class _SceneFile(Table):
         absent="no tide: the water stays at its level",
         example="[tide]",
     )
+    wind: _Wind | None = Key(
+        None,
+        doc="wind on the body and on the floating cranes' booms (vertical-rope models)",
+        absent="no wind",
+        example="[wind]",
+    )
 
 
 # Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).
@@ -1034,7 +1098,18 @@ def _to_scene(data, base):
         tide=Tide(table=tuple(map(tuple, data.tide.table)), time=data.tide.time)
         if data.tide is not None
         else None,
+        wind=_to_wind(data.wind, data.frame),
     )
+
+
+def _to_wind(spec, frame):
+    """``[wind]`` in ``z-up`` (None without)."""
+    if spec is None:
+        return None
+    direction = 0.0 - spec.direction if frame == "choi" else spec.direction
+    body = WindArea(**spec.body.model_dump()) if spec.body is not None else None
+    booms = tuple(WindArea(**b.model_dump()) for b in spec.booms)
+    return Wind(speed=spec.speed, direction=direction, body=body, booms=booms, density=spec.density)
 
 
 def _to_girder(spec):

@@ -19,6 +19,7 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.rigging_gear import RiggingLimits, Sling
 from liftplan.model.scene.tide import Tide
 from liftplan.model.scene.vessel import Vessel
+from liftplan.model.scene.wind import Wind
 
 MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined", "rigging")
 FRAMES = ("z-up", "choi")  # as liftplan.model.frames.FRAMES (not imported: it pulls casadi in)
@@ -738,6 +739,8 @@ class Scene:
     tide : Tide or None
         The tide over the operation (:mod:`liftplan.model.scene.tide`): floating cranes and
         the water rise with it.
+    wind : Wind or None
+        The wind on the body and the floating cranes' booms (:mod:`liftplan.model.scene.wind`).
     """
 
     body: Body
@@ -755,8 +758,11 @@ class Scene:
     girder: GirderStiffness | None = None
     openings: tuple[Opening, ...] = ()
     tide: Tide | None = None
+    wind: Wind | None = None
 
     def __post_init__(self):
+        if self.wind is not None and not isinstance(self.wind, Wind):
+            raise InvalidScene(f"wind = {self.wind!r}: expected a Wind")
         if self.tide is not None and not isinstance(self.tide, Tide):
             raise InvalidScene(f"tide = {self.tide!r}: expected a Tide")
         if self.frame not in FRAMES:

@@ -92,6 +92,8 @@ def scene_toml(scene: Scene, header: Sequence[str] = (), crane_notes: Mapping[st
         lines += ["", "[analysis]", *analysis]
     if scene.slings or scene.rigging != _RIGGING:
         lines += ["", "[rigging]", f"min_sling_angle = {_number(scene.rigging.min_sling_angle)}"]
+    if scene.wind is not None:
+        lines += ["", "[wind]", *_wind(scene.wind, scene.frame)]
     if scene.tide is not None:
         lines += ["", "[tide]", f"table = {_pairs(scene.tide.table)}"]
         if scene.tide.time is not None:
@@ -161,6 +163,26 @@ def _vessel(vessel, frame):
         if getattr(vessel, key) is not None
     ]
     return "{ " + ", ".join(items) + " }"
+
+
+def _wind(wind, frame):
+    """``[wind]`` in the file's frame (the direction turns the other way in ``choi``)."""
+    direction = 0.0 - wind.direction if frame == "choi" else wind.direction
+    lines = [
+        f"speed = {_number(wind.speed)}",
+        f"direction = {_number(direction)}",
+        f"density = {_number(wind.density)}",
+    ]
+
+    def area(a):
+        return f"area = {_number(a.area)}, cd = {_number(a.cd)}, height = {_number(a.height)}"
+
+    if wind.body is not None:
+        lines.append(f"body = {{ {area(wind.body)} }}")
+    if wind.booms:
+        rows = ", ".join(f"{{ crane = {_string(b.crane)}, {area(b)} }}" for b in wind.booms)
+        lines.append(f"booms = [{rows}]")
+    return lines
 
 
 def _leg(leg):

@@ -44,6 +44,7 @@ from liftplan.model.scene.objects import (
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
 from liftplan.model.scene.tide import Tide
 from liftplan.model.scene.vessel import Vessel
+from liftplan.model.scene.wind import Wind, WindArea
 from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.report import held as held_report
 from liftplan.planner.output.report import slings as slings_report
@@ -367,8 +368,11 @@ WRITTEN = {
         "strength",
         "girder",
         "tide",
+        "wind",
     },
     Tide: {"table", "time"},
+    Wind: {"speed", "direction", "body", "booms", "density"},
+    WindArea: {"area", "cd", "height", "crane"},
     Body: {"weight", "cog", "weight_curve"},
     Lug: {"name", "at"},
     Crane: {"lug", "EA", "boom_height", "rope_length", "swl", "tip", "name", "sling", "vessel"},
