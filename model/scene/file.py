@@ -383,15 +383,16 @@ class _BoomWind(_WindArea):
     )
 
 
-class _Wind(Table):
+class WindTable(Table):
     speed: Num = Key(
         doc="the wind speed at the exposed areas", unit="m/s", values="number >= 0", example="speed = 20.0"
     )
-    direction: Num = Key(
-        0.0,
+    direction: Num | None = Key(
+        None,
         doc=(
             "where it blows towards, in plan from +x towards the second plan axis of the file's frame "
-            "(as a vessel's `heading`)"
+            "(as a vessel's `heading`); required in a scene file, refused in a planning file (the plan "
+            "takes the wind from any direction)"
         ),
         unit="deg",
         frame="world plan, file frame",
@@ -915,7 +916,7 @@ class _SceneFile(Table):
         absent="no tide: the water stays at its level",
         example="[tide]",
     )
-    wind: _Wind | None = Key(
+    wind: WindTable | None = Key(
         None,
         doc="wind on the body and on the floating cranes' booms (vertical-rope models)",
         absent="no wind",
@@ -1098,15 +1099,25 @@ def _to_scene(data, base):
         tide=Tide(table=tuple(map(tuple, data.tide.table)), time=data.tide.time)
         if data.tide is not None
         else None,
-        wind=_to_wind(data.wind, data.frame),
+        wind=to_wind(data.wind, data.frame),
     )
 
 
-def _to_wind(spec, frame):
-    """``[wind]`` in ``z-up`` (None without)."""
+def to_wind(spec, frame, plan=False):
+    """``[wind]`` in ``z-up`` (None without); a scene's needs its direction, a plan's has none
+    (the plan takes the wind from any direction)."""
     if spec is None:
         return None
-    direction = 0.0 - spec.direction if frame == "choi" else spec.direction
+    if plan and spec.direction is not None:
+        raise InvalidScene(
+            f"wind.direction = {spec.direction!r}: a plan takes the wind from any direction over the "
+            "operation; expected no direction in a planning file"
+        )
+    if not plan and spec.direction is None:
+        raise InvalidScene(
+            "wind.direction: missing; expected where the wind blows towards (a scene is solved for one wind)"
+        )
+    direction = 0.0 if plan else 0.0 - spec.direction if frame == "choi" else spec.direction
     body = WindArea(**spec.body.model_dump()) if spec.body is not None else None
     booms = tuple(WindArea(**b.model_dump()) for b in spec.booms)
     return Wind(speed=spec.speed, direction=direction, body=body, booms=booms, density=spec.density)

@@ -15,12 +15,14 @@ from __future__ import annotations
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.plans.held import Plan, girder_first, plan_held
-from liftplan.planner.problem.vessels import reference_problem, series_problem, uses_vessels
+from liftplan.planner.problem.vessels import reference_problem, series_problem, uses_vessels, wind_problem
 from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
 
 
 def plan_single_ropes(problem, top=None):
-    """:func:`plan_held`, or :func:`plan_floating` when a crane stands on a vessel."""
+    """:func:`plan_held`, or :func:`plan_floating` when a crane stands on a vessel; with a
+    wind, the body's couple in the CG envelope first (:func:`wind_problem`)."""
+    problem = wind_problem(problem)
     return plan_floating(problem, top) if uses_vessels(problem) else plan_held(problem, top)
 
 

@@ -24,7 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
-from liftplan.planner.plans.vessel_loads import vessel_plans
+from liftplan.planner.plans.vessel_loads import vessel_plans, wind_json
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
@@ -629,6 +629,7 @@ class Plan(InFileFrame):
             )
             | breakout_json(self)
             | ({"vessels": {v.crane: v.to_json() for v in self.vessels}} if self.vessels else {})
+            | wind_json(self)
         )
 
     def _capacity_entry(self, c):

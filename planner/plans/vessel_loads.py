@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass
 
 from liftplan.model.checks import Check
-from liftplan.planner.problem.vessels import tip_compliance, tip_offsets
+from liftplan.planner.problem.vessels import tip_compliance, tip_offsets, wind_shift, wind_tip_error
 from liftplan.planner.search.evaluator import robust
 
 
@@ -175,3 +175,38 @@ def vessel_lines(vessels):
             f"{round(v.trim, 2) + 0.0:+7.2f}{v.tip_drop:7.3f}{ballast:>18}{worst:>14}"
         )
     return lines
+
+
+def wind_json(plan):
+    """The wind a held plan took, for its JSON (``{}`` without a wind): the body's force and how
+    far its couple widened the CG envelope, each boom's force and the tip error it added."""
+    problem = plan.problem
+    wind = problem.wind
+    if wind is None:
+        return {}
+    booms = {}
+    for i, j in zip(plan.chosen.indices, plan.chosen.cranes):
+        crane = problem.fleet[j]
+        boom = next((b for b in wind.booms if b.crane == crane.name), None)
+        if boom is not None:
+            error = float(wind_tip_error(problem, crane, problem.plan_points[i])[0])
+            booms[crane.name] = {"force": wind.force(boom), "hook_error": error}
+    body = wind.force(wind.body) if wind.body is not None else 0.0
+    return {
+        "wind": {"speed": wind.speed, "body_force": body, "cog_widening": wind_shift(problem), "booms": booms}
+    }
+
+
+def wind_lines(plan):
+    """The console's line for a plan's wind (none without)."""
+    data = wind_json(plan).get("wind")
+    if data is None:
+        return []
+    booms = ", ".join(
+        f"{k} {v['force']:.2f} t (tip +-{v['hook_error']:.3f} m)" for k, v in data["booms"].items()
+    )
+    return [
+        f"wind {data['speed']:g} m/s from any direction: {data['body_force']:.2f} t on the body, its couple "
+        f"widening the CG envelope by {data['cog_widening']:.3f} m in plan"
+        + (f"; on the booms {booms}, added to their hook tolerances" if booms else "")
+    ]

@@ -27,11 +27,13 @@ from liftplan.model.scene.file import (
     Table,
     Text,
     VesselTable,
+    WindTable,
     load_scene,
     load_with,
     one_line,
     parse_toml,
     to_vessel,
+    to_wind,
 )
 from liftplan.model.scene.objects import Body, Strength
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
@@ -620,6 +622,16 @@ class _PlanFile(Table):
         None, doc="the rules' settings for this lift", absent="every default below", example="[rules]"
     )
     rigging: _Rigging = Key(_Rigging(), doc="sling limits (sling lifts)", example="[rigging]")
+    wind: WindTable | None = Key(
+        None,
+        doc=(
+            "wind on the body and on floating cranes' booms, the keys of a scene file's `[wind]` "
+            "without `direction`: the plan takes it from any direction (the body's couple widens the "
+            "CG envelope in plan, a boom's moves its vessel's tip like a hook-height error)"
+        ),
+        absent="no wind",
+        example="[wind]",
+    )
     report: _Report = Key(_Report(), doc="the report's title block", example="[report]")
     strength: _Strength | None = Key(
         None,
@@ -855,6 +867,7 @@ def _to_problem(data, base):
         ),
         controls=_controls(data, cranes),
         breakout_scene=_breakout_scene(data.plan.breakout_scene, base),
+        wind=to_wind(data.wind, data.frame, plan=True),
     )
 
 
