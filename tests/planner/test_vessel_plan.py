@@ -16,13 +16,15 @@ import pytest
 from helpers import EXAMPLES
 
 from liftplan.model import solve
+from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.file import loads_scene
+from liftplan.model.scene.wind import GRAVITY, Wind, WindArea
 from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.report.held import _vessel_section
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.vessel_loads import VesselPlan
-from liftplan.planner.problem.file import load_problem
-from liftplan.planner.problem.vessels import reference_problem, series_problem, tip_compliance
+from liftplan.planner.problem.file import load_problem, loads_problem
+from liftplan.planner.problem.vessels import reference_problem, series_problem, tip_compliance, wind_problem
 
 
 @pytest.fixture(scope="module")
@@ -106,3 +108,36 @@ def test_the_report_and_json_carry_the_vessels(floating):
     html = "".join(_vessel_section(result))
     assert "Crane vessels" in html
     assert all(c.name in html for c in result.problem.fleet)
+
+
+def test_wind_in_the_plan_widens_the_cg_envelope_and_the_hook_tolerances():
+    """Wind from any direction: the body's couple F (h - h_lugs) / W widens the CG envelope in
+    plan; a floating crane's boom wind moves its tip by up to F h sqrt((y_t / (disp GM_T))^2 +
+    (x_t / (disp GM_L))^2), added to its hook tolerance at its lug (the most over its reach in
+    the search's reference problem); a direction, or a boom on land, is refused in one line."""
+    problem = load_problem(EXAMPLES / "tanker_floating_fleet.toml")
+    boom = WindArea(area=150.0, cd=1.5, height=55.0, crane="Sheerleg A")
+    wind = Wind(speed=20.0, body=WindArea(area=450.0, cd=1.2, height=9.0), booms=(boom,))
+    windy = dataclasses.replace(problem, wind=wind)
+    widened = wind_problem(windy)
+    force = 0.5 * 1.225e-3 * 1.2 * 450.0 * 400.0 / GRAVITY
+    shift = force * (9.0 - 6.0) / problem.body.weight  # the candidates at 6 m
+    x, y, z = problem.cog_envelope.half_widths
+    assert widened.cog_envelope.half_widths == pytest.approx((x + shift, y + shift, z), abs=1e-12)
+    j = [c.name for c in problem.fleet].index("Sheerleg A")
+    i = [c.name for c in problem.candidates].index("BH4-P")
+    exact = series_problem(widened, (i,), (j,)).fleet[j]
+    vessel = problem.fleet[j].vessel
+    forward, starboard = vessel.axes(problem.plan_points[i])
+    moment = 0.5 * 1.225e-3 * 1.5 * 150.0 * 400.0 / GRAVITY * 55.0
+    error = moment * math.hypot(starboard / vessel.heel_stiffness, forward / vessel.trim_stiffness)
+    assert exact.hook_tolerance == pytest.approx(problem.hook_tolerance + error, rel=1e-12)
+    assert reference_problem(widened).fleet[j].hook_tolerance >= exact.hook_tolerance
+    text = (
+        EXAMPLES / "tanker_floating_fleet.toml"
+    ).read_text() + "\n[wind]\nspeed = 20.0\ndirection = 90.0\n"
+    with pytest.raises(InvalidScene, match="a plan takes the wind from any direction"):
+        loads_problem(text)
+    land = dataclasses.replace(windy, fleet=tuple(dataclasses.replace(c, vessel=None) for c in problem.fleet))
+    with pytest.raises(InvalidScene, match=r"wind.booms\[Sheerleg A\]: the crane stands on land"):
+        wind_problem(land)
