@@ -116,7 +116,7 @@ def vessel_plans(plan):
         Empty when every crane stands on land.
     """
     problem, chosen = plan.problem, plan.chosen
-    tensions, gain = plan._dense_held
+    tensions, gain = plan.dense_held
     _, low, high, _, _ = robust(tensions, gain, plan.lugset)
     low, high = low.min(axis=0), high.max(axis=0)
     out = []

@@ -30,6 +30,7 @@ from liftplan.planner.problem.fleet import (
     reach_table,
 )
 from liftplan.planner.problem.objectives import OBJECTIVES, STRENGTH_OBJECTIVES
+from liftplan.planner.problem.readings_accuracy import ReadingsAccuracy
 from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
@@ -269,6 +270,8 @@ class PlanProblem:
     wind : Wind or None
         Wind on the body and the floating cranes' booms, from any direction
         (:mod:`liftplan.planner.problem.vessels`); single-rope held plans only.
+    readings : ReadingsAccuracy
+        The live readings' accuracies (``[readings]``) that ``liftplan watch`` weighs them by.
     """
 
     body: Body
@@ -303,6 +306,7 @@ class PlanProblem:
     hinges: tuple[tuple[float, ...], ...] = ()
     weight_basis: str | None = None
     wind: Wind | None = None
+    readings: ReadingsAccuracy = field(default_factory=ReadingsAccuracy)
 
     def __post_init__(self):
         if self.weight_basis not in WEIGHT_BASES:
@@ -452,11 +456,6 @@ class PlanProblem:
             raise InvalidScene(
                 "wind: planned for single ropes of fixed length with a held preload; expected no "
                 "slings, rope-length ranges or strength objective with [wind]"
-            )
-        if self.search == "local" and len(crane_classes(fleet)) > 1:
-            raise InvalidScene(
-                'plan.search = "local": the local search plans a fleet of equal cranes only (its '
-                'swaps do not reassign cranes); expected search = "exact" or "mip", or one [crane] table'
             )
         if self.work_limit is not None:
             kind = (

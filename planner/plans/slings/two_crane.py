@@ -69,6 +69,10 @@ class SlingOption:
         The tilt along the hook line where it occurs.
     worst_cog_offset : tuple of 3 float  [m]
         The CG offset (body frame, z-up) where it occurs.
+    hook_worst_at : tuple of 2 (float, tuple of 3 float)
+        Each crane's largest hook load: the tilt along the hook line [deg] and the CG offset
+        (body frame, z-up) [m] where it occurs (not where the objective is worst: the CG at
+        one end loads one crane and unloads the other).
     top_legs : tuple of (numpy.ndarray or None)  [t]
         A spreader's two top legs at level (None without a bar).
     top_angles : tuple of (numpy.ndarray or None)  [deg]
@@ -87,8 +91,15 @@ class SlingOption:
     worst_value: float
     worst_tilt: float
     worst_cog_offset: tuple
+    hook_worst_at: tuple = ()
     top_legs: tuple = (None, None)
     top_angles: tuple = (None, None)
+
+
+def _where(loads, tilts, offsets):
+    """(tilt [deg], CG offset [m]) of the largest of ``loads`` (CG vertex, tilt)."""
+    cg, tilt = np.unravel_index(int(np.argmax(loads)), loads.shape)
+    return float(tilts[tilt]), tuple(float(v) for v in offsets[cg])
 
 
 def _turn(axis, angle, points):
@@ -298,6 +309,7 @@ def plan_two_slings(problem, top=None):
                 worst_value=float(worst_value[k]),
                 worst_tilt=float(tilts[k, tilt_k]),
                 worst_cog_offset=tuple(float(v) for v in offsets[cg_k]),
+                hook_worst_at=tuple(_where(hook_loads[k][..., c], tilts[k], offsets) for c in range(2)),
                 top_legs=tuple(s[0][1] for s in split),
                 top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
             )
@@ -516,9 +528,13 @@ class SlingPlan(SlingLift):
         return {
             **self._lift_json(),
             "roll": chosen.roll,
-            "worst_attitude": {
+            "worst_attitude": {  # where the objective is worst; CG offset in the file's frame
                 "tilt_along_hook_line": chosen.worst_tilt,
-                "cog_offset": list(chosen.worst_cog_offset),
+                "cog_offset": list(self.in_file_frame(chosen.worst_cog_offset)),
+            },
+            "worst_hook_load_at": {  # where each crane's hook load is largest
+                name: {"tilt_along_hook_line": tilt, "cog_offset": list(self.in_file_frame(offset))}
+                for name, (tilt, offset) in zip(self.crane_names, chosen.hook_worst_at)
             },
             "ranking": [
                 {
