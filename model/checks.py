@@ -32,6 +32,8 @@ TITLES = {
     "angle_held": "turning angle held at every angle of the stage",
     "lug_out_of_plane": "lug design load across its plate within its out-of-plane capacity",
     "pivot_friction": "horizontal force at the pivot within its friction",
+    "vessel_heel": "crane vessel heel within its limit",
+    "vessel_trim": "crane vessel trim within its limit",
 }
 
 

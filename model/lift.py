@@ -529,6 +529,11 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
     """
     if scene.hull is None or not scene.n:
         raise InvalidScene("lift: expected a scene with [hull], [water] and three or more cranes")
+    if scene.vessels:
+        raise InvalidScene(
+            "lift: floating cranes (cranes.vessel) are not followed through a load curve; expected "
+            "liftplan solve at each hoist, or the cranes without vessels"
+        )
     if stop is not None:
         _check_stop(scene, stop)
     stop = default_stop(scene) if stop is None else float(stop)

@@ -199,6 +199,58 @@ def _maybe_in_frame(point, frame):
 
 
 @dataclass(frozen=True)
+class VesselState:
+    """A crane vessel under its hook loads (small-angle hydrostatics,
+    :mod:`liftplan.model.scene.vessel`).
+
+    Parameters
+    ----------
+    heave : float  [m]
+        Sinkage under the load, > 0 down.
+    heel : float  [deg]
+        > 0 starboard side down; with the ballast moment set before the lift.
+    trim : float  [deg]
+        > 0 bow down; with the ballast moment set before the lift.
+    tip_drops : dict of str to float  [m]
+        Each of its cranes' boom-tip drop under the load (> 0 down), keyed as the tensions:
+        the extra hoist that crane needs as the load comes on, beyond a crane on land.
+    load : float  [t]
+        The hook loads it carries.
+    levelling_ballast : tuple of 2 float  [t m]
+        The ballast moment (heeling, > 0 starboard down; trimming, > 0 bow down) that, set
+        before the lift, leaves the vessel level under this load.
+    max_heel, max_trim : float or None  [deg]
+        Its limits, when given.
+    """
+
+    heave: float
+    heel: float
+    trim: float
+    tip_drops: dict[str, float]
+    load: float
+    levelling_ballast: tuple[float, float]
+    max_heel: float | None = None
+    max_trim: float | None = None
+
+    @property
+    def tip_drop(self):
+        """The largest of its cranes' tip drops  [m]."""
+        return max(self.tip_drops.values())
+
+    def to_json(self):
+        """``{"heave", "heel", "trim", "tip_drop", ...}`` (the first four fixed by CONTRACT.md)."""
+        return {
+            "heave": self.heave,
+            "heel": self.heel,
+            "trim": self.trim,
+            "tip_drop": self.tip_drop,
+            "tip_drops": dict(self.tip_drops),
+            "load": self.load,
+            "levelling_ballast": {"heel": self.levelling_ballast[0], "trim": self.levelling_ballast[1]},
+        }
+
+
+@dataclass(frozen=True)
 class Equilibrium:
     """Equilibrium of the body on its ropes.
 
@@ -234,6 +286,14 @@ class Equilibrium:
     flexible_hull : FlexibleHull or RigidHullNote or None
         With a hull stiffness (``[hull] EI``): which hull the tensions are of, the change
         flexibility makes and the deflection (:mod:`liftplan.model.strength.flexible`).
+    vessels : dict of str to VesselState or None
+        Floating cranes (``[[cranes]] vessel``): each crane vessel's heave, heel, trim and tip
+        drops under the tensions.
+    tide : TideState or None
+        The tide the scene was solved at (``[tide]``).
+    wind : WindState or None
+        What the wind did (``[wind]``): its force on the body and the CG's downwind shift, its
+        forces on the booms and the vessels' heel and trim from them, the tips' drops.
     """
 
     model: str
@@ -250,6 +310,9 @@ class Equilibrium:
     rigging: RiggingState | None = None
     frame: str = "z-up"
     flexible_hull: object | None = None
+    vessels: dict[str, VesselState] | None = None
+    tide: object | None = None
+    wind: object | None = None
 
     def file_point(self, point):
         """A world point (``z-up``) in the scene file's frame, as a list  [m]."""
@@ -320,4 +383,10 @@ class Equilibrium:
             out.update(self.afloat.to_json(self.frame))
         if self.flexible_hull is not None:
             out["flexible_hull"] = self.flexible_hull.to_json()
+        if self.vessels is not None:
+            out["vessels"] = {name: state.to_json() for name, state in self.vessels.items()}
+        if self.tide is not None:
+            out["tide"] = self.tide.to_json()
+        if self.wind is not None:
+            out["wind"] = self.wind.to_json()
         return out

@@ -24,7 +24,18 @@ import numpy as np
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.results import Equilibrium
 from liftplan.model.scene.objects import MODELS, Scene, name_list
+from liftplan.model.scene.tide import apply_tide
+from liftplan.model.scene.wind import apply_wind
 from liftplan.model.statics.acceptance import Verdict
+from liftplan.model.statics.floating import (
+    check_floating,
+    scene_fleet,
+    series_scene,
+    solve_floating,
+    tip_plan,
+    vessel_states,
+    with_vessels,
+)
 from liftplan.model.statics.inclined import solve_inclined
 from liftplan.model.statics.rigging import solve_rigging
 from liftplan.model.statics.vertical import (
@@ -96,6 +107,17 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
         No equilibrium with all ropes in tension (given-attitude models), or the elastic
         solve did not converge.
     """
+    if scene.tide is not None:  # the floating cranes' tips and the water where the tide has them
+        scene, tide = apply_tide(scene)
+        return dataclasses.replace(solve(scene, model=model, method=method), tide=tide)
+    if scene.wind is not None:  # the body's couple and the booms' moments on their vessels
+        if (model or pick_model(scene)) in ("inclined", "rigging"):
+            raise InvalidScene(
+                "wind: modelled for vertical ropes (its couple on the vertical tensions); expected "
+                "tips above the lugs, no slings"
+            )
+        scene, wind = apply_wind(scene, tip_plan(scene))
+        return dataclasses.replace(solve(scene, model=model, method=method), wind=wind)
     model = model or pick_model(scene)
     if method != "newton" and model != "hydrostatic":
         raise InvalidScene(f"method = {method!r}: only for a stranded hull; expected 'newton'")
@@ -120,6 +142,7 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
             f"cranes.tip given, but the {model} model hangs the ropes vertically; expected model "
             "'inclined' (or no model: it is picked when a tip is given)"
         )
+    check_floating(scene, model)
     if scene.girder is not None and model not in HULL_STIFFNESS_MODELS:
         return _rigid_hull(scene, model, method)
     try:
@@ -131,6 +154,10 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
 
 # -- the models ------------------------------------------------------------------------------
 def _hydrostatic(scene, method):
+    if scene.vessels:  # floating cranes: each rope in series with its vessel (one crane each)
+        fleet = scene_fleet(scene)
+        eq = _hydrostatic(series_scene(scene, fleet), method)
+        return with_vessels(eq, vessel_states(scene, fleet, list(eq.tensions.values())))
     if scene.girder is not None:  # a flexible hull in water
         return solve_hull_in_water(scene, method=method)
     # the water solvers build their results themselves: give them the file's frame here
@@ -138,7 +165,19 @@ def _hydrostatic(scene, method):
 
 
 def _elastic(scene, method):
+    if scene.vessels:
+        return solve_floating(scene)
     return solve_elastic(scene) if scene.girder is None else solve_hull_on_ropes(scene)
+
+
+def _rigid(scene, method):
+    """``rigid``; with crane vessels, their response to the tensions the operators hold."""
+    if scene.hull is not None:
+        return _given_in_water(scene, "rigid")
+    eq = solve_rigid(scene)
+    if not scene.vessels:
+        return eq
+    return with_vessels(eq, vessel_states(scene, scene_fleet(scene), list(eq.tensions.values())))
 
 
 def _given_attitude(name, solver):
@@ -153,7 +192,7 @@ def _given_attitude(name, solver):
 #: ``analysis.model`` -> ``solver(scene, method) -> Equilibrium``: the one table of rope
 #: models (the names a file may give are :data:`~liftplan.model.scene.objects.MODELS`).
 ROPE_MODELS = {
-    "rigid": _given_attitude("rigid", solve_rigid),
+    "rigid": _rigid,
     "paper-elastic": _given_attitude("paper-elastic", solve_paper_elastic),
     "elastic": _elastic,
     "inclined": lambda scene, method: solve_inclined(scene),

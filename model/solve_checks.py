@@ -24,7 +24,8 @@ def equilibrium_checks(scene, eq):
     list of Check
         ``swl`` per rope with an SWL (tension <= SWL  [t]), ``min_tension`` per rope
         (tension >= 0  [t]) and, without a hull in water, one ``taut`` check (ropes carrying
-        load >= all ropes  [-]). Empty for a body with no ropes.
+        load >= all ropes  [-]); with crane vessels, :func:`vessel_checks`. Empty for a body
+        with no ropes.
     """
     checks = []
     for name, tension in eq.tensions.items():
@@ -46,4 +47,30 @@ def equilibrium_checks(scene, eq):
         checks.append(
             Check.lower("taut", "ropes", len(eq.tensions) - len(slack), len(eq.tensions), "-", note=note)
         )
+    checks += vessel_checks(eq.vessels or {})
+    return checks
+
+
+def vessel_checks(vessels):
+    """Each crane vessel's heel and trim against its limits, where the scene gives them.
+
+    Parameters
+    ----------
+    vessels : dict of str to VesselState
+
+    Returns
+    -------
+    list of Check
+        ``vessel_heel`` and ``vessel_trim`` per vessel with ``max_heel`` / ``max_trim``
+        (|angle| <= limit  [deg]).
+    """
+    checks = []
+    for name, state in vessels.items():
+        for key, angle, limit, sense in (
+            ("vessel_heel", state.heel, state.max_heel, "starboard down"),
+            ("vessel_trim", state.trim, state.max_trim, "bow down"),
+        ):
+            if limit is not None:
+                note = f"{angle:+.3f} deg (+ {sense}) under {state.load:.1f} t, ballast included"
+                checks.append(Check.upper(key, name, abs(angle), limit, "deg", note=note))
     return checks

@@ -18,6 +18,8 @@ STUDIES = [
     "table3",
     "stranded_methods",
     "least_model",
+    "vessel_speed",
+    "vessel_plan",
     "speed_accuracy",
     "failure_modes",
     "fleet_objectives",

@@ -70,6 +70,9 @@ from liftplan.model.scene.objects import (
     Water,
 )
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.scene.tide import Tide
+from liftplan.model.scene.vessel import Vessel
+from liftplan.model.scene.wind import AIR_DENSITY, Wind, WindArea
 
 # Strict scalars: a TOML string is never silently read as a number (ints still pass as
 # floats); arrays may still be read as tuples.
@@ -260,6 +263,163 @@ class _Sling(Table):
     )
 
 
+class VesselTable(Table):
+    displacement: Num = Key(
+        doc="the crane vessel's displacement before the lift (crane and ballast included)",
+        unit="t",
+        values="number > 0",
+        example="displacement = 9000.0",
+    )
+    waterplane_area: Num = Key(
+        doc="A_wp, its waterplane area: the hook load T sinks it by T / (density A_wp)",
+        unit="m2",
+        values="number > 0",
+        example="waterplane_area = 2800.0",
+    )
+    gm_t: Num = Key(
+        doc="transverse metacentric height GM_T: heel = T y_t / (displacement GM_T)",
+        unit="m",
+        values="number > 0",
+        example="gm_t = 6.0",
+    )
+    gm_l: Num = Key(
+        doc="longitudinal metacentric height GM_L: trim = T x_t / (displacement GM_L)",
+        unit="m",
+        values="number > 0",
+        example="gm_l = 180.0",
+    )
+    flotation: Pair = Key(
+        doc=(
+            "centre of flotation in plan: (x, y) in `z-up`, (x, z) in `choi`; the boom tip's offset "
+            "from it (x_t forward, y_t to starboard, in the vessel's axes) sets the heel and trim"
+        ),
+        unit="m",
+        values="[x, y] or [x, z]",
+        frame="world plan, file frame",
+        example="flotation = [20.0, -45.0]",
+    )
+    heading: Num = Key(
+        0.0,
+        doc=(
+            "the bow's direction in plan, from +x towards the second plan axis of the file's frame "
+            "(+y, port, in `z-up`; +z, starboard, in `choi`)"
+        ),
+        unit="deg",
+        frame="world plan, file frame",
+        example="heading = 90.0",
+    )
+    density: Num = Key(
+        1.025, doc="water density", unit="t/m3", values="number > 0", example="density = 1.025"
+    )
+    max_heel: Num | None = Key(
+        None,
+        doc="the vessel's heel limit under the load (absolute): a check, flagged when exceeded",
+        unit="deg",
+        values="number in (0, 90)",
+        absent="not checked",
+        example="max_heel = 3.0",
+    )
+    max_trim: Num | None = Key(
+        None,
+        doc="the vessel's trim limit under the load (absolute): a check, flagged when exceeded",
+        unit="deg",
+        values="number in (0, 90)",
+        absent="not checked",
+        example="max_trim = 2.0",
+    )
+    ballast: Pair = Key(
+        (0.0, 0.0),
+        doc=(
+            "ballast moment set before the lift (heeling > 0 starboard down, trimming > 0 bow down); "
+            "the vessel's heel and trim under load include it, its tip drop does not change"
+        ),
+        unit="[t m, t m]",
+        values="[heeling, trimming]",
+        example="ballast = [-3000.0, 0.0]",
+    )
+
+
+class _Tide(Table):
+    table: list[Pair] = Key(
+        doc=(
+            "the water level over the operation, linear between points, times increasing; the boom "
+            "heights and `[water] level` are those at its first time"
+        ),
+        unit="[h, m]",
+        values="array of [time, level]",
+        frame="world height",
+        example="table = [[0.0, 0.0], [3.0, 1.1], [6.0, 1.6]]",
+    )
+    time: Num | None = Key(
+        None,
+        doc=(
+            "when the scene is solved: every floating crane's tip and the water have risen by the "
+            "level then less the level at the table's first time"
+        ),
+        unit="h",
+        absent="the table's first time",
+        example="time = 3.0",
+    )
+
+
+class _WindArea(Table):
+    area: Num = Key(
+        doc="the area exposed to the wind", unit="m2", values="number > 0", example="area = 450.0"
+    )
+    cd: Num = Key(doc="its drag coefficient", unit="-", values="number > 0", example="cd = 1.2")
+    height: Num = Key(
+        doc=(
+            "its centre of pressure: on the body, its height in the body frame (the file's up "
+            "coordinate); on a boom, above the vessel's waterline"
+        ),
+        unit="m",
+        example="height = 9.0",
+    )
+
+
+class _BoomWind(_WindArea):
+    crane: Text = Key(
+        doc="the floating crane whose boom it is (its name, or its lug)", example='crane = "Sheerleg 1"'
+    )
+
+
+class WindTable(Table):
+    speed: Num = Key(
+        doc="the wind speed at the exposed areas", unit="m/s", values="number >= 0", example="speed = 20.0"
+    )
+    direction: Num | None = Key(
+        None,
+        doc=(
+            "where it blows towards, in plan from +x towards the second plan axis of the file's frame "
+            "(as a vessel's `heading`); required in a scene file, refused in a planning file (the plan "
+            "takes the wind from any direction)"
+        ),
+        unit="deg",
+        frame="world plan, file frame",
+        example="direction = 90.0",
+    )
+    density: Num = Key(
+        AIR_DENSITY, doc="air density", unit="t/m3", values="number > 0", example="density = 0.001225"
+    )
+    body: _WindArea | None = Key(
+        None,
+        doc=(
+            "the body's exposed area: F = 1/2 rho Cd A V^2, its couple about the lugs' mean height "
+            "carried by the vertical tensions (the weight acts that much further downwind)"
+        ),
+        absent="no wind on the body",
+        example="body = { area = 450.0, cd = 1.2, height = 9.0 }",
+    )
+    booms: list[_BoomWind] = Key(
+        [],
+        doc=(
+            "floating cranes' booms: each one's force times its height heels and trims its vessel, "
+            "which moves the vessel's tips"
+        ),
+        example='booms = [{ crane = "Sheerleg 1", area = 120.0, cd = 1.5, height = 50.0 }]',
+    )
+
+
 class _Crane(Table):
     lug: Text | None = Key(
         None, doc="the lug its rope is shackled to; exactly one of `lug` and `sling`", example='lug = "T1"'
@@ -317,6 +477,19 @@ class _Crane(Table):
         unit="t",
         values="number > 0",
         example="EA = 70000.0",
+    )
+    vessel: VesselTable | Text | None = Key(
+        None,
+        doc=(
+            "a floating crane: its vessel's particulars (the boom tip, above the lug at the level "
+            "pose, heaves, heels and trims with it under the hook load), or the name of the crane "
+            "whose vessel this crane shares"
+        ),
+        absent="a crane on land or a jack-up: the tip stays where it is",
+        example=(
+            "vessel = { displacement = 9000.0, waterplane_area = 2800.0, gm_t = 6.0, gm_l = 180.0, "
+            "flotation = [20.0, -45.0], heading = 90.0 }"
+        ),
     )
 
 
@@ -734,6 +907,21 @@ class _SceneFile(Table):
         absent="no envelope checks",
         example="[strength]",
     )
+    tide: _Tide | None = Key(
+        None,
+        doc=(
+            "the tide over the operation: the water level at times; floating cranes (`cranes[].vessel`) "
+            "and `[water]` rise with it"
+        ),
+        absent="no tide: the water stays at its level",
+        example="[tide]",
+    )
+    wind: WindTable | None = Key(
+        None,
+        doc="wind on the body and on the floating cranes' booms (vertical-rope models)",
+        absent="no wind",
+        example="[wind]",
+    )
 
 
 # Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).
@@ -908,6 +1096,10 @@ def _to_scene(data, base):
             for o in c.openings
         ),
         girder=_to_girder(data.hull),
+        tide=Tide(table=tuple(map(tuple, data.tide.table)), time=data.tide.time)
+        if data.tide is not None
+        else None,
+        wind=to_wind(data.wind, data.frame),
     )
 
 
@@ -922,6 +1114,26 @@ def to_lug(spec, to_zup):
         capacity_out_of_plane=getattr(spec, "capacity_out_of_plane", None),
         normal=to_zup(normal) if normal is not None else None,
     )
+
+
+def to_wind(spec, frame, plan=False):
+    """``[wind]`` in ``z-up`` (None without); a scene's needs its direction, a plan's has none
+    (the plan takes the wind from any direction)."""
+    if spec is None:
+        return None
+    if plan and spec.direction is not None:
+        raise InvalidScene(
+            f"wind.direction = {spec.direction!r}: a plan takes the wind from any direction over the "
+            "operation; expected no direction in a planning file"
+        )
+    if not plan and spec.direction is None:
+        raise InvalidScene(
+            "wind.direction: missing; expected where the wind blows towards (a scene is solved for one wind)"
+        )
+    direction = 0.0 if plan else 0.0 - spec.direction if frame == "choi" else spec.direction
+    body = WindArea(**spec.body.model_dump()) if spec.body is not None else None
+    booms = tuple(WindArea(**b.model_dump()) for b in spec.booms)
+    return Wind(speed=spec.speed, direction=direction, body=body, booms=booms, density=spec.density)
 
 
 def _to_girder(spec):
@@ -956,7 +1168,19 @@ def _to_crane(c, data, to_zup):
         tip=to_zup(c.tip) if c.tip is not None else None,
         name=c.name,
         sling=sling,
+        vessel=to_vessel(c.vessel, data.frame),
     )
+
+
+def to_vessel(spec, frame):
+    """A crane's ``vessel`` (table or shared name) in ``z-up``; None for none."""
+    if spec is None or isinstance(spec, str):
+        return spec
+    fields = spec.model_dump()
+    if frame == "choi":  # plan (x, z starboard) -> (x, y port); the heading turns the other way
+        fields["flotation"] = (spec.flotation[0], 0.0 - spec.flotation[1])
+        fields["heading"] = 0.0 - spec.heading
+    return Vessel(**fields)
 
 
 def _to_sling(spec):

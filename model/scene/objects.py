@@ -17,6 +17,9 @@ import numpy as np
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.rigging_gear import RiggingLimits, Sling
+from liftplan.model.scene.tide import Tide
+from liftplan.model.scene.vessel import Vessel
+from liftplan.model.scene.wind import Wind
 
 MODELS = ("elastic", "paper-elastic", "rigid", "hydrostatic", "inclined", "rigging")
 FRAMES = ("z-up", "choi")  # as liftplan.model.frames.FRAMES (not imported: it pulls casadi in)
@@ -344,6 +347,9 @@ class Crane:
         lug is keyed by its lug, as the contract fixes.
     sling : Sling or None
         Legs (and a spreader bar) from the hook to 2-4 lugs, instead of ``lug``.
+    vessel : Vessel or str or None
+        The floating crane's vessel (its tip moves with it under the hook load), or the name
+        of another crane whose vessel this crane shares; None: a crane on land (fixed tip).
     """
 
     lug: str | None = None
@@ -354,6 +360,7 @@ class Crane:
     tip: tuple[float, float, float] | None = None
     name: str | None = None
     sling: Sling | None = None
+    vessel: Vessel | str | None = None
 
     def __post_init__(self):
         if self.name is not None and (not isinstance(self.name, str) or not self.name.strip()):
@@ -382,6 +389,20 @@ class Crane:
             _set(self, "swl", positive(f"{where}.swl", self.swl))
         if self.tip is not None:
             _set(self, "tip", point(f"{where}.tip", self.tip))
+        if self.vessel is not None and not isinstance(self.vessel, Vessel):
+            if not isinstance(self.vessel, str) or not self.vessel.strip():
+                raise InvalidScene(
+                    f"{where}.vessel = {self.vessel!r}: expected a vessel table or the name of the "
+                    "crane whose vessel this crane shares"
+                )
+
+    @property
+    def vessel_name(self):
+        """The name of the vessel this crane stands on (its own: its name, else its label; a
+        shared one: the crane named), or None on land."""
+        if self.vessel is None:
+            return None
+        return self.vessel if isinstance(self.vessel, str) else (self.name or self.label)
 
     @property
     def label(self):
@@ -735,6 +756,12 @@ class Scene:
     girder : GirderStiffness or None
         Bending (and torsional) stiffness of the hull girder: the hull is an elastic beam
         (needs ``body.weight_curve``; every lug on its span).
+    openings : tuple of Opening
+    tide : Tide or None
+        The tide over the operation (:mod:`liftplan.model.scene.tide`): floating cranes and
+        the water rise with it.
+    wind : Wind or None
+        The wind on the body and the floating cranes' booms (:mod:`liftplan.model.scene.wind`).
     """
 
     body: Body
@@ -751,8 +778,14 @@ class Scene:
     strength: Strength | None = None
     girder: GirderStiffness | None = None
     openings: tuple[Opening, ...] = ()
+    tide: Tide | None = None
+    wind: Wind | None = None
 
     def __post_init__(self):
+        if self.wind is not None and not isinstance(self.wind, Wind):
+            raise InvalidScene(f"wind = {self.wind!r}: expected a Wind")
+        if self.tide is not None and not isinstance(self.tide, Tide):
+            raise InvalidScene(f"tide = {self.tide!r}: expected a Tide")
         if self.frame not in FRAMES:
             raise InvalidScene(f"frame = {self.frame!r}: expected one of {', '.join(FRAMES)}")
         if self.strength is not None:
@@ -833,6 +866,7 @@ class Scene:
             held.add(red.lug)
         if self.hull is None:
             _check_support(self)
+        _check_vessels(cranes)
         if self.girder is not None:
             if not isinstance(self.girder, GirderStiffness):
                 raise InvalidScene(f"girder = {self.girder!r}: expected a GirderStiffness")
@@ -901,6 +935,19 @@ class Scene:
             f"crane = {key!r}: unknown crane, expected a lug or crane name of {name_list(known)}"
         )
 
+    @cached_property
+    def vessels(self):
+        """The crane vessels: name -> (Vessel, indices of the cranes on it, in scene order).
+
+        Empty when every crane stands on land.
+        """
+        tables = {c.vessel_name: c.vessel for c in self.cranes if isinstance(c.vessel, Vessel)}
+        out = {}
+        for name, vessel in tables.items():
+            on = tuple(k for k, c in enumerate(self.cranes) if c.vessel_name == name)
+            out[name] = (vessel, on)
+        return out
+
     @property
     def slings(self):
         """True when a crane carries a sling set (the ``rigging`` model is needed)."""
@@ -925,6 +972,27 @@ class Scene:
     def with_analysis(self, **changes):
         """A copy with the analysis changed, e.g. ``scene.with_analysis(model="rigid")``."""
         return dataclasses.replace(self, analysis=dataclasses.replace(self.analysis, **changes))
+
+
+def _check_vessels(cranes):
+    """Each shared vessel names a crane that carries a vessel table; vessel names unique."""
+    own = {}
+    for crane in cranes:
+        if isinstance(crane.vessel, Vessel):
+            name = crane.vessel_name
+            if name in own:
+                raise InvalidScene(
+                    f"cranes[{crane.label}].vessel: a second vessel named {name!r}; expected one "
+                    "vessel table per crane name"
+                )
+            own[name] = crane
+    for crane in cranes:
+        if isinstance(crane.vessel, str) and crane.vessel not in own:
+            known = name_list(own) if own else "none given"
+            raise InvalidScene(
+                f"cranes[{crane.label}].vessel = {crane.vessel!r}: no crane of that name carries a "
+                f"vessel table; expected the name of a crane with vessel = {{ ... }} ({known})"
+            )
 
 
 def _check_openings(scene):

@@ -9,7 +9,7 @@ whole; an optional key the scene leaves at the reader's default (a crane's missi
 limits of a scene without slings, an empty ``name``) is left out, and reads back the same.
 
 What it writes: ``name``, ``frame``, ``[body]`` (weight, cog, weight_curve), ``[[lugs]]``,
-``[[cranes]]`` (lug or sling, name, boom_height, rope_length, EA, swl, tip; a sling's legs,
+``[[cranes]]`` (lug or sling, name, boom_height, rope_length, EA, swl, tip, vessel; a sling's legs,
 spreader bar and ``equalised``), ``[attitude]``, ``[analysis]`` (model, redundant tensions,
 hull), ``[rigging]``, ``[strength]`` and the hull girder's stiffness (``[hull] EI``, ``GJ``).
 
@@ -90,13 +90,19 @@ def scene_toml(scene: Scene, header: Sequence[str] = (), crane_notes: Mapping[st
     for crane in scene.cranes:
         note = notes.get(crane.label)
         title = "[[cranes]]" if note is None else f"[[cranes]]                   # {_comment(note, ' ')}"
-        lines += ["", title, *_crane(crane, vec)]
+        lines += ["", title, *_crane(crane, vec, scene.frame)]
     lines += ["", "[attitude]", *_attitude(scene.attitude)]
     analysis = _analysis(scene.analysis)
     if analysis:
         lines += ["", "[analysis]", *analysis]
     if scene.slings or scene.rigging != _RIGGING:
         lines += ["", "[rigging]", f"min_sling_angle = {_number(scene.rigging.min_sling_angle)}"]
+    if scene.wind is not None:
+        lines += ["", "[wind]", *_wind(scene.wind, scene.frame)]
+    if scene.tide is not None:
+        lines += ["", "[tide]", f"table = {_pairs(scene.tide.table)}"]
+        if scene.tide.time is not None:
+            lines.append(f"time = {_number(scene.tide.time)}")
     return "\n".join(lines) + "\n"
 
 
@@ -111,7 +117,7 @@ def _refuse_unwritable(scene):
             )
 
 
-def _crane(crane, vec):
+def _crane(crane, vec, frame):
     lines = []
     if crane.name is not None:
         lines.append(f"name = {_string(crane.name)}")
@@ -123,6 +129,8 @@ def _crane(crane, vec):
             lines.append(f"{key} = {_number(value)}")
     if crane.tip is not None:
         lines.append(f"tip = {vec(crane.tip)}")
+    if crane.vessel is not None:
+        lines.append(f"vessel = {_vessel(crane.vessel, frame)}")
     sling = crane.sling
     if sling is None:
         return lines
@@ -138,6 +146,47 @@ def _crane(crane, vec):
         lines += [f"weight = {_number(bar.weight)}", f"EA = {_number(bar.EA)}"]
         for leg in bar.top:
             lines += ["", "[[cranes.sling.spreader.top]]", *_leg(leg)]
+    return lines
+
+
+def _vessel(vessel, frame):
+    """A crane's vessel as an inline table in the file's frame (or the shared vessel's name)."""
+    if isinstance(vessel, str):
+        return _string(vessel)
+    flotation, heading = vessel.flotation, vessel.heading
+    if frame == "choi":  # (x, y port) -> (x, z starboard); the heading turns the other way
+        flotation, heading = (flotation[0], 0.0 - flotation[1]), 0.0 - heading
+    items = [
+        f"{key} = {_number(getattr(vessel, key))}"
+        for key in ("displacement", "waterplane_area", "gm_t", "gm_l")
+    ]
+    items += [f"flotation = {_vector(flotation)}", f"heading = {_number(heading)}"]
+    items += [f"density = {_number(vessel.density)}", f"ballast = {_vector(vessel.ballast)}"]
+    items += [
+        f"{key} = {_number(getattr(vessel, key))}"
+        for key in ("max_heel", "max_trim")
+        if getattr(vessel, key) is not None
+    ]
+    return "{ " + ", ".join(items) + " }"
+
+
+def _wind(wind, frame):
+    """``[wind]`` in the file's frame (the direction turns the other way in ``choi``)."""
+    direction = 0.0 - wind.direction if frame == "choi" else wind.direction
+    lines = [
+        f"speed = {_number(wind.speed)}",
+        f"direction = {_number(direction)}",
+        f"density = {_number(wind.density)}",
+    ]
+
+    def area(a):
+        return f"area = {_number(a.area)}, cd = {_number(a.cd)}, height = {_number(a.height)}"
+
+    if wind.body is not None:
+        lines.append(f"body = {{ {area(wind.body)} }}")
+    if wind.booms:
+        rows = ", ".join(f"{{ crane = {_string(b.crane)}, {area(b)} }}" for b in wind.booms)
+        lines.append(f"booms = [{rows}]")
     return lines
 
 

@@ -222,7 +222,7 @@ def paper_elastic_tensions(scene, heel, trim):
 
 
 # -- forward elastic model (nonlinear) ------------------------------------------------------
-def solve_elastic(scene, method="auto"):
+def solve_elastic(scene, method="auto", stiffness=None):
     """Pose and tensions from boom heights, unstretched lengths and EA.
 
     Parameters
@@ -231,6 +231,9 @@ def solve_elastic(scene, method="auto"):
     method : {"auto", "newton", "energy"}
         ``"auto"``: Newton, and IPOPT on the potential energy (polished by Newton) if
         Newton's answer is not accepted.
+    stiffness : array_like, shape (n,), optional  [t]
+        EA to use instead of the cranes' own (the series stiffness of a rope on a crane
+        vessel: :mod:`liftplan.model.statics.floating`).
 
     Returns
     -------
@@ -242,6 +245,8 @@ def solve_elastic(scene, method="auto"):
         raise InvalidScene(f"method = {method!r}: expected auto, newton or energy")
     model = rope_model(scene.n)
     p = pack_params(scene, "elastic")
+    if stiffness is not None:
+        p[5 * scene.n + 5 : 6 * scene.n + 5] = stiffness
     used = "newton"
     start = time.perf_counter()
     if method != "energy":

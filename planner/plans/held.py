@@ -24,6 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.vessel_loads import vessel_plans, wind_json
 from liftplan.planner.plans.watch_basis import watch_basis
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
@@ -260,10 +261,12 @@ class Plan(InFileFrame):
         cranes = tuple(
             Crane(
                 lug=label,
-                EA=problem.fleet[j].EA,
+                # a floating crane: the rope's own EA and its vessel (in series, the plan's EA)
+                EA=problem.fleet[j].rope_EA or problem.fleet[j].EA,
                 boom_height=float(h),
                 rope_length=problem.fleet[j].rope_length,
                 swl=float(swl),
+                vessel=problem.fleet[j].vessel,
             )
             for label, j, h, swl in zip(self.labels, chosen.cranes, chosen.boom_heights, chosen.swl)
         )
@@ -363,6 +366,7 @@ class Plan(InFileFrame):
         hull girder's worst |M| and |Q| against the allowables (:mod:`.girder`).
         """
         out = list(self.design_loads.checks) + [w.check() for w in self.girder]
+        out += [check for vessel in self.vessels for check in vessel.checks()]
         for crane, distance, nearest in self.clearances.values():
             out.append(
                 Check.lower(
@@ -385,6 +389,12 @@ class Plan(InFileFrame):
             )
         )
         return out
+
+    @cached_property
+    def vessels(self):
+        """Each floating crane's heel, trim, tip drop and levelling ballast, at the level tension
+        and over the worst case (:mod:`.vessel_loads`); empty when every crane is on land."""
+        return vessel_plans(self)
 
     @cached_property
     def skew(self):
@@ -654,6 +664,8 @@ class Plan(InFileFrame):
                 else {"rope_lengths": self.rope_lengths, "rope_length_search": self.lengths.to_json()}
             )
             | breakout_json(self)
+            | ({"vessels": {v.crane: v.to_json() for v in self.vessels}} if self.vessels else {})
+            | wind_json(self)
         )
 
     def _capacity_entry(self, c):

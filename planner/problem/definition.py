@@ -18,6 +18,7 @@ from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix, zup_to_choi
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
 from liftplan.model.scene.objects import Body, Scene, Strength, finite, point, positive
+from liftplan.model.scene.wind import Wind
 from liftplan.model.statics.model import check_hinges
 from liftplan.model.water.breakout import breakout_load
 from liftplan.planner.problem.clearance import DEFAULT_CLEARANCE, boom_distances, check_positions
@@ -266,6 +267,9 @@ class PlanProblem:
     weight_basis : str or None
         ``"air"`` or ``"water"``: what ``body.weight`` is (the plan says it beside W); None,
         not stated.
+    wind : Wind or None
+        Wind on the body and the floating cranes' booms, from any direction
+        (:mod:`liftplan.planner.problem.vessels`); single-rope held plans only.
     readings : ReadingsAccuracy
         The live readings' accuracies (``[readings]``) that ``liftplan watch`` weighs them by.
     """
@@ -301,6 +305,7 @@ class PlanProblem:
     breakout_scene: Scene | None = None
     hinges: tuple[tuple[float, ...], ...] = ()
     weight_basis: str | None = None
+    wind: Wind | None = None
     readings: ReadingsAccuracy = field(default_factory=ReadingsAccuracy)
 
     def __post_init__(self):
@@ -444,6 +449,14 @@ class PlanProblem:
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
+        if self.wind is not None and (
+            any(c.sling is not None or c.rope_length_range is not None for c in fleet)
+            or self.objective in STRENGTH_OBJECTIVES
+        ):
+            raise InvalidScene(
+                "wind: planned for single ropes of fixed length with a held preload; expected no "
+                "slings, rope-length ranges or strength objective with [wind]"
+            )
         if self.work_limit is not None:
             kind = (
                 "cranes on slings (the sling search is exhaustive)"

@@ -26,10 +26,14 @@ from liftplan.model.scene.file import (
     Point,
     Table,
     Text,
+    VesselTable,
+    WindTable,
     load_scene,
     load_with,
     one_line,
     parse_toml,
+    to_vessel,
+    to_wind,
 )
 from liftplan.model.scene.objects import Body, Strength
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
@@ -525,6 +529,19 @@ class _FleetCrane(Table):
         absent="a single rope to one lug",
         example="sling = { legs = 4, length = 9.0, diameter = 56.0 }",
     )
+    vessel: VesselTable | None = Key(
+        None,
+        doc=(
+            "a floating crane: its vessel's particulars, the keys of a scene file's `cranes[].vessel` "
+            "(the boom tip above the crane's lug moves with the vessel under the hook load: the planner "
+            "puts the vessel in series with the rope); one rope of fixed length, no sling"
+        ),
+        absent="a crane on land or a jack-up: the tip stays where it is",
+        example=(
+            "vessel = { displacement = 9000.0, waterplane_area = 2800.0, gm_t = 6.0, gm_l = 180.0, "
+            "flotation = [20.0, -45.0], heading = 90.0 }"
+        ),
+    )
     hook_tolerance: Num | None = Key(
         None,
         doc="this hook's height tolerance, overriding the plan's",
@@ -638,6 +655,16 @@ class _PlanFile(Table):
         None, doc="the rules' settings for this lift", absent="every default below", example="[rules]"
     )
     rigging: _Rigging = Key(_Rigging(), doc="sling limits (sling lifts)", example="[rigging]")
+    wind: WindTable | None = Key(
+        None,
+        doc=(
+            "wind on the body and on floating cranes' booms, the keys of a scene file's `[wind]` "
+            "without `direction`: the plan takes it from any direction (the body's couple widens the "
+            "CG envelope in plan, a boom's moves its vessel's tip like a hook-height error)"
+        ),
+        absent="no wind",
+        example="[wind]",
+    )
     report: _Report = Key(_Report(), doc="the report's title block", example="[report]")
     readings: _Readings = Key(
         _Readings(), doc="the live readings' accuracies (`liftplan watch`)", example="[readings]"
@@ -803,6 +830,7 @@ def _fleet(data, to_zup):
                 boom_min=boom.min if boom else float("-inf"),
                 boom_max=boom.max if boom else float("inf"),
                 hook_tolerance=entry.hook_tolerance,
+                vessel=to_vessel(entry.vessel, data.frame),
                 sling=None
                 if entry.sling is None
                 else SlingSpec(
@@ -880,6 +908,7 @@ def _to_problem(data, base):
         ),
         controls=_controls(data, cranes),
         breakout_scene=_breakout_scene(data.plan.breakout_scene, base),
+        wind=to_wind(data.wind, data.frame, plan=True),
     )
 
 

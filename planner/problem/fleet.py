@@ -21,6 +21,7 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.rules import code_margin, dynamic_amplification
 from liftplan.model.scene.objects import finite, positive
 from liftplan.model.scene.rigging_gear import sling_ea
+from liftplan.model.scene.vessel import Vessel
 
 
 def _set(obj, name, value):
@@ -150,6 +151,12 @@ class FleetCrane:
     rope_length_range : tuple of 2 float or None  [m]
         (min, max) payout the planner may choose from (``rope_length = { min, max }``;
         :mod:`liftplan.planner.plans.lengths`); ``rope_length`` is then its max until chosen.
+    vessel : Vessel or None
+        A floating crane's vessel (:mod:`liftplan.model.scene.vessel`); None on land.
+    rope_EA : float or None  [t]
+        With a vessel, once the planner has put the vessel in series with the rope
+        (:mod:`liftplan.planner.problem.vessels`): the hoist rope's own EA, ``EA`` being the
+        series stiffness l0 / (l0 / EA_rope + c). None: ``EA`` is the rope's own.
     """
 
     name: str
@@ -164,11 +171,24 @@ class FleetCrane:
     sling: SlingSpec | None = None
     hook_tolerance: float | None = None
     rope_length_range: tuple[float, float] | None = None
+    vessel: Vessel | None = None
+    rope_EA: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():
             raise InvalidScene(f"cranes.name = {self.name!r}: expected a non-empty string")
         key = f"cranes[{self.name}]"
+        if self.vessel is not None:
+            if not isinstance(self.vessel, Vessel):
+                raise InvalidScene(
+                    f"{key}.vessel = {self.vessel!r}: expected the vessel's particulars (a table); a "
+                    "vessel shared by two cranes is not planned"
+                )
+            if self.sling is not None or self.rope_length_range is not None:
+                raise InvalidScene(
+                    f"{key}.vessel: a floating crane with a sling or a rope-length range is not "
+                    "planned; expected one rope of fixed length"
+                )
         if self.rope_length_range is not None:
             _set(self, "rope_length_range", length_range(f"{key}.rope_length", self.rope_length_range))
             if self.sling is not None:
@@ -276,6 +296,8 @@ class FleetCrane:
             "sling",
             "hook_tolerance",
             "rope_length_range",
+            "vessel",
+            "rope_EA",
         )
         return all(getattr(self, k) == getattr(other, k) for k in keys)
 

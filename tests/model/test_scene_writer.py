@@ -42,6 +42,9 @@ from liftplan.model.scene.objects import (
     curve_totals,
 )
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
+from liftplan.model.scene.tide import Tide
+from liftplan.model.scene.vessel import Vessel
+from liftplan.model.scene.wind import Wind, WindArea
 from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.report import held as held_report
 from liftplan.planner.output.report import slings as slings_report
@@ -364,10 +367,27 @@ WRITTEN = {
         "rigging",
         "strength",
         "girder",
+        "tide",
+        "wind",
     },
+    Tide: {"table", "time"},
+    Wind: {"speed", "direction", "body", "booms", "density"},
+    WindArea: {"area", "cd", "height", "crane"},
     Body: {"weight", "cog", "weight_curve"},
     Lug: {"name", "at", "capacity", "capacity_out_of_plane", "normal"},
-    Crane: {"lug", "EA", "boom_height", "rope_length", "swl", "tip", "name", "sling"},
+    Crane: {"lug", "EA", "boom_height", "rope_length", "swl", "tip", "name", "sling", "vessel"},
+    Vessel: {
+        "displacement",
+        "waterplane_area",
+        "gm_t",
+        "gm_l",
+        "flotation",
+        "heading",
+        "density",
+        "max_heel",
+        "max_trim",
+        "ballast",
+    },
     Sling: {"legs", "spreader", "equalised"},
     Leg: {"lug", "length", "EA", "diameter", "end"},
     Spreader: {"length", "top", "weight", "EA"},

@@ -12,6 +12,7 @@ import numpy as np
 from liftplan.model.frames import FRAME_TEXT
 from liftplan.planner.output.console.text import GROUP, WIDTH, fold, grouped
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
+from liftplan.planner.plans.vessel_loads import vessel_lines, wind_lines
 from liftplan.planner.search.scenarios import Scenario
 
 
@@ -78,6 +79,8 @@ def plan_table(plan):
             )
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
+    lines += vessel_lines(plan.vessels)
+    lines += wind_lines(plan)
     over = "over the box, the CG envelope and the hook errors"
     if problem.breakout is not None:  # docs/planning.md "What the planner does not plan"
         over += " (not the breakout state: the seabed's hold is not in the planner's girder)"

@@ -34,6 +34,12 @@ def equilibrium_table(scene, eq, girder=None):
         f"(+ bow down), lift height {pose.lift_height:.3f} m",
         "",
     ]
+    if eq.tide is not None:
+        lines.insert(
+            -1,
+            f"tide: at {eq.tide.time:g} h the water is at {eq.tide.level:.3f} m, {eq.tide.rise:+.3f} m "
+            "since the table's first time (the floating cranes' tips and the water rose with it)",
+        )
     if eq.tensions and eq.rigging is None and len(eq.tensions) >= GROUPED_FROM:
         lines += rope_rows(scene, eq)  # many ropes: one line per station, port beside starboard
     else:
@@ -42,9 +48,32 @@ def equilibrium_table(scene, eq, girder=None):
         lines += _rigging_lines(eq)
     if eq.afloat is not None:
         lines += _afloat_lines(eq)
+    if eq.vessels:
+        lines += _vessel_lines(eq)
     if girder is not None:
         lines += _strength_lines(scene, eq, girder)
     return "\n".join(lines)
+
+
+def _vessel_lines(eq):
+    """One line per crane vessel: its load, heave, heel, trim, tip drops and levelling ballast."""
+    width = _name_width(eq.vessels, 8)
+    lines = [
+        "",
+        "crane vessels (heave + down; heel + starboard down, trim + bow down, ballast included; tip "
+        "drop: the extra hoist as the load comes on):",
+        f"{'vessel':<{width}}{'load [t]':>10}{'heave [m]':>11}{'heel [deg]':>12}{'trim [deg]':>12}"
+        f"{'tip drop [m]':>14}   levelling ballast [t m] (heel, trim)",
+    ]
+    for name, v in eq.vessels.items():
+        drops = ", ".join(f"{crane} {d:.3f}" for crane, d in v.tip_drops.items())
+        lines.append(
+            f"{name:<{width}}{v.load:10.1f}{v.heave:11.3f}{round(v.heel, 3) + 0.0:+12.3f}"
+            f"{round(v.trim, 3) + 0.0:+12.3f}{v.tip_drop:14.3f}"
+            f"   {round(v.levelling_ballast[0]) + 0:+d}, {round(v.levelling_ballast[1]) + 0:+d}"
+            + (f"  (tip drops: {drops})" if len(v.tip_drops) > 1 else "")
+        )
+    return lines
 
 
 def _strength_lines(scene, eq, girder):

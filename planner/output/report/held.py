@@ -382,6 +382,7 @@ def _checks(plan):
         _design_table(plan),
         *_design_details(plan),
         *_breakout_section(plan),
+        *_vessel_section(plan),
         hooks,
         sensitivity,
         skew,
@@ -778,6 +779,56 @@ def _breakout_section(plan):
         text_columns=(1, 10, 11),
     )
     return ["<h3>Breakout from the seabed</h3>", text, table]
+
+
+def _vessel_section(plan):
+    """The floating cranes: each vessel's heel, trim, tip drop and the ballast to set."""
+    if not plan.vessels:
+        return []
+    text = (
+        "<p>Each floating crane's vessel heaves, heels and trims under its hook load (small-angle "
+        "hydrostatics); the planner puts it in series with the rope, so the tensions, the worst "
+        "case and the hook tolerance above are those of the coupled stiffness. The tip drop is the "
+        "extra hoist the crane needs as the load comes on. The levelling ballast (heeling, "
+        "trimming moment; + heels starboard down, + trims bow down) set before the lift leaves the "
+        "vessel level at the planned load; the worst heel and trim are over the tolerance box, "
+        "the CG envelope and the hook errors with that ballast set.</p>"
+    )
+    rows = [
+        (
+            v.label,
+            v.crane,
+            f"{v.offset[0]:.1f}, {v.offset[1]:.1f}",
+            f"{v.load:.2f}",
+            f"{v.heave:.3f}",
+            f"{v.heel:+.3f}",
+            f"{v.trim:+.3f}",
+            f"{v.tip_drop:.3f}",
+            f"{v.ballast[0]:+.0f}, {v.ballast[1]:+.0f}",
+            f"{v.worst_heel:.3f}" + ("" if v.max_heel is None else f" / {v.max_heel:g}"),
+            f"{v.worst_trim:.3f}" + ("" if v.max_trim is None else f" / {v.max_trim:g}"),
+        )
+        for v in plan.vessels
+    ]
+    table = _table(
+        [
+            "lug",
+            "crane",
+            "tip offset x, y [m]",
+            "level tension [t]",
+            "heave [m]",
+            "heel [deg]",
+            "trim [deg]",
+            "tip drop [m]",
+            "levelling ballast [t m]",
+            "worst heel / limit [deg]",
+            "worst trim / limit [deg]",
+        ],
+        rows,
+        "Crane vessels at the level tension (tip offset: forward, to starboard of the flotation centre)",
+        text_columns=(1, 2, 8, 9, 10),
+    )
+    return ["<h3>Crane vessels</h3>", text, table]
 
 
 def _design_details(plan):

@@ -1,0 +1,177 @@
+"""Floating cranes in the planning problem: each vessel in series with its crane's rope.
+
+A fleet crane with a ``vessel`` has its boom tip above the lug it takes, at the level pose;
+under the hook load T the tip drops by c T, c = 1 / (rho A_wp) + y_t^2 / (disp GM_T) +
+x_t^2 / (disp GM_L) with (x_t, y_t) the lug's plan offset from the vessel's flotation centre
+in the vessel's axes (:mod:`liftplan.model.scene.vessel`). With vertical ropes and one crane
+per vessel the rope and the vessel are springs in series, exactly: the problem's rope of
+stiffness EA / l0 becomes one of 1 / (l0 / EA + c), i.e. ``EA`` becomes l0 / (l0 / EA + c)
+(the rope's own EA kept in ``rope_EA``). Every part of the planner that reads a crane's
+``EA`` (the held preload, the robust worst case over the box, the hook-height tolerance's
+twist, the boom heights) then works with the coupled stiffness, unchanged.
+
+c depends on the lug the crane takes: :func:`series_problem` sets it for one assignment
+(exact for that lug set), :func:`reference_problem` for the search, at each crane's stiffest
+lug within its reach (the one nearest its vessel's axes: the largest twist a hook error puts
+in, the safe side for the hook tolerance).
+
+Wind (``[wind]`` of a planning file, from any direction; :mod:`liftplan.model.scene.wind`):
+the body's couple F (h - h_lugs) moves its weight's line by F (h - h_lugs) / W downwind, so
+the CG envelope's plan half-widths grow by that much (:func:`wind_problem`; h_lugs the
+candidates' mean height); a floating crane's boom wind heels and trims its vessel and moves
+its tip by up to F h sqrt((y_t / (disp GM_T))^2 + (x_t / (disp GM_L))^2) (the worst direction):
+a hook-height error, added to the crane's hook tolerance at the lug it takes (the most over
+its reach in the reference problem).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from liftplan.model.errors import InvalidScene
+
+
+def tip_compliance(vessel, plan_points):
+    """Drop of a boom tip per tonne of its hook load at world plan points  [m/t].
+
+    Parameters
+    ----------
+    vessel : Vessel
+    plan_points : array_like, shape (k, 2)  [m]
+        World plan (x, y), ``z-up``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (k,)  [m/t]
+    """
+    points = np.asarray(plan_points, dtype=float).reshape(-1, 2)
+    offsets = np.array([vessel.axes(p) for p in points]).reshape(-1, 2)
+    forward, starboard = offsets[:, 0], offsets[:, 1]
+    return (
+        1.0 / vessel.heave_stiffness
+        + starboard**2 / vessel.heel_stiffness
+        + forward**2 / vessel.trim_stiffness
+    )
+
+
+def tip_offsets(vessel, plan_point):
+    """(x_t forward, y_t to starboard) of a world plan point from the vessel's flotation centre  [m]."""
+    return vessel.axes(plan_point)
+
+
+def uses_vessels(problem):
+    """True when a crane of the fleet stands on a vessel."""
+    return any(c.vessel is not None for c in problem.fleet)
+
+
+def _series(problem, crane, compliance, wind_error):
+    """``crane`` with its vessel in series at a tip compliance [m/t], its hook tolerance widened
+    by its boom's wind error [m]."""
+    rope = crane.rope_EA if crane.rope_EA is not None else crane.EA
+    ea = crane.rope_length / (crane.rope_length / rope + compliance)
+    changes = {"EA": float(ea), "rope_EA": rope}
+    if wind_error > 0.0:
+        base = crane.hook_tolerance if crane.hook_tolerance is not None else problem.hook_tolerance
+        changes["hook_tolerance"] = base + wind_error
+    return dataclasses.replace(crane, **changes)
+
+
+def boom_wind(problem, crane):
+    """The wind's area on a crane's boom (None without), refused on a crane on land."""
+    wind = problem.wind
+    if wind is None:
+        return None
+    boom = next((b for b in wind.booms if b.crane == crane.name), None)
+    if boom is not None and crane.vessel is None:
+        raise InvalidScene(
+            f"wind.booms[{crane.name}]: the crane stands on land; expected a floating crane "
+            "(cranes[].vessel): the wind on a boom moves only a floating crane's tip"
+        )
+    return boom
+
+
+def wind_tip_error(problem, crane, plan_points):
+    """How far the wind on a floating crane's boom can move its tip, the worst direction, at
+    world plan points  [m] (zeros without)."""
+    points = np.asarray(plan_points, dtype=float).reshape(-1, 2)
+    boom = boom_wind(problem, crane)
+    if boom is None:
+        return np.zeros(len(points))
+    vessel = crane.vessel
+    offsets = np.array([vessel.axes(p) for p in points]).reshape(-1, 2)
+    moment = problem.wind.force(boom) * boom.height
+    return moment * np.hypot(offsets[:, 1] / vessel.heel_stiffness, offsets[:, 0] / vessel.trim_stiffness)
+
+
+def wind_problem(problem):
+    """The problem with the body's wind couple in its CG envelope (module docstring)."""
+    wind = problem.wind
+    for crane in problem.fleet:
+        boom_wind(problem, crane)  # a boom on land is refused
+    if wind is None or wind.body is None:
+        return problem
+    shift = wind_shift(problem)
+    x, y, z = problem.cog_envelope.half_widths
+    envelope = dataclasses.replace(problem.cog_envelope, half_widths=(x + shift, y + shift, z))
+    return dataclasses.replace(problem, cog_envelope=envelope)
+
+
+def wind_shift(problem):
+    """How far the body's wind couple moves its weight's line in plan  [m] (0 without)."""
+    wind = problem.wind
+    if wind is None or wind.body is None:
+        return 0.0
+    lever = wind.body.height - float(np.mean(problem.points[:, 2]))
+    return abs(wind.force(wind.body) * lever / problem.body.weight)
+
+
+def series_problem(problem, indices, cranes):
+    """The problem with each vessel's crane in series with its rope at the lug it takes.
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    indices : sequence of int
+        Candidate indices of a lug set.
+    cranes : sequence of int
+        The fleet index of the crane on each.
+
+    Returns
+    -------
+    PlanProblem
+        Cranes not in the set, and cranes on land, unchanged.
+    """
+    fleet = list(problem.fleet)
+    points = problem.plan_points
+    for i, j in zip(indices, cranes):
+        crane = fleet[j]
+        if crane.vessel is not None:
+            compliance = float(tip_compliance(crane.vessel, points[i])[0])
+            fleet[j] = _series(
+                problem, crane, compliance, float(wind_tip_error(problem, crane, points[i])[0])
+            )
+    return dataclasses.replace(problem, fleet=tuple(fleet))
+
+
+def reference_problem(problem):
+    """The problem the search uses: each vessel's crane in series at its stiffest lug in reach,
+    its boom wind's tip error the largest over its reach.
+
+    Returns
+    -------
+    PlanProblem
+        With each floating crane's ``EA`` the series stiffness at the candidate within its
+        chart's reach of least tip compliance (every candidate without a chart).
+    """
+    _, swl = problem.reach
+    fleet = list(problem.fleet)
+    for j, crane in enumerate(fleet):
+        if crane.vessel is None:
+            continue
+        inside = np.isfinite(swl[:, j])
+        points = problem.plan_points[inside] if inside.any() else problem.plan_points
+        compliance = float(tip_compliance(crane.vessel, points).min())
+        fleet[j] = _series(problem, crane, compliance, float(wind_tip_error(problem, crane, points).max()))
+    return dataclasses.replace(problem, fleet=tuple(fleet))
