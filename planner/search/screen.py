@@ -469,54 +469,18 @@ def _hook_margins(problem, cranes, gain, scale):
     if not np.any(delta > 0.0):
         return None
     margin = np.einsum("kmij,kj->kmi", np.abs(gain), delta)
-    scaled = gain * scale[:, None, :, None]
-    pair = np.einsum("kmabj,kj->kmab", np.abs(scaled[:, :, :, None] - scaled[:, :, None, :]), delta)
-    return margin, pair, _twist_shift(scaled, pair, delta)
+    pair = _pair_widening(gain * scale[:, None, :, None], delta)
+    return margin, pair
 
 
-#: Hook-error vectors per scenario for the dual bound: those of its most sensitive pairs.
-TWIST_PATTERNS = 4
-
-
-def _twist_shift(scaled, pair, delta):
-    """Hook-error vectors that widen each scenario's most sensitive pairs the most, as shifts u
-    of the scaled values s_i T_i, shape (N, m, TWIST_PATTERNS, n).
-
-    For any hook errors e within the box the spread is at least that of s T + u(e) and of
-    s T - u(e), so the pair terms sum_m |s_a G_am - s_b G_bm| delta_m (not separable by rope)
-    are bounded below by shifted copies of the scenario; for the pairs (a, b) chosen here
-    (the largest terms) the bound is exact."""
-    count, m, n = pair.shape[:3]
-    patterns = min(TWIST_PATTERNS, n * (n - 1) // 2)
-    upper = pair * np.triu(np.ones((n, n)), 1)  # each unordered pair once
-    top = np.argsort(upper.reshape(count, m, n * n), axis=2)[..., ::-1][..., :patterns]
-    a, b = np.divmod(top, n)  # (N, m, P)
-    k, s = np.arange(count)[:, None, None], np.arange(m)[None, :, None]
-    sign = np.sign(scaled[k, s, a] - scaled[k, s, b])  # (N, m, P, n)
-    return np.einsum("kmij,kmpj->kmpi", scaled, sign * delta[:, None, None, :])
-
-
-def _take(value, index):
-    if isinstance(value, tuple):
-        return tuple(_take(v, index) for v in value)
-    value = np.asarray(value)
-    return value[index] if value.ndim else value
-
-
-def _dual_bound(rows, reserve, shift, target):
-    """:func:`~liftplan.planner.search.dual.preload_lp_bound` on the screening scenarios, each
-    copied once per hook-error pattern and sign when ``shift`` (N, m, P, n) is given."""
-    part, null, alpha, beta, low, high, limits = rows
-    if shift is not None:
-        count, m, patterns, n = shift.shape
-        shift = np.concatenate([shift, -shift], axis=2).reshape(count, -1, n)
-        copies = 2 * patterns
-        alpha = np.repeat(alpha, copies, axis=1) + shift
-        beta = np.repeat(beta, copies, axis=1)
-        limits = tuple(
-            np.repeat(np.broadcast_to(v, alpha.shape[:1] + (m, n)), copies, axis=1) + shift for v in limits
-        )
-    return preload_lp_bound(part, null, alpha, beta, low, high, limits, reserve, target)
+def _pair_widening(scaled, delta):
+    """sum_j |s_a G_aj - s_b G_bj| delta_j for every ordered pair (a, b), (N, m, n, n): one
+    hook at a time (no (N, m, n, n, n) array)."""
+    pair = np.zeros(scaled.shape[:3] + scaled.shape[2:3])
+    for j in range(scaled.shape[3]):
+        column = scaled[..., j]
+        pair += np.abs(column[..., :, None] - column[..., None, :]) * delta[:, j, None, None, None]
+    return pair
 
 
 def _worst_pairs(values, pair):
@@ -751,20 +715,14 @@ def _screen_pairs(
     high = np.clip(np.minimum(np.minimum(preload_range[1][ok], limits[1][ok]), weight), -big, big)
     beta = np.einsum("kmij,kjd->kmid", P, null) * sc[..., None]
     tension_limits = (sc * limits[0], sc * limits[1][ok][:, None, :])
-    shift = None
-    if hook is not None:  # the hook errors: exact on the limits, shifted copies for pairs
+    pair = None
+    if hook is not None:  # the hook errors, exact: on the limits, and each pair's widening
         margin = sc * hook[0][ok]
         tension_limits = (tension_limits[0] + margin, tension_limits[1] - margin)
         if reserve:
             alpha = alpha + margin
         else:
-            shift = hook[2][ok]
-    rows = (part, null, alpha, beta, low, high, tension_limits)
-    dual = _dual_bound(rows, reserve, None if shift is None else shift[:, :, :1], target)
-    if shift is not None and shift.shape[2] > 1:  # the sets still short of target: all patterns
-        again = np.flatnonzero(dual < target)
-        if again.size:
-            chosen = tuple(_take(v, again) for v in rows)
-            dual[again] = np.maximum(dual[again], _dual_bound(chosen, reserve, shift[again], target))
-    bound[ok] = dual  # the caller keeps the larger of this and the pair bound
+            pair = hook[1][ok]
+    # the caller keeps the larger of this and the pair bound
+    bound[ok] = preload_lp_bound(part, null, alpha, beta, low, high, tension_limits, reserve, target, pair)
     return bound, reason
