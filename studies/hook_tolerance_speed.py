@@ -48,6 +48,9 @@ def _problem(case, hook):
         problem = dataclasses.replace(
             load_problem(ROOT / "examples" / "tanker_plan.toml"), cranes=count, fleet=()
         )
+    elif kind == "crawlers":  # the four crawlers of block_four_leg_plan.toml on 2-leg slings
+        text = (ROOT / "examples" / "block_four_leg_plan.toml").read_text(encoding="utf-8")
+        problem = loads_problem(text.replace("legs = 4,", "legs = 2,"))
     elif kind == "mip":
         problem = dataclasses.replace(load_problem(ROOT / "examples" / "tanker_plan.toml"), search="mip")
     else:  # the tanker fleet with her girder's allowables, plus extra cranes

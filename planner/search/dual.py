@@ -83,7 +83,7 @@ def preload_lp_bound(
         L and H with L <= s_i T_k,i <= H at every scenario (finite, or +-inf for none).
     reserve : bool
         The rows are s_i T_k,i (the largest utilisation) instead of the pairs' spread.
-    target : float
+    target : float or numpy.ndarray, shape (N,)
         A set whose bound reaches this is left there (the search needs no better).
     pair : numpy.ndarray, shape (N, m, n, n), optional  [t or -]
         Each ordered pair's widening c_ab >= 0 at each scenario (zero diagonal): the rows are
@@ -98,8 +98,9 @@ def preload_lp_bound(
     if reserve and pair is not None:
         raise ValueError("the reserve objective's rows take no pair widening")
     limits = tuple(np.broadcast_to(v, alpha.shape) for v in limits)
+    target = np.broadcast_to(np.asarray(target, dtype=float), alpha.shape[:1])
     m = alpha.shape[1]
-    if not np.isfinite(target) or m <= FIRST_ROWS:
+    if not np.any(np.isfinite(target)) or m <= FIRST_ROWS:
         return _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair)
     # a bound over some of the rows is a bound over all of them (a relaxation)
     width = row_max(alpha) if reserve else _worst_rows(alpha, pair)
@@ -135,7 +136,7 @@ def preload_lp_bound(
                 high[short],
                 tuple(v[short] for v in limits),
                 reserve,
-                target,
+                target[short],
                 _pick(pair, short),
             ),
         )
@@ -163,6 +164,7 @@ def _worst_rows(values, pair):
 def _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair=None):
     """:func:`preload_lp_bound` over every row given."""
     count, m, n = alpha.shape
+    target = np.broadcast_to(np.asarray(target, dtype=float), (count,))
     d = null.shape[2]
     limit_low, limit_high = (np.broadcast_to(v, alpha.shape) for v in limits)
     y = np.zeros((count, d))
@@ -204,7 +206,7 @@ def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, targ
     bound[k] = np.maximum(
         bound[k], weights.certificate(box[0], box[1], parts[0], parts[1], box[2], box[3], box_weights)
     )
-    return k[bound[k] < target]
+    return k[bound[k] < target[k]]
 
 
 def _newton(y, tau, ridge, parts, box, reserve, steps, most=MAX_STEPS):

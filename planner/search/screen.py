@@ -475,12 +475,43 @@ def _hook_margins(problem, cranes, gain, scale):
 
 def _pair_widening(scaled, delta):
     """sum_j |s_a G_aj - s_b G_bj| delta_j for every ordered pair (a, b), (N, m, n, n): one
-    hook at a time (no (N, m, n, n, n) array)."""
-    pair = np.zeros(scaled.shape[:3] + scaled.shape[2:3])
+    hook at a time (no (N, m, n, n, n) array), each unordered pair once (it is symmetric)."""
+    n = scaled.shape[2]
+    first, second = np.triu_indices(n, 1)
+    upper = np.zeros(scaled.shape[:2] + (len(first),))
     for j in range(scaled.shape[3]):
         column = scaled[..., j]
-        pair += np.abs(column[..., :, None] - column[..., None, :]) * delta[:, j, None, None, None]
+        upper += np.abs(column[..., first] - column[..., second]) * delta[:, j, None, None]
+    pair = np.zeros(scaled.shape[:3] + (n,))
+    pair[..., first, second] = upper
+    pair[..., second, first] = upper
     return pair
+
+
+def value_ceiling(scale, high, low, reserve=False):
+    """The worst value any feasible preload of a row can have, shape (N,)  [t or -].
+
+    Every row of the preload LP is s_a T_a - s_b T_b + c_ab with each tension within
+    [L + m, H - m] (m its hook margin) and c_ab <= s_a m_a + s_b m_b, so it is at most
+    max_a s_a H_a - min_b s_b L; for ``reserve`` s_a T_a + s_a m_a <= max_a s_a H_a. A lower
+    bound above this proves the row infeasible.
+
+    Parameters
+    ----------
+    scale : (N, n)   the objective's s_i
+    high : (N, n)  [t]   the largest tension allowed in the box
+    low : float  [t]   min_tension
+    reserve : bool
+    """
+    top = row_max(scale * high)
+    return top if reserve else top - row_min(scale * low)
+
+
+def row_ceiling(problem, sets, cranes):
+    """:func:`value_ceiling` of (set, assignment) rows, shape (N,)  [t or -]."""
+    swl = problem.reach[1][sets, cranes]
+    high = rule_limits(problem, swl, cranes)[0]
+    return value_ceiling(problem.goal.scale(swl), high, problem.min_tension, problem.goal.peak)
 
 
 def _worst_pairs(values, pair):
@@ -715,6 +746,9 @@ def _screen_pairs(
     high = np.clip(np.minimum(np.minimum(preload_range[1][ok], limits[1][ok]), weight), -big, big)
     beta = np.einsum("kmij,kjd->kmid", P, null) * sc[..., None]
     tension_limits = (sc * limits[0], sc * limits[1][ok][:, None, :])
+    # no feasible preload has a worse value than the limits allow: a bound past that proves
+    # the set infeasible and needs no refining, plan or no plan
+    target = np.minimum(target, value_ceiling(sc[:, 0, :], limits[1][ok], limits[0], reserve))
     pair = None
     if hook is not None:  # the hook errors, exact: on the limits, and each pair's widening
         margin = sc * hook[0][ok]
