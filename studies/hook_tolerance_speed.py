@@ -35,6 +35,31 @@ ROOT = HERE.parent
 LIMIT = 300.0
 
 
+#: The two aft crawlers of the four-crawler case (the forward pair's chart, mirrored aft).
+AFT_PAIR = """[[cranes]]
+name = "Crawler AP"
+position = [-15.0, 11.0, 0.0]
+load_chart = [[8.0, 110.0], [14.0, 85.0], [20.0, 62.0], [26.0, 48.0]]
+EA = 30000.0
+rope_length = 24.0
+boom_height = { min = 30.0, max = 60.0 }
+sling = { legs = 2, length = 8.0, diameter = 52.0 }
+
+[[cranes]]
+name = "Crawler AS"
+position = [-15.0, -11.0, 0.0]
+load_chart = [[8.0, 110.0], [14.0, 85.0], [20.0, 62.0], [26.0, 48.0]]
+EA = 30000.0
+rope_length = 24.0
+boom_height = { min = 30.0, max = 60.0 }
+sling = { legs = 2, length = 8.0, diameter = 52.0 }
+
+"""
+ATTITUDE = """[attitude]
+lift_height = 8.0
+"""
+
+
 def _problem(case, hook):
     """The planning problem of a case with the hook tolerance ``hook`` [m]."""
     sys.path.insert(0, str(ROOT / "tests"))
@@ -48,9 +73,9 @@ def _problem(case, hook):
         problem = dataclasses.replace(
             load_problem(ROOT / "examples" / "tanker_plan.toml"), cranes=count, fleet=()
         )
-    elif kind == "crawlers":  # the four crawlers of block_four_leg_plan.toml on 2-leg slings
-        text = (ROOT / "examples" / "block_four_leg_plan.toml").read_text(encoding="utf-8")
-        problem = loads_problem(text.replace("legs = 4,", "legs = 2,"))
+    elif kind == "crawlers":  # block_three_slings_plan.toml with its aft crawler made two
+        text = (ROOT / "examples" / "block_three_slings_plan.toml").read_text(encoding="utf-8")
+        problem = loads_problem(text[: text.index('[[cranes]]\nname = "Crawler A"')] + AFT_PAIR + ATTITUDE)
     elif kind == "mip":
         problem = dataclasses.replace(load_problem(ROOT / "examples" / "tanker_plan.toml"), search="mip")
     else:  # the tanker fleet with her girder's allowables, plus extra cranes

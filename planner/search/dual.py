@@ -122,6 +122,7 @@ def preload_lp_bound(
         reserve,
         target,
         some(pair),
+        give_up=True,
     )
     short = np.flatnonzero(bound < target)
     if short.size:
@@ -161,8 +162,12 @@ def _worst_rows(values, pair):
     return rows.reshape(rows.shape[:-2] + (-1,)).max(axis=-1)
 
 
-def _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair=None):
-    """:func:`preload_lp_bound` over every row given."""
+def _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair=None, give_up=False):
+    """:func:`preload_lp_bound` over every row given.
+
+    ``give_up``: a set stops as soon as some preload is seen to meet every row given below
+    ``target`` (admissible, its worst row under it): the LP over these rows is then below the
+    target too, so no certificate from them can reach it (the caller bounds it over more rows)."""
     count, m, n = alpha.shape
     target = np.broadcast_to(np.asarray(target, dtype=float), (count,))
     d = null.shape[2]
@@ -187,15 +192,17 @@ def _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pa
             MAX_STEPS,
             bound,
             target,
+            give_up,
         )
         tau = TAU_FACTOR * tau
     return bound
 
 
-def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, target):
+def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, target, give_up=False):
     """Newton steps on the sets ``open_`` (y changed in place), then their certificate
     (``bound`` raised in place: every certificate is valid, the best is kept); returns the
-    sets still short of ``target``."""
+    sets still short of ``target`` (with ``give_up``, those whose LP over these rows is not
+    yet seen to be below it: :func:`_bound`)."""
     k = open_
     parts = tuple(_pick(v, k) for v in parts)
     box = tuple(v[k] for v in box)
@@ -206,7 +213,14 @@ def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, targ
     bound[k] = np.maximum(
         bound[k], weights.certificate(box[0], box[1], parts[0], parts[1], box[2], box[3], box_weights)
     )
-    return k[bound[k] < target[k]]
+    short = bound[k] < target[k]
+    if give_up:  # an admissible preload whose worst row is below the target: the LP is too
+        preload = box[0] + np.einsum("kid,kd->ki", box[1], y[k])
+        admissible = np.all((preload >= box[2]) & (preload <= box[3]), axis=1) & np.all(
+            (values >= parts[2]) & (values <= parts[3]), axis=(1, 2)
+        )
+        short &= ~(admissible & (_worst(values, reserve, parts[4]) < target[k]))
+    return k[short]
 
 
 def _newton(y, tau, ridge, parts, box, reserve, steps, most=MAX_STEPS):
