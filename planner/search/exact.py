@@ -200,6 +200,10 @@ def search_exact(problem, started, top, progress=None):
                         continue  # its bound proves it infeasible (screen.value_ceiling)
                     if len(ranking) >= top and entry[0] >= ranking[top - 1].worst_value:
                         break
+                    if ranking and problem.work_limit is not None and evaluated >= problem.work_limit:
+                        break  # the loop's own checks stop the search next
+                    if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
+                        break
                     done[j] = True
                     evaluate(j, entry[0])
                 continue
