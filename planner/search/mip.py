@@ -659,19 +659,30 @@ def search_mip(problem, started, top=1, progress=None):
 
 
 def _cut(mip, solution, lugset, scenario, kind):
-    """The scenario as a :class:`Cut`, with the chosen set's worst hook errors there (on its
-    columns; :func:`worst_errors`) when its cranes have a hook tolerance."""
+    """The scenario as a :class:`Cut`, with the chosen set's worst hook errors there
+    (:func:`worst_errors`) when its cranes have a hook tolerance.
+
+    Every other candidate gets the error of the chosen lug nearest to it in plan (any errors
+    within the tolerance are a scenario of the box, so the MIP stays a relaxation): a set that
+    moves a lug to a neighbour meets nearly the same twist, where errors on the chosen lugs
+    alone would leave it none, and the next round would only pick that neighbour."""
     if not lugset.hook_uncertain:
         return Cut(scenario)
     errors = worst_errors(lugset, solution.preload, scenario, kind)
+    problem = mip.problem
+    plan = (problem.points @ rotation_matrix(0.0, 0.0, problem.yaw).T)[:, :2]
+    chosen = np.array(solution.indices)
+    distance = np.linalg.norm(plan[:, None, :] - plan[None, chosen, :], axis=2)  # (C, n)
+    nearest = np.argmin(distance, axis=1)
+    nearest[chosen] = np.arange(len(chosen))  # a chosen lug keeps its own error
     kinds = len(mip.classes.members)
-    crane_class = {j: c for c, members in enumerate(mip.classes.members) for j in members}
     return Cut(
         scenario,
         tuple(
-            (int(i) * kinds + crane_class[j], float(e))
-            for i, j, e in zip(solution.indices, solution.cranes, errors)
-            if e != 0.0
+            (int(i) * kinds + c, float(errors[nearest[i]]))
+            for i in range(mip.count)
+            for c in range(kinds)
+            if errors[nearest[i]] != 0.0
         ),
     )
 
