@@ -176,7 +176,7 @@ def main():
         f"with time_limit {LIMIT:g} s.",
         "",
         "| case | without [s] | with 0.02 m [s] | ratio | target (with) | stopped (with) | gap (with) "
-        "| plan without | plan with |",
+        "| best and lugs without | best and lugs with |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for row in rows:
@@ -192,7 +192,7 @@ def main():
 
 
 def _plan(run):
-    """A plan in a table cell: its worst value and lugs."""
+    """A plan in a table cell: the search's best value (``stats.best``) and the lugs."""
     if "lugs" not in run:
         return run.get("error", "")
     return f"{run['worst']:.6g}: {' '.join(run['lugs'])}"

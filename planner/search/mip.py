@@ -29,8 +29,9 @@ list is part of the box).
 Hook-height tolerances fit the same formulation: a hook raised by e_i adds kappa e_i to the
 rope (the hook plane takes up the errors' plane through the statics), so a scenario may carry
 a hook error for every candidate (:class:`Cut`: the worst errors the dense check finds for the
-chosen set, each other candidate with its nearest chosen lug's) and stays linear. The list starts with none (a part of the
-errors' box, so still a lower bound) and grows by the chosen set's worst errors.
+chosen set, each other candidate with its nearest chosen lug's) and stays linear. The list
+starts with none (a part of the errors' box, so still a lower bound) and grows by the chosen
+set's worst errors.
 
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
