@@ -16,7 +16,13 @@ from liftplan.planner.plan import plan
 from liftplan.planner.search import dual
 from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
 from liftplan.planner.search.scenarios import LugSet, Scenario
-from liftplan.planner.search.screen import FEASIBLE, all_sets, screen, screening_scenarios
+from liftplan.planner.search.screen import (
+    FEASIBLE,
+    all_sets,
+    row_ceiling,
+    screen,
+    screening_scenarios,
+)
 
 
 def _corner_scenarios(problem):
@@ -149,7 +155,8 @@ def test_pair_certificate_is_a_lower_bound_for_any_preload():
 @pytest.mark.parametrize("cranes", [5, 6])
 def test_plan_with_hook_tolerance_is_the_brute_forces(cranes):
     """Every set of the small problem evaluated exactly (no screening, no dual bound): the
-    exact search's plan has the least worst spread, and its set is that set."""
+    exact search's plan has the least worst spread, and its set is that set; every feasible
+    set's value is below the ceiling of :func:`screen.value_ceiling`."""
     problem = small_problem(cranes, hook_tolerance=0.03, top=1)
     result = plan(problem)
     evaluator = SetEvaluator(problem)
@@ -159,6 +166,10 @@ def test_plan_with_hook_tolerance_is_the_brute_forces(cranes):
             values[indices] = evaluator.evaluate(indices).worst_value
         except SetInfeasible:
             continue
+    # no feasible set's value is above the ceiling past which a bound proves a set infeasible
+    sets = np.array(list(values))
+    ceiling = row_ceiling(problem, sets, np.broadcast_to(np.arange(cranes), sets.shape))
+    assert np.all(np.array(list(values.values())) <= ceiling)
     best = min(values, key=values.get)
     assert result.stats.stopped == "proved"
     assert result.worst_spread == pytest.approx(values[best], abs=1e-6 * problem.body.weight)
