@@ -196,6 +196,9 @@ class LoadCurve:
     drainage : tuple of TankSummary
     drainage_note : str
         How the compartments with openings were taken (said on the console and in JSON).
+    equilibria : tuple of Equilibrium
+        The solved equilibrium at each hoist of ``hoist`` (pose, tensions, water): what the
+        3D view draws at each state. Empty for a curve made without them.
     """
 
     lugs: tuple[str, ...]
@@ -224,6 +227,7 @@ class LoadCurve:
     breakout: object | None = None
     drainage: tuple = ()
     drainage_note: str = ""
+    equilibria: tuple = field(default=(), repr=False, compare=False)
 
     @property
     def crane_load(self):
@@ -630,6 +634,7 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
         breakout=breakout,
         drainage=summaries,
         drainage_note=note,
+        equilibria=tuple(p.eq for p in points),
     )
 
 

@@ -32,6 +32,7 @@ _EXPORTS = {
     **dict.fromkeys(("Candidate", "CogEnvelope", "CraneSpec", "PlanProblem"), "problem.definition"),
     **dict.fromkeys(("load_problem", "loads_problem"), "problem.file"),
     **dict.fromkeys(("ReportFiles", "write_report"), "output.report.write"),
+    **dict.fromkeys(("view_figure", "write_view"), "output.view.api"),
     "__version__": "liftplan.model.version",
 }
 

@@ -60,6 +60,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser():
+    # start-up: the view's parser set-up imports the standard library and the path rule only
+    from liftplan.planner.output.view import command as view_command
+
     parser = _Parser(
         prog="liftplan",
         description="Multi-crane lift planning for salvage and heavy-block rigging.",
@@ -96,6 +99,7 @@ def _parser():
         help="draw weight, buoyancy, lift forces, shear force and bending moment along the body "
         "(needs [body] weight_curve), .png, .pdf or .svg",
     )
+    view_command.add_view_option(solve_cmd)
     lift_cmd = commands.add_parser(
         "lift", help="load curve of a lift off the seabed and through the waterline"
     )
@@ -118,6 +122,7 @@ def _parser():
         help="where to save the figure, .png, .pdf or .svg (default: "
         "SCENE_load_curve.png in the current folder)",
     )
+    view_command.add_view_option(lift_cmd)
     plan_cmd = commands.add_parser("plan", help="choose lugs and boom heights for a lift")
     plan_cmd.add_argument("scene", help="planning scene file (TOML with [[candidates]], [plan])")
     plan_cmd.add_argument("--json", action="store_true", help="one JSON object on stdout")
@@ -128,6 +133,8 @@ def _parser():
         "plan_scene.toml and plan.json into DIR (created if missing)",
     )
     plan_cmd.add_argument("--top", type=int, metavar="K", help="rank the best K lug sets")
+    view_command.add_view_option(plan_cmd)
+    view_command.add_parser(commands)
     batch_cmd = commands.add_parser(
         "batch", help="run a batch study (many plans, or one plan checked many times) on Dask"
     )
@@ -145,6 +152,10 @@ def _parser():
         "--restart", action="store_true", help="discard an interrupted run's rows instead of resuming it"
     )
     batch_cmd.add_argument("--no-progress", action="store_true", help="no progress bar")
+    # start-up: the watch options' module imports nothing (its handlers load when a command runs)
+    from liftplan.planner.watch.command import add_parser as add_watch
+
+    add_watch(commands)
     return parser
 
 
@@ -188,6 +199,7 @@ def _solve(args):
         from liftplan.planner.output.paths import FIGURE_TYPES, output_file
 
         figure = output_file(args.strength_figure, "--strength-figure", FIGURE_TYPES)
+    view = _view_file(args)
     scene = load_scene(args.scene)
     if figure is not None and scene.body.weight_curve is None:
         raise InvalidScene(
@@ -208,6 +220,7 @@ def _solve(args):
     unwritten = None
     if figure is not None:
         unwritten = _strength_figure(scene, eq, girder, figure)
+    unwritten = _save_view(view, "scene_view", scene, eq) or unwritten
     if args.json:
         out = {**eq.to_json(), "checks": [c.to_json() for c in checks]}
         if girder is not None:
@@ -243,6 +256,7 @@ def _plan(args):
     if args.top is not None and args.top < 1:
         raise InvalidScene(f"--top {args.top}: expected an integer >= 1")
     report = output_folder(args.report, "--report") if args.report is not None else None
+    view = _view_file(args)
     from liftplan.planner.problem.file import load_problem
     from liftplan.planner.problem.plausibility import problem_warnings
 
@@ -262,7 +276,7 @@ def _plan(args):
         result = plan(problem, top=args.top)
     except Interrupted as err:
         return _interrupted(err, args)
-    return _finish_plan(result, args, report)
+    return _finish_plan(result, args, report, view)
 
 
 def _interrupted(err, args):
@@ -284,7 +298,7 @@ def _interrupted(err, args):
     return INTERRUPTED
 
 
-def _finish_plan(result, args, report):
+def _finish_plan(result, args, report, view=None):
     """Design loads, the report and the plan on stdout; the exit code. The search has
     finished: a Ctrl-C before the plan is printed still prints it, marked INTERRUPTED."""
     from liftplan.planner.search.evaluator import Interrupted
@@ -309,6 +323,7 @@ def _finish_plan(result, args, report):
                     from liftplan.model.extras import missing
 
                     _warn([f"no report.pdf: {missing('pdf', 'weasyprint') or 'WeasyPrint did not write it'}"])
+        unwritten = _save_view(view, "plan_view", result) or unwritten
         with phase("design loads and checks", None):
             text = _plan_text(result, args)
         print(text)
@@ -379,6 +394,7 @@ def _lift(args):
     scene_path = Path(args.scene)
     default = f"{scene_path.stem}_load_curve.png"
     figure = output_file(default if args.figure is None else args.figure, "--figure", FIGURE_TYPES)
+    view = _view_file(args)
     from liftplan.model.lift import load_curve
     from liftplan.model.scene.file import load_scene
     from liftplan.model.scene.plausibility import scene_warnings
@@ -401,11 +417,39 @@ def _lift(args):
         unwritten = f"--figure {figure}: cannot write ({err.strerror or err})"
     else:
         print(f"liftplan: wrote {figure}", file=sys.stderr)
+    unwritten = _save_view(view, "lift_view", scene, curve) or unwritten
     if args.json:
         print(json.dumps(_stamped(curve.to_json())))
     else:
         print(lift_table(scene, curve))
     return _unwritten(unwritten)
+
+
+def _view_file(args):
+    """``--view FILE`` checked before any computation (None when not given)."""
+    # start-up: the standard library and the path rule only
+    from liftplan.planner.output.view.command import checked
+
+    return checked(args.view)
+
+
+def _save_view(path, builder, *result):
+    """Write the 3D view of ``result`` (``states.<builder>(*result)``) to ``path`` when asked;
+    the reason it could not be written, or None."""
+    if path is None:
+        return None
+    # start-up: plotly and the view's geometry only when a view is asked for
+    from liftplan.planner.output.view import states
+    from liftplan.planner.output.view.command import save_view
+
+    return save_view(path, lambda: getattr(states, builder)(*result))
+
+
+def _view(args):
+    # start-up: plotly and the solvers only when the view command runs
+    from liftplan.planner.output.view.command import run
+
+    return run(args)
 
 
 def _batch(args):
@@ -472,8 +516,23 @@ def _interrupt(err):
     return False
 
 
+def _watch(args):
+    # start-up: the watch commands' modules load only when they run
+    from liftplan.planner.watch.command import run_simulate, run_watch
+
+    return run_watch(args) if args.command == "watch" else run_simulate(args)
+
+
 def _run(args):
-    command = {"plan": _plan, "lift": _lift, "solve": _solve, "batch": _batch}[args.command]
+    command = {
+        "plan": _plan,
+        "lift": _lift,
+        "solve": _solve,
+        "batch": _batch,
+        "view": _view,
+        "watch": _watch,
+        "simulate": _watch,
+    }[args.command]
     try:
         try:
             # numpy's RuntimeWarnings (an overflow in a trial step, 0/0 in a row the search

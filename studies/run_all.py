@@ -36,6 +36,8 @@ STUDIES = [
     "many_ropes_timing",
     "benchmarks",
     "jit_cache",
+    "watch_speed",
+    "watch_replay",
     "report_screenshot",
 ]
 

@@ -471,6 +471,34 @@ class RopeModel:
         )
 
     @cached_property
+    def elastic_sensitivity(self):
+        """(x, p) -> (T, dT_dx, dT_dp, dr_dx, dr_dp) of the forward model at a pose, as a
+        :class:`FastCall` (flat outputs, column-major).
+
+        At an equilibrium r(x, p) = 0 (the statics residual [t]), so the pose moves with the
+        parameters as dx/dp = -(dr/dx)^-1 dr/dp and the tensions as
+        dT/dp + dT/dx dx/dp: what ``liftplan watch`` fits readings and plans hook moves with.
+        """
+        tension, _, residual, row_scale, _, _ = self._elastic
+        residual = residual * row_scale
+        x, p = self._x, self._p
+        function = ca.Function(
+            "elastic_sensitivity",
+            [x, p],
+            [
+                ca.densify(out)
+                for out in (
+                    tension,
+                    ca.jacobian(tension, x),
+                    ca.jacobian(tension, p),
+                    ca.jacobian(residual, x),
+                    ca.jacobian(residual, p),
+                )
+            ],
+        )
+        return FastCall(function)
+
+    @cached_property
     def elastic_start(self):
         """p -> x: one Newton step on the all-taut residual from level.
 

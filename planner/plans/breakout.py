@@ -12,6 +12,11 @@ attitude with the weight ``total`` acting at the breakout point. Three statics r
 held compatibility make it exact and linear; it equals the ``elastic`` solve of the plan's
 scene with that weight and CG and the hooks moved by :attr:`BreakoutCase.hook_shift`.
 
+The crew's hook errors act at breakout as anywhere: each rope's tension there is taken at its
+worst over every hook within its tolerance (``T + |dT/dH| delta``, the same closed form as in
+the box, with dT/dH at the breakout state), so the hook tolerance and the skew factor 1 of the
+chain hold for the breakout case too.
+
 Each crane's static input to the rules' chain becomes the larger of its worst in the box and
 its breakout tension (:mod:`liftplan.planner.plans.design_loads`), and a check per crane compares
 the breakout hook load (tension + the rules' rigging weight, no dynamic factor) with the chart
@@ -42,8 +47,12 @@ class BreakoutCase:
     lugs : tuple of str
         Candidate names, in the lug set's order.
     tensions : numpy.ndarray, shape (n,)  [t]
-        Held tension of each rope at breakout (level attitude, preload held); below 0 a rope
-        would go slack and the held model no longer holds.
+        Held tension of each rope at breakout (level attitude, preload held, hooks at their
+        planned heights); below 0 a rope would go slack and the held model no longer holds.
+    gain : numpy.ndarray, shape (n, n)  [t/m]
+        dT_i / dH_j at breakout (row = rope), the pose held.
+    hook_tolerance : numpy.ndarray, shape (n,)  [m]
+        Each hook's height tolerance.
     hook_shift : numpy.ndarray, shape (n,)  [m]
         Each hook's motion from its planned height that holds the body level under the
         breakout load (a rigid motion of the level hook pattern).
@@ -57,14 +66,31 @@ class BreakoutCase:
     cranes: tuple[str, ...]
     lugs: tuple[str, ...]
     tensions: np.ndarray
+    gain: np.ndarray
+    hook_tolerance: np.ndarray
     hook_shift: np.ndarray
     swl: np.ndarray
     rigging: np.ndarray
 
     @property
+    def hook_widening(self):
+        """What the worst hook errors add to (or take from) each tension at breakout  [t]."""
+        return np.abs(self.gain) @ self.hook_tolerance
+
+    @property
+    def worst(self):
+        """Each tension at breakout at its largest over the hook errors  [t]."""
+        return self.tensions + self.hook_widening
+
+    @property
+    def least(self):
+        """Each tension at breakout at its smallest over the hook errors  [t]."""
+        return self.tensions - self.hook_widening
+
+    @property
     def hook_loads(self):
-        """Breakout tension + rigging weight per hook  [t]."""
-        return self.tensions + self.rigging
+        """Worst breakout tension (hook errors included) + rigging weight per hook  [t]."""
+        return self.worst + self.rigging
 
     @property
     def checks(self):
@@ -76,22 +102,22 @@ class BreakoutCase:
                 hook,
                 swl,
                 "t",
-                note=f"held tension at breakout {t:.4g} t + rigging {r:.4g} t / chart SWL "
-                "(static peak, no DAF)",
+                note=f"held tension at breakout {t:.4g} t (hook errors at worst) + rigging "
+                f"{r:.4g} t / chart SWL (static peak, no DAF)",
             )
             for crane, hook, swl, t, r in zip(
-                self.cranes, self.hook_loads, self.swl, self.tensions, self.rigging
+                self.cranes, self.hook_loads, self.swl, self.worst, self.rigging
             )
         ]
         out.append(
             Check.lower(
                 "breakout_min_tension",
                 "all ropes",
-                float(self.tensions.min()),
+                float(self.least.min()),
                 0.0,
                 "t",
-                note="lowest held tension at breakout; below 0 a rope goes "
-                "slack and the held model no longer holds",
+                note="lowest held tension at breakout, hook errors at worst; below 0 a rope "
+                "goes slack and the held model no longer holds",
             )
         )
         return out
@@ -128,13 +154,15 @@ def breakout_case(problem, lugset, preload):
         EA=lugset.EA,
     )
     level = np.array([[problem.lift_height, 0.0, 0.0]])
-    tensions, shift, _ = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
+    tensions, shift, gain = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
     rigging = np.array([problem.rules.rigging_for(name) for name in lugset.crane_names], dtype=float)
     return BreakoutCase(
         load=load,
         cranes=lugset.crane_names,
         lugs=lugset.names,
         tensions=tensions[0],
+        gain=gain[0],
+        hook_tolerance=np.asarray(lugset.hook_tolerance, dtype=float),
         hook_shift=shift[0],
         swl=np.asarray(lugset.swl, dtype=float),
         rigging=rigging,
@@ -158,12 +186,15 @@ def breakout_json(plan):
     out["frame"] = plan.frame
     out["scene"] = plan.problem.breakout_scene.name
     out["tensions"] = dict(zip(plan.labels, case.tensions.tolist()))
+    out["tensions_with_hook_errors"] = dict(zip(plan.labels, case.worst.tolist()))
     out["cranes"] = [
         {
             "lug": c.label,
             "candidate": c.lug,
             "crane": c.crane,
-            "tension": c.breakout,
+            "tension": float(t),
+            "hook_errors": float(w),
+            "tension_with_hook_errors": c.breakout,
             "rigging": float(r),
             "hook_load": float(h),
             "swl": c.swl,
@@ -173,7 +204,9 @@ def breakout_json(plan):
             "governs": c.governs,
             "note": c.static_note,
         }
-        for c, r, h, d in zip(design.cranes, case.rigging, case.hook_loads, case.hook_shift)
+        for c, t, w, r, h, d in zip(
+            design.cranes, case.tensions, case.hook_widening, case.rigging, case.hook_loads, case.hook_shift
+        )
     ]
     out["checks"] = [c.to_json() for c in case.checks]
     out["ok"] = case.ok
@@ -182,6 +215,7 @@ def breakout_json(plan):
             "lugs": list(d.breakout.lugs),
             "cranes": list(d.breakout.cranes),
             "tensions": d.breakout.tensions.tolist(),
+            "tensions_with_hook_errors": d.breakout.worst.tolist(),
             "ok": d.breakout.ok,
         }
         for d in plan.ranked_design

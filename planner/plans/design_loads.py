@@ -12,12 +12,13 @@ planner found for the lug set:
   and the hook elevation difference over the hooks' spacing along each tilt direction), the
   hoists holding T*,
   over every tilt axis and the CG envelope's vertices;
-* ``skew``: 1, because the searched worst already holds every hook error within the
-  tolerance (the skew the rules' 1.25 stands for; the plan's skew table shows the computed
-  factors beside it);
+* ``skew``: 1, because the searched worst (and the breakout tension) already holds every
+  hook error within the tolerance (the skew the rules' 1.25 stands for; the plan's skew
+  table shows the computed factors beside it);
 * ``swl`` and ``radius``: the crane's chart SWL at its radius to the lug;
 * ``breakout`` (with ``[plan] breakout_scene``): the crane's held tension when the bedded hull
-  breaks out of the seabed (:mod:`liftplan.planner.plans.breakout`); the chain's static input is
+  breaks out of the seabed, at its worst over the hook errors
+  (:mod:`liftplan.planner.plans.breakout`); the chain's static input is
   then the larger of it and the worst in the box, and the plan says which governs.
 
 Then the chain's factors (weight contingency, DAF, rigging weight; yaw only with slings) turn
@@ -140,8 +141,8 @@ class CraneDesign:
         The chain's result; None when the chain could not be built (see
         :attr:`DesignLoads.missing`).
     breakout : float or None  [t]
-        Held tension when the hull breaks out of the seabed (``[plan] breakout_scene``);
-        None without a breakout case.
+        Held tension when the hull breaks out of the seabed (``[plan] breakout_scene``), at
+        its worst over the hook errors; None without a breakout case.
     """
 
     label: str
@@ -180,8 +181,13 @@ class CraneDesign:
         if self.breakout is None:
             return f"worst in the box {box:.4g} t (no breakout case)"
         if self.governs == "breakout":
-            return f"breakout {self.breakout:.4g} t governs over the worst in the box {box:.4g} t"
-        return f"worst in the box {box:.4g} t governs over breakout {self.breakout:.4g} t"
+            return (
+                f"breakout {self.breakout:.4g} t (hook errors at worst) governs over the worst "
+                f"in the box {box:.4g} t"
+            )
+        return (
+            f"worst in the box {box:.4g} t governs over breakout {self.breakout:.4g} t (hook errors at worst)"
+        )
 
     def tilt_note_for(self, tilt_share, how=""):
         """The chain's tilt note: the share at the rules' tilt against the static input
@@ -355,7 +361,7 @@ class DesignBuilder:
                     worst_at=self.dense[where[k]],
                     tilt=case,
                     skewed=float(skewed[k]),
-                    breakout=None if breakout is None else float(breakout.tensions[k]),
+                    breakout=None if breakout is None else float(breakout.worst[k]),
                 )
             )
         chain = None

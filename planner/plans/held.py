@@ -24,6 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.watch_basis import watch_basis
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
@@ -90,8 +91,9 @@ class CrewMargin:
     factor : float  [-]   the hook tolerance multiplied by this
     tolerance : numpy.ndarray  [m]   each hook's tolerance at that factor
     worst_spread : float  [t]   over the box, the CG envelope and the hook errors
-    rope_max : numpy.ndarray  [t]   each rope's largest tension
-    lowest : float  [t]   the lowest tension (below 0: a rope would go slack, the affine
+    rope_max : numpy.ndarray  [t]   each rope's largest tension (in the box, and at breakout
+        with a breakout case)
+    lowest : float  [t]   the lowest tension, the same places (below 0: a rope would go slack, the affine
         form no longer holds, and the figures are only an estimate)
     limit : numpy.ndarray  [t]   the search's limit of each rope (chart SWL / DAF, less
         rigging, over contingency)
@@ -110,6 +112,19 @@ class CrewMargin:
     def within_limits(self):
         """Every rope within its limit and above zero."""
         return bool(np.all(self.rope_max <= self.limit + 1e-9) and self.lowest > 0.0)
+
+    def verdict(self, labels):
+        """``"within the limits"``, or ``"EXCEEDS"`` with what: the rope furthest over its
+        limit (``L2 387.9 t > 317.5 t``) and a rope going slack."""
+        if self.within_limits:
+            return "within the limits"
+        what = []
+        k = int(np.argmax(self.rope_max - self.limit))
+        if self.rope_max[k] > self.limit[k] + 1e-9:
+            what.append(f"{labels[k]} {self.rope_max[k]:.1f} t > {self.limit[k]:.1f} t")
+        if self.lowest <= 0.0:
+            what.append(f"a rope slack (lowest {self.lowest:.1f} t)")
+        return "EXCEEDS: " + ", ".join(what)
 
 
 @dataclass(frozen=True)
@@ -406,6 +421,12 @@ class Plan(InFileFrame):
         every CG vertex (the design loads' grid): (m, n) [t], (m, n, n) [t/m]."""
         return self.lugset.tensions_and_gain(self.chosen.preload, self._design_builder.dense)
 
+    @property
+    def dense_held(self):
+        """Tensions (m, n) [t] and dT/dH (m, n, n) [t/m], preload held, on the design loads'
+        dense grid of the box for every CG vertex (computed once per plan)."""
+        return self._dense_held
+
     def crew_margin(self, factors=(1.0, 2.0, 5.0)):
         """The plan as it stands (lugs, boom heights, preload) with the hook tolerance
         multiplied by each factor: what a crew worse than assumed would see.
@@ -415,17 +436,23 @@ class Plan(InFileFrame):
         list of CrewMargin
         """
         tensions, gain = self._dense_held
+        breakout = self.design_loads.breakout
         out = []
         for factor in factors:
             delta = self.lugset.hook_tolerance * factor
             _, low, high, spread, _ = robust(tensions, gain, self.lugset, delta)
+            rope_max, lowest = high.max(axis=0), float(low.min())
+            if breakout is not None:  # the breakout state with the same hook errors
+                widening = np.abs(breakout.gain) @ delta
+                rope_max = np.maximum(rope_max, breakout.tensions + widening)
+                lowest = min(lowest, float((breakout.tensions - widening).min()))
             out.append(
                 CrewMargin(
                     factor=float(factor),
                     tolerance=delta,
                     worst_spread=float(spread.max()),
-                    rope_max=high.max(axis=0),
-                    lowest=float(low.min()),
+                    rope_max=rope_max,
+                    lowest=lowest,
                     limit=self.lugset.limit,
                     swl=self.lugset.swl,
                 )
@@ -435,8 +462,8 @@ class Plan(InFileFrame):
     @cached_property
     def hook_accuracy_needed(self):
         """The largest hook-height error (the same on every hook) the plan holds with every
-        rope within its limits and above zero, its preload held  [m]; inf when no hook
-        error can break it (to 10 m)."""
+        rope within its limits and above zero, its preload held, over the box and, with a
+        breakout case, at breakout  [m]; inf when no hook error can break it (to 10 m)."""
         problem = self.problem
         tensions, gain = self._dense_held
         reach = np.abs(gain).sum(axis=2)  # per 1 m of error on every hook, the worst signs
@@ -447,6 +474,14 @@ class Plan(InFileFrame):
             up = np.where(reach > 0, (limit - tensions) / reach, np.inf)
             down = np.where(reach > 0, (tensions - max(low, 0.0)) / reach, np.inf)
         value = float(min(up.min(), down.min()))
+        breakout = self.design_loads.breakout
+        if breakout is not None:  # the breakout state too: its tensions and dT/dH there, >= 0
+            reach = np.abs(breakout.gain).sum(axis=1)
+            t = breakout.tensions
+            with np.errstate(divide="ignore", invalid="ignore"):
+                up = np.where(reach > 0, (limit - t) / reach, np.inf)
+                down = np.where(reach > 0, t / reach, np.inf)
+            value = min(value, float(up.min()), float(down.min()))
         return value if value < 10.0 else float("inf")
 
     @cached_property
@@ -611,6 +646,7 @@ class Plan(InFileFrame):
                 },
                 "checks": [c.to_json() for c in self.checks],
                 "girder": girder_json(self.girder, self.scenario_json),
+                "watch": watch_basis(self).to_json(),  # what `liftplan watch PLAN.json` reads
             }
             | (
                 {}

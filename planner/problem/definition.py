@@ -29,6 +29,7 @@ from liftplan.planner.problem.fleet import (
     reach_table,
 )
 from liftplan.planner.problem.objectives import OBJECTIVES, STRENGTH_OBJECTIVES
+from liftplan.planner.problem.readings_accuracy import ReadingsAccuracy
 from liftplan.planner.problem.report_info import ReportInfo
 
 # the rules' constants, imported here too by the planner's modules
@@ -265,6 +266,8 @@ class PlanProblem:
     weight_basis : str or None
         ``"air"`` or ``"water"``: what ``body.weight`` is (the plan says it beside W); None,
         not stated.
+    readings : ReadingsAccuracy
+        The live readings' accuracies (``[readings]``) that ``liftplan watch`` weighs them by.
     """
 
     body: Body
@@ -298,6 +301,7 @@ class PlanProblem:
     breakout_scene: Scene | None = None
     hinges: tuple[tuple[float, ...], ...] = ()
     weight_basis: str | None = None
+    readings: ReadingsAccuracy = field(default_factory=ReadingsAccuracy)
 
     def __post_init__(self):
         if self.weight_basis not in WEIGHT_BASES:
@@ -440,11 +444,6 @@ class PlanProblem:
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
-        if self.search == "local" and len(crane_classes(fleet)) > 1:
-            raise InvalidScene(
-                'plan.search = "local": the local search plans a fleet of equal cranes only (its '
-                'swaps do not reassign cranes); expected search = "exact" or "mip", or one [crane] table'
-            )
         if self.work_limit is not None:
             kind = (
                 "cranes on slings (the sling search is exhaustive)"

@@ -34,6 +34,12 @@ from liftplan.model.scene.file import (
 from liftplan.model.scene.objects import Body, Strength
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
+from liftplan.planner.problem.readings_accuracy import (
+    DEFAULT_HOOK,
+    DEFAULT_INCLINOMETER,
+    DEFAULT_LOAD_CELL,
+    ReadingsAccuracy,
+)
 from liftplan.planner.problem.report_info import ReportInfo
 
 Count = Annotated[int, Strict(), Field(ge=1)]
@@ -576,6 +582,33 @@ class _Attitude(Table):
     yaw: Num = Key(0.0, doc="the body's heading, > 0 bow to port", unit="deg", example="yaw = 0.0")
 
 
+class _Readings(Table):
+    load_cell_accuracy: Num = Key(
+        DEFAULT_LOAD_CELL,
+        doc=(
+            "one standard deviation of each crane's load-cell tension (`liftplan watch` weighs "
+            "the readings by it)"
+        ),
+        unit="t",
+        values="number > 0",
+        example="load_cell_accuracy = 1.0",
+    )
+    inclinometer_accuracy: Num = Key(
+        DEFAULT_INCLINOMETER,
+        doc="one standard deviation of the inclinometer's heel and trim",
+        unit="deg",
+        values="number > 0",
+        example="inclinometer_accuracy = 0.05",
+    )
+    hook_accuracy: Num = Key(
+        DEFAULT_HOOK,
+        doc="one standard deviation of a measured hook (boom-tip) height, `hook:NAME` columns",
+        unit="m",
+        values="number > 0",
+        example="hook_accuracy = 0.01",
+    )
+
+
 class _PlanFile(Table):
     name: Text = Key(
         "", doc="a label for the plan, shown in outputs and the report", example='name = "1500 GT tanker"'
@@ -606,6 +639,9 @@ class _PlanFile(Table):
     )
     rigging: _Rigging = Key(_Rigging(), doc="sling limits (sling lifts)", example="[rigging]")
     report: _Report = Key(_Report(), doc="the report's title block", example="[report]")
+    readings: _Readings = Key(
+        _Readings(), doc="the live readings' accuracies (`liftplan watch`)", example="[readings]"
+    )
     strength: _Strength | None = Key(
         None,
         doc=(
@@ -831,6 +867,11 @@ def _to_problem(data, base):
         rules=rules_from_table(data.rules),
         min_sling_angle=data.rigging.min_sling_angle,
         report=ReportInfo(**data.report.model_dump()),
+        readings=ReadingsAccuracy(
+            load_cell=data.readings.load_cell_accuracy,
+            inclinometer=data.readings.inclinometer_accuracy,
+            hook=data.readings.hook_accuracy,
+        ),
         strength=Strength(**data.strength.model_dump()) if data.strength is not None else None,
         strength_weights=(
             None

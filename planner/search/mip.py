@@ -553,7 +553,7 @@ def search_mip(problem, started, top=1, progress=None):
     """Plan by the lug-choice MIP with cutting planes (module docstring).
 
     A first plan gives the cutoff: the local search's (equal cranes) or the exact search's
-    first evaluated set (a fleet; the local search plans equal cranes only). Each round
+    first evaluated set (a fleet). Each round
     solves the MIP over the scenario list within what is left of ``problem.time_limit`` and
     to ``problem.gap``, checks its set and preload over the dense box and adds the worst
     scenario found, until the MIP's value holds over the box (the optimum proved, or within

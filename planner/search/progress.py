@@ -25,12 +25,17 @@ import time
 DELAY = 1.0
 #: Seconds between redraws of a line by its ticker thread.
 TICK = 0.5
+#: Least time between two redraws of a line  [s] (tqdm's default).
+MININTERVAL = 0.1
 #: Columns assumed where the terminal's width is unknown.
 FALLBACK_WIDTH = 100
 #: Lines assumed where the terminal's height is unknown.
 FALLBACK_HEIGHT = 24
-#: The line: phase, share done with a fixed-width bar, count, elapsed time, then best / bound.
-BAR_FORMAT = "{desc}: {percentage:3.0f}% |{bar:20}| {n_fmt}/{total_fmt} {unit} [{elapsed}]{postfix}"
+#: The line: phase, share done with a fixed-width bar, count, elapsed time, best / bound, then
+#: the time left (tqdm's estimate from the rate so far; last, so a narrow terminal cuts it first).
+BAR_FORMAT = (
+    "{desc}: {percentage:3.0f}% |{bar:20}| {n_fmt}/{total_fmt} {unit} [{elapsed}]{postfix}, {remaining} left"
+)
 #: The line of a phase whose steps are counted but not known in advance (no bar to fill).
 OPEN_FORMAT = "{desc}: {n_fmt} {unit} [{elapsed}]{postfix}"
 #: The line of a phase without steps.
@@ -116,6 +121,7 @@ def progress_bar(total, progress, desc="plan", unit="set", ticker=False):
         unit=unit,
         file=sys.stderr,
         delay=DELAY,
+        mininterval=MININTERVAL,
         leave=False,
         ncols=width(sys.stderr),
         nrows=height(sys.stderr),

@@ -99,7 +99,7 @@ def test_report_embeds_figures_and_every_table_has_units(report_dir):
     page = (out / "report.html").read_text(encoding="utf-8")
     parsed = _Tables()
     parsed.feed(page)
-    assert len(parsed.images) == 3
+    assert len(parsed.images) == 4  # three figures and the 3D view's stills (printed in the PDF)
     assert all(src.startswith("data:image/png;base64,") for src in parsed.images)
     assert 'src="http' not in page and "<link" not in page  # self-contained
     assert len(parsed.tables) >= 7

@@ -114,7 +114,7 @@ def test_report_has_every_section_and_both_plans(force_report):
     data = json.loads(result.stdout)
     page = parsed(out / "report.html")
     assert [h for h in page.headings if h in SECTIONS] == list(SECTIONS)
-    assert page.images == 3  # forces, girder of both plans, the solved scene's girder
+    assert page.images == 4  # forces, girder of both plans, the solved scene's girder, the 3D stills
     lugs = table(page, "Recommended lifting points")
     assert [row[0] for row in lugs[1:]] == list(data["lugs"])
     assert [float(row[3]) for row in lugs[1:]] == pytest.approx(list(data["tensions"].values()), abs=0.005)

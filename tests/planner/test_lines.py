@@ -4,6 +4,7 @@ set's preload LP (scipy), against the proved optima, and on the examples."""
 
 import dataclasses
 import sys
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -30,6 +31,66 @@ def test_two_lines_found_only_where_they_are():
     assert list(two_lines(hull).counts) == [40, 40]
     # padeyes at several heights and rows: no two lines
     assert two_lines(load_problem(EXAMPLES / "block_8_points_plan.toml")) is None
+
+
+def _two_lines_by_every_pair(points):
+    """The first search, kept as the reference: every pair of candidates as a trial direction
+    (O(C^3)); (labels, direction) or None."""
+    size = max(1.0, float(np.ptp(points, axis=0).max()))
+    tol = 1e-9 * size
+    for i in range(len(points)):
+        for j in range(i + 1, len(points)):
+            d = points[j] - points[i]
+            if np.linalg.norm(d) < 1e3 * tol:
+                continue
+            d = d / np.linalg.norm(d)
+            across = (points - points[i]) - np.outer((points - points[i]) @ d, d)
+            far = np.linalg.norm(across, axis=1) > tol
+            if not np.any(far):
+                return None
+            k = int(np.argmax(far))
+            second = np.linalg.norm(across - across[k], axis=1) <= tol
+            if np.all(~far | second):
+                return second.astype(int), d
+    return None
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_two_lines_equal_every_pair_search(seed):
+    """The O(C) search finds what trying every pair finds (labels and direction), on random
+    layouts: two lines (one lug alone on a line, repeated stations, either order), three
+    lines, a line and a point off it, a grid."""
+    rng = np.random.default_rng(seed)
+    d = rng.normal(size=3)
+    d /= np.linalg.norm(d)
+    offset = np.cross(d, rng.normal(size=3))
+    layouts = []
+    for first, second in ((1, 7), (5, 5), (2, 9)):
+        t = rng.choice(np.arange(12.0), first + second)  # stations, some repeated
+        line = np.r_[np.zeros(first), np.ones(second)]
+        points = np.outer(t * 3.1, d) + np.outer(line, offset)
+        layouts.append(points[rng.permutation(len(points))])
+    layouts.append(np.r_[layouts[1], [offset * 2.0]])  # a third line
+    layouts.append(np.r_[np.outer(np.arange(6.0), d), [offset]])  # one line and a point off it
+    layouts.append(np.array([[x, 0.0, z] for x in range(4) for z in range(3)], dtype=float))
+    for points in layouts:
+        found = two_lines(SimpleNamespace(points=points, hinge_rows=None))  # all it reads
+        expected = _two_lines_by_every_pair(points)
+        if expected is None:
+            assert found is None
+        else:
+            np.testing.assert_array_equal(found.line, expected[0])
+            np.testing.assert_allclose(found.direction, expected[1], rtol=0, atol=1e-12)
+
+
+def test_two_lines_of_ten_thousand_candidates_is_linear():
+    """10 000 candidates on two deck edges: found by the three-point search (the every-pair
+    search took ~1e12 operations: the 10 000-candidate plan hung in its bound)."""
+    x = np.linspace(0.0, 80.0, 5000)
+    edge = np.c_[x, np.full_like(x, 6.0), np.zeros_like(x)]
+    points = np.r_[edge, edge + [0.0, 0.0, 12.0]]
+    lines = two_lines(SimpleNamespace(points=points, hinge_rows=None))
+    assert list(lines.counts) == [5000, 5000]
 
 
 def test_line_totals_are_the_statics_of_every_set():

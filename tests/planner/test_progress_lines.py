@@ -27,9 +27,14 @@ from liftplan.planner.problem.file import load_problem
 
 @pytest.fixture
 def terminal(monkeypatch):
-    """stderr taken for a terminal; lines drawn at once."""
+    """stderr taken for a terminal; lines drawn at once, and at every update (however fast
+    the machine: a line that only had to be redrawn once per 0.1 s was not, under xdist)."""
     monkeypatch.setattr(progress, "shown", lambda wanted, file=None: wanted is not False)
     monkeypatch.setattr(progress, "DELAY", 0.0)
+    monkeypatch.setattr(progress, "MININTERVAL", 0.0)
+    # a wide terminal, whatever the environment says (xdist's workers have COLUMNS = 80,
+    # which cuts the best / bound off the longer lines)
+    monkeypatch.setenv("COLUMNS", "200")
 
 
 def run_plan(monkeypatch, capsys, problem):
@@ -120,6 +125,8 @@ def test_exact_search_shows_screening_and_rows(terminal, monkeypatch, capsys):
     json.loads(out)
     assert "exact search: screening 35 rows" in err
     assert re.search(r"exact search: +\d+% \|", err)
+    # an estimate of the time left from the first line (tqdm's "?" before a rate is known)
+    assert re.search(r"exact search: +\d+% \|.*, (\?|[0-9:]+) left", err)
 
 
 def test_rope_lengths_show_their_trials(terminal, monkeypatch, capsys):

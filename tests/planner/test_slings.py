@@ -20,7 +20,7 @@ from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner.cli import main
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.slings import SlingPlan
-from liftplan.planner.problem.definition import Candidate, PlanProblem
+from liftplan.planner.problem.definition import Candidate, CogEnvelope, PlanProblem
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec
 
@@ -197,3 +197,37 @@ def test_report_of_a_sling_plan(tmp_path):
     assert "Sling legs" in page and "Crawler FWD" in page
     data = json.loads((tmp_path / "out" / "plan.json").read_text(encoding="utf-8"))
     assert data["lift"] == "two-crane slings"
+
+
+def test_each_cranes_worst_is_where_its_hook_load_is_largest():
+    """The report's "where the hook loads are worst" gave the objective's worst for both
+    cranes (the CG aft, which unloads the forward crane): each crane now has its own, where
+    the rigging model's hook load at the box and envelope vertices is largest."""
+    problem = block_problem(cog_envelope=CogEnvelope((0.3, 0.2, 0.2)))
+    result = plan(problem)
+    chosen = result.chosen
+    data = result.to_json()["worst_hook_load_at"]
+    for c, (name, (tilt, offset)) in enumerate(zip(result.crane_names, chosen.hook_worst_at)):
+        assert data[name] == {"tilt_along_hook_line": tilt, "cog_offset": list(offset)}
+        # the CG towards a crane loads it: FWD (x > 0) worst with the CG forward, AFT aft
+        side = np.sign(problem.fleet[c].position[0])
+        assert np.sign(offset[0]) == side
+    assert chosen.hook_worst_at[0] != chosen.hook_worst_at[1]
+
+
+def test_ruled_out_counts_add_up():
+    """The reviewer's sum: the ruled-out counts came to 12 769 against 10 426 options (rigs of
+    one crane and pairs mixed, the pairs sharing a lug counted before the options). Rigs and
+    pairs are told apart; the pairs ruled out are at most those considered, and the rest, the
+    feasible, hold the ranking."""
+    from liftplan.planner.output.console.summary import summary
+    from liftplan.planner.plans.slings.two_crane import SHARED
+
+    result = plan(load_problem(BLOCK))
+    out = result.ruled_out
+    assert set(result.rig_causes) == {"beyond the crane's reach", "sling angle below the limit"}
+    paired = sum(n for t, n in out.items() if t not in result.rig_causes and t != SHARED)
+    feasible = result.options - paired
+    assert len(result.ranking) <= feasible <= result.options
+    assert f"{result.options} considered" in " ".join(summary(result).split())
+    assert f"; {feasible} feasible" in " ".join(summary(result).split())

@@ -29,6 +29,17 @@ def test_solve_loads_no_cvxpy_dask_or_matplotlib():
     assert imported_after(code) == []
 
 
+def test_solve_loads_no_3d_view():
+    """The 3D view's libraries (plotly, trimesh) load only with --view or liftplan view."""
+    code = (
+        "import sys\nfrom liftplan.planner.cli import main\n"
+        f"assert main(['solve', {str(EXAMPLES / 'tanker_upright.toml')!r}, '--json']) == 0\n"
+        "assert 'plotly' not in sys.modules and 'trimesh' not in sys.modules, 'loaded'"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+
+
 def test_lazy_exports_are_complete_and_solve_stays_the_function():
     for package in (liftplan.model, liftplan.planner):
         assert package.__all__ == sorted(package.__all__)

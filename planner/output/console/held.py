@@ -265,7 +265,8 @@ def _breakout_lines(plan, design):
         f"{force.submerged_weight:.2f} t + breakout force {force.force:.2f} t ({model}), "
         f"{load.weight_factor:.3f} x W, through {_xyz(plan.in_file_frame(load.point))} m",
         "held by each crane at the level attitude, the plan's preload held (the hooks moved "
-        "rigidly to hold it level):",
+        "rigidly to hold it level), T at its worst over the hook errors "
+        f"(+{_widening(case)} t):",
         f"{'lug':<5}{'crane':<12}{'T breakout [t]':>15}{'+ rigging [t]':>14}{'SWL [t]':>9}"
         f"{'hook shift [m]':>15}  check",
         f"{'':<5}chain's static input",
@@ -277,6 +278,12 @@ def _breakout_lines(plan, design):
         )
         lines.append(f"{'':<5}{c.static_note}")
     return lines
+
+
+def _widening(case):
+    """What the hook errors add to each breakout tension, as ``a to b``  [t]."""
+    low, high = float(case.hook_widening.min()), float(case.hook_widening.max())
+    return f"{low:.2f}" if high - low < 0.005 else f"{low:.2f} to {high:.2f}"
 
 
 def _ranking_lines(plan):

@@ -13,6 +13,7 @@ import numpy as np
 
 from liftplan.planner.output.console.held import girder_lines
 from liftplan.planner.output.console.text import fold, grouped
+from liftplan.planner.plans.slings.two_crane import SHARED
 
 OBJECTIVES = {
     "reserve": "the largest hook load / SWL",
@@ -37,9 +38,14 @@ def _search_lines(plan):
             f"deg, CG envelope; hooks held at the level preload; objective: "
             + OBJECTIVES.get(plan.objective, plan.objective),
         ]
+    shared = plan.ruled_out.get(SHARED, 0)
+    rigs = ", ".join(f"{n} {text}" for text, n in plan.ruled_out.items() if text in plan.rig_causes)
+    out = {t: n for t, n in plan.ruled_out.items() if t not in plan.rig_causes and t != SHARED}
+    pairs = ", ".join(f"{n} {text}" for text, n in out.items())
     return [
-        f"two cranes on slings: {plan.options} pairs of rigs considered (both assignments); "
-        f"ruled out: {causes}",
+        f"two cranes on slings: rigs of one crane ruled out: {rigs or 'none'}; the others paired "
+        f"(both assignments), {shared} pairs sharing a lug dropped, {plan.options} considered: "
+        f"ruled out {pairs or 'none'}; {plan.options - sum(out.values())} feasible",
         "tilt along the hook line within the tolerance, CG envelope; objective: "
         + OBJECTIVES.get(plan.objective, plan.objective),
     ]

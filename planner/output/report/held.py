@@ -19,6 +19,7 @@ from liftplan.model.version import __version__
 from liftplan.planner.batch.montecarlo import hook_monte_carlo
 from liftplan.planner.output.figures import plan as figures
 from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
 
@@ -98,6 +99,7 @@ def render_html(plan, today=None):
         "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
         "lengths in m.</p>",
         report_page.status(plan.checks),
+        report_page.warnings(plan.problem),
     ]
     body = "\n".join(head + [part for section in SECTIONS for part in section(plan)])
     return report_page.document(
@@ -317,12 +319,14 @@ def _checks(plan):
                     f"{c.worst_spread:.1f}",
                     *(f"{v:.1f}" for v in c.rope_max),
                     f"{c.lowest:.1f}",
-                    "within limits" if c.within_limits else "EXCEEDS",
+                    c.verdict(plan.labels),
                 )
                 for c in crew
-            ],
-            "Hook accuracy: the plan held, the hooks as planned and worse (limits: chart SWL / DAF, "
-            "less rigging, over contingency)",
+            ]
+            + [("limit", "", "", *(f"{v:.1f}" for v in plan.lugset.limit), "> 0", "")],
+            "Hook accuracy: the plan held, the hooks as planned and worse, "
+            + ("in the box and at breakout " if plan.design_loads.breakout is not None else "")
+            + "(limits: chart SWL / DAF, less rigging, over contingency)",
             text_columns=(0, 4 + len(plan.labels)),
             ropes=(3, len(plan.labels)),
         )
@@ -410,7 +414,7 @@ def _figures(plan):
             "position of the envelope and the worst hook errors; the star marks the worst case.",
         ),
     ]
-    return ["<h2>4 Figures</h2>", *figs]
+    return ["<h2>4 Figures</h2>", *figs, *view_section(plan)]
 
 
 def _girder_cell(worst):
@@ -728,7 +732,9 @@ def _breakout_section(plan):
         f"breakout force {force.force:.2f} t ({html.escape(model)}), held until the hull is "
         f"{force.clear:g} m clear of its bed, on a line through ({_xyz(problem, load.point)}) m. "
         "Each crane's share is its tension with the plan's preload held and the body level, "
-        "the hooks moved together as a rigid pattern by the hook shift below; the larger of it "
+        "the hooks moved together as a rigid pattern by the hook shift below, at its worst "
+        "over every hook within the plan's hook tolerance (the same closed form as in the "
+        "box: what the errors add is in the table); the larger of it "
         "and the worst in the box is the crane's static input to the design-load chain above. "
         "The breakout hook load (tension + rigging, no dynamic factor) is checked against the "
         "chart SWL.</p>"
@@ -738,6 +744,7 @@ def _breakout_section(plan):
             c.label,
             c.crane,
             f"{c.breakout:.2f}",
+            f"{w:.2f}",
             f"{r:.2f}",
             f"{h:.2f}",
             f"{c.swl:.1f}",
@@ -747,8 +754,8 @@ def _breakout_section(plan):
             c.governs,
             "ok" if check.ok else "FAIL",
         )
-        for c, r, h, d, check in zip(
-            design.cranes, case.rigging, case.hook_loads, case.hook_shift, case.checks
+        for c, w, r, h, d, check in zip(
+            design.cranes, case.hook_widening, case.rigging, case.hook_loads, case.hook_shift, case.checks
         )
     ]
     table = _table(
@@ -756,6 +763,7 @@ def _breakout_section(plan):
             "lug",
             "crane",
             "tension at breakout [t]",
+            "of it, hook errors [t]",
             "rigging [t]",
             "breakout hook load [t]",
             "chart SWL [t]",
@@ -767,7 +775,7 @@ def _breakout_section(plan):
         ],
         rows,
         "Breakout from the seabed: each crane's held share of the peak load",
-        text_columns=(1, 9, 10),
+        text_columns=(1, 10, 11),
     )
     return ["<h3>Breakout from the seabed</h3>", text, table]
 

@@ -15,6 +15,7 @@ import io
 import re
 
 from liftplan.model.version import __version__
+from liftplan.planner.problem.plausibility import problem_warnings
 
 #: A4 text width [mm]: 210 mm less 20 mm margins each side. Figures are drawn to it.
 TEXT_WIDTH_MM = 170.0
@@ -65,6 +66,7 @@ table.title-block td.k { width: 17%%; background: #eee; font-weight: bold; }
 table.sign-off td:nth-child(3) { width: 30%%; }
 .status { font-weight: bold; padding: 0.3em 0.5em; border: 1px solid #999; }
 .status.fail { color: #a00; border-color: #a00; }
+.warning { padding: 0.3em 0.5em; border: 1px solid #b60; color: #733; }
 figure { margin: 0.8em 0; break-inside: avoid; }
 figure img { display: block; max-width: 100%%; }
 figcaption { font-size: 8pt; color: #333; margin-top: 0.2em; }
@@ -314,4 +316,13 @@ def status(checks):
     return (
         f'<p class="status fail">{len(failed)} of {len(checks)} checks FAIL: '
         f"{html.escape(names)}. Do not lift on this plan as it stands.</p>"
+    )
+
+
+def warnings(problem):
+    """The planning file's warnings (what the console prints as ``liftplan: warning:``), one
+    paragraph each under page 1's status, or ``""``: what the signer must know of the inputs
+    (water not drained, a bed that cannot carry the body, a likely unit slip)."""
+    return "".join(
+        f'<p class="warning"><b>Warning:</b> {html.escape(line)}</p>' for line in problem_warnings(problem)
     )

@@ -16,6 +16,8 @@ from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.console.slings import _ranking
 from liftplan.planner.output.figures.plan import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.report.view import view_section
+from liftplan.planner.plans.slings.two_crane import SHARED
 
 
 def _in_file(problem, point):
@@ -284,18 +286,38 @@ def render_html(plan, today=None):
     if hasattr(plan, "chosen"):
         chosen = plan.chosen
         dx, dy, dz = _in_file(problem, chosen.worst_cog_offset)
+        each = []
+        for name, hook, (tilt, offset) in zip(plan.crane_names, chosen.hook_worst, chosen.hook_worst_at):
+            ox, oy, oz = _in_file(problem, offset)
+            each.append(
+                (
+                    f"{name}: largest hook load {hook:.2f} t at tilt, CG offset (x, y, z)",
+                    f"{tilt:+.2f}; {ox:+.2f}, {oy:+.2f}, {oz:+.2f}",
+                    "deg; m",
+                )
+            )
         result = _table(
             ["quantity", "value", "unit"],
             [
                 ("roll about the hook line (CG under it)", f"{chosen.roll:.2f}", "deg"),
-                ("worst case: tilt along the hook line", f"{chosen.worst_tilt:+.2f}", "deg"),
-                ("worst case: CG offset (x, y, z)", f"{dx:+.2f}, {dy:+.2f}, {dz:+.2f}", "m"),
+                ("objective's worst: tilt along the hook line", f"{chosen.worst_tilt:+.2f}", "deg"),
+                ("objective's worst: CG offset (x, y, z)", f"{dx:+.2f}, {dy:+.2f}, {dz:+.2f}", "m"),
+                *each,
             ],
-            "Where the hook loads are worst",
+            "Where the hook-load spread (the objective) and each crane's hook load are worst",
             full=False,
             text_columns=(0,),
         )
-        search_rows = [("pairs of rigs considered", plan.options, "-")]
+        paired = [n for t, n in plan.ruled_out.items() if t not in plan.rig_causes and t != SHARED]
+        search_rows = [
+            ("pairs of rigs considered (each crane's rigs that pass its own checks)", plan.options, "pairs")
+        ]
+        # the pairs sharing a lug are dropped before the pairs are considered
+        after = [("feasible pairs (considered, less those ruled out)", plan.options - sum(paired), "pairs")]
+
+        def counted(text):
+            return "rigs of one crane" if text in plan.rig_causes else "pairs"
+
         how = (
             "Hook loads by the lever rule along the hook line (each hook where its rig puts it), "
             "checked on the rigging model with free hooks and elastic legs."
@@ -310,11 +332,18 @@ def render_html(plan, today=None):
             ("search stopped", stats.stopped, "-"),
             ("certified lower bound", f"{stats.lower_bound:.4g}", "objective"),
         ]
+        after = []
+
+        def counted(text):
+            return "-"
+
         how = plan.method_text
         title = f"Lift plan: {problem.cranes} cranes on slings, lugs chosen by liftplan"
     search = _table(
         ["quantity", "value", "unit"],
-        search_rows + [(f"ruled out: {text}", n, "options") for text, n in plan.ruled_out.items()],
+        search_rows
+        + [(f"ruled out: {text}", n, counted(text)) for text, n in plan.ruled_out.items()]
+        + after,
         "Search",
         full=False,
         text_columns=(0,),
@@ -333,6 +362,7 @@ def render_html(plan, today=None):
             f"<p>All coordinates are in the planning file's frame: {html.escape(FRAME_TEXT[problem.frame])}. "
             f"{how} Forces in t (tonne-force), lengths in m.</p>",
             report_page.status(plan.checks),
+            report_page.warnings(plan.problem),
             "<h2>1 Recommendation</h2>",
             cranes,
             legs,
@@ -349,6 +379,7 @@ def render_html(plan, today=None):
                 "plan view",
                 "Plan view, seen from above: each crane's lugs, its hook and the CG.",
             ),
+            *view_section(plan),
             "<h2>5 Alternatives</h2>",
             ranking,
             '<h2 class="appendix">Engineering appendix</h2>',

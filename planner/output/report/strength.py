@@ -21,6 +21,7 @@ from liftplan.model.strength import hull_girder
 from liftplan.planner.output.figures.strength import strength_figure
 from liftplan.planner.output.report import page as report_page
 from liftplan.planner.output.report.page import FONT_PT, figure_size
+from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.strength import StrengthContext, objective_weights
 from liftplan.planner.search.scenarios import LugSet, Scenario
 from liftplan.planner.search.strength import GirderLoads, State, exact_curves, force_attitude
@@ -550,6 +551,7 @@ def render_html(plan, today=None):
             "Angles: heel &gt; 0 starboard down, trim &gt; 0 bow down. Forces in t (tonne-force), "
             "lengths in m, moments in t m.</p>",
             report_page.status(plan.checks),
+            report_page.warnings(plan.problem),
             "<h2>1 Recommendation</h2>",
             lugs,
             summary,
@@ -567,6 +569,7 @@ def render_html(plan, today=None):
             "nominal CG (the plan's peaks are the worst over every state).</p>",
             "<h2>5 Figures</h2>",
             *figs,
+            *view_section(plan),
             "<h2>6 Assumptions</h2>",
             # one block: never a bullet or two alone on a page
             '<ul style="break-inside: avoid">'

@@ -15,6 +15,7 @@ from pathlib import Path
 from liftplan.model.version import stamped
 from liftplan.planner.output.paths import replaced
 from liftplan.planner.output.report import held, slings, strength
+from liftplan.planner.output.report.view import for_print
 from liftplan.planner.plans.protocol import LiftPlan
 
 #: plan kind (:data:`liftplan.planner.plan.KINDS`) -> ``render(plan) -> (html, scene toml)``.
@@ -74,5 +75,5 @@ def write_report(plan: LiftPlan, directory: str | os.PathLike[str]) -> ReportFil
     else:
         pdf_path = out / "report.pdf"
         with replaced(pdf_path) as temporary:
-            weasyprint.HTML(string=page).write_pdf(temporary)
+            weasyprint.HTML(string=for_print(page)).write_pdf(temporary)
     return ReportFiles(html=html_path, pdf=pdf_path, scene=scene_path, json=json_path)

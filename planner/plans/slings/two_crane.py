@@ -69,6 +69,10 @@ class SlingOption:
         The tilt along the hook line where it occurs.
     worst_cog_offset : tuple of 3 float  [m]
         The CG offset (body frame, z-up) where it occurs.
+    hook_worst_at : tuple of 2 (float, tuple of 3 float)
+        Each crane's largest hook load: the tilt along the hook line [deg] and the CG offset
+        (body frame, z-up) [m] where it occurs (not where the objective is worst: the CG at
+        one end loads one crane and unloads the other).
     top_legs : tuple of (numpy.ndarray or None)  [t]
         A spreader's two top legs at level (None without a bar).
     top_angles : tuple of (numpy.ndarray or None)  [deg]
@@ -87,8 +91,19 @@ class SlingOption:
     worst_value: float
     worst_tilt: float
     worst_cog_offset: tuple
+    hook_worst_at: tuple = ()
     top_legs: tuple = (None, None)
     top_angles: tuple = (None, None)
+
+
+#: The cause of a pair of rigs dropped before the pairs are considered (a lug in both slings).
+SHARED = "lugs shared by both slings"
+
+
+def _where(loads, tilts, offsets):
+    """(tilt [deg], CG offset [m]) of the largest of ``loads`` (CG vertex, tilt)."""
+    cg, tilt = np.unravel_index(int(np.argmax(loads)), loads.shape)
+    return float(tilts[tilt]), tuple(float(v) for v in offsets[cg])
 
 
 def _turn(axis, angle, points):
@@ -164,7 +179,7 @@ def plan_two_slings(problem, top=None):
     limits_problem = dataclasses.replace(problem, rules=rules_with_bars(problem))
     counts = {
         "beyond the crane's reach": 0,
-        "lugs shared by both slings": 0,
+        SHARED: 0,
         "hook load over the rules' level limit (code margin)": 0,
         "hook load over the rules' limit within the tolerance": 0,
         "roll about the hook line beyond the tolerance": 0,
@@ -173,10 +188,12 @@ def plan_two_slings(problem, top=None):
         "booms crossing or within plan.crane_clearance in plan": 0,
     }
     per_crane = []
+    rig_causes = {"beyond the crane's reach"}  # counts of one crane's rigs, not of pairs
     for crane in fleet:
         rigs = crane_rigs(problem, crane, 0.5 * weight)
         for text, n in rigs.ruled_out.items():
             counts[text] = counts.get(text, 0) + n
+            rig_causes.add(text)
         plan_xy = (rigs.hook @ yaw.T)[:, :2]
         radius = crane.radius(plan_xy)
         swl = crane.swl_at(radius)
@@ -189,7 +206,7 @@ def plan_two_slings(problem, top=None):
     i1, i2 = np.meshgrid(np.arange(len(g1)), np.arange(len(g2)), indexing="ij")
     i1, i2 = i1.ravel(), i2.ravel()
     shared = (g1.lugs[i1][:, :, None] == g2.lugs[i2][:, None, :]).any(axis=(1, 2))
-    counts["lugs shared by both slings"] += int(np.sum(shared))
+    counts[SHARED] += int(np.sum(shared))
     i1, i2 = i1[~shared], i2[~shared]
     r1g, r2g = g1.take(i1), g2.take(i2)
     hook1, hook2 = r1g.hook, r2g.hook
@@ -298,6 +315,7 @@ def plan_two_slings(problem, top=None):
                 worst_value=float(worst_value[k]),
                 worst_tilt=float(tilts[k, tilt_k]),
                 worst_cog_offset=tuple(float(v) for v in offsets[cg_k]),
+                hook_worst_at=tuple(_where(hook_loads[k][..., c], tilts[k], offsets) for c in range(2)),
                 top_legs=tuple(s[0][1] for s in split),
                 top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
             )
@@ -307,6 +325,7 @@ def plan_two_slings(problem, top=None):
         ranking=ranking,
         options=int(len(i1)),
         ruled_out={t: n for t, n in counts.items() if n},
+        rig_causes=tuple(t for t in counts if counts[t] and t in rig_causes),
     )
 
 
@@ -337,15 +356,20 @@ class SlingPlan(SlingLift):
     ranking : list of SlingOption
         Best first.
     options : int
-        Pairs of rigs (with both assignments) considered.
+        Pairs of rigs (with both assignments) considered: each crane's rigs that pass its own
+        checks, paired.
     ruled_out : dict of str to int
-        Why the others were ruled out.
+        Why the others were ruled out: rigs of one crane for the causes in ``rig_causes``
+        (before pairing), pairs for the rest (each pair counted under its first cause).
+    rig_causes : tuple of str
+        The keys of ``ruled_out`` that count one crane's rigs.
     """
 
     problem: object
     ranking: list
     options: int
     ruled_out: dict
+    rig_causes: tuple = ()
 
     lift_text = "two-crane slings"
 
@@ -516,9 +540,13 @@ class SlingPlan(SlingLift):
         return {
             **self._lift_json(),
             "roll": chosen.roll,
-            "worst_attitude": {
+            "worst_attitude": {  # where the objective is worst; CG offset in the file's frame
                 "tilt_along_hook_line": chosen.worst_tilt,
-                "cog_offset": list(chosen.worst_cog_offset),
+                "cog_offset": list(self.in_file_frame(chosen.worst_cog_offset)),
+            },
+            "worst_hook_load_at": {  # where each crane's hook load is largest
+                name: {"tilt_along_hook_line": tilt, "cog_offset": list(self.in_file_frame(offset))}
+                for name, (tilt, offset) in zip(self.crane_names, chosen.hook_worst_at)
             },
             "ranking": [
                 {
