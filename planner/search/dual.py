@@ -28,6 +28,16 @@ maximum of V_i - V_j over pairs factors into a soft maximum of V times a soft ma
 -V per scenario: the cost is O(scenarios x n), not O(scenarios x n^2). The limits enter the
 smoothed problem as a soft exact penalty PENALTY x tau log(1 + exp(violation / tau)), whose
 derivative gives their multipliers; so does the preload's box (kept exactly in the bound).
+
+Hook-height errors within their tolerance widen each ordered pair by a constant at each
+scenario: at a given attitude the tensions are affine in the errors with a slope that does not
+depend on the preload (dT/dH = P_k diag(EA / L)), so the worst over the errors' box is exactly
+max_ab (s_a T_a - s_b T_b + c_ab), c_ab = sum_m |s_a G_am - s_b G_bm| delta_m (the rows of the
+LP the evaluator solves). Those rows no longer factor, but a scenario's soft maximum is still
+one sum over its n^2 pairs, sum_ab exp((V_a - V_b + c_ab) / tau), with the row and column
+marginals of its pair weights in place of the two factors' weights: O(scenarios x n^2), the
+same scenarios as without the errors (not one copy of each per error pattern), and the
+certificate adds sum_r lambda_r c_r to its constant (still valid for any weights).
 """
 
 from __future__ import annotations
@@ -52,7 +62,9 @@ FIRST_ROWS = 4
 PENALTY = 10.0
 
 
-def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=False, target=np.inf):
+def preload_lp_bound(
+    particular, null, alpha, beta, low, high, limits, reserve=False, target=np.inf, pair=None
+):
     """Lower bounds on the preload LP of many sets (module docstring).
 
     Parameters
@@ -71,27 +83,46 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
         L and H with L <= s_i T_k,i <= H at every scenario (finite, or +-inf for none).
     reserve : bool
         The rows are s_i T_k,i (the largest utilisation) instead of the pairs' spread.
-    target : float
+    target : float or numpy.ndarray, shape (N,)
         A set whose bound reaches this is left there (the search needs no better).
+    pair : numpy.ndarray, shape (N, m, n, n), optional  [t or -]
+        Each ordered pair's widening c_ab >= 0 at each scenario (zero diagonal): the rows are
+        then V_a - V_b + c_ab (the hook errors' exact worst; module docstring). Not with
+        ``reserve``.
 
     Returns
     -------
     numpy.ndarray, shape (N,)
         A valid lower bound on each set's LP value over these scenarios.
     """
+    if reserve and pair is not None:
+        raise ValueError("the reserve objective's rows take no pair widening")
     limits = tuple(np.broadcast_to(v, alpha.shape) for v in limits)
+    target = np.broadcast_to(np.asarray(target, dtype=float), alpha.shape[:1])
     m = alpha.shape[1]
-    if not np.isfinite(target) or m <= FIRST_ROWS:
-        return _bound(particular, null, alpha, beta, low, high, limits, reserve, target)
+    if not np.any(np.isfinite(target)) or m <= FIRST_ROWS:
+        return _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair)
     # a bound over some of the rows is a bound over all of them (a relaxation)
-    width = row_max(alpha) if reserve else row_spread(alpha)
+    width = row_max(alpha) if reserve else _worst_rows(alpha, pair)
     rows = np.argsort(-width, axis=1)[:, :FIRST_ROWS]
 
     def some(v):
+        if v is None:
+            return None
         return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
 
     bound = _bound(
-        particular, null, some(alpha), some(beta), low, high, tuple(some(v) for v in limits), reserve, target
+        particular,
+        null,
+        some(alpha),
+        some(beta),
+        low,
+        high,
+        tuple(some(v) for v in limits),
+        reserve,
+        target,
+        some(pair),
+        give_up=True,
     )
     short = np.flatnonzero(bound < target)
     if short.size:
@@ -106,19 +137,43 @@ def preload_lp_bound(particular, null, alpha, beta, low, high, limits, reserve=F
                 high[short],
                 tuple(v[short] for v in limits),
                 reserve,
-                target,
+                target[short],
+                _pick(pair, short),
             ),
         )
     return bound
 
 
-def _bound(particular, null, alpha, beta, low, high, limits, reserve, target):
-    """:func:`preload_lp_bound` over every row given."""
+def _pick(value, index):
+    """``value[index]``, or None for None (no pair widening)."""
+    return None if value is None else value[index]
+
+
+def _pair_rows(values, pair):
+    """V_a - V_b + c_ab over every ordered pair, shape (..., n, n)."""
+    return values[..., :, None] - values[..., None, :] + pair
+
+
+def _worst_rows(values, pair):
+    """Each scenario's largest row: max - min, or with ``pair`` max_ab (V_a - V_b + c_ab)."""
+    if pair is None:
+        return row_spread(values)
+    rows = _pair_rows(values, pair)
+    return rows.reshape(rows.shape[:-2] + (-1,)).max(axis=-1)
+
+
+def _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair=None, give_up=False):
+    """:func:`preload_lp_bound` over every row given.
+
+    ``give_up``: a set stops as soon as some preload is seen to meet every row given below
+    ``target`` (admissible, its worst row under it): the LP over these rows is then below the
+    target too, so no certificate from them can reach it (the caller bounds it over more rows)."""
     count, m, n = alpha.shape
+    target = np.broadcast_to(np.asarray(target, dtype=float), (count,))
     d = null.shape[2]
     limit_low, limit_high = (np.broadcast_to(v, alpha.shape) for v in limits)
     y = np.zeros((count, d))
-    tau = TAU_START * np.maximum(_worst(alpha, reserve), 1e-9 * np.abs(alpha).max(axis=(1, 2)))
+    tau = TAU_START * np.maximum(_worst(alpha, reserve, pair), 1e-9 * np.abs(alpha).max(axis=(1, 2)))
     ridge = 1e-12 * np.maximum(np.abs(beta).max(axis=(1, 2, 3)), 1e-300) ** 2
     bound = np.full(count, -np.inf)
     open_ = np.arange(count)
@@ -130,33 +185,42 @@ def _bound(particular, null, alpha, beta, low, high, limits, reserve, target):
             open_,
             tau,
             ridge,
-            (alpha, beta, limit_low, limit_high),
+            (alpha, beta, limit_low, limit_high, pair),
             (particular, null, low, high),
             reserve,
             STEPS if stage else FIRST_STEPS,
             MAX_STEPS,
             bound,
             target,
+            give_up,
         )
         tau = TAU_FACTOR * tau
     return bound
 
 
-def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, target):
+def _certify(y, open_, tau, ridge, parts, box, reserve, steps, most, bound, target, give_up=False):
     """Newton steps on the sets ``open_`` (y changed in place), then their certificate
     (``bound`` raised in place: every certificate is valid, the best is kept); returns the
-    sets still short of ``target``."""
+    sets still short of ``target`` (with ``give_up``, those whose LP over these rows is not
+    yet seen to be below it: :func:`_bound`)."""
     k = open_
-    parts = tuple(v[k] for v in parts)
+    parts = tuple(_pick(v, k) for v in parts)
     box = tuple(v[k] for v in box)
     y[k] = _newton(y[k], tau[k], ridge[k], parts, box, reserve, steps, most)
     values = parts[0] + np.einsum("kmid,kd->kmi", parts[1], y[k])
-    weights = _Weights(values, tau[k], reserve, parts[2], parts[3])
+    weights = _Weights(values, tau[k], reserve, parts[2], parts[3], parts[4])
     box_weights = _box_multipliers(y[k], box, tau[k])
     bound[k] = np.maximum(
         bound[k], weights.certificate(box[0], box[1], parts[0], parts[1], box[2], box[3], box_weights)
     )
-    return k[bound[k] < target]
+    short = bound[k] < target[k]
+    if give_up:  # an admissible preload whose worst row is below the target: the LP is too
+        preload = box[0] + np.einsum("kid,kd->ki", box[1], y[k])
+        admissible = np.all((preload >= box[2]) & (preload <= box[3]), axis=1) & np.all(
+            (values >= parts[2]) & (values <= parts[3]), axis=(1, 2)
+        )
+        short &= ~(admissible & (_worst(values, reserve, parts[4]) < target[k]))
+    return k[short]
 
 
 def _newton(y, tau, ridge, parts, box, reserve, steps, most=MAX_STEPS):
@@ -171,7 +235,7 @@ def _newton(y, tau, ridge, parts, box, reserve, steps, most=MAX_STEPS):
     for step_count in range(most):
         if live.size == 0:
             break
-        part = tuple(v[live] for v in parts)
+        part = tuple(_pick(v, live) for v in parts)
         box_part = tuple(v[live] for v in box)
         decrement = _newton_step(y, live, tau[live], ridge[live], part, box_part, reserve)
         if step_count + 1 >= steps:
@@ -181,12 +245,12 @@ def _newton(y, tau, ridge, parts, box, reserve, steps, most=MAX_STEPS):
 
 def _newton_step(y, live, tau, ridge, parts, box, reserve):
     """One damped Newton step on the sets ``live`` (y changed in place); their decrements."""
-    alpha, beta, limit_low, limit_high = parts
+    alpha, beta, limit_low, limit_high, pair = parts
     count, m, n, d = beta.shape
     flat = beta.reshape(count, m * n, d)
     x = y[live]
     values = alpha + np.einsum("kmid,kd->kmi", beta, x)
-    weights = _Weights(values, tau, reserve, limit_low, limit_high)
+    weights = _Weights(values, tau, reserve, limit_low, limit_high, pair)
     grad, hess = weights.derivatives(beta, flat)
     penalty, grad_box, hess_box = _box_penalty(x, box, tau)
     grad, hess = grad + grad_box, hess + hess_box
@@ -205,7 +269,9 @@ def _newton_step(y, live, tau, ridge, parts, box, reserve):
         trial = x[active] + size[active, None] * step[active]
         values = alpha[active] + np.einsum("kmid,kd->kmi", beta[active], trial)
         value = (
-            _objective(values, tau[active], reserve, limit_low[active], limit_high[active])
+            _objective(
+                values, tau[active], reserve, limit_low[active], limit_high[active], _pick(pair, active)
+            )
             + _box_penalty(trial, tuple(v[active] for v in box), tau[active])[0]
         )
         # (a rounding-level rise is no rise: near the minimum both sides agree)
@@ -219,10 +285,10 @@ def _newton_step(y, live, tau, ridge, parts, box, reserve):
     return np.where(size > 0.0, -slope, 0.0)  # g^T H^-1 g: the Newton decrement squared
 
 
-def _worst(values, reserve):
+def _worst(values, reserve, pair=None):
     if reserve:
         return row_max(values).max(axis=1)
-    return row_spread(values).max(axis=1)
+    return _worst_rows(values, pair).max(axis=1)
 
 
 def _log_sum_exp(x, axis):
@@ -267,12 +333,15 @@ def _box_penalty(y, box, tau):
     return value, grad, hess
 
 
-def _objective(values, tau, reserve, limit_low, limit_high):
+def _objective(values, tau, reserve, limit_low, limit_high, pair=None):
     """tau log sum_r exp(f_r / tau) plus the limits' soft penalty, per set."""
     t = tau[:, None, None]
-    log_k = _log_sum_exp(values / t, 2)
-    if not reserve:
-        log_k = log_k + _log_sum_exp(-values / t, 2)
+    if pair is not None:  # each scenario's soft maximum over its ordered pairs
+        log_k = _pair_soft_max(values, pair, tau, weights=False)[0]
+    else:
+        log_k = _log_sum_exp(values / t, 2)
+        if not reserve:
+            log_k = log_k + _log_sum_exp(-values / t, 2)
     with np.errstate(invalid="ignore"):
         soft = _softplus((values - limit_high) / t) + _softplus((limit_low - values) / t)
     return tau * _log_sum_exp(log_k, 1) + PENALTY * tau * soft.sum(axis=(1, 2))
@@ -282,21 +351,44 @@ def _sigmoid(x):
     return 0.5 * (1.0 + np.tanh(0.5 * x))
 
 
+def _pair_soft_max(values, pair, tau, weights=True):
+    """Each scenario's log sum_ab exp((V_a - V_b + c_ab) / tau), shape (N, m), and (with
+    ``weights``) the pairs' softmax weights lambda_ab, shape (N, m, n, n), summing to 1 per
+    scenario (in place of one array: the reductions of planner/search/rows.py)."""
+    t = tau[:, None, None]
+    scaled = values / t
+    rows = scaled[..., :, None] - scaled[..., None, :]
+    rows += pair / t[..., None]
+    top = row_max(row_max(rows))
+    rows -= top[..., None, None]
+    np.exp(rows, out=rows)
+    total = rows.reshape(rows.shape[:2] + (-1,)) @ np.ones(rows.shape[2] * rows.shape[3])
+    if weights:
+        rows /= total[..., None, None]
+    return np.log(total) + top, rows
+
+
 class _Weights:
     """Softmax weights of the rows and the limits' multipliers at one point."""
 
-    def __init__(self, values, tau, reserve, limit_low, limit_high):
+    def __init__(self, values, tau, reserve, limit_low, limit_high, pair=None):
         t = tau[:, None, None]
         self.tau, self.reserve = tau, reserve
         self.limit_low, self.limit_high = limit_low, limit_high
-        up = values / t
-        top = row_max(up)[..., None]
-        e_up = np.exp(up - top)
-        s_up = row_sum(e_up)
-        self.p = e_up / s_up[..., None]
-        log_k = np.log(s_up) + top[..., 0]  # log sum_i exp(V_k,i / tau)
-        self.q = np.zeros_like(values)
-        if not reserve:  # times sum_j exp(-V_k,j / tau): the pairs' soft maximum factors
+        #: each scenario's pair weights (N, m, n, n) where they do not factor, else None
+        self.pairs, self.pair = None, pair
+        if pair is not None:  # the hook errors' pair widening: one soft maximum over pairs
+            log_k, self.pairs = _pair_soft_max(values, pair, tau)
+            self.p, self.q = row_sum(self.pairs), row_sum(self.pairs.swapaxes(2, 3))  # row, column
+        else:
+            up = values / t
+            top = row_max(up)[..., None]
+            e_up = np.exp(up - top)
+            s_up = row_sum(e_up)
+            self.p = e_up / s_up[..., None]
+            log_k = np.log(s_up) + top[..., 0]  # log sum_i exp(V_k,i / tau)
+            self.q = np.zeros_like(values)
+        if pair is None and not reserve:  # times sum_j exp(-V_k,j / tau): the pairs' factors
             down = -values / t
             bottom = row_max(down)[..., None]
             e_down = np.exp(down - bottom)
@@ -332,7 +424,11 @@ class _Weights:
             count, m * n
         )
         hess = (flat * weight[..., None]).transpose(0, 2, 1) @ flat
-        cross = (b_up * self.pi[..., None]).transpose(0, 2, 1) @ b_down
+        if self.pairs is None:  # sum_k pi_k beta_k^T p_k q_k^T beta_k
+            cross = (b_up * self.pi[..., None]).transpose(0, 2, 1) @ b_down
+        else:  # sum_k pi_k beta_k^T Lambda_k beta_k
+            mixed = (self.pairs @ beta) * self.pi[..., None, None]
+            cross = flat.transpose(0, 2, 1) @ mixed.reshape(count, m * n, d)
         hess -= (cross + cross.transpose(0, 2, 1) + grad[:, :, None] * grad[:, None, :]) / tau[..., None]
         penalty = (self.over - self.under).reshape(count, m * n)
         grad = grad + np.einsum("kr,krd->kd", penalty, flat)
@@ -351,6 +447,7 @@ class _Weights:
         w = w + over - under
         constant = (
             np.einsum("kmi,kmi->k", w, alpha)
+            + (0.0 if self.pairs is None else np.einsum("km,kmab,kmab->k", self.pi, self.pairs, self.pair))
             - np.einsum("kmi,kmi->k", over, np.where(over > 0, self.limit_high, 0.0))
             + np.einsum("kmi,kmi->k", under, np.where(under > 0, self.limit_low, 0.0))
         )

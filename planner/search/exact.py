@@ -32,6 +32,7 @@ from liftplan.planner.search.screen import (
     FEASIBLE,
     FULL_COLUMNS,
     REASONS,
+    row_ceiling,
     screen,
     screening_scenarios,
     set_rows,
@@ -178,7 +179,7 @@ def search_exact(problem, started, top, progress=None):
                 full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual, target=target)
                 per_row = (time.perf_counter() - clock) / len(batch)
                 refine_count += len(batch)
-                dive = None
+                pushed = []
                 for j, new_bound, reason in zip(batch, full.bound, full.reason):
                     refined[j] = True
                     if reason != FEASIBLE:
@@ -186,12 +187,25 @@ def search_exact(problem, started, top, progress=None):
                         continue
                     entry = (max(float(new_bound), float(bound[j])), False, int(j))
                     heapq.heappush(heap, entry)
-                    dive = entry if dive is None or entry < dive else dive
-                if dive is not None and len(ranking) < top:
-                    # no k-th best yet: evaluate the batch's best now, so that its value
-                    # lets the next batches' bounds stop early (the row is not evaluated twice)
-                    done[dive[2]] = True
-                    evaluate(dive[2], dive[0])
+                    pushed.append(entry)
+                # evaluate the batch's best now when it can enter the top k (and its bound does
+                # not prove it infeasible), so that its value lets the next batches' bounds stop
+                # early: a k-th best found late leaves every bound refined to the end. Until
+                # there are k plans, the batch's best k - (plans) rows (a row is not evaluated
+                # twice: it stays in the heap, marked done)
+                dives = max(1, top - len(ranking))
+                for entry in sorted(pushed)[:dives]:
+                    j = entry[2]
+                    if entry[0] > row_ceiling(problem, sets[j][None], cranes[j][None])[0]:
+                        continue  # its bound proves it infeasible (screen.value_ceiling)
+                    if len(ranking) >= top and entry[0] >= ranking[top - 1].worst_value:
+                        break
+                    if ranking and problem.work_limit is not None and evaluated >= problem.work_limit:
+                        break  # the loop's own checks stop the search next
+                    if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
+                        break
+                    done[j] = True
+                    evaluate(j, entry[0])
                 continue
             evaluate(k, value)
     except KeyboardInterrupt:

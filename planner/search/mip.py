@@ -29,8 +29,9 @@ list is part of the box).
 Hook-height tolerances fit the same formulation: a hook raised by e_i adds kappa e_i to the
 rope (the hook plane takes up the errors' plane through the statics), so a scenario may carry
 a hook error for every candidate (:class:`Cut`: the worst errors the dense check finds for the
-chosen set, zero elsewhere) and stays linear. The list starts with none (a part of the
-errors' box, so still a lower bound) and grows by the chosen set's worst errors.
+chosen set, each other candidate with its nearest chosen lug's) and stays linear. The list
+starts with none (a part of the errors' box, so still a lower bound) and grows by the chosen
+set's worst errors.
 
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
@@ -659,19 +660,30 @@ def search_mip(problem, started, top=1, progress=None):
 
 
 def _cut(mip, solution, lugset, scenario, kind):
-    """The scenario as a :class:`Cut`, with the chosen set's worst hook errors there (on its
-    columns; :func:`worst_errors`) when its cranes have a hook tolerance."""
+    """The scenario as a :class:`Cut`, with the chosen set's worst hook errors there
+    (:func:`worst_errors`) when its cranes have a hook tolerance.
+
+    Every other candidate gets the error of the chosen lug nearest to it in plan (any errors
+    within the tolerance are a scenario of the box, so the MIP stays a relaxation): a set that
+    moves a lug to a neighbour meets nearly the same twist, where errors on the chosen lugs
+    alone would leave it none, and the next round would only pick that neighbour."""
     if not lugset.hook_uncertain:
         return Cut(scenario)
     errors = worst_errors(lugset, solution.preload, scenario, kind)
+    problem = mip.problem
+    plan = (problem.points @ rotation_matrix(0.0, 0.0, problem.yaw).T)[:, :2]
+    chosen = np.array(solution.indices)
+    distance = np.linalg.norm(plan[:, None, :] - plan[None, chosen, :], axis=2)  # (C, n)
+    nearest = np.argmin(distance, axis=1)
+    nearest[chosen] = np.arange(len(chosen))  # a chosen lug keeps its own error
     kinds = len(mip.classes.members)
-    crane_class = {j: c for c, members in enumerate(mip.classes.members) for j in members}
     return Cut(
         scenario,
         tuple(
-            (int(i) * kinds + crane_class[j], float(e))
-            for i, j, e in zip(solution.indices, solution.cranes, errors)
-            if e != 0.0
+            (int(i) * kinds + c, float(errors[nearest[i]]))
+            for i in range(mip.count)
+            for c in range(kinds)
+            if errors[nearest[i]] != 0.0
         ),
     )
 

@@ -469,54 +469,49 @@ def _hook_margins(problem, cranes, gain, scale):
     if not np.any(delta > 0.0):
         return None
     margin = np.einsum("kmij,kj->kmi", np.abs(gain), delta)
-    scaled = gain * scale[:, None, :, None]
-    pair = np.einsum("kmabj,kj->kmab", np.abs(scaled[:, :, :, None] - scaled[:, :, None, :]), delta)
-    return margin, pair, _twist_shift(scaled, pair, delta)
+    pair = _pair_widening(gain * scale[:, None, :, None], delta)
+    return margin, pair
 
 
-#: Hook-error vectors per scenario for the dual bound: those of its most sensitive pairs.
-TWIST_PATTERNS = 4
+def _pair_widening(scaled, delta):
+    """sum_j |s_a G_aj - s_b G_bj| delta_j for every ordered pair (a, b), (N, m, n, n): one
+    hook at a time (no (N, m, n, n, n) array), each unordered pair once (it is symmetric)."""
+    n = scaled.shape[2]
+    first, second = np.triu_indices(n, 1)
+    upper = np.zeros(scaled.shape[:2] + (len(first),))
+    for j in range(scaled.shape[3]):
+        column = scaled[..., j]
+        upper += np.abs(column[..., first] - column[..., second]) * delta[:, j, None, None]
+    pair = np.zeros(scaled.shape[:3] + (n,))
+    pair[..., first, second] = upper
+    pair[..., second, first] = upper
+    return pair
 
 
-def _twist_shift(scaled, pair, delta):
-    """Hook-error vectors that widen each scenario's most sensitive pairs the most, as shifts u
-    of the scaled values s_i T_i, shape (N, m, TWIST_PATTERNS, n).
+def value_ceiling(scale, high, low, reserve=False):
+    """The worst value any feasible preload of a row can have, shape (N,)  [t or -].
 
-    For any hook errors e within the box the spread is at least that of s T + u(e) and of
-    s T - u(e), so the pair terms sum_m |s_a G_am - s_b G_bm| delta_m (not separable by rope)
-    are bounded below by shifted copies of the scenario; for the pairs (a, b) chosen here
-    (the largest terms) the bound is exact."""
-    count, m, n = pair.shape[:3]
-    patterns = min(TWIST_PATTERNS, n * (n - 1) // 2)
-    upper = pair * np.triu(np.ones((n, n)), 1)  # each unordered pair once
-    top = np.argsort(upper.reshape(count, m, n * n), axis=2)[..., ::-1][..., :patterns]
-    a, b = np.divmod(top, n)  # (N, m, P)
-    k, s = np.arange(count)[:, None, None], np.arange(m)[None, :, None]
-    sign = np.sign(scaled[k, s, a] - scaled[k, s, b])  # (N, m, P, n)
-    return np.einsum("kmij,kmpj->kmpi", scaled, sign * delta[:, None, None, :])
+    Every row of the preload LP is s_a T_a - s_b T_b + c_ab with each tension within
+    [L + m, H - m] (m its hook margin) and c_ab <= s_a m_a + s_b m_b, so it is at most
+    max_a s_a H_a - min_b s_b L; for ``reserve`` s_a T_a + s_a m_a <= max_a s_a H_a. A lower
+    bound above this proves the row infeasible.
 
-
-def _take(value, index):
-    if isinstance(value, tuple):
-        return tuple(_take(v, index) for v in value)
-    value = np.asarray(value)
-    return value[index] if value.ndim else value
+    Parameters
+    ----------
+    scale : (N, n)   the objective's s_i
+    high : (N, n)  [t]   the largest tension allowed in the box
+    low : float  [t]   min_tension
+    reserve : bool
+    """
+    top = row_max(scale * high)
+    return top if reserve else top - row_min(scale * low)
 
 
-def _dual_bound(rows, reserve, shift, target):
-    """:func:`~liftplan.planner.search.dual.preload_lp_bound` on the screening scenarios, each
-    copied once per hook-error pattern and sign when ``shift`` (N, m, P, n) is given."""
-    part, null, alpha, beta, low, high, limits = rows
-    if shift is not None:
-        count, m, patterns, n = shift.shape
-        shift = np.concatenate([shift, -shift], axis=2).reshape(count, -1, n)
-        copies = 2 * patterns
-        alpha = np.repeat(alpha, copies, axis=1) + shift
-        beta = np.repeat(beta, copies, axis=1)
-        limits = tuple(
-            np.repeat(np.broadcast_to(v, alpha.shape[:1] + (m, n)), copies, axis=1) + shift for v in limits
-        )
-    return preload_lp_bound(part, null, alpha, beta, low, high, limits, reserve, target)
+def row_ceiling(problem, sets, cranes):
+    """:func:`value_ceiling` of (set, assignment) rows, shape (N,)  [t or -]."""
+    swl = problem.reach[1][sets, cranes]
+    high = rule_limits(problem, swl, cranes)[0]
+    return value_ceiling(problem.goal.scale(swl), high, problem.min_tension, problem.goal.peak)
 
 
 def _worst_pairs(values, pair):
@@ -751,20 +746,17 @@ def _screen_pairs(
     high = np.clip(np.minimum(np.minimum(preload_range[1][ok], limits[1][ok]), weight), -big, big)
     beta = np.einsum("kmij,kjd->kmid", P, null) * sc[..., None]
     tension_limits = (sc * limits[0], sc * limits[1][ok][:, None, :])
-    shift = None
-    if hook is not None:  # the hook errors: exact on the limits, shifted copies for pairs
+    # no feasible preload has a worse value than the limits allow: a bound past that proves
+    # the set infeasible and needs no refining, plan or no plan
+    target = np.minimum(target, value_ceiling(sc[:, 0, :], limits[1][ok], limits[0], reserve))
+    pair = None
+    if hook is not None:  # the hook errors, exact: on the limits, and each pair's widening
         margin = sc * hook[0][ok]
         tension_limits = (tension_limits[0] + margin, tension_limits[1] - margin)
         if reserve:
             alpha = alpha + margin
         else:
-            shift = hook[2][ok]
-    rows = (part, null, alpha, beta, low, high, tension_limits)
-    dual = _dual_bound(rows, reserve, None if shift is None else shift[:, :, :1], target)
-    if shift is not None and shift.shape[2] > 1:  # the sets still short of target: all patterns
-        again = np.flatnonzero(dual < target)
-        if again.size:
-            chosen = tuple(_take(v, again) for v in rows)
-            dual[again] = np.maximum(dual[again], _dual_bound(chosen, reserve, shift[again], target))
-    bound[ok] = dual  # the caller keeps the larger of this and the pair bound
+            pair = hook[1][ok]
+    # the caller keeps the larger of this and the pair bound
+    bound[ok] = preload_lp_bound(part, null, alpha, beta, low, high, tension_limits, reserve, target, pair)
     return bound, reason

@@ -62,8 +62,9 @@ CASES = [
 @pytest.mark.parametrize("cranes, hook, objective", CASES)
 def test_dual_bound_is_a_lower_bound_and_nearly_the_lp(tanker, cranes, hook, objective):
     """Weak duality: whatever the optimiser did, the bound never exceeds the LP it bounds
-    (Clarabel's tolerance, 1e-6 W); without hook errors it is within 0.5 % of it (a fixed
-    count of Newton steps per tau: measured at most 0.16 % on these sets; ten steps close it)."""
+    (Clarabel's tolerance, 1e-6 W); it is within 0.5 % of it (a fixed count of Newton steps
+    per tau: measured at most 0.16 % on these sets; ten steps close it), with hook errors too
+    (their pair rows are exact in the smoothed problem, not shifted copies of the scenarios)."""
     problem = dataclasses.replace(tanker, cranes=cranes, hook_tolerance=hook, fleet=(), objective=objective)
     sets = all_sets(problem)
     rng = np.random.default_rng(7)
@@ -78,8 +79,7 @@ def test_dual_bound_is_a_lower_bound_and_nearly_the_lp(tanker, cranes, hook, obj
             continue  # an infeasible LP: any bound holds
         scale = problem.body.weight if objective == "spread" else 1.0
         assert bound <= value + 1e-6 * scale
-        if hook == 0.0:
-            assert bound >= value - 5e-3 * abs(value) - 1e-9 * scale
+        assert bound >= value - 5e-3 * abs(value) - 1e-9 * scale
         checked += 1
     assert checked >= 5
 
