@@ -805,6 +805,13 @@ class StrengthPlan(InFileFrame):
         )
         return out
 
+    @property
+    def _hook_tolerance(self):
+        """The cranes' hook-height tolerance  [m] (one crane class: the [crane]'s own, or the
+        plan's)."""
+        own = self.problem.fleet[0].hook_tolerance
+        return float(self.problem.hook_tolerance if own is None else own)
+
     def _set_json(self, s, stats):
         def peak(pk):
             state = dict(s.states[pk.state])
@@ -863,6 +870,14 @@ class StrengthPlan(InFileFrame):
             "spread_optimal": (
                 None if self.spread_plan is None else self._set_json(self.spread_plan, self.spread_stats)
             ),
+            # what the plan held and was allowed, as a held plan's JSON says it (the hook
+            # tolerance is in its states; the time limit shared 80/20 with the spread partner)
+            "hooks": {"tolerance": dict.fromkeys(self.labels, self._hook_tolerance)},
+            "search": {
+                "method": self.stats.method,
+                "stopped": self.stats.stopped,
+                "limits": {"gap": self.problem.gap, "time_limit": self.problem.time_limit},
+            },
         }
 
 

@@ -22,6 +22,7 @@ from liftplan.model import load_scene, solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.strength import hull_girder
 from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.plan import plan
 from liftplan.planner.plans.strength import (
     SPREAD_WEIGHTS,
     StrengthContext,
@@ -278,3 +279,17 @@ def test_ferry_plan_json_beside_the_spread_plan():
     assert spread["spread"] <= strength["spread"] + 1e-6
     assert strength["search"]["stopped"] == "proved" and strength["search"]["certified"]
     assert out["gap"] <= 1e-6 * strength["objective_value"] + 1e-9
+
+
+@pytest.mark.parametrize(
+    "hook",
+    [0.0, pytest.param(0.02, marks=pytest.mark.slow)],  # 0.02: 30 s, the partner's search
+)
+def test_plan_json_shows_the_hook_tolerance_and_the_time_limit(hook):
+    """studies/combinations.py found them honoured but not shown (IGNORED cells): the hook
+    tolerance a hoist plan holds, and the time limit it was given."""
+    problem = small_problem(control="hoist", cranes=4, plan_extra=f"hook_tolerance = {hook}\ntime_limit = 60")
+    out = plan(problem).to_json()
+    assert set(out["hooks"]["tolerance"].values()) == {hook}
+    assert out["search"]["limits"]["time_limit"] == 60
+    assert out["search"]["stopped"] == out["strength"]["search"]["stopped"]
