@@ -798,4 +798,17 @@ def plan_held(problem, top=None, girder_order=True):
             phase="hull girder of the ranked sets",
             finished=True,
         ) from None
-    return Plan(problem=problem, ranking=ranked, stats=stats, girders=girders)
+    return Plan(problem=problem, ranking=ranked, stats=girder_stats(stats, ranking, ranked), girders=girders)
+
+
+def girder_stats(stats, ranking, ranked):
+    """The search's stats for the plan the girder chose: when the sets that overload the hull
+    girder moved the search's best down the ranking, the plan is another set, and the best
+    value and the gap are its own (the lower bound of every set still holds under it). With
+    the top sets proved, every set better than the plan is in the ranking and overloads the
+    girder, so the plan is the proved best that keeps it: its value is then the bound."""
+    if ranked[0] is ranking[0]:
+        return stats
+    best = float(ranked[0].worst_value)
+    lower = best if stats.stopped == "proved" else min(stats.lower_bound, best)
+    return dataclasses.replace(stats, best=best, lower_bound=lower)

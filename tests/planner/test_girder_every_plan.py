@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import dataclasses
 import json
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 from support.cli import run
-from support.planning import fleet_with_girder
+from support.planning import fleet_with_girder, larger_fleet
 
 from liftplan.model import solve
 from liftplan.model.strength import strength_checks
@@ -126,3 +127,36 @@ def test_rope_length_plan_checks_the_girder():
     result = plan(dataclasses.replace(loads_problem(text), hook_tolerance=0.0, top=1))
     assert result.kind == "lengths"
     assert {"bending_moment", "shear_force"} <= {c.name for c in result.checks}
+
+
+def test_a_plan_the_girder_moved_down_states_its_own_gap():
+    """The six-crane fleet's best set overloads the girder (1.115 of its allowable), so the
+    plan is the next set; the search's stats gave the best set's value (0.27546) beside the
+    plan's (0.27614) and a 0 % gap. The plan's stats are its own: with the top sets proved,
+    every better set overloads the girder, so the plan is the proved best that keeps it."""
+    from liftplan.planner.plans.held import girder_stats
+    from liftplan.planner.search.evaluator import SearchStats
+
+    problem = loads_problem(larger_fleet(6, fleet_with_girder()))
+    result = plan(problem)
+    chosen = result.ranking[0]
+    better = [r for r in result.ranking if r.worst_value < chosen.worst_value]
+    assert better and all(
+        any(w.ratio > 1.0 for w in g) for r, g in zip(result.ranking, result.ranked_girder) if r in better
+    )
+    assert result.stats.best == chosen.worst_value == result.stats.lower_bound
+    # not proved: the bound of every set is kept, the gap is the plan's own
+    stats = SearchStats(
+        sets=1,
+        screened_out=0,
+        evaluated=1,
+        pruned=0,
+        seconds=0.0,
+        lower_bound=0.2,
+        best=0.25,
+        stopped="time_limit",
+    )
+    a, b = SimpleNamespace(worst_value=0.25), SimpleNamespace(worst_value=0.3)
+    moved = girder_stats(stats, [a, b], [b, a])
+    assert (moved.best, moved.lower_bound) == (0.3, 0.2) and moved.relative_gap == pytest.approx(1 / 3)
+    assert girder_stats(stats, [a, b], [a, b]) is stats
