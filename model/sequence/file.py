@@ -196,6 +196,7 @@ class _Operation(Table):
             '`"move"`: the grid of reported states over the move (parameter 0 to 1); every maximum '
             "is searched between them too"
         ),
+        unit="-",
         values="integer >= 1",
         absent='10 for `"move"`; refused otherwise (a turn has `step`)',
         example="steps = 10",

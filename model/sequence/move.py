@@ -136,6 +136,8 @@ class MoveModel:
             note=f"{eq.model} model",
             heel=eq.pose.heel,
             trim=eq.pose.trim,
+            # the elastic model keeps the body origin at plan (0, 0); the inclined one moves it
+            origin=tuple(eq.position) if eq.position is not None else (0.0, 0.0, eq.pose.lift_height),
         )
         values = {f"hook:{k}": v for k, v in hook_loads.items()}
         for lug, ld in loads.items():

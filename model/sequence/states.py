@@ -57,6 +57,8 @@ class SequenceState:
     heel, trim : float or None  [deg]
         A move stage: the body's attitude on its elastic ropes (``angle`` is then the stage
         parameter 0..1 and ``tilt`` 0); None in a turning stage.
+    origin : tuple of 3 float or None  [m]
+        A move stage: the world position of the body-frame origin.
     """
 
     stage: str
@@ -72,10 +74,17 @@ class SequenceState:
     note: str = ""
     heel: float | None = None
     trim: float | None = None
+    origin: tuple | None = None
 
     def to_json(self):
         if self.heel is not None:  # a move stage: no turning angle, its parameter and attitude
-            turn = {"angle": None, "param": self.angle, "heel": self.heel, "trim": self.trim}
+            turn = {
+                "angle": None,
+                "param": self.angle,
+                "heel": self.heel,
+                "trim": self.trim,
+                "origin": list(self.origin),
+            }
         else:
             turn = {"angle": self.angle}
         return {

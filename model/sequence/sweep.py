@@ -442,7 +442,7 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
                         spec.capacity,
                         "t",
                         note=(
-                            f"largest load {lug.share:.4g} t at {maxima[f'lug:{lug.lug}'].angle:.3f} deg x "
+                            f"largest load {lug.share:.4g} t {_at(stage, maxima[f'lug:{lug.lug}'].angle)} x "
                             f"factors {lug.product:.4g} x consequence {rules.consequence_factor:g}"
                         ),
                     )
@@ -457,7 +457,7 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
                         spec.capacity_out_of_plane,
                         "t",
                         note=(
-                            f"largest out-of-plane load {peak.value:.4g} t at {peak.angle:.3f} deg x "
+                            f"largest out-of-plane load {peak.value:.4g} t {_at(stage, peak.angle)} x "
                             f"{factor:.4g} + lateral {rules.lateral_fraction:g} x design load"
                         ),
                     )
@@ -475,6 +475,11 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
             )
         )
     return tuple(out)
+
+
+def _at(stage, where):
+    """Where on a stage a maximum is, in words: an angle, or a move stage's parameter."""
+    return f"at s = {where:.3f}" if stage.kind == "move" else f"at {where:.3f} deg"
 
 
 def _named(check, subject):
