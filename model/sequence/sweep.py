@@ -286,9 +286,15 @@ class StageModel:
         return state, values
 
 
+def stage_model(sequence, stage):
+    """The loads of a stage as functions of its sweep variable: the angle of a turn
+    (:class:`StageModel`), the parameter of a move (:class:`~liftplan.model.sequence.move.MoveModel`)."""
+    return MoveModel(sequence, stage) if stage.kind == "move" else StageModel(sequence, stage)
+
+
 def run_stage(sequence, stage):
     """Sweep one stage: :class:`StageResult`."""
-    model = MoveModel(sequence, stage) if stage.kind == "move" else StageModel(sequence, stage)
+    model = stage_model(sequence, stage)
     sampler = Sampler(model)
     grid = stage.angles
     ordered = np.sort(grid)
@@ -486,4 +492,4 @@ def _named(check, subject):
     return Check(check.name, subject, check.value, check.limit, check.unit, check.ok, check.kind, check.note)
 
 
-__all__ = ["Peak", "run_sequence", "run_stage", "StageModel"]
+__all__ = ["Peak", "run_sequence", "run_stage", "stage_model", "StageModel"]

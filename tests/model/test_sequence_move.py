@@ -189,3 +189,29 @@ def test_the_cranes_of_a_move_stage_raise_no_unused_key_warning():
     seq = loads_sequence(move_text(['{crane = "A", hoist = 0.02}']))
     assert sequence_warnings(seq) == []
     assert dataclasses.is_dataclass(seq.stages[0].moves[0])
+
+
+def test_the_lug_planner_places_a_lug_of_a_move_stage_by_its_elastic_share():
+    """Lug A on one of two candidates: at the corner, or nearer the CG (where the rope takes a
+    larger share of the body, beyond the lug's capacity); the planner sweeps the move for each
+    and picks the one whose every check is met, which is also the least design load."""
+    from liftplan.model.sequence.file import loads_lug_choice
+    from liftplan.model.sequence.lugplan import plan_lugs
+
+    text = move_text(['{crane = "A", hoist = 0.02}']).replace(
+        'name = "A"\nat = [5.0, 3.0, 0.0]', 'name = "A"\non = ["corner", "inner"]'
+    )
+    text += (
+        '\n[[candidates]]\nname = "corner"\nat = [5.0, 3.0, 0.0]\ncapacity = 70.0\n'
+        '\n[[candidates]]\nname = "inner"\nat = [4.0, 2.0, 0.0]\ncapacity = 70.0\n'
+    )
+    plan = plan_lugs(loads_lug_choice(text))
+    assert plan.best.lugs == {"A": "corner"} and plan.best.ok
+    inner = next(o for o in plan.ranking if o.lugs["A"] == "inner")
+    assert not inner.ok and inner.worst > plan.best.worst
+    # the chosen sweep is the move on the corner lug, state by state liftplan solve
+    seq = plan.result.sequence
+    assert seq.lug("A").at == (5.0, 3.0, 0.0)
+    model = MoveModel(seq, seq.stages[0])
+    eq = raised(model, 1.0, {"A": 0.02})
+    assert plan.result.stages[0].states[-1].hook_loads["A"] == pytest.approx(eq.tensions["A"], abs=1e-9 * W)
