@@ -1,9 +1,11 @@
-"""A lift sequence: the body, its lugs and cranes, and the stages that turn it.
+"""A lift sequence: the body, its lugs and cranes, and the stages that turn or move it.
 
 Frozen dataclasses in the ``z-up`` frame. A :class:`Stage` turns the body about one of its
 horizontal axes from one angle to another, held by the cranes it names (and, for an upend,
-by a pivot on the ground). :class:`Sequence` checks what needs the whole picture: names,
-which crane holds which lug, and that every stage is statically determinate at a held angle.
+by a pivot on the ground), or moves boom tips (``kind = "move"``, each crane's :class:`Move`)
+with the body on its elastic ropes. :class:`Sequence` checks what needs the whole picture:
+names, which crane holds which lug, that every turning stage is statically determinate at a
+held angle and that every crane of a move stage hangs on an elastic rope from its boom tip.
 """
 
 from __future__ import annotations
@@ -78,13 +80,14 @@ class Stage:
     kind : {"upend", "turnover"}
         ``"upend"``: the head crane(s) lift one end while the other rests on the ground at
         ``pivot`` or hangs from a tailing crane; ``"turnover"``: the body hangs from two or
-        more cranes and turns in the air.
+        more cranes and turns in the air; ``"move"``: boom tips move (``moves``) and the body
+        hangs on its elastic ropes (:mod:`liftplan.model.sequence.move`).
     axis : {"x", "y"}
         The body axis it turns about. For ``"y"`` the angle is how far the body's +x end is
         raised above the horizontal; for ``"x"``, how far its +y side is raised.
-    start, stop : float  [deg]
+    start, stop : float or None  [deg]
         First and last angle (either order); equal: the stage holds that one angle (a lift or
-        a set-down with the body at that angle).
+        a set-down with the body at that angle). ``stop`` is None in a move stage.
     step : float  [deg]
         The reported grid; the maxima are searched between its points too.
     cranes : tuple of str

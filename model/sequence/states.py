@@ -51,7 +51,8 @@ class SequenceState:
         Sling legs, ``"CRANE/LUG"``.
     hooks : dict of str to tuple  [m]
         World position of each crane's hook (the rope's lower end: the lug or the sling's apex),
-        the anchor (pivot, else centre of gravity) kept where it is at angle 0.
+        the anchor (pivot, else centre of gravity) kept where it is at angle 0; in a move stage,
+        each crane's boom tip (where the move has it).
     slack : tuple of str
     note : str
     heel, trim : float or None  [deg]
