@@ -352,7 +352,19 @@ def _read(text):
     return LugChoice(parts=parts, fixed=tuple(fixed), open=tuple(open_lugs), candidates=candidates)
 
 
+#: Keys of a turning stage a move stage has no use for (its hooks move, it turns no angle).
+TURN_ONLY = {"start": "from", "step": "step", "plumb": "plumb"}
+
+
 def _to_stage(spec, name, keys, to_zup):
+    if spec.kind == "move":
+        given = [key for field, key in TURN_ONLY.items() if field in spec.model_fields_set]
+        if given:
+            raise InvalidScene(
+                f"{'stages[' + name + ']' if name else 'sequence'}.{given[0]}: a move stage turns no "
+                "angle (its grid is `steps`, its hooks move by `moves`); expected no "
+                + ", ".join(TURN_ONLY.values())
+            )
     return Stage(
         kind=spec.kind,
         axis=spec.axis,

@@ -167,6 +167,8 @@ def test_move_stage_runs_the_rules_chain_and_its_checks():
         (lambda t: t.replace("moves = [", 'moves = [{crane = "A", hoist = 1.0}, '), "moved twice"),
         (lambda t: t[: t.index("moves = [")], "moves: missing"),
         (lambda t: t.replace("steps = 4", "steps = 0"), "steps"),
+        (lambda t: t.replace("steps = 4", "steps = 4\nstep = 5.0"), "step: a move stage turns no angle"),
+        (lambda t: t.replace("steps = 4", "steps = 4\nfrom = 0.0"), "from: a move stage"),
         (lambda t: t.replace(f"rope_length = {L0}\n", "", 1), "rope_length"),
         (lambda t: t.replace('kind = "move"', 'kind = "move"\ncranes = ["A", "B"]'), "3 or more"),
     ],
