@@ -13,7 +13,10 @@ import pytest
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.sequence import loads_sequence, run_sequence
+from liftplan.model.sequence.file import loads_lug_choice
+from liftplan.model.sequence.lugplan import plan_lugs
 from liftplan.model.sequence.move import MoveModel
+from liftplan.model.sequence.objects import sequence_warnings
 from liftplan.model.solve import solve
 
 W = 100.0
@@ -186,8 +189,6 @@ def test_move_keys_in_a_turning_stage_are_refused():
 
 
 def test_the_cranes_of_a_move_stage_raise_no_unused_key_warning():
-    from liftplan.model.sequence.objects import sequence_warnings
-
     seq = loads_sequence(move_text(['{crane = "A", hoist = 0.02}']))
     assert sequence_warnings(seq) == []
     assert dataclasses.is_dataclass(seq.stages[0].moves[0])
@@ -198,9 +199,6 @@ def test_the_lug_planner_places_a_lug_of_a_move_stage_by_its_elastic_share():
     larger share of the body, beyond the lug's capacity); the planner solves the move for each
     on the grid and picks the one whose every check is met (the other's grid bound already
     fails, so it is not swept)."""
-    from liftplan.model.sequence.file import loads_lug_choice
-    from liftplan.model.sequence.lugplan import plan_lugs
-
     text = move_text(['{crane = "A", hoist = 0.02}']).replace(
         'name = "A"\nat = [5.0, 3.0, 0.0]', 'name = "A"\non = ["corner", "inner"]'
     )
