@@ -1,4 +1,5 @@
-"""Lift sequences: turnover and upending at held angles, the worst load found between the steps.
+"""Lift sequences: turnover and upending at held angles, hooks moved with the body on its
+elastic ropes, the worst load found between the steps.
 
 ``load_sequence(path)`` reads a sequence file; ``run_sequence(sequence)`` sweeps its stages
 (:mod:`liftplan.model.sequence.sweep`).

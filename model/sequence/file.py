@@ -33,7 +33,7 @@ from liftplan.model.scene.file import (
     to_lug,
 )
 from liftplan.model.scene.objects import Body
-from liftplan.model.sequence.objects import LugChoice, Sequence, Stage, crane_key
+from liftplan.model.sequence.objects import LugChoice, Move, Sequence, Stage, crane_key
 
 
 def _aliased(key, alias):
@@ -99,12 +99,34 @@ class _SequenceCandidate(_StrongPoint):
     pass
 
 
+class _Move(Table):
+    crane: Text = Key(doc="the crane whose boom tip moves (its name, or its lug)", example='crane = "A"')
+    hoist: Num = Key(
+        0.0,
+        doc=(
+            "how far the tip rises from the stage's start to its end (+ up); added to `to` when both "
+            "are given"
+        ),
+        unit="m",
+        example="hoist = 0.5",
+    )
+    to: Point | None = Key(
+        None,
+        doc="where the tip is at the stage's end (slew, luff, trolley travel: the tip's new place)",
+        unit="m",
+        frame="world, file frame",
+        absent="the tip moves only by `hoist`",
+        example="to = [12.0, 0.0, 30.0]",
+    )
+
+
 class _Operation(Table):
-    kind: Literal["upend", "turnover"] = Key(
+    kind: Literal["upend", "turnover", "move"] = Key(
         doc=(
             '`"upend"`: the head crane lifts one end while the other rests on the ground at `pivot` '
             'or hangs from a tailing crane; `"turnover"`: the body hangs from two or more cranes and '
-            "turns in the air"
+            'turns in the air; `"move"`: boom tips move (`moves`) and the body hangs on its elastic '
+            "ropes"
         ),
         example='kind = "upend"',
     )
@@ -120,9 +142,13 @@ class _Operation(Table):
         Key(0.0, doc="first angle (0: the body as the file gives it)", unit="deg", example="from = 0.0"),
         "from",
     )
-    stop: Num = _aliased(
+    stop: Num | None = _aliased(
         Key(
-            doc="last angle; equal to `from`: the stage holds that one angle", unit="deg", example="to = 90.0"
+            None,
+            doc="last angle; equal to `from`: the stage holds that one angle",
+            unit="deg",
+            absent='required for `"upend"` and `"turnover"`; refused for `"move"`',
+            example="to = 90.0",
         ),
         "to",
     )
@@ -153,6 +179,27 @@ class _Operation(Table):
         True,
         doc="each hook follows its lug (or its sling's apex) so its rope stays vertical; only `true`",
         example="plumb = true",
+    )
+    moves: list[_Move] | None = Key(
+        None,
+        doc=(
+            '`"move"`: each named crane\'s boom tip moves in a straight line from where the file puts it '
+            "(`tip`, else above its lug at `boom_height`) to its end position; the others stay"
+        ),
+        values="array of {crane, hoist, to} tables",
+        absent='required for `"move"`, refused otherwise',
+        example='moves = [{crane = "A", hoist = 0.5}]',
+    )
+    steps: Annotated[int, Strict()] | None = Key(
+        None,
+        doc=(
+            '`"move"`: the grid of reported states over the move (parameter 0 to 1); every maximum '
+            "is searched between them too"
+        ),
+        unit="-",
+        values="integer >= 1",
+        absent='10 for `"move"`; refused otherwise (a turn has `step`)',
+        example="steps = 10",
     )
     cranes: list[Text] | None = Key(
         None,
@@ -305,7 +352,19 @@ def _read(text):
     return LugChoice(parts=parts, fixed=tuple(fixed), open=tuple(open_lugs), candidates=candidates)
 
 
+#: Keys of a turning stage a move stage has no use for (its hooks move, it turns no angle).
+TURN_ONLY = {"start": "from", "step": "step", "plumb": "plumb"}
+
+
 def _to_stage(spec, name, keys, to_zup):
+    if spec.kind == "move":
+        given = [key for field, key in TURN_ONLY.items() if field in spec.model_fields_set]
+        if given:
+            raise InvalidScene(
+                f"{'stages[' + name + ']' if name else 'sequence'}.{given[0]}: a move stage turns no "
+                "angle (its grid is `steps`, its hooks move by `moves`); expected no "
+                + ", ".join(TURN_ONLY.values())
+            )
     return Stage(
         kind=spec.kind,
         axis=spec.axis,
@@ -317,4 +376,9 @@ def _to_stage(spec, name, keys, to_zup):
         friction=spec.friction,
         plumb=spec.plumb,
         name=name,
+        moves=tuple(
+            Move(crane=m.crane, hoist=m.hoist, to=to_zup(m.to) if m.to is not None else None)
+            for m in spec.moves or ()
+        ),
+        steps=spec.steps,
     )

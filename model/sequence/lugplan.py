@@ -24,9 +24,9 @@ import itertools
 import time
 from dataclasses import dataclass
 
-from liftplan.model.errors import InvalidScene, PlanInfeasible
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene, PlanInfeasible
 from liftplan.model.sequence.maxima import Peak, Sampler
-from liftplan.model.sequence.sweep import SequenceResult, StageModel, design_chain, run_stage
+from liftplan.model.sequence.sweep import SequenceResult, design_chain, run_stage, stage_model
 
 #: Most assignments enumerated (the product of the lugs' candidate counts).
 MOST_OPTIONS = 100_000
@@ -78,7 +78,8 @@ class LugPlan:
     ranking : tuple of LugOption
         Every swept assignment, best first.
     options, swept, refused : int
-        Assignments enumerated, swept continuously, refused (a sling that cannot reach).
+        Assignments enumerated, swept continuously, refused (a sling that cannot reach, a move
+        whose ropes cannot hold the body on the grid).
     seconds : float
     """
 
@@ -125,7 +126,7 @@ def grid_stage(sequence, stage):
     The chain is a lower bound of the continuous sweep's (see the module docstring); a check
     failed on the grid fails on the continuous range too.
     """
-    model = StageModel(sequence, stage)
+    model = stage_model(sequence, stage)
     sampler = Sampler(model)
     names = model.names()
     maxima, held = {}, True
@@ -232,9 +233,17 @@ def plan_lugs(choice, top=10):
         for stage in seq.stages:
             key = (stage.where, tuple(chosen[n] for n in held[stage.where]))
             if key not in grid:
-                grid[key] = grid_stage(seq, stage)
+                try:
+                    grid[key] = grid_stage(seq, stage)
+                except EquilibriumNotFound:  # a move whose ropes cannot hold the body there
+                    grid[key] = None
+            if grid[key] is None:
+                break
             chains[stage.where], failed = grid[key]
             fails = fails or failed
+        if len(chains) < len(seq.stages):
+            refused += 1
+            continue
         worst, _, mine = worst_design_load(chains, placed)
         options.append(((fails, *_rank(worst, *mine)), chosen, seq))
     if not options:

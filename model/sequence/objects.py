@@ -1,9 +1,11 @@
-"""A lift sequence: the body, its lugs and cranes, and the stages that turn it.
+"""A lift sequence: the body, its lugs and cranes, and the stages that turn or move it.
 
 Frozen dataclasses in the ``z-up`` frame. A :class:`Stage` turns the body about one of its
 horizontal axes from one angle to another, held by the cranes it names (and, for an upend,
-by a pivot on the ground). :class:`Sequence` checks what needs the whole picture: names,
-which crane holds which lug, and that every stage is statically determinate at a held angle.
+by a pivot on the ground), or moves boom tips (``kind = "move"``, each crane's :class:`Move`)
+with the body on its elastic ropes. :class:`Sequence` checks what needs the whole picture:
+names, which crane holds which lug, that every turning stage is statically determinate at a
+held angle and that every crane of a move stage hangs on an elastic rope from its boom tip.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.rules import Rules
 from liftplan.model.scene.objects import Body, Crane, Lug, finite, name_list, point
 
-KINDS = ("upend", "turnover")
+KINDS = ("upend", "turnover", "move")
 AXES = ("x", "y")
 #: Most angles a stage may report (its range over its step): a finer grid is a typo.
 MOST_STEPS = 10_000
@@ -25,6 +27,43 @@ MOST_STEPS = 10_000
 #: and the three equations of a body on vertical ropes (vertical force, two moments) leave
 #: no hook height to choose; four or more would need the hook heights the sequence does not fix.
 SUPPORTS = (2, 3)
+#: Fewest cranes of a move stage: the elastic model on vertical ropes needs three taut ropes
+#: to hold a body (two leave it free to roll about the line between them).
+MOVE_CRANES = 3
+#: A move stage's reported grid when ``steps`` is not given.
+MOVE_STEPS = 10
+
+
+@dataclass(frozen=True)
+class Move:
+    """One crane's boom tip moved linearly over a ``kind = "move"`` stage.
+
+    Parameters
+    ----------
+    crane : str
+        The crane's key.
+    hoist : float  [m]
+        Rise of the tip from the stage's start to its end (+ up); added to ``to`` when both
+        are given.
+    to : tuple of 3 float or None  [m]
+        World position of the tip at the stage's end (file frame); None: the tip moves only
+        by ``hoist``.
+    """
+
+    crane: str
+    hoist: float = 0.0
+    to: tuple[float, float, float] | None = None
+
+    def __post_init__(self):
+        where = f"moves[{self.crane}]"
+        object.__setattr__(self, "hoist", finite(f"{where}.hoist", self.hoist))
+        if self.to is not None:
+            object.__setattr__(self, "to", point(f"{where}.to", self.to))
+
+    def end(self, start):
+        """The tip's position at the stage's end, from its position ``start``  [m]."""
+        base = np.array(self.to if self.to is not None else start, dtype=float)
+        return base + np.array([0.0, 0.0, self.hoist])
 
 
 def crane_key(crane):
@@ -41,13 +80,14 @@ class Stage:
     kind : {"upend", "turnover"}
         ``"upend"``: the head crane(s) lift one end while the other rests on the ground at
         ``pivot`` or hangs from a tailing crane; ``"turnover"``: the body hangs from two or
-        more cranes and turns in the air.
+        more cranes and turns in the air; ``"move"``: boom tips move (``moves``) and the body
+        hangs on its elastic ropes (:mod:`liftplan.model.sequence.move`).
     axis : {"x", "y"}
         The body axis it turns about. For ``"y"`` the angle is how far the body's +x end is
         raised above the horizontal; for ``"x"``, how far its +y side is raised.
-    start, stop : float  [deg]
+    start, stop : float or None  [deg]
         First and last angle (either order); equal: the stage holds that one angle (a lift or
-        a set-down with the body at that angle).
+        a set-down with the body at that angle). ``stop`` is None in a move stage.
     step : float  [deg]
         The reported grid; the maxima are searched between its points too.
     cranes : tuple of str
@@ -59,23 +99,40 @@ class Stage:
     plumb : bool
         Each hook follows its lug (or its sling's apex) to keep the rope vertical.
     name : str
+    moves : tuple of Move
+        ``kind = "move"``: the cranes whose boom tips move over the stage (the others' stay).
+    steps : int
+        ``kind = "move"``: the reported grid of the stage parameter 0..1 (default
+        :data:`MOVE_STEPS`; ``step`` is then 1 / steps).
     """
 
     kind: str
     axis: str
     start: float
-    stop: float
+    stop: float | None
     step: float
     cranes: tuple[str, ...]
     pivot: tuple[float, float, float] | None = None
     friction: float | None = None
     plumb: bool = True
     name: str = ""
+    moves: tuple[Move, ...] = ()
+    steps: int | None = None
 
     def __post_init__(self):
         where = f"stages[{self.name}]" if self.name else "sequence"
         if self.kind not in KINDS:
             raise InvalidScene(f"{where}.kind = {self.kind!r}: expected one of {', '.join(KINDS)}")
+        object.__setattr__(self, "cranes", tuple(self.cranes))
+        object.__setattr__(self, "moves", tuple(self.moves))
+        if self.kind == "move":
+            self._check_move(where)
+            return
+        for key, value in (("moves", self.moves or None), ("steps", self.steps)):
+            if value is not None:
+                raise InvalidScene(f'{where}.{key}: given in a {self.kind} stage; expected kind = "move"')
+        if self.stop is None:
+            raise InvalidScene(f"{where}.to: missing; expected the last angle (deg)")
         if self.axis not in AXES:
             raise InvalidScene(
                 f"{where}.axis = {self.axis!r}: expected one of {', '.join(AXES)} (a horizontal body "
@@ -96,7 +153,6 @@ class Stage:
         object.__setattr__(self, "start", start)
         object.__setattr__(self, "stop", stop)
         object.__setattr__(self, "step", step)
-        object.__setattr__(self, "cranes", tuple(self.cranes))
         if self.pivot is not None:
             object.__setattr__(self, "pivot", point(f"{where}.pivot", self.pivot))
         if self.friction is not None:
@@ -125,6 +181,44 @@ class Stage:
                 "decide, which a held-angle sequence does not fix"
             )
 
+    def _check_move(self, where):
+        """Refuse what a move stage does not model, each with its reason."""
+        if self.stop is not None:
+            raise InvalidScene(
+                f"{where}.to: a move stage holds no turning angle (the body's pose follows from the "
+                "hooks); expected each crane's end position in moves = [{crane, hoist, to}]"
+            )
+        if self.pivot is not None or self.friction is not None:
+            raise InvalidScene(
+                f"{where}.pivot: ground contact is not modelled in a move stage (the body hangs on its "
+                'elastic ropes only); expected no pivot, or kind = "upend"'
+            )
+        if self.steps is None:
+            object.__setattr__(self, "steps", MOVE_STEPS)
+        if (
+            isinstance(self.steps, bool)
+            or not isinstance(self.steps, int)
+            or not 1 <= self.steps <= MOST_STEPS
+        ):
+            raise InvalidScene(f"{where}.steps = {self.steps!r}: expected an integer from 1 to {MOST_STEPS}")
+        if len(self.cranes) < MOVE_CRANES:
+            raise InvalidScene(
+                f"{where}: held by {len(self.cranes)} crane(s); a move stage solves the body on elastic "
+                f"ropes, which needs {MOVE_CRANES} or more"
+            )
+        if not self.moves:
+            raise InvalidScene(f"{where}.moves: missing; expected one or more {{crane, hoist, to}}")
+        named = [m.crane for m in self.moves]
+        for key in named:
+            if key not in self.cranes:
+                raise InvalidScene(
+                    f"{where}.moves.crane = {key!r}: not a crane of the stage; expected one of "
+                    f"{name_list(self.cranes)}"
+                )
+            if named.count(key) > 1:
+                raise InvalidScene(f"{where}.moves.crane = {key!r}: moved twice; expected each crane once")
+        object.__setattr__(self, "step", 1.0 / self.steps)
+
     @property
     def where(self):
         """The stage's key in messages and results."""
@@ -132,7 +226,10 @@ class Stage:
 
     @property
     def angles(self):
-        """The reported grid  [deg]: from ``start`` by ``step`` towards ``stop``, ``stop`` included."""
+        """The reported grid  [deg]: from ``start`` by ``step`` towards ``stop``, ``stop`` included;
+        for a move stage, its parameter 0 to 1 in ``steps`` steps  [-]."""
+        if self.kind == "move":
+            return np.linspace(0.0, 1.0, self.steps + 1)
         span = self.stop - self.start
         if span == 0.0:
             return np.array([self.start])
@@ -215,6 +312,10 @@ class Sequence:
                             "expected each lug on one crane in a stage"
                         )
                     held[lug] = key
+            if stage.kind == "move":
+                for key in stage.cranes:
+                    check_move_crane(stage, self.crane(key))
+                continue
             points = [np.mean([by_name[g].at for g in self.crane(k).lugs], axis=0) for k in stage.cranes]
             check_supports_plane(stage, points + ([np.array(stage.pivot)] if stage.pivot is not None else []))
         if not isinstance(self.rules, Rules):
@@ -257,6 +358,23 @@ def _check_crane(crane, names):
         )
 
 
+def check_move_crane(stage, crane):
+    """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip."""
+    where = f"{stage.where}: cranes[{crane_key(crane)}]"
+    if crane.sling is not None:
+        raise InvalidScene(
+            f"{where}.sling: a move stage hangs one elastic rope per lug; expected cranes on one lug"
+        )
+    missing = [k for k in ("rope_length", "EA") if getattr(crane, k) is None]
+    if crane.boom_height is None and crane.tip is None:
+        missing.append("boom_height or tip")
+    if missing:
+        raise InvalidScene(
+            f"{where}: {', '.join(missing)} missing; a move stage starts from each crane's boom tip "
+            "and solves the body on its elastic ropes"
+        )
+
+
 def check_sling_reach(crane, lugs):
     """Refuse a 2-leg sling whose legs cannot meet above its two lugs (``lugs``: name -> Lug)."""
     (a, b), (l1, l2) = crane.lugs, (leg.length for leg in crane.sling.legs)
@@ -281,7 +399,10 @@ def sequence_warnings(sequence):
     list of str
     """
     out = []
+    moved = {key for stage in sequence.stages if stage.kind == "move" for key in stage.cranes}
     for crane in sequence.cranes:
+        if crane_key(crane) in moved:
+            continue  # a move stage hangs it from its boom tip on its elastic rope: all used
         given = [key for key in UNUSED_CRANE_KEYS if getattr(crane, key) is not None]
         if given:
             out.append(

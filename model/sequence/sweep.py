@@ -11,7 +11,6 @@ is not held, and per stage the rules' design-load chain on the stage's maxima
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field
 
@@ -20,6 +19,8 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.sequence.maxima import Peak, Sampler, adaptive_samples, continuous_maxima
+from liftplan.model.sequence.move import MoveModel
+from liftplan.model.sequence.states import LugLoad, SequenceState
 from liftplan.model.sequence.statics import HeldAngle, Support
 
 #: Chord tolerance of the adaptive sampling, x W.
@@ -33,87 +34,6 @@ EDGE_BISECTIONS = 40
 #: Largest out-of-plane angle the rules' chain takes  [deg] (it refuses 90: a load wholly
 #: across the plate is then its out-of-plane part, checked on its own).
 CHAIN_MAX_OFF = 89.99
-
-
-@dataclass(frozen=True)
-class LugLoad:
-    """A lug's load in its own frame  [t].
-
-    Parameters
-    ----------
-    load : float
-        Magnitude.
-    in_plane : float
-        Component in the lug plate's plane.
-    out_of_plane : float
-        Component along the plate's normal (absolute).
-    """
-
-    load: float
-    in_plane: float
-    out_of_plane: float
-
-    @property
-    def off_plane_angle(self):
-        """Angle between the load and the plate  [deg]."""
-        return math.degrees(math.atan2(self.out_of_plane, self.in_plane)) if self.load > 0 else 0.0
-
-
-@dataclass(frozen=True)
-class SequenceState:
-    """The body at one angle of a stage.
-
-    Parameters
-    ----------
-    stage : str
-    angle : float  [deg]
-    tilt : float  [deg]
-        Across the turning axis (found with two supports).
-    held : bool
-    hook_loads : dict of str to float  [t]
-        Per crane of the stage (0 when slack).
-    ground_reaction : float  [t]
-        Vertical reaction at the pivot (0 without one, or lifted off).
-    lug_loads : dict of str to LugLoad
-        Every lug of the stage's cranes.
-    sling_tensions : dict of str to float  [t]
-        Sling legs, ``"CRANE/LUG"``.
-    hooks : dict of str to tuple  [m]
-        World position of each crane's hook (the rope's lower end: the lug or the sling's apex),
-        the anchor (pivot, else centre of gravity) kept where it is at angle 0.
-    slack : tuple of str
-    note : str
-    """
-
-    stage: str
-    angle: float
-    tilt: float
-    held: bool
-    hook_loads: dict
-    ground_reaction: float
-    lug_loads: dict
-    sling_tensions: dict
-    hooks: dict
-    slack: tuple
-    note: str = ""
-
-    def to_json(self):
-        return {
-            "stage": self.stage,
-            "angle": self.angle,
-            "tilt": self.tilt,
-            "held": self.held,
-            "hook_loads": dict(self.hook_loads),
-            "ground_reaction": self.ground_reaction,
-            "lug_loads": {
-                k: {"load": v.load, "in_plane": v.in_plane, "out_of_plane": v.out_of_plane}
-                for k, v in self.lug_loads.items()
-            },
-            "sling_tensions": dict(self.sling_tensions),
-            "hooks": {k: list(v) for k, v in self.hooks.items()},
-            "slack": list(self.slack),
-            "note": self.note,
-        }
 
 
 @dataclass(frozen=True)
@@ -211,11 +131,15 @@ class SequenceResult:
         return out
 
     def to_json(self):
+        moves = {s.stage.where for s in self.stages if s.stage.kind == "move"}
+
+        def where(peak, stage):
+            if stage in moves:  # a move stage's maximum is at a parameter, not an angle
+                return {"value": peak.value, "angle": None, "param": peak.angle, "stage": stage}
+            return {"value": peak.value, "angle": peak.angle, "stage": stage}
+
         def table(prefix):
-            return {
-                k: {"value": p.value, "angle": p.angle, "stage": stage}
-                for k, (p, stage) in self.maxima(prefix).items()
-            }
+            return {k: where(p, stage) for k, (p, stage) in self.maxima(prefix).items()}
 
         ground = self.maxima("ground").get("ground")
         return {
@@ -233,7 +157,7 @@ class SequenceResult:
                     else None
                 ),
             },
-            "slack": [r.to_json() for s in self.stages for r in s.slack],
+            "slack": [_range_json(r, s.stage) for s in self.stages for r in s.slack],
             "not_held": [r.to_json() for s in self.stages for r in s.not_held],
             "stages": [
                 {
@@ -247,6 +171,11 @@ class SequenceResult:
                     "pivot": list(s.stage.pivot) if s.stage.pivot is not None else None,
                     "evaluations": s.evaluations,
                     "hook_travel": s.hook_travel,
+                    "moves": [
+                        {"crane": m.crane, "hoist": m.hoist, "to": list(m.to) if m.to is not None else None}
+                        for m in s.stage.moves
+                    ],
+                    "steps": s.stage.steps,
                     "design_loads": s.design.to_json(),
                 }
                 for s in self.stages
@@ -254,6 +183,20 @@ class SequenceResult:
             "checks": [c.to_json() for c in self.checks],
             "converged": True,
         }
+
+
+def _range_json(span, stage):
+    """An :class:`AngleRange` as JSON; in a move stage its ends are parameters (``from_param``)."""
+    if stage.kind != "move":
+        return span.to_json()
+    return {
+        "what": span.what,
+        "stage": span.stage,
+        "from": None,
+        "to": None,
+        "from_param": span.start,
+        "to_param": span.stop,
+    }
 
 
 def supports_of(sequence, stage):
@@ -343,9 +286,15 @@ class StageModel:
         return state, values
 
 
+def stage_model(sequence, stage):
+    """The loads of a stage as functions of its sweep variable: the angle of a turn
+    (:class:`StageModel`), the parameter of a move (:class:`~liftplan.model.sequence.move.MoveModel`)."""
+    return MoveModel(sequence, stage) if stage.kind == "move" else StageModel(sequence, stage)
+
+
 def run_stage(sequence, stage):
     """Sweep one stage: :class:`StageResult`."""
-    model = StageModel(sequence, stage)
+    model = stage_model(sequence, stage)
     sampler = Sampler(model)
     grid = stage.angles
     ordered = np.sort(grid)
@@ -469,17 +418,19 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
     out = []
     unheld = sum(r.stop - r.start for r in not_held)
     off = [a for a in angles if not sampler(a)[0].held]
-    out.append(
-        Check(
-            "angle_held",
-            where,
-            float(unheld),
-            0.0,
-            "deg",
-            not off,
-            note=f"degrees of the stage where the supports cannot hold the angle ({len(off)} samples)",
+    # every state of a move is an equilibrium of the solver, or the stage raised: no angle check
+    if stage.kind != "move":
+        out.append(
+            Check(
+                "angle_held",
+                where,
+                float(unheld),
+                0.0,
+                "deg",
+                not off,
+                note=f"degrees of the stage where the supports cannot hold the angle ({len(off)} samples)",
+            )
         )
-    )
     for result in design.results:
         crane = sequence.crane(result.crane)
         if crane.swl is not None:
@@ -497,7 +448,7 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
                         spec.capacity,
                         "t",
                         note=(
-                            f"largest load {lug.share:.4g} t at {maxima[f'lug:{lug.lug}'].angle:.3f} deg x "
+                            f"largest load {lug.share:.4g} t {_at(stage, maxima[f'lug:{lug.lug}'].angle)} x "
                             f"factors {lug.product:.4g} x consequence {rules.consequence_factor:g}"
                         ),
                     )
@@ -512,7 +463,7 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
                         spec.capacity_out_of_plane,
                         "t",
                         note=(
-                            f"largest out-of-plane load {peak.value:.4g} t at {peak.angle:.3f} deg x "
+                            f"largest out-of-plane load {peak.value:.4g} t {_at(stage, peak.angle)} x "
                             f"{factor:.4g} + lateral {rules.lateral_fraction:g} x design load"
                         ),
                     )
@@ -532,8 +483,13 @@ def _checks(sequence, stage, model, maxima, design, not_held, sampler, angles):
     return tuple(out)
 
 
+def _at(stage, where):
+    """Where on a stage a maximum is, in words: an angle, or a move stage's parameter."""
+    return f"at s = {where:.3f}" if stage.kind == "move" else f"at {where:.3f} deg"
+
+
 def _named(check, subject):
     return Check(check.name, subject, check.value, check.limit, check.unit, check.ok, check.kind, check.note)
 
 
-__all__ = ["Peak", "run_sequence", "run_stage", "StageModel"]
+__all__ = ["Peak", "run_sequence", "run_stage", "stage_model", "StageModel"]

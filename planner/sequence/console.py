@@ -14,17 +14,30 @@ def sequence_table(result):
     lines = [seq.name or "lift sequence", f"weight W = {seq.body.weight:.2f} t; loads in t, angles in deg"]
     for stage in result.stages:
         st = stage.stage
-        how = f"{st.kind} about body {st.axis}, {st.start:g} -> {st.stop:g} deg by {st.step:g}"
+        move = st.kind == "move"
+        if move:
+            how = "move: " + "; ".join(_move_text(m) for m in st.moves) + f", s = 0 -> 1 in {st.steps} steps"
+        else:
+            how = f"{st.kind} about body {st.axis}, {st.start:g} -> {st.stop:g} deg by {st.step:g}"
+        at = " at s =" if move else " at"
+        unit = "" if move else " deg"
         if st.pivot is not None:
             how += f", pivot at [{', '.join(f'{v:g}' for v in st.pivot)}]"
         lines += ["", f"stage {st.where}: {how}; cranes {', '.join(st.cranes)}"]
         cranes = list(st.cranes)
         lugs = list(stage.states[0].lug_loads)
-        head = ["angle", "tilt", *cranes] + (["ground"] if st.pivot is not None else [])
+        head = (
+            (["s", "heel", "trim"] if move else ["angle", "tilt"])
+            + cranes
+            + (["ground"] if st.pivot is not None else [])
+        )
         head += [f"{lug} (out)" for lug in lugs]
         rows, notes = [], []
         for state in stage.states:
-            row = [f"{state.angle:.2f}", f"{state.tilt:.2f}"]
+            if move:
+                row = [f"{state.angle:.3f}", f"{state.heel:.3f}", f"{state.trim:.3f}"]
+            else:
+                row = [f"{state.angle:.2f}", f"{state.tilt:.2f}"]
             row += [f"{state.hook_loads[c]:.2f}" for c in cranes]
             if st.pivot is not None:
                 row.append(f"{state.ground_reaction:.2f}")
@@ -49,17 +62,29 @@ def sequence_table(result):
                 "lug_out": "lug load out of plane",
                 "leg": "sling leg",
             }[kind]
-            lines.append(f"  {label} {name}".rstrip() + f": {peak.value:.3f} t at {peak.angle:.4f} deg")
+            lines.append(f"  {label} {name}".rstrip() + f": {peak.value:.3f} t{at} {peak.angle:.4f}{unit}")
         for key, travel in stage.hook_travel.items():
             lines.append(
                 f"  hook {key}: rises {travel['rise']:+.2f} m (height {travel['lowest']:.2f} to "
                 f"{travel['highest']:.2f} m), travels up to {travel['plan']:.2f} m in plan"
             )
         for r in stage.slack:
-            lines.append(f"  slack: {r.what} from {r.start:.4f} to {r.stop:.4f} deg")
+            lines.append(
+                f"  slack: {r.what} from{at.removeprefix(' at')} {r.start:.4f} to {r.stop:.4f}{unit}"
+            )
         for r in stage.not_held:
             lines.append(f"  angle NOT held from {r.start:.4f} to {r.stop:.4f} deg")
     return "\n".join(lines)
+
+
+def _move_text(move):
+    """One crane's move in words."""
+    text = f"{move.crane}"
+    if move.to is not None:
+        text += " to [" + ", ".join(f"{v:g}" for v in move.to) + "] m"
+    if move.hoist or move.to is None:
+        text += f" hoist {move.hoist:+g} m"
+    return text
 
 
 def lug_plan_lines(plan):

@@ -28,6 +28,7 @@ def sequence_figure(result):
     axes = fig.subplots(rows, 2, squeeze=False)
     for (left, right), stage in zip(axes, result.stages):
         curves, st = stage.curves, stage.stage
+        move = st.kind == "move"
         angle = curves["angle"]
         for ax, kinds, title in (
             (left, ("hook", "ground"), "hook loads"),
@@ -53,7 +54,9 @@ def sequence_figure(result):
                     continue
                 ax.plot([peak.angle], [peak.value], "o", ms=3.5, color=line.get_color())
                 ax.annotate(
-                    f"{peak.value:.1f} t\n@ {peak.angle:.1f}°",
+                    f"{peak.value:.1f} t\n@ s = {peak.angle:.2f}"
+                    if move
+                    else f"{peak.value:.1f} t\n@ {peak.angle:.1f}°",
                     (peak.angle, peak.value),
                     textcoords="offset points",
                     xytext=(3, 2 + 7 * (k % 2)),
@@ -63,7 +66,12 @@ def sequence_figure(result):
             for r in stage.not_held:
                 ax.axvspan(r.start, r.stop, color="0.85", lw=0, zorder=0)
             ax.set_title(f"{st.where}: {title}", fontsize=_FONT + 0.5)
-            ax.set_xlabel(f"turning angle about body {st.axis} [deg]", fontsize=_FONT)
+            ax.set_xlabel(
+                "stage parameter s (boom tips moved) [-]"
+                if move
+                else f"turning angle about body {st.axis} [deg]",
+                fontsize=_FONT,
+            )
             ax.set_ylabel("load [t]", fontsize=_FONT)
             ax.tick_params(labelsize=_SMALL)
             ax.grid(True, lw=0.3)

@@ -53,7 +53,9 @@ def _page(result, payload):
     parts.append(
         "<p>Each state is the body's equilibrium at a held turning angle on plumb ropes (a slack "
         "rope carries nothing, a pivot only pushes); each maximum is the largest over the whole "
-        "range of angles, found between the grid points as well.</p>"
+        "range of angles, found between the grid points as well. In a move stage the boom tips "
+        "move and each state is the body's equilibrium on its elastic ropes; its states and "
+        "maxima are at the stage parameter s (0: the start, 1: the end), not at an angle.</p>"
     )
     plan = payload.get("lug_plan")
     if plan is not None:
@@ -71,15 +73,19 @@ def _page(result, payload):
     parts.append(figure(sequence_figure(result), "hook and lug loads against the turning angle"))
     for stage in result.stages:
         st = stage.stage
-        parts.append(f"<h2>Stage {esc(st.where)}: {esc(st.kind)} about body {st.axis}</h2>")
+        move = st.kind == "move"
+        what = "boom tips moved" if move else f"about body {st.axis}"
+        at = "s [-]" if move else "angle [deg]"
+        parts.append(f"<h2>Stage {esc(st.where)}: {esc(st.kind)} {what}</h2>")
         cranes = list(st.cranes)
         lugs = list(stage.states[0].lug_loads)
-        head = ["angle [deg]", "tilt [deg]", *[f"{c} [t]" for c in cranes]]
+        head = [at, "heel / trim [deg]" if move else "tilt [deg]", *[f"{c} [t]" for c in cranes]]
         head += ["ground [t]"] if st.pivot is not None else []
         head += [f"{g} load / out of plane [t]" for g in lugs] + ["note"]
         rows = []
         for s in stage.states:
-            row = [f"{s.angle:.2f}", f"{s.tilt:.2f}", *[f"{s.hook_loads[c]:.2f}" for c in cranes]]
+            tilt = f"{s.heel:.3f} / {s.trim:.3f}" if move else f"{s.tilt:.2f}"
+            row = [f"{s.angle:.2f}", tilt, *[f"{s.hook_loads[c]:.2f}" for c in cranes]]
             row += [f"{s.ground_reaction:.2f}"] if st.pivot is not None else []
             row += [f"{s.lug_loads[g].load:.2f} / {s.lug_loads[g].out_of_plane:.2f}" for g in lugs]
             row.append(("" if s.held else "not held ") + ", ".join(s.slack))
@@ -87,15 +93,13 @@ def _page(result, payload):
         parts.append(one_table(head, rows, "States on the grid", text_columns=(len(head) - 1,)))
         peaks = [[k, f"{p.value:.3f}", f"{p.angle:.4f}"] for k, p in stage.maxima.items()]
         parts.append(
-            one_table(
-                ["load", "maximum [t]", "at angle [deg]"], peaks, "Continuous maxima", text_columns=(0,)
-            )
+            one_table(["load", "maximum [t]", f"at {at}"], peaks, "Continuous maxima", text_columns=(0,))
         )
         ranges = [[r.what, f"{r.start:.4f}", f"{r.stop:.4f}"] for r in (*stage.slack, *stage.not_held)]
         if ranges:
             parts.append(
                 one_table(
-                    ["what", "from [deg]", "to [deg]"],
+                    ["what", f"from {at}", f"to {at}"],
                     ranges,
                     "Slack ropes and angles not held",
                     text_columns=(0,),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from liftplan.model.frames import rotation_matrix
 from liftplan.model.sequence import pose_matrix
 from liftplan.planner.output.view.geometry import CraneMark, LiftView, Rope, ViewState
 from liftplan.planner.output.view.states import STUB, body_box
@@ -36,9 +37,14 @@ def sequence_view(result):
         anchor = np.asarray(stage.pivot if stage.pivot is not None else cog, dtype=float)
         if stage.pivot is not None:
             ground = float(anchor[2]) if ground is None else min(ground, float(anchor[2]))
+        move = stage.kind == "move"
         for state in stage_result.states:
-            rot = pose_matrix(stage.axis, state.angle, state.tilt)
-            origin = anchor - rot @ anchor
+            if move:  # the body where its elastic ropes hold it, each rope up to its boom tip
+                rot = rotation_matrix(state.heel, state.trim)
+                origin = np.asarray(state.origin, dtype=float)
+            else:
+                rot = pose_matrix(stage.axis, state.angle, state.tilt)
+                origin = anchor - rot @ anchor
             ropes = []
             for key in stage.cranes:
                 crane = seq.crane(key)
@@ -46,6 +52,10 @@ def sequence_view(result):
                 use = load / crane.swl if crane.swl is not None else None
                 hook = np.asarray(state.hooks[key])
                 top = hook + [0.0, 0.0, STUB * size]
+                if move:
+                    at = rot @ np.asarray(seq.lug(crane.lug).at) + origin
+                    ropes.append(Rope(key, "rope", _t(at), _t(hook), load, use, crane.lug))
+                    continue
                 if crane.sling is None:
                     ropes.append(Rope(key, "rope", _t(hook), _t(top), load, use, crane.lug))
                     continue
@@ -56,7 +66,7 @@ def sequence_view(result):
                     ropes.append(Rope(f"{key}/{name}", "leg", _t(at), _t(hook), tension, None, name))
             states.append(
                 ViewState(
-                    f"{stage.where}: {state.angle:g} deg",
+                    f"{stage.where}: s = {state.angle:g}" if move else f"{stage.where}: {state.angle:g} deg",
                     tuple(tuple(float(v) for v in row) for row in rot),
                     _t(origin),
                     _t(cog),
