@@ -62,7 +62,8 @@ def vessel_checks(vessels):
     -------
     list of Check
         ``vessel_heel`` and ``vessel_trim`` per vessel with ``max_heel`` / ``max_trim``
-        (|angle| <= limit  [deg]).
+        (|angle| <= limit  [deg]); ``vessel_freeboard`` per vessel with ``freeboard``
+        (the lowest deck corner's freeboard >= ``min_freeboard``  [m]).
     """
     checks = []
     for name, state in vessels.items():
@@ -73,4 +74,9 @@ def vessel_checks(vessels):
             if limit is not None:
                 note = f"{angle:+.3f} deg (+ {sense}) under {state.load:.1f} t, ballast included"
                 checks.append(Check.upper(key, name, abs(angle), limit, "deg", note=note))
+        if state.freeboard is not None:
+            note = f"lowest deck corner under {state.load:.1f} t: heave, heel and trim, ballast included"
+            checks.append(
+                Check.lower("vessel_freeboard", name, state.freeboard, state.min_freeboard, "m", note=note)
+            )
     return checks

@@ -72,6 +72,7 @@ def _vessel_lines(eq):
             f"{round(v.trim, 3) + 0.0:+12.3f}{v.tip_drop:14.3f}"
             f"   {round(v.levelling_ballast[0]) + 0:+d}, {round(v.levelling_ballast[1]) + 0:+d}"
             + (f"  (tip drops: {drops})" if len(v.tip_drops) > 1 else "")
+            + ("" if v.freeboard is None else f"  freeboard {v.freeboard:.3f} m (min {v.min_freeboard:g})")
         )
     return lines
 
