@@ -25,17 +25,18 @@ def equilibrium_checks(scene, eq):
         ``swl`` per rope with an SWL (tension <= SWL  [t]), ``min_tension`` per rope
         (tension >= 0  [t]) and, without a hull in water, one ``taut`` check (ropes carrying
         load >= all ropes  [-]); with crane vessels, :func:`vessel_checks`. Empty for a body
-        with no ropes.
+        with no ropes. With a wind the tensions are the windy ones and each ``swl`` note
+        gives the wind's share of it.
     """
     checks = []
+    share = (eq.wind.load_changes if eq.wind is not None else None) or {}
     for name, tension in eq.tensions.items():
         swl = eq.swl.get(name)
         if swl:
-            checks.append(
-                Check.upper(
-                    "swl", name, tension, swl, "t", note=f"rope tension / crane SWL = {tension / swl:.0%}"
-                )
-            )
+            note = f"rope tension / crane SWL = {tension / swl:.0%}"
+            if name in share:
+                note += f", the wind's share {share[name]:+.2f} t included"
+            checks.append(Check.upper("swl", name, tension, swl, "t", note=note))
     for name, tension in eq.tensions.items():
         checks.append(Check.lower("min_tension", name, tension, 0.0, "t", note="a rope cannot push"))
     if eq.tensions and scene.hull is None:
