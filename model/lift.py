@@ -207,8 +207,9 @@ class LoadCurve:
         The solved equilibrium at each hoist of ``hoist`` (pose, tensions, water): what the
         3D view draws at each state. Empty for a curve made without them.
     vessels : dict of str to dict of str to numpy.ndarray, optional
-        Floating cranes: per crane vessel, its ``heave`` [m], ``heel``, ``trim`` [deg] and
-        ``tip_drop`` [m] at each hoist (:class:`~liftplan.model.results.VesselState`).
+        Floating cranes: per crane vessel, its ``heave`` [m], ``heel``, ``trim`` [deg],
+        ``tip_drop`` [m] and, where it gives one, ``freeboard`` [m] (the lowest deck
+        corner's) at each hoist (:class:`~liftplan.model.results.VesselState`).
     """
 
     lugs: tuple[str, ...]
@@ -670,15 +671,14 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
 
 
 def _vessel_series(points):
-    """Each crane vessel's heave, heel, trim and tip drop per point (``{}`` without vessels)."""
-    names = points[0].eq.vessels or {}
-    return {
-        name: {
-            key: np.array([getattr(p.eq.vessels[name], key) for p in points])
-            for key in ("heave", "heel", "trim", "tip_drop")
-        }
-        for name in names
-    }
+    """Each crane vessel's heave, heel, trim, tip drop and (where it gives one) freeboard per
+    point (``{}`` without vessels)."""
+    first = points[0].eq.vessels or {}
+    out = {}
+    for name, state in first.items():
+        keys = ("heave", "heel", "trim", "tip_drop") + (() if state.freeboard is None else ("freeboard",))
+        out[name] = {key: np.array([getattr(p.eq.vessels[name], key) for p in points]) for key in keys}
+    return out
 
 
 def _summaries(lift, compartments, hoist):

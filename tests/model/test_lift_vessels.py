@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
 import pytest
 from helpers import EXAMPLES
 
@@ -47,6 +48,12 @@ def test_the_load_curve_follows_the_crane_vessels():
     row = curve.rows()[-1]
     name = next(iter(curve.vessels))
     assert row[f"vessel_tip_drop_{name}"] == pytest.approx(curve.vessels[name]["tip_drop"][-1])
+    assert "vessel_freeboard_" + name not in row  # no freeboard given
+    vessel, (i,) = scene.vessels[name]
+    deck = dataclasses.replace(vessel, freeboard=2.0, beam=30.0, length=60.0)
+    series = load_curve(scene.with_crane(scene.cranes[i].lug, vessel=deck), stop=0.3, step=0.3).vessels[name]
+    corner = 15.0 * np.abs(np.radians(series["heel"])) + 30.0 * np.abs(np.radians(series["trim"]))
+    assert series["freeboard"] == pytest.approx(2.0 - series["heave"] - corner, rel=1e-9)
     land = dataclasses.replace(scene, cranes=tuple(dataclasses.replace(c, vessel=None) for c in scene.cranes))
     on_land = load_curve(land, stop=0.6, step=0.3)
     assert abs(on_land.tensions[-1] - curve.tensions[-1]).max() > 1e-3

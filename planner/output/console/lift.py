@@ -51,6 +51,7 @@ def lift_table(scene, curve, rows=25):
             heel, trim = (f"{_signed(v[k].min())} .. {_signed(v[k].max())}" for k in ("heel", "trim"))
             lines.append(
                 f"  {name}: heel {heel} deg, trim {trim} deg, tip drop up to {v['tip_drop'].max():.3f} m"
+                + (f", lowest freeboard {v['freeboard'].min():.3f} m" if "freeboard" in v else "")
             )
     return "\n".join(lines)
 
