@@ -34,6 +34,7 @@ TITLES = {
     "pivot_friction": "horizontal force at the pivot within its friction",
     "vessel_heel": "crane vessel heel within its limit",
     "vessel_trim": "crane vessel trim within its limit",
+    "vessel_freeboard": "crane vessel freeboard at or above its minimum",
 }
 
 

@@ -40,6 +40,13 @@ import numpy as np
 
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix
+from liftplan.model.statics.floating import (
+    check_floating,
+    scene_fleet,
+    series_scene,
+    vessel_states,
+    with_vessels,
+)
 from liftplan.model.water import WaterSetup, hull_heights, settle
 from liftplan.model.water.draining import RTOL, Drainage, TankSummary, integrate
 
@@ -199,6 +206,10 @@ class LoadCurve:
     equilibria : tuple of Equilibrium
         The solved equilibrium at each hoist of ``hoist`` (pose, tensions, water): what the
         3D view draws at each state. Empty for a curve made without them.
+    vessels : dict of str to dict of str to numpy.ndarray, optional
+        Floating cranes: per crane vessel, its ``heave`` [m], ``heel``, ``trim`` [deg],
+        ``tip_drop`` [m] and, where it gives one, ``freeboard`` [m] (the lowest deck
+        corner's) at each hoist (:class:`~liftplan.model.results.VesselState`).
     """
 
     lugs: tuple[str, ...]
@@ -228,6 +239,7 @@ class LoadCurve:
     drainage: tuple = ()
     drainage_note: str = ""
     equilibria: tuple = field(default=(), repr=False, compare=False)
+    vessels: dict = field(default_factory=dict)
 
     @property
     def crane_load(self):
@@ -285,6 +297,8 @@ class LoadCurve:
                 row["soil_force"] = float(self.soil_force[k])
             if self.water is not None:
                 row["water_in_compartments"] = float(self.water[k])
+            for name, series in self.vessels.items():
+                row.update({f"vessel_{key}_{name}": float(v[k]) for key, v in series.items()})
             out.append(row)
         return out
 
@@ -529,11 +543,18 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
     """
     if scene.hull is None or not scene.n:
         raise InvalidScene("lift: expected a scene with [hull], [water] and three or more cranes")
-    if scene.vessels:
-        raise InvalidScene(
-            "lift: floating cranes (cranes.vessel) are not followed through a load curve; expected "
-            "liftplan solve at each hoist, or the cranes without vessels"
-        )
+    for key in ("tide", "wind"):
+        if getattr(scene, key) is not None:
+            raise InvalidScene(
+                f"lift: [{key}] is not followed through a load curve; expected liftplan solve for it "
+                f"(at each hoist: boom_height raised by the hoist), or the scene without [{key}]"
+            )
+    floating = scene  # with its crane vessels, for their states at each hoist
+    fleet = None
+    if scene.vessels:  # each rope in series with its vessel (one crane each), as solve's hydrostatic
+        check_floating(scene, "hydrostatic")
+        fleet = scene_fleet(scene)
+        scene = series_scene(scene, fleet)
     if stop is not None:
         _check_stop(scene, stop)
     stop = default_stop(scene) if stop is None else float(stop)
@@ -604,6 +625,11 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
     tensions = np.array([list(p.eq.tensions.values()) for p in points])
     max_load = _max_load(lift, points, failed, scene.lug_names, tensions)
     points = _with_brackets(lift, points)  # and the plateau's own bracket ends
+    if fleet is not None:
+        points = [
+            replace(p, eq=with_vessels(p.eq, vessel_states(floating, fleet, list(p.eq.tensions.values()))))
+            for p in points
+        ]
     afloat = [p.eq.afloat for p in points]
     tensions = np.array([list(p.eq.tensions.values()) for p in points])
     hoist = np.array([p.hoist for p in points])
@@ -640,7 +666,19 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
         drainage=summaries,
         drainage_note=note,
         equilibria=tuple(p.eq for p in points),
+        vessels=_vessel_series(points),
     )
+
+
+def _vessel_series(points):
+    """Each crane vessel's heave, heel, trim, tip drop and (where it gives one) freeboard per
+    point (``{}`` without vessels)."""
+    first = points[0].eq.vessels or {}
+    out = {}
+    for name, state in first.items():
+        keys = ("heave", "heel", "trim", "tip_drop") + (() if state.freeboard is None else ("freeboard",))
+        out[name] = {key: np.array([getattr(p.eq.vessels[name], key) for p in points]) for key in keys}
+    return out
 
 
 def _summaries(lift, compartments, hoist):

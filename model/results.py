@@ -221,6 +221,12 @@ class VesselState:
         before the lift, leaves the vessel level under this load.
     max_heel, max_trim : float or None  [deg]
         Its limits, when given.
+    freeboard : float or None  [m]
+        The lowest deck corner's freeboard under the load (ballast included), when the
+        vessel gives its ``freeboard``, ``beam`` and ``length``
+        (:meth:`~liftplan.model.scene.vessel.Vessel.lowest_freeboard`).
+    min_freeboard : float or None  [m]
+        Its least allowed freeboard, when ``freeboard`` is given.
     """
 
     heave: float
@@ -231,6 +237,8 @@ class VesselState:
     levelling_ballast: tuple[float, float]
     max_heel: float | None = None
     max_trim: float | None = None
+    freeboard: float | None = None
+    min_freeboard: float | None = None
 
     @property
     def tip_drop(self):
@@ -247,6 +255,7 @@ class VesselState:
             "tip_drops": dict(self.tip_drops),
             "load": self.load,
             "levelling_ballast": {"heel": self.levelling_ballast[0], "trim": self.levelling_ballast[1]},
+            "freeboard": self.freeboard,
         }
 
 

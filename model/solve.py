@@ -116,8 +116,12 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
                 "wind: modelled for vertical ropes (its couple on the vertical tensions); expected "
                 "tips above the lugs, no slings"
             )
+        still = dataclasses.replace(scene, wind=None)
         scene, wind = apply_wind(scene, tip_plan(scene))
-        return dataclasses.replace(solve(scene, model=model, method=method), wind=wind)
+        eq = solve(scene, model=model, method=method)
+        return dataclasses.replace(
+            eq, wind=dataclasses.replace(wind, load_changes=_wind_share(eq, still, model, method))
+        )
     model = model or pick_model(scene)
     if method != "newton" and model != "hydrostatic":
         raise InvalidScene(f"method = {method!r}: only for a stranded hull; expected 'newton'")
@@ -150,6 +154,16 @@ def solve(scene: Scene, model: str | None = None, method: str = "newton") -> Equ
     except KeyError:
         raise InvalidScene(f"model = {model!r}: expected one of {', '.join(MODELS)}") from None
     return solver(scene, method)
+
+
+def _wind_share(eq, still, model, method):
+    """Each rope's tension in ``eq`` less its tension in the ``still`` scene (no wind)  [t];
+    None when the still scene has no equilibrium (the windy one stands: it is the answer)."""
+    try:
+        calm = solve(still, model=model, method=method)
+    except EquilibriumNotFound:
+        return None
+    return {name: tension - calm.tensions.get(name, 0.0) for name, tension in eq.tensions.items()}
 
 
 # -- the models ------------------------------------------------------------------------------

@@ -25,17 +25,18 @@ def equilibrium_checks(scene, eq):
         ``swl`` per rope with an SWL (tension <= SWL  [t]), ``min_tension`` per rope
         (tension >= 0  [t]) and, without a hull in water, one ``taut`` check (ropes carrying
         load >= all ropes  [-]); with crane vessels, :func:`vessel_checks`. Empty for a body
-        with no ropes.
+        with no ropes. With a wind the tensions are the windy ones and each ``swl`` note
+        gives the wind's share of it.
     """
     checks = []
+    share = (eq.wind.load_changes if eq.wind is not None else None) or {}
     for name, tension in eq.tensions.items():
         swl = eq.swl.get(name)
         if swl:
-            checks.append(
-                Check.upper(
-                    "swl", name, tension, swl, "t", note=f"rope tension / crane SWL = {tension / swl:.0%}"
-                )
-            )
+            note = f"rope tension / crane SWL = {tension / swl:.0%}"
+            if name in share:
+                note += f", the wind's share {share[name]:+.2f} t included"
+            checks.append(Check.upper("swl", name, tension, swl, "t", note=note))
     for name, tension in eq.tensions.items():
         checks.append(Check.lower("min_tension", name, tension, 0.0, "t", note="a rope cannot push"))
     if eq.tensions and scene.hull is None:
@@ -62,7 +63,8 @@ def vessel_checks(vessels):
     -------
     list of Check
         ``vessel_heel`` and ``vessel_trim`` per vessel with ``max_heel`` / ``max_trim``
-        (|angle| <= limit  [deg]).
+        (|angle| <= limit  [deg]); ``vessel_freeboard`` per vessel with ``freeboard``
+        (the lowest deck corner's freeboard >= ``min_freeboard``  [m]).
     """
     checks = []
     for name, state in vessels.items():
@@ -73,4 +75,9 @@ def vessel_checks(vessels):
             if limit is not None:
                 note = f"{angle:+.3f} deg (+ {sense}) under {state.load:.1f} t, ballast included"
                 checks.append(Check.upper(key, name, abs(angle), limit, "deg", note=note))
+        if state.freeboard is not None:
+            note = f"lowest deck corner under {state.load:.1f} t: heave, heel and trim, ballast included"
+            checks.append(
+                Check.lower("vessel_freeboard", name, state.freeboard, state.min_freeboard, "m", note=note)
+            )
     return checks

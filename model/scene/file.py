@@ -337,6 +337,52 @@ class VesselTable(Table):
         values="[heeling, trimming]",
         example="ballast = [-3000.0, 0.0]",
     )
+    freeboard: Num | None = Key(
+        None,
+        doc=(
+            "the deck edge's height above the water before the lift (level, no ballast moment); with "
+            "`beam` and `length`, the lowest deck corner's freeboard under the load, freeboard - heave "
+            "- beam abs(heel) / 2 - length abs(trim) / 2 (small angles, ballast included), is checked "
+            "against `min_freeboard`"
+        ),
+        unit="m",
+        values="number > 0",
+        absent="not checked",
+        example="freeboard = 4.0",
+    )
+    min_freeboard: Num | None = Key(
+        None,
+        doc=(
+            "the least freeboard allowed at the lowest deck corner under the load: "
+            "a check, flagged when below"
+        ),
+        unit="m",
+        values="number; only with `freeboard`",
+        absent="0 (the deck edge at the water) when `freeboard` is given",
+        example="min_freeboard = 1.0",
+    )
+    beam: Num | None = Key(
+        None,
+        doc=(
+            "the hull's breadth, centred on the flotation centre (where the deck corners are); "
+            "required with `freeboard`"
+        ),
+        unit="m",
+        values="number > 0",
+        absent="no freeboard check",
+        example="beam = 40.0",
+    )
+    length: Num | None = Key(
+        None,
+        doc=(
+            "the hull's length, centred on the flotation centre (where the deck corners are); "
+            "required with `freeboard`"
+        ),
+        unit="m",
+        values="number > 0",
+        absent="no freeboard check",
+        example="length = 90.0",
+    )
 
 
 class _Tide(Table):

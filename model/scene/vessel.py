@@ -14,6 +14,17 @@ a hook forward of the flotation centre trims it bow down). A vessel carrying sev
 sums their loads. A ballast moment set before the lift turns the vessel at rest and leaves
 its response to the load (the tip drop) unchanged: the heel and trim reported under load
 are those of the ballasted vessel.
+
+Freeboard (when the vessel gives ``freeboard``, ``beam`` and ``length``): the deck edge is
+taken level at ``freeboard`` above the water before the lift (the vessel at rest, no ballast
+moment), the hull a box of ``beam`` x ``length`` centred on the flotation centre. A deck
+point (x forward, y to starboard of the flotation centre) sinks by h + y phi + x theta (small
+angles, phi and theta the heel and trim under the load with the ballast set), so the lowest
+deck corner's freeboard is::
+
+    f = freeboard - heave - (beam / 2) |phi| - (length / 2) |theta|      [m]
+
+checked against ``min_freeboard`` (0: the deck edge at the water, when not given).
 """
 
 from __future__ import annotations
@@ -69,6 +80,14 @@ class Vessel:
     ballast : tuple of 2 float  [t m]
         Ballast moment set before the lift: (heeling, > 0 heels starboard down; trimming,
         > 0 trims bow down). The heel at rest is ballast[0] / (displacement GM_T).
+    freeboard : float or None  [m]
+        The deck edge's height above the water before the lift (level, no ballast moment).
+    min_freeboard : float or None  [m]
+        The least freeboard allowed at the lowest deck corner under the load; 0 when
+        ``freeboard`` is given without it.
+    beam, length : float or None  [m]
+        The hull's breadth and length, centred on the flotation centre: where the deck
+        corners are. Required with ``freeboard``.
     """
 
     displacement: float
@@ -81,6 +100,10 @@ class Vessel:
     max_heel: float | None = None
     max_trim: float | None = None
     ballast: tuple[float, float] = (0.0, 0.0)
+    freeboard: float | None = None
+    min_freeboard: float | None = None
+    beam: float | None = None
+    length: float | None = None
 
     def __post_init__(self):
         for name in ("displacement", "waterplane_area", "gm_t", "gm_l", "density"):
@@ -95,6 +118,49 @@ class Vessel:
                 if value >= 90.0:
                     raise InvalidScene(f"vessel.{name} = {value!r}: expected a limit below 90 deg")
                 object.__setattr__(self, name, value)
+        self._check_freeboard()
+
+    def _check_freeboard(self):
+        """freeboard with beam and length (the deck corners), min_freeboard only with freeboard."""
+        for name in ("freeboard", "beam", "length"):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _number(f"vessel.{name}", value, "> 0"))
+        if self.min_freeboard is not None:
+            object.__setattr__(self, "min_freeboard", _number("vessel.min_freeboard", self.min_freeboard))
+        given = [n for n in ("freeboard", "beam", "length") if getattr(self, n) is not None]
+        if given and len(given) < 3:
+            missing = [n for n in ("freeboard", "beam", "length") if n not in given]
+            raise InvalidScene(
+                f"vessel.{given[0]} given without {' and '.join(missing)}: expected freeboard, beam and "
+                "length together (the freeboard check needs where the deck corners are)"
+            )
+        if self.min_freeboard is not None and self.freeboard is None:
+            raise InvalidScene(
+                "vessel.min_freeboard given without freeboard: expected freeboard, beam and length "
+                "with it (the freeboard before the lift and where the deck corners are)"
+            )
+        if self.freeboard is not None and self.min_freeboard is None:
+            object.__setattr__(self, "min_freeboard", 0.0)
+
+    def lowest_freeboard(self, heave, heel, trim):
+        """The lowest deck corner's freeboard under the load (small angles, module docstring).
+
+        Parameters
+        ----------
+        heave : float  [m]
+            Sinkage under the load, > 0 down.
+        heel, trim : float  [rad]
+            The vessel's heel and trim under the load, the ballast moment included.
+
+        Returns
+        -------
+        float or None  [m]
+            freeboard - heave - beam |heel| / 2 - length |trim| / 2; None without ``freeboard``.
+        """
+        if self.freeboard is None:
+            return None
+        return self.freeboard - heave - 0.5 * self.beam * abs(heel) - 0.5 * self.length * abs(trim)
 
     @property
     def heave_stiffness(self):

@@ -129,12 +129,17 @@ class WindState:
         Per boom (by crane): its force [t], the vessel's heel and trim from it [deg].
     tip_drops : dict of str to float  [m]
         Each floating crane's tip drop from the wind on its vessel's booms (by lug).
+    load_changes : dict of str to float or None  [t]
+        Each rope's tension less its tension in still air (the same scene and model solved
+        without the wind), keyed as the tensions: the wind's share of each crane's static
+        load. None when the scene has no equilibrium in still air.
     """
 
     body_force: float
     cog_shift: tuple[float, float]
     booms: dict
     tip_drops: dict
+    load_changes: dict | None = None
 
     def to_json(self):
         return {
@@ -142,6 +147,7 @@ class WindState:
             "cog_shift": list(self.cog_shift),
             "booms": {k: {"force": f, "heel": h, "trim": t} for k, (f, h, t) in self.booms.items()},
             "tip_drops": dict(self.tip_drops),
+            "load_changes": None if self.load_changes is None else dict(self.load_changes),
         }
 
 

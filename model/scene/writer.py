@@ -164,7 +164,7 @@ def _vessel(vessel, frame):
     items += [f"density = {_number(vessel.density)}", f"ballast = {_vector(vessel.ballast)}"]
     items += [
         f"{key} = {_number(getattr(vessel, key))}"
-        for key in ("max_heel", "max_trim")
+        for key in ("max_heel", "max_trim", "freeboard", "min_freeboard", "beam", "length")
         if getattr(vessel, key) is not None
     ]
     return "{ " + ", ".join(items) + " }"

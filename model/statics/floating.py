@@ -138,15 +138,19 @@ def vessel_states(scene, fleet, tensions):
         heave = load / vessel.heave_stiffness
         heel = heeling / vessel.heel_stiffness
         trim = trimming / vessel.trim_stiffness
+        heel_set = heel + vessel.ballast[0] / vessel.heel_stiffness  # with the ballast moment
+        trim_set = trim + vessel.ballast[1] / vessel.trim_stiffness
         out[name] = VesselState(
             heave=heave,
-            heel=math.degrees(heel + vessel.ballast[0] / vessel.heel_stiffness),
-            trim=math.degrees(trim + vessel.ballast[1] / vessel.trim_stiffness),
+            heel=math.degrees(heel_set),
+            trim=math.degrees(trim_set),
             tip_drops={labels[i]: heave + starboard[i] * heel + forward[i] * trim for i in on},
             load=load,
             levelling_ballast=(0.0 - heeling, 0.0 - trimming),
             max_heel=vessel.max_heel,
             max_trim=vessel.max_trim,
+            freeboard=vessel.lowest_freeboard(heave, heel_set, trim_set),
+            min_freeboard=vessel.min_freeboard,
         )
     return out
 

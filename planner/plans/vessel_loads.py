@@ -11,7 +11,12 @@ preload held, :func:`~liftplan.planner.search.evaluator.robust`):
   leaves the vessel level at the planned load;
 * with that ballast set, the largest heel and trim over the worst case, (T - T0) y_t /
   (disp GM_T), checked against ``max_heel`` / ``max_trim`` (``vessel_heel``,
-  ``vessel_trim``).
+  ``vessel_trim``);
+* with that ballast set, the lowest deck corner's freeboard over the worst case (where the
+  vessel gives ``freeboard``, ``beam`` and ``length``), freeboard - T / (rho A_wp) - (beam / 2)
+  |T - T0| |y_t| / (disp GM_T) - (length / 2) |T - T0| |x_t| / (disp GM_L): concave in T, so
+  least at the rope's lowest or highest tension; checked against ``min_freeboard``
+  (``vessel_freeboard``).
 """
 
 from __future__ import annotations
@@ -54,6 +59,11 @@ class VesselPlan:
         The rope's lowest and highest tension over the worst case.
     max_heel, max_trim : float or None  [deg]
         The vessel's limits, when given.
+    freeboard : float or None  [m]
+        The lowest deck corner's freeboard over the worst case with that ballast set, when the
+        vessel gives ``freeboard``, ``beam`` and ``length``.
+    min_freeboard : float or None  [m]
+        Its least allowed freeboard, when ``freeboard`` is given.
     """
 
     crane: str
@@ -71,9 +81,12 @@ class VesselPlan:
     worst_load: tuple[float, float]
     max_heel: float | None = None
     max_trim: float | None = None
+    freeboard: float | None = None
+    min_freeboard: float | None = None
 
     def checks(self):
-        """``vessel_heel`` and ``vessel_trim`` where the vessel gives its limit."""
+        """``vessel_heel`` and ``vessel_trim`` where the vessel gives its limit, and
+        ``vessel_freeboard`` where it gives its freeboard."""
         out = []
         for name, value, limit, what in (
             ("vessel_heel", self.worst_heel, self.max_heel, "heel"),
@@ -82,6 +95,13 @@ class VesselPlan:
             if limit is not None:
                 note = f"largest |{what}| over the box and hook errors, the levelling ballast set"
                 out.append(Check.upper(name, self.crane, value, limit, "deg", note=note))
+        if self.freeboard is not None:
+            note = "lowest deck corner over the box and hook errors, the levelling ballast set"
+            out.append(
+                Check.lower(
+                    "vessel_freeboard", self.crane, self.freeboard, self.min_freeboard, "m", note=note
+                )
+            )
         return out
 
     def to_json(self):
@@ -99,6 +119,7 @@ class VesselPlan:
             "worst_heel": self.worst_heel,
             "worst_trim": self.worst_trim,
             "worst_load": list(self.worst_load),
+            "freeboard": self.freeboard,
         }
 
 
@@ -148,9 +169,27 @@ def vessel_plans(plan):
                 worst_load=(float(low[k]), float(high[k])),
                 max_heel=vessel.max_heel,
                 max_trim=vessel.max_trim,
+                freeboard=_worst_freeboard(vessel, load, (float(low[k]), float(high[k])), forward, starboard),
+                min_freeboard=vessel.min_freeboard,
             )
         )
     return tuple(out)
+
+
+def _worst_freeboard(vessel, load, extremes, forward, starboard):
+    """The lowest deck corner's freeboard over the rope's tensions ``extremes`` (lowest,
+    highest) [t], the levelling ballast for ``load`` [t] set (module docstring)  [m]; None
+    without the vessel's freeboard."""
+    if vessel.freeboard is None:
+        return None
+    return min(
+        vessel.lowest_freeboard(
+            t / vessel.heave_stiffness,
+            (t - load) * starboard / vessel.heel_stiffness,
+            (t - load) * forward / vessel.trim_stiffness,
+        )
+        for t in extremes
+    )
 
 
 def vessel_lines(vessels):
@@ -162,17 +201,18 @@ def vessel_lines(vessels):
         "crane vessels at the level tension (heave + down, heel + starboard down, trim + bow down; tip "
         "drop: the extra hoist as the load comes on; ballast: heeling, trimming moment to set before "
         "the lift, levels the vessel at this load; worst: largest |heel|, |trim| over the box and the "
-        "hook errors with that ballast set):",
+        "hook errors with that ballast set; freeboard: lowest deck corner over them / its minimum):",
         f"{'crane':<13}{'lug':<5}{'T [t]':>7}{'heave':>7}{'heel':>7}{'trim':>7}{'drop':>7}"
-        f"{'ballast [t m]':>18}{'worst [deg]':>14}",
+        f"{'ballast [t m]':>18}{'worst [deg]':>14}{'freeboard [m]':>15}",
         f"{'':<25}{'[m]':>7}{'[deg]':>7}{'[deg]':>7}{'[m]':>7}",
     ]
     for v in vessels:
         ballast = f"{round(v.ballast[0]) + 0:+d}, {round(v.ballast[1]) + 0:+d}"
         worst = f"{v.worst_heel:.2f}, {v.worst_trim:.2f}"
+        freeboard = "-" if v.freeboard is None else f"{v.freeboard:.2f} / {v.min_freeboard:g}"
         lines.append(
             f"{v.crane[:12]:<13}{v.label:<5}{v.load:7.1f}{v.heave:7.3f}{round(v.heel, 2) + 0.0:+7.2f}"
-            f"{round(v.trim, 2) + 0.0:+7.2f}{v.tip_drop:7.3f}{ballast:>18}{worst:>14}"
+            f"{round(v.trim, 2) + 0.0:+7.2f}{v.tip_drop:7.3f}{ballast:>18}{worst:>14}{freeboard:>15}"
         )
     return lines
 

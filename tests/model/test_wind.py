@@ -3,17 +3,20 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
 import pytest
 from helpers import EXAMPLES
+from support.cli import run
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.file import load_scene, loads_scene
 from liftplan.model.scene.wind import GRAVITY, Wind, WindArea
 from liftplan.model.scene.writer import scene_toml
+from liftplan.model.solve_checks import equilibrium_checks
 
 FLOATING = EXAMPLES / "tanker_floating.toml"
 #: 20 m/s towards starboard: -y in z-up (the file's choi +z)
@@ -88,7 +91,8 @@ def test_wind_file_refusals_and_json():
     scene = loads_scene(text)
     assert scene.wind.direction == -90.0  # towards +z (starboard) in the file: -y in z-up
     assert loads_scene(scene_toml(scene)) == scene
-    assert set(solve(scene).to_json()["wind"]) == {"body_force", "cog_shift", "booms", "tip_drops"}
+    keys = {"body_force", "cog_shift", "booms", "tip_drops", "load_changes"}
+    assert set(solve(scene).to_json()["wind"]) == keys
     land = scene.with_crane("T1", vessel=None)
     with pytest.raises(InvalidScene, match=r"wind.booms\[Sheerleg 1\]: the crane stands on land"):
         solve(land)
@@ -98,3 +102,37 @@ def test_wind_file_refusals_and_json():
     )
     with pytest.raises(InvalidScene, match="wind: modelled for vertical ropes"):
         solve(tipped.with_analysis(model="inclined"))
+
+
+def test_the_wind_share_of_each_crane_load_is_shown_and_checked(tmp_path):
+    """solve reports each rope's tension less its tension in still air (the same scene solved
+    without the wind); the shares sum to zero (the ropes still carry W alone), and the SWL check
+    takes the windy tension: an SWL between the still and the windy tension fails, its note
+    giving the wind's share. The console and --json show the shares."""
+    scene = load_scene(FLOATING)
+    windy = dataclasses.replace(scene, wind=WIND)
+    eq, calm = solve(windy), solve(scene)
+    share = eq.wind.load_changes
+    for name, tension in eq.tensions.items():
+        assert share[name] == pytest.approx(tension - calm.tensions[name], abs=1e-12)
+    assert sum(share.values()) == pytest.approx(0.0, abs=1e-9 * scene.body.weight)
+    assert share["T1"] > 0.1  # the starboard ropes take the couple
+    swl = 0.5 * (calm.tensions["T1"] + eq.tensions["T1"])
+    limited = windy.with_crane("T1", swl=swl)
+    checks = {(c.name, c.subject): c for c in equilibrium_checks(limited, solve(limited))}
+    assert not checks["swl", "T1"].ok
+    assert f"the wind's share {share['T1']:+.2f} t included" in checks["swl", "T1"].note
+    still = {
+        (c.name, c.subject): c for c in equilibrium_checks(scene, solve(scene.with_crane("T1", swl=swl)))
+    }
+    assert still["swl", "T1"].ok
+    text = (
+        FLOATING.read_text()
+        + "\n[wind]\nspeed = 20.0\ndirection = 90.0\nbody = { area = 450.0, cd = 1.2, height = 9.0 }\n"
+    )
+    path = tmp_path / "windy.toml"
+    path.write_text(text)
+    data = json.loads(run("solve", str(path), "--json").stdout)
+    assert data["wind"]["load_changes"]["T1"] == pytest.approx(share["T1"], rel=1e-9)
+    console = run("solve", str(path)).stdout
+    assert f"T1 {share['T1']:+.2f}" in console and "the wind's share of each rope's tension" in console

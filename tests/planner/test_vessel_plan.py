@@ -51,6 +51,11 @@ def test_the_plan_scene_solves_to_the_plan_with_its_vessels(floating):
         assert state.trim == pytest.approx(v.trim, abs=1e-6)
         assert state.tip_drop == pytest.approx(v.tip_drop, abs=1e-6)
         assert state.levelling_ballast == pytest.approx(v.ballast, abs=1e-3)
+        # at the level tension, the levelling ballast set, the deck lies level: the plan's worst
+        # freeboard is at most the heave's alone
+        vessel = next(c.vessel for c in scene.cranes if c.vessel_name == v.label)
+        level = vessel.lowest_freeboard(state.heave, 0.0, 0.0)
+        assert v.freeboard <= level + 1e-12
     # the plan's scene file carries the vessels, in the planning file's frame
     named = result.named_scene
     assert loads_scene(scene_toml(named)) == named
@@ -90,11 +95,24 @@ def test_worst_heel_is_checked_against_the_limit(floating):
     )
     assert v.ballast == pytest.approx((-v.load * v.offset[1], -v.load * v.offset[0]), rel=1e-12)
     tight = dataclasses.replace(v, max_heel=0.5 * v.worst_heel)
-    assert [c.ok for c in tight.checks()] == [False, True]
+    assert [c.ok for c in tight.checks()] == [False, True, True]
+    names = ("vessel_heel", "vessel_trim", "vessel_freeboard")
     assert {(c.name, c.subject) for c in result.checks if c.name.startswith("vessel_")} == {
-        (name, crane.name) for crane in result.problem.fleet for name in ("vessel_heel", "vessel_trim")
+        (name, crane.name) for crane in result.problem.fleet for name in names
     }
     assert isinstance(v, VesselPlan)
+    # the worst freeboard, closed form: least at the rope's lowest or highest tension
+    corners = [
+        vessel.freeboard
+        - t / vessel.heave_stiffness
+        - vessel.beam / 2 * abs((t - v.load) * v.offset[1]) / vessel.heel_stiffness
+        - vessel.length / 2 * abs((t - v.load) * v.offset[0]) / vessel.trim_stiffness
+        for t in v.worst_load
+    ]
+    assert v.freeboard == pytest.approx(min(corners), rel=1e-12)
+    assert 1.0 < v.freeboard < vessel.freeboard
+    low = dataclasses.replace(v, min_freeboard=v.freeboard + 0.01)
+    assert [c.ok for c in low.checks() if c.name == "vessel_freeboard"] == [False]
     assert np.all([c.ok for c in result.checks])
 
 
@@ -104,7 +122,7 @@ def test_the_report_and_json_carry_the_vessels(floating):
     data = result.to_json()
     assert set(data["vessels"]) == {c.name for c in result.problem.fleet}
     for entry in data["vessels"].values():
-        assert {"tip_drop", "extra_hoist", "ballast", "worst_heel", "worst_trim"} <= set(entry)
+        assert {"tip_drop", "extra_hoist", "ballast", "worst_heel", "worst_trim", "freeboard"} <= set(entry)
     html = "".join(_vessel_section(result))
     assert "Crane vessels" in html
     assert all(c.name in html for c in result.problem.fleet)

@@ -42,4 +42,20 @@ def lift_table(scene, curve, rows=25):
                 f"  {t.name}: {t.initial:.1f} t -> {t.final:.1f} t, {drain}"
                 + (f", water balance error {t.mass_error:.1e}" if t.mass_error else "")
             )
+    if curve.vessels:
+        lines.append(
+            "crane vessels over the curve (each rope in series with its vessel; heel + starboard down, "
+            "trim + bow down, ballast included; tip drop: the extra hoist beyond a crane on land):"
+        )
+        for name, v in curve.vessels.items():
+            heel, trim = (f"{_signed(v[k].min())} .. {_signed(v[k].max())}" for k in ("heel", "trim"))
+            lines.append(
+                f"  {name}: heel {heel} deg, trim {trim} deg, tip drop up to {v['tip_drop'].max():.3f} m"
+                + (f", lowest freeboard {v['freeboard'].min():.3f} m" if "freeboard" in v else "")
+            )
     return "\n".join(lines)
+
+
+def _signed(value):
+    """``value`` to 3 decimals with its sign, never ``-0.000``."""
+    return f"{round(float(value), 3) + 0.0:+.3f}"

@@ -50,9 +50,32 @@ def equilibrium_table(scene, eq, girder=None):
         lines += _afloat_lines(eq)
     if eq.vessels:
         lines += _vessel_lines(eq)
+    if eq.wind is not None:
+        lines += _wind_lines(eq.wind)
     if girder is not None:
         lines += _strength_lines(scene, eq, girder)
     return "\n".join(lines)
+
+
+def _wind_lines(wind):
+    """The wind: its force on the body, the CG's downwind shift and each rope's share of it."""
+    shift = (wind.cog_shift[0] ** 2 + wind.cog_shift[1] ** 2) ** 0.5
+    lines = [
+        "",
+        f"wind: {wind.body_force:.2f} t on the body, its couple carried as the weight {shift:.3f} m "
+        "downwind in plan"
+        + "".join(
+            f"; boom {k} {f:.2f} t (heel {h:+.3f}, trim {t:+.3f} deg)" for k, (f, h, t) in wind.booms.items()
+        ),
+    ]
+    if wind.load_changes is None:
+        lines.append("  the wind's share of each rope's tension: none (no equilibrium in still air)")
+    else:
+        shares = ", ".join(f"{k} {v:+.2f}" for k, v in wind.load_changes.items())
+        lines.append(
+            f"  the wind's share of each rope's tension [t] (in the tensions above, SWL checked): {shares}"
+        )
+    return lines
 
 
 def _vessel_lines(eq):
@@ -72,6 +95,7 @@ def _vessel_lines(eq):
             f"{round(v.trim, 3) + 0.0:+12.3f}{v.tip_drop:14.3f}"
             f"   {round(v.levelling_ballast[0]) + 0:+d}, {round(v.levelling_ballast[1]) + 0:+d}"
             + (f"  (tip drops: {drops})" if len(v.tip_drops) > 1 else "")
+            + ("" if v.freeboard is None else f"  freeboard {v.freeboard:.3f} m (min {v.min_freeboard:g})")
         )
     return lines
 

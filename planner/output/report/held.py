@@ -792,7 +792,8 @@ def _vessel_section(plan):
         "extra hoist the crane needs as the load comes on. The levelling ballast (heeling, "
         "trimming moment; + heels starboard down, + trims bow down) set before the lift leaves the "
         "vessel level at the planned load; the worst heel and trim are over the tolerance box, "
-        "the CG envelope and the hook errors with that ballast set.</p>"
+        "the CG envelope and the hook errors with that ballast set, as is the freeboard of the lowest "
+        "deck corner (heave, heel and trim; where the vessel gives its freeboard and size).</p>"
     )
     rows = [
         (
@@ -807,6 +808,7 @@ def _vessel_section(plan):
             f"{v.ballast[0]:+.0f}, {v.ballast[1]:+.0f}",
             f"{v.worst_heel:.3f}" + ("" if v.max_heel is None else f" / {v.max_heel:g}"),
             f"{v.worst_trim:.3f}" + ("" if v.max_trim is None else f" / {v.max_trim:g}"),
+            "-" if v.freeboard is None else f"{v.freeboard:.3f} / {v.min_freeboard:g}",
         )
         for v in plan.vessels
     ]
@@ -823,10 +825,11 @@ def _vessel_section(plan):
             "levelling ballast [t m]",
             "worst heel / limit [deg]",
             "worst trim / limit [deg]",
+            "worst freeboard / minimum [m]",
         ],
         rows,
         "Crane vessels at the level tension (tip offset: forward, to starboard of the flotation centre)",
-        text_columns=(1, 2, 8, 9, 10),
+        text_columns=(1, 2, 8, 9, 10, 11),
     )
     return ["<h3>Crane vessels</h3>", text, table]
 
