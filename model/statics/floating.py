@@ -40,7 +40,14 @@ from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.results import VesselState
 from liftplan.model.scene.objects import name_list
 from liftplan.model.statics.acceptance import judge
-from liftplan.model.statics.model import FastCall, Layout, pose_points, rope_tensions, statics_system
+from liftplan.model.statics.model import (
+    NEWTON_OPTIONS,
+    FastCall,
+    Layout,
+    pose_points,
+    rope_tensions,
+    statics_system,
+)
 from liftplan.model.statics.vertical import equilibrium_of, pack_params, solve_elastic, worst_residual
 
 
@@ -228,13 +235,7 @@ class FloatingModel:
             "floating_newton",
             "newton",
             {"x": self._z, "p": self._p, "g": self._residual},
-            {
-                "abstol": 1e-13,
-                "abstolStep": 1e-15,
-                "max_iter": 60,
-                "error_on_fail": False,
-                "show_eval_warnings": False,
-            },
+            NEWTON_OPTIONS,
         )
 
     def _function(self, name, with_start):

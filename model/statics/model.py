@@ -43,6 +43,17 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import rotation, rotation_matrix
 from liftplan.model.statics.compiled import compile_cached
 
+#: casadi's Newton rootfinder as every rope model uses it: tight tolerances, and its own
+#: failure flag off (with it on, casadi prints the inputs to stdout and raises); callers judge
+#: convergence by the returned residual and pose.
+NEWTON_OPTIONS = {
+    "abstol": 1e-13,
+    "abstolStep": 1e-15,
+    "max_iter": 60,
+    "error_on_fail": False,
+    "show_eval_warnings": False,
+}
+
 
 @dataclass(frozen=True)
 class Layout:
@@ -535,13 +546,7 @@ class RopeModel:
             "elastic_newton",
             "newton",
             {"x": self._x, "p": self._p, "g": self._residual},
-            {
-                "abstol": 1e-13,
-                "abstolStep": 1e-15,
-                "max_iter": 60,
-                "error_on_fail": False,
-                "show_eval_warnings": False,
-            },
+            NEWTON_OPTIONS,
         )
 
     def _newton_function(self, name, with_start):
