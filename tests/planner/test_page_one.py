@@ -46,6 +46,10 @@ def test_the_recommendation_carries_each_cranes_design_utilisation(fleet):
         assert float(row[3]) == pytest.approx(100 * crane["utilisation"], abs=0.05)
         assert row[5] == ("ok" if crane["ok"] else "FAIL")
     assert f"+-{fleet.hook_accuracy_needed:.3f} m of its planned height" in section
+    # what the design loads stand on (the reviewer: page 1 had no weight, weight basis or DAF
+    # location; they were on page 2 only)
+    problem = fleet.problem
+    assert f"Weight W {problem.body.weight:.2f} t ({problem.weight_basis_text}); location" in section
 
 
 @pytest.mark.skipif(shutil.which("pdftotext") is None, reason="pdftotext (poppler-utils) not installed")
@@ -57,3 +61,4 @@ def test_it_is_on_the_first_printed_page(fleet, tmp_path):
         ["pdftotext", "-f", "1", "-l", "1", str(files.pdf), "-"], capture_output=True, text=True, check=True
     ).stdout
     assert CAPTION in first and "crew must hold every hook" in first
+    assert "the DAF column of 0027/ND Table 5-1" in " ".join(first.split())

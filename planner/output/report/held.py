@@ -218,7 +218,12 @@ def _governing(plan):
         f"The crew must hold every hook within {within} of its planned height (planned for "
         f"+-{tolerance:g} m) for every rope to stay within its limits."
     )
-    return table + f"<p>{crew}</p>"
+    problem = plan.problem
+    basis = (  # what the design loads stand on, where the signer reads them (section 2 has all)
+        f"Weight W {problem.body.weight:.2f} t ({problem.weight_basis_text}); location "
+        f"{problem.rules.location_text}, the DAF column of 0027/ND Table 5-1."
+    )
+    return table + f"<p>{crew}</p><p>{html.escape(basis)}</p>"
 
 
 def _governing_case(capacity):
