@@ -476,22 +476,12 @@ class Plan(InFileFrame):
         breakout case, at breakout  [m]; inf when no hook error can break it (to 10 m)."""
         problem = self.problem
         tensions, gain = self._dense_held
-        reach = np.abs(gain).sum(axis=2)  # per 1 m of error on every hook, the worst signs
         limit = self.lugset.limit
-        low = problem.min_tension
-        # each constraint T + reach e <= limit and T - reach e >= low is linear in e
-        with np.errstate(divide="ignore", invalid="ignore"):
-            up = np.where(reach > 0, (limit - tensions) / reach, np.inf)
-            down = np.where(reach > 0, (tensions - max(low, 0.0)) / reach, np.inf)
-        value = float(min(up.min(), down.min()))
+        value = _largest_error(tensions, np.abs(gain).sum(axis=2), limit, max(problem.min_tension, 0.0))
         breakout = self.design_loads.breakout
         if breakout is not None:  # the breakout state too: its tensions and dT/dH there, >= 0
             reach = np.abs(breakout.gain).sum(axis=1)
-            t = breakout.tensions
-            with np.errstate(divide="ignore", invalid="ignore"):
-                up = np.where(reach > 0, (limit - t) / reach, np.inf)
-                down = np.where(reach > 0, t / reach, np.inf)
-            value = min(value, float(up.min()), float(down.min()))
+            value = min(value, _largest_error(breakout.tensions, reach, limit, 0.0))
         return value if value < 10.0 else float("inf")
 
     @cached_property
@@ -729,6 +719,16 @@ def set_girder(problem, result, scenarios):
     tensions, gain = lugset.tensions_and_gain(np.asarray(result.preload, dtype=float), scenarios)
     hook = (gain, lugset.hook_tolerance) if lugset.hook_uncertain else None
     return girder_worst(problem, lugset.points, scenarios, tensions, hook)
+
+
+def _largest_error(tensions, reach, limit, low):
+    """The largest hook error e [m] with every T + reach e <= limit and T - reach e >= low
+    (``reach``: each tension's change per 1 m on every hook, the worst signs; each constraint
+    is linear in e); inf where nothing reaches."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        up = np.where(reach > 0, (limit - tensions) / reach, np.inf)
+        down = np.where(reach > 0, (tensions - low) / reach, np.inf)
+    return float(min(up.min(), down.min()))
 
 
 def girder_first(problem, ranking):

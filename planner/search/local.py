@@ -140,15 +140,11 @@ def assign(problem, indices):
     n = len(indices)
     if problem.equal_cranes:
         return tuple(range(n))
-    from scipy.optimize import linear_sum_assignment  # noqa: PLC0415 (only fleets need it)
-
-    swl = problem.reach[1][list(indices)]  # (n, m), NaN out of reach
-    cost = np.where(np.isnan(swl), 1e12, -np.nan_to_num(swl))
-    lugs, cranes = linear_sum_assignment(cost)
-    if np.any(np.isnan(swl[lugs, cranes])):
+    pairs = _most_swl(problem.reach[1][list(indices)])  # (n, m), NaN out of reach
+    if pairs is None:
         return None
     out = np.empty(n, dtype=np.int64)
-    out[lugs] = cranes
+    out[pairs[0]] = pairs[1]
     return tuple(int(j) for j in out)
 
 
@@ -156,13 +152,17 @@ def reach_start(problem):
     """A set every crane of a fleet reaches: each crane on a candidate of its own, the most
     chart SWL over them (scipy's linear assignment over candidates x cranes), indices
     ascending; None when no such set exists."""
+    pairs = _most_swl(problem.reach[1])
+    return None if pairs is None else tuple(sorted(int(i) for i in pairs[0]))
+
+
+def _most_swl(swl):
+    """(rows, cranes) of the assignment with the most chart SWL in ``swl`` (rows x cranes,
+    NaN out of reach), or None when some crane or row must take one out of reach."""
     from scipy.optimize import linear_sum_assignment  # noqa: PLC0415 (only fleets need it)
 
-    swl = problem.reach[1]
-    lugs, cranes = linear_sum_assignment(np.where(np.isnan(swl), 1e12, -np.nan_to_num(swl)))
-    if np.any(np.isnan(swl[lugs, cranes])):
-        return None
-    return tuple(sorted(int(i) for i in lugs))
+    rows, cranes = linear_sum_assignment(np.where(np.isnan(swl), 1e12, -np.nan_to_num(swl)))
+    return None if np.any(np.isnan(swl[rows, cranes])) else (rows, cranes)
 
 
 def neighbours(problem, indices, cranes):
