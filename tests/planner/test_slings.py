@@ -195,6 +195,8 @@ def test_report_of_a_sling_plan(tmp_path):
     assert code == 0
     page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
     assert "Sling legs" in page and "Crawler FWD" in page
+    # the title is the file's name (a loop over the cranes once renamed it "Crawler AFT")
+    assert "<h1>hull block, two crawler cranes with 2-leg slings</h1>" in page
     data = json.loads((tmp_path / "out" / "plan.json").read_text(encoding="utf-8"))
     assert data["lift"] == "two-crane slings"
 

@@ -287,11 +287,11 @@ def render_html(plan, today=None):
         chosen = plan.chosen
         dx, dy, dz = _in_file(problem, chosen.worst_cog_offset)
         each = []
-        for name, hook, (tilt, offset) in zip(plan.crane_names, chosen.hook_worst, chosen.hook_worst_at):
+        for crane, hook, (tilt, offset) in zip(plan.crane_names, chosen.hook_worst, chosen.hook_worst_at):
             ox, oy, oz = _in_file(problem, offset)
             each.append(
                 (
-                    f"{name}: largest hook load {hook:.2f} t at tilt, CG offset (x, y, z)",
+                    f"{crane}: largest hook load {hook:.2f} t at tilt, CG offset (x, y, z)",
                     f"{tilt:+.2f}; {ox:+.2f}, {oy:+.2f}, {oz:+.2f}",
                     "deg; m",
                 )
