@@ -57,7 +57,8 @@ class _Body(Table):
             "what `weight` is: `air`, the body's weight in air, or `water`, its weight in water "
             "(less its buoyancy, flooded compartments included); the plan says it beside W in the "
             "console, the report's basis table and the JSON (`weight.basis`). The planner uses W as "
-            "given either way"
+            "given either way; with `water` and the DAF taken from 0027/ND Table 5-1 (the table for "
+            "lifts in air; no `[rules] daf`) the plan warns, on the console and page 1"
         ),
         absent='not stated: the plan says "not stated"',
         example='weight_basis = "water"',
