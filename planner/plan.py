@@ -44,12 +44,20 @@ class PlanKind:
 
 #: The kinds of plan, tried in order: the first that applies plans the problem.
 KINDS = (
-    PlanKind("slings", uses_slings, plan_slings),  # cranes on sling sets or spreader bars
+    PlanKind("slings", uses_slings, lambda problem, top: _slings(problem, top)),  # sling sets, spreader bars
     PlanKind("strength", uses_strength, plan_strength),  # the hull girder's objectives
     PlanKind("lengths", lambda problem: problem.chooses_rope_lengths, plan_lengths),  # payout ranges
     PlanKind("held", lambda problem: True, plan_single_ropes),  # single ropes, a held level preload
     # (with floating cranes: the vessels in series with the ropes, planner/plans/floating.py)
 )
+
+
+def _slings(problem, top):
+    """A sling plan; with hoist-rope payout ranges, the rope-length search around it (the
+    two kinds of plan do not import each other: they meet here)."""
+    if problem.chooses_rope_lengths:
+        return plan_lengths(problem, top, inner=plan_slings)
+    return plan_slings(problem, top)
 
 
 def plan_kind(problem: PlanProblem) -> PlanKind:
