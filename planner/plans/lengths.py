@@ -226,7 +226,9 @@ def plan_lengths(problem, top=None, inner=None):
 
     def value(key):
         result = results[key]
-        return math.inf if result is None else _summary(result)[0]
+        # to 12 significant digits: lengths that plan the same (two or three cranes on slings,
+        # statically determinate) tie, and the first (shortest) is kept, not round-off's pick
+        return math.inf if result is None else float(f"{_summary(result)[0]:.12g}")
 
     try:
         for lengths in _product(grids):
