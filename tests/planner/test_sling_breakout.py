@@ -29,8 +29,8 @@ import math
 
 import numpy as np
 import pytest
-from helpers import EXAMPLES
 from numpy.testing import assert_allclose
+from support.sling_block import FOUR_LEG, block, lever_shares, sling_apex
 
 from liftplan.model import solve
 from liftplan.model.frames import rotation_matrix
@@ -40,87 +40,8 @@ from liftplan.planner.output.console.summary import summary
 from liftplan.planner.output.report.slings import render_html
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.slings import ApexSlingPlan, SlingPlan
-from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.scenarios import LugSet
-
-BLOCK = """
-name = "sunken block on slings, breakout"
-[body]
-weight = 600.0
-weight_basis = "air"
-cog = [30.0, 0.3, 2.5]
-{candidates}
-[plan]
-{plan}
-tolerance = {{ heel = 2.0, trim = 2.0 }}
-breakout_scene = "sunken_block_breakout.toml"
-{extra}
-{cranes}
-[attitude]
-lift_height = -20.0
-"""
-
-EIGHT = [(x, side, y) for x in (5, 10, 50, 55) for side, y in (("P", 5.0), ("S", -5.0))]
-
-
-def _candidates(rows, bulkheads=False):
-    return "".join(
-        f'[[candidates]]\nname = "F{x}{side}"\nat = [{x:.1f}, {y:.1f}, 6.0]\n'
-        + (f'bulkhead = "frame {x}"\n' if bulkheads else "")
-        for x, side, y in rows
-    )
-
-
-def _cranes(swls, legs=2, length=12.0, rope="30.0"):
-    return "".join(
-        f'[[cranes]]\nname = "C{k + 1}"\nswl = {swl:.1f}\nEA = 50000.0\nrope_length = {rope}\n'
-        f"sling = {{ legs = {legs}, length = {length:.1f}, diameter = 80.0 }}\n"
-        for k, swl in enumerate(swls)
-    )
-
-
-def block(plan_keys, swls, rows=EIGHT, legs=2, length=12.0, bulkheads=False, rope="30.0", extra=""):
-    """The sunken block's planning problem on slings (the breakout scene the example's)."""
-    text = BLOCK.format(
-        candidates=_candidates(rows, bulkheads),
-        plan=plan_keys,
-        extra=extra,
-        cranes=_cranes(swls, legs, length, rope),
-    )
-    return loads_problem(text, base=EXAMPLES)
-
-
-def _apex(a, b, length):
-    """An equal-legged 2-leg sling's hook: in the vertical plane through a and b, at ``length``
-    from both (its own geometry, written here again)."""
-    u = (b - a) / np.linalg.norm(b - a)
-    up = np.array([0.0, 0.0, 1.0]) - u[2] * u
-    up /= np.linalg.norm(up)
-    half = 0.5 * np.linalg.norm(b - a)
-    return 0.5 * (a + b) + math.sqrt(length**2 - half**2) * up
-
-
-def _turn(axis, angle, p):
-    """p turned by ``angle`` [rad] about the unit ``axis`` through the origin (a matrix)."""
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    rot = np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * k @ k
-    return p @ rot.T
-
-
-def _lever(points, pair1, pair2, length, weight, at, tilt):
-    """Two hooks' shares of ``weight`` acting at ``at`` with the body tilted by ``tilt`` [rad]
-    along the level hook line: the lever rule along that line."""
-    hooks = [_apex(points[i], points[j], length) for i, j in (pair1, pair2)]
-    line = hooks[1] - hooks[0]
-    e = np.array([line[0], line[1], 0.0]) / np.hypot(line[0], line[1])
-    axis = np.cross([0.0, 0.0, 1.0], e)
-    turned = [
-        _apex(_turn(axis, tilt, points[i]), _turn(axis, tilt, points[j]), length) for i, j in (pair1, pair2)
-    ]
-    a1, a2 = (h @ e for h in turned)
-    second = weight * (_turn(axis, tilt, np.asarray(at)) @ e - a1) / (a2 - a1)
-    return np.array([weight - second, second]), hooks, e
 
 
 @pytest.fixture(scope="module")
@@ -156,10 +77,10 @@ def test_two_cranes_plan_is_the_brute_force_best(two):
     for pair1, pair2 in itertools.product(rigs, rigs):
         if set(pair1) & set(pair2):
             continue
-        hooks = [_apex(points[i], points[j], length) for i, j in (pair1, pair2)]
+        hooks = [sling_apex(points[i], points[j], length) for i, j in (pair1, pair2)]
         if np.hypot(*(hooks[1] - hooks[0])[:2]) < 1e-6:  # crossed pairs: one hook over the other
             continue
-        _, hooks, e = _lever(points, pair1, pair2, length, weight, cog, 0.0)
+        _, hooks, e = lever_shares(points, pair1, pair2, length, weight, cog, 0.0)
         rolls = []
         for off in offsets:
             g = cog + off - hooks[0]
@@ -169,12 +90,12 @@ def test_two_cranes_plan_is_the_brute_force_best(two):
             continue
         loads = np.array(
             [
-                _lever(points, pair1, pair2, length, weight, cog + off, math.radians(t))[0]
+                lever_shares(points, pair1, pair2, length, weight, cog + off, math.radians(t))[0]
                 for off in offsets
                 for t in (-2.0, 0.0, 2.0)
             ]
         )
-        nominal = _lever(points, pair1, pair2, length, weight, cog, 0.0)[0]
+        nominal = lever_shares(points, pair1, pair2, length, weight, cog, 0.0)[0]
         if loads.min() <= 0.0 or np.any(loads > in_box) or np.any(nominal > level):
             continue
         worst = float(np.max(np.abs(loads[:, 0] / swl[0] - loads[:, 1] / swl[1])))
@@ -197,15 +118,16 @@ def test_two_cranes_breakout_is_the_lever_rule_and_the_rigging_model(two):
     problem, case = two.problem, two.breakout
     load = problem.breakout
     pair1, pair2 = two.chosen.pairs
-    level, hooks, _ = _lever(problem.points, pair1, pair2, 12.0, load.total, load.point, 0.0)
+    level, hooks, _ = lever_shares(problem.points, pair1, pair2, 12.0, load.total, load.point, 0.0)
     assert_allclose(case.tensions, level, rtol=0, atol=1e-9)
     assert case.tensions.sum() == pytest.approx(load.total, abs=1e-9)
     # the hook errors: +-0.02 m on each hook tilts the body along the hook line by up to
     # atan(0.04 / span) either way; the shares there are the extremes
     span = float(np.hypot(*(hooks[1] - hooks[0])[:2]))
     tilt = math.atan(0.04 / span)
+    points = problem.points
     tilted = np.array(
-        [_lever(problem.points, pair1, pair2, 12.0, load.total, load.point, s * tilt)[0] for s in (-1, 1)]
+        [lever_shares(points, pair1, pair2, 12.0, load.total, load.point, s * tilt)[0] for s in (-1, 1)]
     )
     assert_allclose(case.worst, np.maximum(level, tilted.max(axis=0)), rtol=0, atol=1e-9)
     assert_allclose(case.least, np.minimum(level, tilted.min(axis=0)), rtol=0, atol=1e-9)
@@ -291,7 +213,7 @@ def test_three_cranes_hinged_plan_is_the_brute_force_best(three):
             continue
         loads = []
         for rot in rots:
-            hooks = np.array([_apex(points[i] @ rot.T, points[j] @ rot.T, length) for i, j in triple])
+            hooks = np.array([sling_apex(points[i] @ rot.T, points[j] @ rot.T, length) for i, j in triple])
             mat = np.vstack([np.ones(3), hooks[:, 0], hooks[:, 1]])
             if abs(np.linalg.det(mat)) < 1e-9:
                 loads = None
@@ -332,11 +254,6 @@ def test_three_cranes_breakout_is_the_statics_and_the_rigging_model(three):
     solved = np.array([eq.tensions[name] for name in three.crane_names])
     assert_allclose(solved, case.tensions, rtol=0, atol=2e-3 * load.total)
     _chain_carries_the_breakout(three)
-
-
-FOUR_LEG = [
-    (x, side, y) for x in (5, 10, 50, 55) for side, y in (("P", 5.0), ("p", 3.0), ("s", -3.0), ("S", -5.0))
-]
 
 
 def test_four_leg_slings_breakout_with_hook_errors_is_the_elastic_solve():
