@@ -20,6 +20,13 @@ monotonically with the length until the boom range makes the plan infeasible, so
 choice is the longest payout the boom range allows, which the halvings place to within
 1/16 of the range. The plan's certified lower bound is the least of the trials' bounds:
 certified over the lengths tried, not over the continuous range between them.
+
+Cranes on slings (issue 24 item 3): the range is the hoist rope's, tip to hook, and each trial
+is an exact sling plan (``inner``, passed by :func:`liftplan.planner.plan.plan`, which imports
+both kinds of plan; they do not import each other). Two or three cranes on slings are
+statically determinate, so the length changes only the boom heights: every length within the
+booms' range plans the same, and the first (shortest) of equal values is kept (values compared
+to 12 significant digits, so round-off does not pick among equals).
 """
 
 from __future__ import annotations
