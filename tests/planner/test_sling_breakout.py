@@ -310,3 +310,12 @@ def test_four_leg_slings_breakout_with_hook_errors_is_the_elastic_solve():
     order = [list(chosen.cranes).index(j) for j in range(4)]
     assert_allclose(result.breakout.worst, case.worst[order], rtol=0, atol=1e-12)
     _chain_carries_the_breakout(result)
+
+
+def test_a_breakout_the_hooks_cannot_take_fails_its_check():
+    """Two 450 t cranes: the block in air is within their reach, its breakout (about 505 t on
+    the aft hook) is not; the plan says so in a failed check (the command line exits 4)."""
+    result = plan(block('objective = "utilisation"\ncog_tolerance = [0.5, 0.1, 0.3]', (450.0, 450.0)))
+    failed = [c for c in result.checks if not c.ok and c.name == "breakout_hook_load"]
+    assert failed and all(c.value > c.limit == 450.0 for c in failed)
+    assert result.to_json()["breakout"]["ok"] is False

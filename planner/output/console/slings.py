@@ -129,7 +129,10 @@ def sling_table(plan):
             f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
             f"({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m",
         ]
-    lines += girder_lines(plan, plan.girder, plan.girder_over)
+    over = plan.girder_over
+    if plan.breakout is not None:  # docs/planning.md "What the planner does not plan"
+        over += " (not the breakout state: the seabed's hold is not in the planner's girder)"
+    lines += girder_lines(plan, plan.girder, over)
     unit, scale = ("[t]", 1.0) if plan.objective == "spread" else ("[%]", 100.0)
     lines += ["", f"{'rank':<6}{'worst ' + unit:>12}  slings (crane)"]
     for k, slings, value in _ranking(plan):
