@@ -110,7 +110,7 @@ def test_two_cranes_every_length_tried_is_the_brute_force(two):
     values = _brute_force(two.problem, 20.0)
     key = tuple(tuple(sorted(p)) for p in two.chosen.pairs)
     assert values[key] <= min(values.values()) + 1e-9
-    assert two.rope_lengths == {"C1": 20.0, "C2": 20.0}
+    assert two.rope_lengths == {"L1": 20.0, "L2": 20.0, "L3": 20.0, "L4": 20.0}
     # the plan's problem is at the chosen length: its boom heights follow from it
     stiffness = 50000.0 / 20.0
     expected = two.problem.lift_height + two.hooks[:, 2] + 20.0 + two.hook_nominal / stiffness
@@ -120,7 +120,7 @@ def test_two_cranes_every_length_tried_is_the_brute_force(two):
 
 def test_two_cranes_json_console_report_show_lengths_and_breakout(two):
     out = two.to_json()
-    assert out["rope_lengths"] == {"C1": 20.0, "C2": 20.0}
+    assert out["rope_lengths"] == {f"L{k}": 20.0 for k in range(1, 5)}  # per lug, as single ropes
     classes = out["rope_length_search"]["classes"]
     assert classes == [{"cranes": ["C1", "C2"], "min": 20.0, "max": 40.0, "chosen": 20.0}]
     assert len(out["rope_length_search"]["trials"]) == len(two.lengths.trials)

@@ -150,8 +150,10 @@ class SlingLift(InFileFrame):
 
     @property
     def rope_lengths(self):
-        """Crane name -> its hoist rope's unstretched length, tip to hook  [m]."""
-        return {c.name: c.rope_length for c in self.problem.fleet}
+        """Planned label -> the hoist rope's unstretched length (tip to hook) of the crane whose
+        sling takes that lug  [m] (the plan JSON's ``rope_lengths``, keyed as a single-rope plan's)."""
+        length = {c.name: c.rope_length for c in self.problem.fleet}
+        return {label: length[crane] for label, crane in self.cranes.items()}
 
     def with_lengths(self, search, stats=None):
         """This plan with the rope-length search that chose its lengths
