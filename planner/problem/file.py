@@ -306,8 +306,10 @@ class _Plan(Table):
             "static input to the design-load chain becomes the larger of its worst in the box and its "
             "breakout tension (the plan says which governs), a check `breakout_hook_load` per crane "
             "(tension + rigging <= chart SWL) and `breakout_min_tension` are added, and the plan JSON "
-            "gains `breakout`. The scene's body weight and CG must equal `[body]`'s. Not with slings "
-            "or the strength objectives"
+            "gains `breakout`. With slings each crane's hook holds it (two cranes: the lever rule "
+            "along the hook line; three or more: the held model on the hooks) and its legs carry "
+            "it into the lug design loads. The scene's body weight and CG must equal `[body]`'s. "
+            "Not with the strength objectives"
         ),
         values="string (a path)",
         absent="no breakout case",
@@ -504,7 +506,7 @@ class _FleetCrane(Table):
         None,
         doc=(
             "unstretched rope length, boom tip to lug; a table: the payout range the planner chooses "
-            "in, as `crane.rope_length` (not with a sling)"
+            "in, as `crane.rope_length` (with a sling: the hoist rope's, tip to hook)"
         ),
         unit="m",
         values="number > 0, or table { min, max }",
