@@ -348,6 +348,9 @@ class ApexSlingPlan(SlingLift):
 
     @property
     def tilt_note(self):
+        missing = self._design.missing
+        if missing is not None and any(t is None for t in self.tilt_shares):
+            return f"rules' tilt not evaluated: {missing}"
         return self._design.tilt_note
 
     @property

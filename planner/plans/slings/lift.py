@@ -253,6 +253,9 @@ class SlingLift(InFileFrame):
         reason it could not be built (str)."""
 
         problem = self.problem
+        if len(self.crane_names) > 1 and any(t is None for t in self.tilt_shares):
+            # the chain would only say "tilt: missing"; the reason is the tilt case's
+            return self.tilt_note or "rules' tilt not evaluated"
         cranes = []
         for c, name in enumerate(self.crane_names):
             group = self.groups[c]
