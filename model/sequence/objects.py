@@ -23,10 +23,14 @@ KINDS = ("upend", "turnover", "move")
 AXES = ("x", "y")
 #: Most angles a stage may report (its range over its step): a finer grid is a typo.
 MOST_STEPS = 10_000
-#: Fewest and most supports (cranes, and the pivot) of a stage: two or three vertical forces
-#: and the three equations of a body on vertical ropes (vertical force, two moments) leave
-#: no hook height to choose; four or more would need the hook heights the sequence does not fix.
-SUPPORTS = (2, 3)
+#: Fewest supports (cranes, and the pivot) of a turning stage: one cannot hold an angle.
+#: Two or three vertical forces are fixed by the three equations of a body on vertical ropes
+#: (vertical force, two moments); from four on (:data:`ELASTIC_SUPPORTS`) the ropes' stiffness
+#: shares the load (:mod:`liftplan.model.sequence.statics`).
+SUPPORTS = 2
+#: Supports from which a turning stage is statically indeterminate: its cranes need
+#: ``rope_length`` and ``EA``.
+ELASTIC_SUPPORTS = 4
 #: Fewest cranes of a move stage: the elastic model on vertical ropes needs three taut ropes
 #: to hold a body (two leave it free to roll about the line between them).
 MOVE_CRANES = 3
@@ -173,12 +177,11 @@ class Stage:
                 "resting on a pivot"
             )
         supports = len(self.cranes) + (self.pivot is not None)
-        if not SUPPORTS[0] <= supports <= SUPPORTS[1]:
+        if supports < SUPPORTS:
             held = f"{len(self.cranes)} crane(s)" + (" and the pivot" if self.pivot is not None else "")
             raise InvalidScene(
-                f"{where}: held by {held}; expected two or three supports (cranes and the pivot): "
-                "one cannot hold an angle, and four or more share the load in a way the hook heights "
-                "decide, which a held-angle sequence does not fix"
+                f"{where}: held by {held}; expected two or more supports (cranes and the pivot): "
+                "one cannot hold an angle"
             )
 
     def _check_move(self, where):
@@ -316,6 +319,9 @@ class Sequence:
                 for key in stage.cranes:
                     check_move_crane(stage, self.crane(key))
                 continue
+            if len(stage.cranes) + (stage.pivot is not None) >= ELASTIC_SUPPORTS:
+                for key in stage.cranes:
+                    check_elastic_crane(stage, self.crane(key))
             points = [np.mean([by_name[g].at for g in self.crane(k).lugs], axis=0) for k in stage.cranes]
             check_supports_plane(stage, points + ([np.array(stage.pivot)] if stage.pivot is not None else []))
         if not isinstance(self.rules, Rules):
@@ -375,6 +381,16 @@ def check_move_crane(stage, crane):
         )
 
 
+def check_elastic_crane(stage, crane):
+    """Refuse a crane of a turning stage on four or more supports that gives no rope stiffness."""
+    missing = [k for k in ("rope_length", "EA") if getattr(crane, k) is None]
+    if missing:
+        raise InvalidScene(
+            f"{stage.where}: cranes[{crane_key(crane)}]: {', '.join(missing)} missing; a stage on four "
+            "or more supports shares the load by each rope's stiffness EA / rope_length"
+        )
+
+
 def check_sling_reach(crane, lugs):
     """Refuse a 2-leg sling whose legs cannot meet above its two lugs (``lugs``: name -> Lug)."""
     (a, b), (l1, l2) = crane.lugs, (leg.length for leg in crane.sling.legs)
@@ -400,10 +416,17 @@ def sequence_warnings(sequence):
     """
     out = []
     moved = {key for stage in sequence.stages if stage.kind == "move" for key in stage.cranes}
+    shared = {  # a stage on four or more supports shares the load by the ropes' stiffness
+        key
+        for stage in sequence.stages
+        if len(stage.cranes) + (stage.pivot is not None) >= ELASTIC_SUPPORTS
+        for key in stage.cranes
+    }
     for crane in sequence.cranes:
         if crane_key(crane) in moved:
             continue  # a move stage hangs it from its boom tip on its elastic rope: all used
-        given = [key for key in UNUSED_CRANE_KEYS if getattr(crane, key) is not None]
+        unused = UNUSED_CRANE_KEYS if crane_key(crane) not in shared else ("boom_height", "tip")
+        given = [key for key in unused if getattr(crane, key) is not None]
         if given:
             out.append(
                 f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (each hook "
@@ -421,20 +444,23 @@ def check_supports_plane(stage, points):
     points : list of array (3,)  [m]
         Each support's body point (a lug, a sling's lug midpoint, the pivot).
     """
-    if len(points) != 3:
+    if len(points) < 3:
         return
     pts = np.asarray(points, dtype=float)
     across = AXES.index(stage.axis)  # the turning axis: its coordinate is the plan's other one
     along = 1 - across  # the horizontal body axis that turns (x for a turn about y)
-    ones = np.ones(3)
-    d1 = np.linalg.det(np.vstack([ones, pts[:, along], pts[:, across]]))
-    d2 = np.linalg.det(np.vstack([ones, pts[:, 2], pts[:, across]]))
+    ones = np.ones(len(pts))
     size = max(float(np.ptp(pts, axis=0).max()), 1.0)
-    if abs(d1) < 1e-9 * size**2 and abs(d2) < 1e-9 * size**2:
+
+    def flat(column):  # the points on one line of (column, across): the smallest singular value
+        rows = np.vstack([ones, pts[:, column] / size, pts[:, across] / size]).T
+        return np.linalg.svd(rows, compute_uv=False)[-1] < 1e-9
+
+    if flat(along) and flat(2):
         raise InvalidScene(
-            f"{stage.where}: its three supports are in one vertical plane at every angle; the split "
-            "between them is statically indeterminate; expected two of them (release one) or the third "
-            "out of that plane"
+            f"{stage.where}: its {len(pts)} supports are in one vertical plane at every angle; the split "
+            "between them is statically indeterminate; expected two of them (release the others) or "
+            "one out of that plane"
         )
 
 

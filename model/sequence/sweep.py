@@ -225,7 +225,14 @@ class StageModel:
         self.sequence, self.stage = sequence, stage
         cog = np.array(sequence.body.cog, dtype=float)
         anchor = np.array(stage.pivot, dtype=float) if stage.pivot is not None else cog
-        self.statics = HeldAngle(supports_of(sequence, stage), sequence.body.weight, cog, stage.axis, anchor)
+        stiffness = {
+            key: crane.EA / crane.rope_length
+            for key in stage.cranes
+            if (crane := sequence.crane(key)).EA is not None and crane.rope_length is not None
+        }
+        self.statics = HeldAngle(
+            supports_of(sequence, stage), sequence.body.weight, cog, stage.axis, anchor, stiffness
+        )
         self.lugs = [lug for key in stage.cranes for lug in sequence.crane(key).lugs]
         self.normals = {
             name: np.array(sequence.lug(name).normal or stage.axis_vector, dtype=float) for name in self.lugs

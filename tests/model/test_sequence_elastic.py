@@ -1,0 +1,182 @@
+"""Turning stages on four or more supports (issue 26): the redundant share closed by the ropes'
+stiffness (the level share), against the two-rope closed form, ``liftplan solve`` of the same
+scene, the three-rope statics once a rope is slack, and a rigid pivot."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from liftplan.model.errors import InvalidScene
+from liftplan.model.scene.objects import Body, Crane, Lug, Scene
+from liftplan.model.sequence import loads_sequence, run_sequence
+from liftplan.model.sequence.objects import sequence_warnings
+from liftplan.model.sequence.sweep import StageModel
+from liftplan.model.solve import solve
+
+W = 100.0
+L0 = 20.0
+#: Lugs of a block that is not symmetric: the ends at different heights, off its centre line.
+LUGS = {"A": (10.0, 4.0, 3.0), "B": (-9.0, 5.0, 2.5), "C": (-10.0, -4.0, 3.0), "D": (9.0, -3.0, 2.0)}
+EA = {"A": 20000.0, "B": 30000.0, "C": 15000.0, "D": 25000.0}
+COG = (0.8, 0.3, 0.0)
+
+
+def four_text(lugs=LUGS, ea=EA, cog=COG, to=60.0, step=10.0, extra=""):
+    """A turnover about y on one vertical rope per lug, each crane named as its lug."""
+    text = f"[body]\nweight = {W}\ncog = {list(cog)}\n"
+    for name, at in lugs.items():
+        text += f'\n[[lugs]]\nname = "{name}"\nat = {list(at)}\n'
+    for name in lugs:
+        text += f'\n[[cranes]]\nname = "{name}"\nlug = "{name}"\nEA = {ea[name]}\nrope_length = {L0}\n'
+    return (
+        text + f'\n[sequence]\nkind = "turnover"\naxis = "y"\nfrom = 0.0\nto = {to}\nstep = {step}\n{extra}'
+    )
+
+
+def model_of(text):
+    seq = loads_sequence(text)
+    return StageModel(seq, seq.stages[0])
+
+
+def plan_at(angle, points, cog=COG):
+    """Plan positions of body points turned by ``angle`` (deg) about y through the CG, +x up."""
+    t = math.radians(angle)
+    return [((x - cog[0]) * math.cos(t) - (z - cog[2]) * math.sin(t), y - cog[1]) for x, y, z in points]
+
+
+def level_share_by_hand(angle, names, cog=COG):
+    """Every rope taut: T = K A^T c with A K A^T c = W (1, g) (the least elastic energy)."""
+    plan = plan_at(angle, [LUGS[n] for n in names], cog)
+    a = np.array([[1.0, x, y] for x, y in plan]).T
+    k = np.diag([EA[n] / L0 for n in names])
+    c = np.linalg.solve(a @ k @ a.T, W * np.array([1.0, 0.0, 0.0]))
+    return dict(zip(names, k @ a.T @ c))
+
+
+def test_a_symmetric_four_rope_turnover_is_the_two_rope_closed_form_split_in_halves():
+    """Four equal ropes on the top face of a uniform prism (length L, lugs h above the CG, two
+    at each end): each rope carries half of the two-rope share, W (1/2 +- h/L tan theta) / 2,
+    up to atan(L / 2h), where the lower pair goes slack and the angle is no longer held."""
+    length, h = 20.0, 1.0
+    lugs = {"A": (10.0, 3.0, h), "B": (10.0, -3.0, h), "C": (-10.0, 3.0, h), "D": (-10.0, -3.0, h)}
+    text = four_text(lugs, {n: 20000.0 for n in lugs}, (0.0, 0.0, 0.0), to=85.0, step=8.5)
+    model = model_of(text)
+    for angle in np.arange(0.0, 84.0, 3.5):
+        state, _ = model(angle)
+        share = 0.5 + h / length * math.tan(math.radians(angle))
+        assert state.held and state.tilt == 0.0
+        for name in "AB":
+            assert state.hook_loads[name] == pytest.approx(W * share / 2, abs=1e-9 * W)
+        for name in "CD":
+            assert state.hook_loads[name] == pytest.approx(W * (1 - share) / 2, abs=1e-9 * W)
+    result = run_sequence(loads_sequence(text)).stages[0]
+    edge = math.degrees(math.atan(length / (2 * h)))
+    slack = {r.what: r for r in result.slack}
+    for name in "CD":
+        assert slack[name].start == pytest.approx(edge, abs=1e-6)
+    assert result.not_held[0].start == pytest.approx(edge, abs=1e-6)
+
+
+@pytest.mark.parametrize("angle", [0.0, 25.0, 50.0, 65.0])
+def test_every_state_is_liftplan_solve_of_the_same_scene(angle):
+    """Unequal ropes, lugs at four heights, the CG off centre: the lugs where the turn puts
+    them, each boom tip at its lug's height + l0 + T / k, solved by the elastic model: the
+    same tensions (1e-9 W) with the body level (the stage's pose is an equilibrium)."""
+    state = model_of(four_text())(angle)[0]
+    scene = Scene(
+        body=Body(weight=W, cog=COG),
+        lugs=tuple(Lug(name=n, at=state.hooks[n]) for n in LUGS),
+        cranes=tuple(
+            Crane(
+                lug=n,
+                EA=EA[n],
+                rope_length=L0,
+                boom_height=state.hooks[n][2] + L0 + state.hook_loads[n] * L0 / EA[n],
+            )
+            for n in LUGS
+        ),
+    )
+    eq = solve(scene)
+    assert eq.model == "elastic"
+    for name in LUGS:
+        assert eq.tensions[name] == pytest.approx(state.hook_loads[name], abs=1e-9 * W)
+    assert abs(eq.pose.heel) < 1e-9 and abs(eq.pose.trim) < 1e-9
+    assert state.hook_loads == pytest.approx(level_share_by_hand(angle, "ABCD"), abs=1e-9 * W)
+
+
+def test_a_slack_rope_is_bracketed_and_the_other_three_carry_the_body_by_statics():
+    """C's tension in the level share of all four reaches 0 at an angle found by hand (brentq);
+    the sweep reports C slack from there (1e-6 deg), and past it A, B, D carry the body as the
+    three equations say."""
+    edge = brentq(lambda a: level_share_by_hand(a, "ABCD")["C"], 60.0, 75.0, xtol=1e-12)
+    result = run_sequence(loads_sequence(four_text(to=73.0, step=4.0))).stages[0]
+    slack = {r.what: r for r in result.slack}
+    assert set(slack) == {"C"}
+    assert slack["C"].start == pytest.approx(edge, abs=1e-6)
+    assert slack["C"].stop == pytest.approx(73.0)
+    model = model_of(four_text())
+    for angle in (edge + 0.3, 72.5):
+        state = model(angle)[0]
+        plan = plan_at(angle, [LUGS[n] for n in "ABD"])
+        statics = np.linalg.solve(np.array([[1.0, x, y] for x, y in plan]).T, [W, 0.0, 0.0])
+        assert state.slack == ("C",)
+        assert state.hook_loads["C"] == 0.0
+        for name, tension in zip("ABD", statics):
+            assert state.hook_loads[name] == pytest.approx(tension, abs=1e-9 * W)
+    before = model(edge - 1e-4)[0]
+    assert before.slack == () and 0.0 < before.hook_loads["C"] < 1e-3 * W
+
+
+def test_a_pivot_with_three_cranes_is_rigid_and_pushes_only():
+    """An upend on a pivot with three cranes: moments about the pivot balance, the ropes'
+    stretches T / k are one plane through zero at the pivot (the ground does not give), and
+    the reaction is the rest of the weight, >= 0."""
+    lugs = {"A": (20.0, 3.0, 1.0), "B": (20.0, -3.0, 1.0), "C": (10.0, 0.5, 1.2)}
+    text = four_text(lugs, EA, (9.0, 0.2, 0.5), to=80.0).replace(
+        'kind = "turnover"', 'kind = "upend"\npivot = [0.0, 0.0, 0.0]'
+    )
+    model = model_of(text)
+    for angle in (0.0, 30.0, 60.0):
+        state = model(angle)[0]
+        plan = plan_at(angle, list(lugs.values()) + [(0.0, 0.0, 0.0), (9.0, 0.2, 0.5)], (0, 0, 0))
+        pivot, g = np.array(plan[3]), np.array(plan[4])
+        ropes = np.array(plan[:3]) - pivot
+        tensions = np.array([state.hook_loads[n] for n in lugs])
+        assert tensions @ ropes == pytest.approx(W * (g - pivot), abs=1e-9 * W)
+        assert state.ground_reaction == pytest.approx(W - tensions.sum(), abs=1e-9 * W)
+        assert state.ground_reaction > 0.0
+        stretch = tensions * L0 / np.array([EA[n] for n in lugs])
+        plane = np.linalg.lstsq(ropes, stretch, rcond=None)[0]
+        assert ropes @ plane == pytest.approx(stretch, abs=1e-12)
+
+
+def test_the_continuous_maxima_of_four_ropes_are_never_below_a_ten_times_finer_grid():
+    text = four_text(to=72.0, step=6.0)
+    result = run_sequence(loads_sequence(text)).stages[0]
+    model = model_of(text)
+    fine = [model(a)[1] for a in np.arange(0.0, 72.0001, 0.6)]
+    for name, peak in result.maxima.items():
+        assert peak.value >= max(v[name] for v in fine) - 1e-12
+    assert {c.name for c in result.checks} >= {"angle_held"}
+    assert result.design.results  # the rules' chain ran on these maxima
+
+
+def test_four_supports_need_each_ropes_stiffness():
+    text = four_text().replace("EA = 15000.0\n", "")
+    with pytest.raises(InvalidScene, match=r"cranes\[C\]: EA missing; a stage on four"):
+        loads_sequence(text)
+
+
+def test_four_supports_in_one_vertical_plane_are_refused():
+    lugs = {
+        n: (x, 0.0, z) for n, x, z in (("A", 10.0, 1.0), ("B", 4.0, 0.0), ("C", -4.0, 2.0), ("D", -10.0, 1.0))
+    }
+    with pytest.raises(InvalidScene, match="4 supports are in one vertical plane"):
+        loads_sequence(four_text(lugs, {n: 20000.0 for n in lugs}, (0.0, 0.0, 0.0)))
+
+
+def test_rope_length_and_ea_are_used_on_four_supports_not_warned():
+    warnings = sequence_warnings(loads_sequence(four_text()))
+    assert warnings == []
