@@ -20,6 +20,7 @@ the solver cannot hold (fewer than three taut ropes, no convergence) raises
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -31,11 +32,68 @@ from liftplan.model.solve import solve
 
 
 def start_tip(sequence, crane):
-    """Where a crane's boom tip is at a move stage's start (world, ``z-up``)  [m]."""
+    """Where a crane's boom tip is at the start of a move stage that opens the sequence
+    (world, ``z-up``)  [m]."""
     if crane.tip is not None:
         return np.array(crane.tip, dtype=float)
     at = sequence.lug(crane.lug).at
     return np.array([at[0], at[1], crane.boom_height], dtype=float)
+
+
+@dataclass(frozen=True)
+class ChainStart:
+    """Where the stage before a move stage left the body and the boom tips.
+
+    Parameters
+    ----------
+    rotation : ndarray (3, 3)
+        Body -> world at the previous stage's last state.
+    offset : ndarray (3,)  [m]
+        World position of the body-frame origin there (world = offset + rotation @ body).
+    tips : dict of str to ndarray (3,)  [m]
+        The boom tip of each crane of the previous stage: above its hook at its rope's
+        stretched length, l0 + T / k (a turning stage), or where the move left it.
+    stage : str
+        The previous stage.
+    """
+
+    rotation: np.ndarray
+    offset: np.ndarray
+    tips: dict
+    stage: str
+
+    def world(self, body_point):
+        """A body point where the previous stage left it  [m]."""
+        return self.offset + self.rotation @ np.asarray(body_point, dtype=float)
+
+
+def turned_end(sequence, stage, held, anchor):
+    """The :class:`ChainStart` a turning stage leaves at its last state.
+
+    Parameters
+    ----------
+    sequence : Sequence
+    stage : Stage
+        The turning stage.
+    held : HeldState
+        Its state at its last angle.
+    anchor : array (3,)  [m]
+        The body point that stays where it is (the pivot, else the centre of gravity).
+    """
+    if not held.held:
+        raise EquilibriumNotFound(
+            f"{stage.where} ends at {held.angle:g} deg, an angle it cannot hold; a move stage after it "
+            "has no state to start from"
+        )
+    anchor = np.asarray(anchor, dtype=float)
+    tips = {}
+    for key, hook in held.hooks.items():
+        crane = sequence.crane(key)
+        if crane.rope_length is None or crane.EA is None:
+            continue  # not in the move (a crane of the move gives both: checked on reading)
+        stretched = crane.rope_length * (1.0 + held.forces[key] / crane.EA)
+        tips[key] = np.asarray(hook, dtype=float) + np.array([0.0, 0.0, stretched])
+    return ChainStart(held.rotation, anchor - held.rotation @ anchor, tips, stage.where)
 
 
 class MoveModel:
@@ -48,27 +106,49 @@ class MoveModel:
         ``kind = "move"``.
     """
 
-    def __init__(self, sequence, stage):
-        self.sequence, self.stage = sequence, stage
+    def __init__(self, sequence, stage, chain=None):
+        self.sequence, self.stage, self.chain = sequence, stage, chain
         self.cranes = [sequence.crane(key) for key in stage.cranes]
         self.lugs = [crane.lug for crane in self.cranes]
         moves = {m.crane: m for m in stage.moves}
-        self.starts = {key: start_tip(sequence, c) for key, c in zip(stage.cranes, self.cranes)}
+        # the base frame the stage's scene is written in: the body where the stage starts
+        self.base = np.eye(3) if chain is None else chain.rotation
+        self.offset = np.zeros(3) if chain is None else chain.offset
+        if chain is None:
+            self.starts = {key: start_tip(sequence, c) for key, c in zip(stage.cranes, self.cranes)}
+        else:  # a crane that joins here comes just taut above its lug (it carries nothing yet)
+            self.starts = {
+                key: chain.tips[key]
+                if key in chain.tips
+                else chain.world(sequence.lug(c.lug).at) + np.array([0.0, 0.0, c.rope_length])
+                for key, c in zip(stage.cranes, self.cranes)
+            }
         self.ends = {
             key: moves[key].end(start) if key in moves else start for key, start in self.starts.items()
         }
-        self.inclined = any(m.to is not None for m in stage.moves) or any(
-            c.tip is not None for c in self.cranes
+        self.inclined = any(m.to is not None for m in stage.moves) or (
+            chain is None and any(c.tip is not None for c in self.cranes)
         )
         self.scene = Scene(
-            body=sequence.body,
-            lugs=tuple(sequence.lug(name) for name in self.lugs),
-            cranes=tuple(dataclasses.replace(c, name=None, swl=None) for c in self.cranes),
+            body=dataclasses.replace(sequence.body, cog=self._based(sequence.body.cog)),
+            lugs=tuple(self._based_lug(sequence.lug(name)) for name in self.lugs),
+            cranes=tuple(
+                dataclasses.replace(c, name=None, swl=None, tip=c.tip if chain is None else None)
+                for c in self.cranes
+            ),
             name=stage.where,
         )
         self.normals = {
             name: np.array(sequence.lug(name).normal or stage.axis_vector, dtype=float) for name in self.lugs
         }
+
+    def _based(self, point):
+        """A body point in the stage's base frame (the world where the stage starts)  [m]."""
+        return tuple(float(v) for v in self.offset + self.base @ np.asarray(point, dtype=float))
+
+    def _based_lug(self, lug):
+        normal = None if lug.normal is None else tuple(float(v) for v in self.base @ np.asarray(lug.normal))
+        return dataclasses.replace(lug, at=self._based(lug.at), normal=normal)
 
     @property
     def legs(self):
@@ -100,11 +180,7 @@ class MoveModel:
 
     def __call__(self, s):
         """``(SequenceState, {load key: value})`` at parameter ``s``."""
-        try:
-            eq = solve(self.scene_at(s))
-        except EquilibriumNotFound as err:
-            raise EquilibriumNotFound(f"{self.stage.where} at s = {s:.6g}: {err}") from None
-        rot = rotation_matrix(eq.pose.heel, eq.pose.trim, eq.pose.yaw)
+        eq, rot = self.solved(s)
         loads, hook_loads, slack = {}, {}, []
         for key, lug in zip(self.stage.cranes, self.lugs):
             tension = max(float(eq.tensions[lug]), 0.0)
@@ -112,7 +188,7 @@ class MoveModel:
                 pull = np.array(eq.rope_forces[lug].force, dtype=float)
             else:
                 pull = np.array([0.0, 0.0, tension])
-            force = rot.T @ pull  # into the body frame, where the lug's normal is given
+            force = self.base.T @ rot.T @ pull  # into the body frame, where the lug's normal is given
             n = self.normals[lug]
             along = float(force @ n)
             loads[lug] = LugLoad(
@@ -122,6 +198,8 @@ class MoveModel:
             if lug in eq.slack:
                 slack.append(key)
         tips = self.tips(s)
+        # the elastic model keeps the base frame's origin at plan (0, 0); the inclined one moves it
+        position = np.array(eq.position if eq.position is not None else (0.0, 0.0, eq.pose.lift_height))
         state = SequenceState(
             stage=self.stage.where,
             angle=float(s),
@@ -137,7 +215,7 @@ class MoveModel:
             heel=eq.pose.heel,
             trim=eq.pose.trim,
             # the elastic model keeps the body origin at plan (0, 0); the inclined one moves it
-            origin=tuple(eq.position) if eq.position is not None else (0.0, 0.0, eq.pose.lift_height),
+            origin=tuple(float(v) for v in position + rot @ self.offset),
         )
         values = {f"hook:{k}": v for k, v in hook_loads.items()}
         for lug, ld in loads.items():
@@ -149,5 +227,20 @@ class MoveModel:
         values["_held"] = 1.0
         return state, values
 
+    def solved(self, s):
+        """``(Equilibrium, rotation of the base frame)`` at parameter ``s``."""
+        try:
+            eq = solve(self.scene_at(s))
+        except EquilibriumNotFound as err:
+            raise EquilibriumNotFound(f"{self.stage.where} at s = {s:.6g}: {err}") from None
+        return eq, rotation_matrix(eq.pose.heel, eq.pose.trim, eq.pose.yaw)
 
-__all__ = ["MoveModel", "start_tip"]
+    def end(self):
+        """The :class:`ChainStart` this stage leaves at its end (s = 1)."""
+        state, _ = self(1.0)
+        _, rot = self.solved(1.0)
+        tips = {k: np.asarray(v, dtype=float) for k, v in state.hooks.items()}
+        return ChainStart(rot @ self.base, np.asarray(state.origin, dtype=float), tips, self.stage.where)
+
+
+__all__ = ["ChainStart", "MoveModel", "start_tip", "turned_end"]

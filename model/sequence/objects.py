@@ -317,7 +317,7 @@ class Sequence:
                     held[lug] = key
             if stage.kind == "move":
                 for key in stage.cranes:
-                    check_move_crane(stage, self.crane(key))
+                    check_move_crane(stage, self.crane(key), opens=stage is stages[0])
                 continue
             if len(stage.cranes) + (stage.pivot is not None) >= ELASTIC_SUPPORTS:
                 for key in stage.cranes:
@@ -364,15 +364,16 @@ def _check_crane(crane, names):
         )
 
 
-def check_move_crane(stage, crane):
-    """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip."""
+def check_move_crane(stage, crane, opens=True):
+    """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip (``opens``:
+    the stage opens the sequence, so its tips start where the file puts them)."""
     where = f"{stage.where}: cranes[{crane_key(crane)}]"
     if crane.sling is not None:
         raise InvalidScene(
             f"{where}.sling: a move stage hangs one elastic rope per lug; expected cranes on one lug"
         )
     missing = [k for k in ("rope_length", "EA") if getattr(crane, k) is None]
-    if crane.boom_height is None and crane.tip is None:
+    if opens and crane.boom_height is None and crane.tip is None:
         missing.append("boom_height or tip")
     if missing:
         raise InvalidScene(
@@ -415,7 +416,11 @@ def sequence_warnings(sequence):
     list of str
     """
     out = []
-    moved = {key for stage in sequence.stages if stage.kind == "move" for key in stage.cranes}
+    first = sequence.stages[0]
+    # a move that opens the sequence starts from the tips the file gives; a later one from
+    # where the stage before left them
+    moved = set(first.cranes) if first.kind == "move" else set()
+    chained = {key for stage in sequence.stages[1:] if stage.kind == "move" for key in stage.cranes}
     shared = {  # a stage on four or more supports shares the load by the ropes' stiffness
         key
         for stage in sequence.stages
@@ -425,9 +430,15 @@ def sequence_warnings(sequence):
     for crane in sequence.cranes:
         if crane_key(crane) in moved:
             continue  # a move stage hangs it from its boom tip on its elastic rope: all used
-        unused = UNUSED_CRANE_KEYS if crane_key(crane) not in shared else ("boom_height", "tip")
+        elastic = crane_key(crane) in shared or crane_key(crane) in chained
+        unused = UNUSED_CRANE_KEYS if not elastic else ("boom_height", "tip")
         given = [key for key in unused if getattr(crane, key) is not None]
-        if given:
+        if given and elastic:
+            out.append(
+                f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (its tip follows "
+                "its lug in a turn, and a move after another stage starts where that stage left it)"
+            )
+        elif given:
             out.append(
                 f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (each hook "
                 "follows its lug or sling apex to keep its rope vertical; only swl is checked)"

@@ -48,6 +48,8 @@ SLACK_TOL = 1e-9
 MAX_TILT = 60.0
 #: Plan distance below which two lines of action are one (x the body's size)  [-].
 COINCIDENT = 1e-9
+#: Newton steps of the level share (each piece of its energy is a quadratic: a few suffice).
+NEWTON_STEPS = 50
 #: Supports from which a stage is statically indeterminate and shared by the ropes' stiffness.
 ELASTIC_FROM = 4
 
@@ -214,6 +216,8 @@ class HeldAngle:
         for size in sizes:
             found = []
             for subset in itertools.combinations(supports, size):
+                if size == 2 and self._apart(subset, angle):
+                    continue
                 solved = self._solve(list(subset), angle, start)
                 if solved is not None and min(solved[0]) >= -SLACK_TOL * self.weight:
                     found.append((abs(solved[1]), subset, solved))
@@ -229,6 +233,22 @@ class HeldAngle:
         only = min(supports, key=lambda s: float(np.linalg.norm(self.hook(s, rot).at[:2] - g)))
         slack = [s.key for s in supports if s.key != only.key]
         return self._single(only, angle, slack)
+
+    def _apart(self, pair, angle):
+        """True when two supports on points (no sling) cannot carry the body at any tilt.
+
+        The tilt turns the body about the world's horizontal axis across the turning axis,
+        which moves no point along the other horizontal axis: along it the centre of gravity
+        must lie between the two lines of action for both forces to be >= 0 (the lever rule).
+        """
+        if any(s.legs for s in pair):
+            return False  # a sling's apex moves along that axis as the lugs tilt
+        rot = pose_matrix(self.axis, angle, 0.0)
+        along = 0 if self.axis == "y" else 1
+        ends = [float(self.world(rot, s.points)[0][along]) for s in pair]
+        g = float(self.world(rot, self.cog)[0][along])
+        slack = COINCIDENT * self.size
+        return not min(ends) - slack <= g <= max(ends) + slack
 
     # -- four or more supports: the level share of the elastic ropes -----------------------------
     def _elastic(self, angle):
@@ -416,7 +436,7 @@ def level_share(rows, stiffness, load):
     rows, k, b = np.asarray(rows, float), np.asarray(stiffness, float), np.asarray(load, float)
     scale = max(float(np.linalg.norm(b)), 1e-300)
     _, misfit = nnls(rows.T, b)
-    if misfit > 1e-9 * scale:
+    if misfit > 1e-12 * scale:
         return None
 
     def grad(c):
@@ -428,13 +448,16 @@ def level_share(rows, stiffness, load):
         return 0.5 * float(k @ (s * s)) - float(b @ c)
 
     c = np.linalg.lstsq((rows.T * k) @ rows, b, rcond=None)[0]
-    for _ in range(200):
+    for _ in range(NEWTON_STEPS):
         f, s = grad(c)
         taut = s > 0.0
         if np.linalg.norm(f) < 1e-14 * scale:
             break
         jac = (rows[taut].T * k[taut]) @ rows[taut]
         step = np.linalg.lstsq(jac, -f, rcond=None)[0] if taut.any() else -f
+        if taut.sum() >= rows.shape[1] and np.array_equal(rows @ (c + step) > 0.0, taut):
+            c = c + step  # the least of this piece's quadratic, on the same taut set: the balance
+            break
         e0, t = energy(c), 1.0
         while t > 1e-12 and energy(c + t * step) > e0 + 1e-4 * t * float(f @ step):
             t *= 0.5

@@ -19,7 +19,7 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.sequence.maxima import Peak, Sampler, adaptive_samples, continuous_maxima
-from liftplan.model.sequence.move import MoveModel
+from liftplan.model.sequence.move import MoveModel, turned_end
 from liftplan.model.sequence.states import LugLoad, SequenceState
 from liftplan.model.sequence.statics import HeldAngle, Support
 
@@ -295,8 +295,25 @@ class StageModel:
 
 def stage_model(sequence, stage):
     """The loads of a stage as functions of its sweep variable: the angle of a turn
-    (:class:`StageModel`), the parameter of a move (:class:`~liftplan.model.sequence.move.MoveModel`)."""
-    return MoveModel(sequence, stage) if stage.kind == "move" else StageModel(sequence, stage)
+    (:class:`StageModel`), the parameter of a move (:class:`~liftplan.model.sequence.move.MoveModel`,
+    started where the stage before left the body and the tips: :func:`chain_start`)."""
+    if stage.kind == "move":
+        return MoveModel(sequence, stage, chain_start(sequence, stage))
+    return StageModel(sequence, stage)
+
+
+def chain_start(sequence, stage):
+    """Where the stage before ``stage`` left the body and the boom tips
+    (:class:`~liftplan.model.sequence.move.ChainStart`), or None for a stage that opens the
+    sequence or turns (a turning stage starts from the body as the file gives it)."""
+    index = next(k for k, s in enumerate(sequence.stages) if s is stage)
+    if stage.kind != "move" or index == 0:
+        return None
+    previous = sequence.stages[index - 1]
+    model = stage_model(sequence, previous)
+    if previous.kind == "move":
+        return model.end()
+    return turned_end(sequence, previous, model.statics.state(previous.angles[-1]), model.statics.anchor)
 
 
 def run_stage(sequence, stage):

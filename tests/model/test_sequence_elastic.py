@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from liftplan.model.errors import InvalidScene
+from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.scene.objects import Body, Crane, Lug, Scene
 from liftplan.model.sequence import loads_sequence, run_sequence
 from liftplan.model.sequence.objects import sequence_warnings
-from liftplan.model.sequence.sweep import StageModel
+from liftplan.model.sequence.sweep import StageModel, stage_model
 from liftplan.model.solve import solve
 
 W = 100.0
@@ -61,7 +61,7 @@ def test_a_symmetric_four_rope_turnover_is_the_two_rope_closed_form_split_in_hal
     up to atan(L / 2h), where the lower pair goes slack and the angle is no longer held."""
     length, h = 20.0, 1.0
     lugs = {"A": (10.0, 3.0, h), "B": (10.0, -3.0, h), "C": (-10.0, 3.0, h), "D": (-10.0, -3.0, h)}
-    text = four_text(lugs, {n: 20000.0 for n in lugs}, (0.0, 0.0, 0.0), to=85.0, step=8.5)
+    text = four_text(lugs, {n: 20000.0 for n in lugs}, (0.0, 0.0, 0.0), to=84.5, step=84.5 / 9)
     model = model_of(text)
     for angle in np.arange(0.0, 84.0, 3.5):
         state, _ = model(angle)
@@ -180,3 +180,75 @@ def test_four_supports_in_one_vertical_plane_are_refused():
 def test_rope_length_and_ea_are_used_on_four_supports_not_warned():
     warnings = sequence_warnings(loads_sequence(four_text()))
     assert warnings == []
+
+
+# -- a move stage chained from the stage before ------------------------------------------------
+
+
+def staged_text(*stages, lugs=LUGS, ea=EA):
+    """The block of :func:`four_text` with its ``[[stages]]`` given as TOML bodies."""
+    head = four_text(lugs, ea).split("\n[sequence]")[0]
+    return head + "".join(f"\n[[stages]]\n{body}\n" for body in stages)
+
+
+TURN = 'name = "turn"\nkind = "turnover"\naxis = "y"\nfrom = 0.0\nto = 30.0\nstep = 10.0'
+MOVE = 'name = "hoist"\nkind = "move"\nsteps = 4\nmoves = [{crane = "A", hoist = 0.05}]'
+
+
+def test_a_move_starts_where_the_turnover_left_the_body_and_the_tips():
+    """Turnover to 30 deg on four ropes, then crane A hoists: the move's first state is the
+    turnover's last (the loads to 1e-9 W, the body level against where it was left, each tip
+    above its hook at its stretched rope length, the body's origin where the turn put it)."""
+    seq = loads_sequence(staged_text(TURN, MOVE))
+    result = run_sequence(seq)
+    last, first = result.stages[0].states[-1], result.stages[1].states[0]
+    assert last.angle == 30.0 and first.angle == 0.0
+    for key in LUGS:
+        assert first.hook_loads[key] == pytest.approx(last.hook_loads[key], abs=1e-9 * W)
+        for part in ("load", "in_plane", "out_of_plane"):
+            assert getattr(first.lug_loads[key], part) == pytest.approx(
+                getattr(last.lug_loads[key], part), abs=1e-9 * W
+            )
+        stretched = L0 * (1.0 + last.hook_loads[key] / EA[key])
+        assert first.hooks[key] == pytest.approx(np.add(last.hooks[key], (0.0, 0.0, stretched)), abs=1e-12)
+    assert abs(first.heel) < 1e-9 and abs(first.trim) < 1e-9
+    t = math.radians(30.0)
+    rot = np.array([[math.cos(t), 0.0, -math.sin(t)], [0.0, 1.0, 0.0], [math.sin(t), 0.0, math.cos(t)]])
+    assert first.origin == pytest.approx(np.array(COG) - rot @ np.array(COG), abs=1e-9)
+    # and the move goes on from there: A's hook takes up load as it rises
+    assert result.stages[1].states[-1].hook_loads["A"] > first.hook_loads["A"] + 1.0
+
+
+def test_a_move_after_a_move_starts_from_its_end():
+    second = MOVE.replace('"hoist"', '"lower"').replace("hoist = 0.05", "hoist = -0.05")
+    result = run_sequence(loads_sequence(staged_text(TURN, MOVE, second)))
+    end, start = result.stages[1].states[-1], result.stages[2].states[0]
+    for key in LUGS:
+        assert start.hook_loads[key] == pytest.approx(end.hook_loads[key], abs=1e-9 * W)
+        assert start.hooks[key] == pytest.approx(end.hooks[key], abs=1e-12)
+    assert start.origin == pytest.approx(end.origin, abs=1e-9)
+    # lowered back by as much, the hooks are where the turnover left them
+    back = result.stages[2].states[-1]
+    for key in LUGS:
+        assert back.hook_loads[key] == pytest.approx(
+            result.stages[0].states[-1].hook_loads[key], abs=1e-9 * W
+        )
+
+
+def test_a_crane_that_joins_at_the_move_comes_taut_carrying_nothing():
+    """Three cranes turn the block; B joins at the move, its rope just taut above its lug: at
+    s = 0 it carries nothing and the others carry what they did (the three equations)."""
+    turn = TURN + '\ncranes = ["A", "C", "D"]'
+    result = run_sequence(loads_sequence(staged_text(turn, MOVE)))
+    last, first = result.stages[0].states[-1], result.stages[1].states[0]
+    assert first.hook_loads["B"] == pytest.approx(0.0, abs=1e-9 * W)
+    for key in "ACD":
+        assert last.hook_loads[key] > 0.0
+        assert first.hook_loads[key] == pytest.approx(last.hook_loads[key], abs=1e-9 * W)
+
+
+def test_a_move_after_an_angle_that_is_not_held_is_refused():
+    turn = TURN.replace("to = 30.0", "to = 88.0").replace("step = 10.0", "step = 44.0")
+    seq = loads_sequence(staged_text(turn, MOVE))
+    with pytest.raises(EquilibriumNotFound, match="turn ends at 88 deg, an angle it cannot hold"):
+        stage_model(seq, seq.stages[1])
