@@ -27,7 +27,9 @@ import numpy as np
 from liftplan.model.errors import EquilibriumNotFound
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.scene.objects import Scene
+from liftplan.model.sequence.objects import crane_key
 from liftplan.model.sequence.states import LugLoad, SequenceState
+from liftplan.model.sequence.statics import Support, sling_apex
 from liftplan.model.solve import solve
 
 
@@ -36,7 +38,8 @@ def start_tip(sequence, crane):
     (world, ``z-up``)  [m]."""
     if crane.tip is not None:
         return np.array(crane.tip, dtype=float)
-    at = sequence.lug(crane.lug).at
+    # one rope: above its lug; a sling: above the centroid of its lugs (as liftplan solve puts it)
+    at = np.mean([sequence.lug(name).at for name in crane.lugs], axis=0)
     return np.array([at[0], at[1], crane.boom_height], dtype=float)
 
 
@@ -109,31 +112,37 @@ class MoveModel:
     def __init__(self, sequence, stage, chain=None):
         self.sequence, self.stage, self.chain = sequence, stage, chain
         self.cranes = [sequence.crane(key) for key in stage.cranes]
-        self.lugs = [crane.lug for crane in self.cranes]
+        self.lugs = [lug for crane in self.cranes for lug in crane.lugs]
         moves = {m.crane: m for m in stage.moves}
         # the base frame the stage's scene is written in: the body where the stage starts
         self.base = np.eye(3) if chain is None else chain.rotation
         self.offset = np.zeros(3) if chain is None else chain.offset
         if chain is None:
             self.starts = {key: start_tip(sequence, c) for key, c in zip(stage.cranes, self.cranes)}
-        else:  # a crane that joins here comes just taut above its lug (it carries nothing yet)
+        else:
             self.starts = {
-                key: chain.tips[key]
-                if key in chain.tips
-                else chain.world(sequence.lug(c.lug).at) + np.array([0.0, 0.0, c.rope_length])
+                key: chain.tips[key] if key in chain.tips else self._joining_tip(c)
                 for key, c in zip(stage.cranes, self.cranes)
             }
         self.ends = {
             key: moves[key].end(start) if key in moves else start for key, start in self.starts.items()
         }
-        self.inclined = any(m.to is not None for m in stage.moves) or (
-            chain is None and any(c.tip is not None for c in self.cranes)
+        slung = any(c.sling is not None for c in self.cranes)
+        self.inclined = (
+            slung
+            or any(m.to is not None for m in stage.moves)
+            or (chain is None and any(c.tip is not None for c in self.cranes))
         )
         self.scene = Scene(
             body=dataclasses.replace(sequence.body, cog=self._based(sequence.body.cog)),
             lugs=tuple(self._based_lug(sequence.lug(name)) for name in self.lugs),
             cranes=tuple(
-                dataclasses.replace(c, name=None, swl=None, tip=c.tip if chain is None else None)
+                dataclasses.replace(
+                    c,
+                    name=c.name if c.sling is not None else None,  # a sling's results go by its crane
+                    swl=None,
+                    tip=c.tip if chain is None else None,
+                )
                 for c in self.cranes
             ),
             name=stage.where,
@@ -141,6 +150,19 @@ class MoveModel:
         self.normals = {
             name: np.array(sequence.lug(name).normal or stage.axis_vector, dtype=float) for name in self.lugs
         }
+        self.based_at = {lug.name: lug.at for lug in self.scene.lugs}
+        self.legs = [f"{key}/{lug}" for key, c in zip(stage.cranes, self.cranes) if c.sling for lug in c.lugs]
+
+    def _joining_tip(self, crane):
+        """A crane that joins at a chained move: its tip l0 above its hook where the hook just
+        reaches (its lug, or its sling's apex with the legs straight), carrying nothing yet."""
+        pts = np.array([self.chain.world(self.sequence.lug(name).at) for name in crane.lugs])
+        if crane.sling is None:
+            hook = pts[0]
+        else:
+            legs = tuple(leg.length for leg in crane.sling.legs)
+            hook = sling_apex(Support(crane_key(crane), tuple(crane.lugs), pts, legs), pts).at
+        return hook + np.array([0.0, 0.0, crane.rope_length])
 
     def _based(self, point):
         """A body point in the stage's base frame (the world where the stage starts)  [m]."""
@@ -150,17 +172,12 @@ class MoveModel:
         normal = None if lug.normal is None else tuple(float(v) for v in self.base @ np.asarray(lug.normal))
         return dataclasses.replace(lug, at=self._based(lug.at), normal=normal)
 
-    @property
-    def legs(self):
-        """Sling legs: none (a move stage hangs one rope per lug)."""
-        return []
-
     def names(self):
         """Every load's key."""
         out = [f"hook:{k}" for k in self.stage.cranes]
         for lug in self.lugs:
             out += [f"lug:{lug}", f"lug_in:{lug}", f"lug_out:{lug}"]
-        return out
+        return out + [f"leg:{leg}" for leg in self.legs]
 
     def tips(self, s):
         """Each crane's boom tip at parameter ``s``  [m]."""
@@ -181,25 +198,38 @@ class MoveModel:
     def __call__(self, s):
         """``(SequenceState, {load key: value})`` at parameter ``s``."""
         eq, rot = self.solved(s)
-        loads, hook_loads, slack = {}, {}, []
-        for key, lug in zip(self.stage.cranes, self.lugs):
-            tension = max(float(eq.tensions[lug]), 0.0)
-            if eq.rope_forces is not None:
-                pull = np.array(eq.rope_forces[lug].force, dtype=float)
-            else:
-                pull = np.array([0.0, 0.0, tension])
+        # the elastic model keeps the base frame's origin at plan (0, 0); the inclined one moves it
+        position = np.array(eq.position if eq.position is not None else (0.0, 0.0, eq.pose.lift_height))
+        pulls, hook_loads, legs, slack = {}, {}, {}, []
+        for key, crane in zip(self.stage.cranes, self.cranes):
+            name = crane.name if crane.sling is not None else crane.lug  # the solve's key
+            hook_loads[key] = max(float(eq.tensions[name]), 0.0)
+            if hook_loads[key] <= 0.0 or name in eq.slack:
+                slack.append(key)
+            if crane.sling is None:
+                pulls[crane.lug] = (
+                    np.array(eq.rope_forces[name].force, dtype=float)
+                    if eq.rope_forces is not None
+                    else np.array([0.0, 0.0, hook_loads[key]])
+                )
+                continue
+            hook = np.array(eq.rigging.hook_positions[name], dtype=float)
+            for lug in crane.lugs:
+                leg = f"{key}/{lug}"
+                legs[leg] = max(float(eq.rigging.legs[f"{name}/{lug}"]), 0.0)
+                if legs[leg] <= 0.0:
+                    slack.append(leg)
+                at = position + rot @ np.array(self.based_at[lug], dtype=float)
+                pulls[lug] = legs[leg] * (hook - at) / np.linalg.norm(hook - at)
+        loads = {}
+        for lug, pull in pulls.items():
             force = self.base.T @ rot.T @ pull  # into the body frame, where the lug's normal is given
             n = self.normals[lug]
             along = float(force @ n)
             loads[lug] = LugLoad(
                 float(np.linalg.norm(force)), float(np.linalg.norm(force - along * n)), abs(along)
             )
-            hook_loads[key] = tension
-            if lug in eq.slack:
-                slack.append(key)
         tips = self.tips(s)
-        # the elastic model keeps the base frame's origin at plan (0, 0); the inclined one moves it
-        position = np.array(eq.position if eq.position is not None else (0.0, 0.0, eq.pose.lift_height))
         state = SequenceState(
             stage=self.stage.where,
             angle=float(s),
@@ -208,7 +238,7 @@ class MoveModel:
             hook_loads=hook_loads,
             ground_reaction=0.0,
             lug_loads=loads,
-            sling_tensions={},
+            sling_tensions=legs,
             hooks={k: tuple(float(v) for v in tips[k]) for k in self.stage.cranes},
             slack=tuple(slack),
             note=f"{eq.model} model",
@@ -224,6 +254,8 @@ class MoveModel:
                 ld.in_plane,
                 ld.out_of_plane,
             )
+        for leg, tension in legs.items():
+            values[f"leg:{leg}"] = tension
         values["_held"] = 1.0
         return state, values
 

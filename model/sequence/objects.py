@@ -368,9 +368,10 @@ def check_move_crane(stage, crane, opens=True):
     """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip (``opens``:
     the stage opens the sequence, so its tips start where the file puts them)."""
     where = f"{stage.where}: cranes[{crane_key(crane)}]"
-    if crane.sling is not None:
+    if crane.sling is not None and any(leg.EA is None for leg in crane.sling.legs):
         raise InvalidScene(
-            f"{where}.sling: a move stage hangs one elastic rope per lug; expected cranes on one lug"
+            f"{where}.sling: a leg without EA or diameter; a move stage solves the sling's legs as "
+            "elastic lines (the rigging model)"
         )
     missing = [k for k in ("rope_length", "EA") if getattr(crane, k) is None]
     if opens and crane.boom_height is None and crane.tip is None:

@@ -195,7 +195,7 @@ class HeldAngle:
         up = np.array([0.0, 0.0, 1.0])
         if not support.legs:
             return Hook(pts[0], up[None, :] if not support.is_pivot else np.zeros((0, 3)))
-        return _sling_apex(support, pts)
+        return sling_apex(support, pts)
 
     def state(self, angle, tilt=None):
         """Solve the body at turning ``angle``  [deg]; ``tilt`` starts the tilt's Newton.
@@ -474,7 +474,7 @@ def level_share(rows, stiffness, load):
     return k * np.maximum(s, 0.0)
 
 
-def _sling_apex(support, pts):
+def sling_apex(support, pts):
     """The hook of a 2-leg sling on lugs ``pts`` (world): apex and the legs' pulls per unit."""
     (l1, l2), (a1, a2) = support.legs, pts
     up = np.array([0.0, 0.0, 1.0])

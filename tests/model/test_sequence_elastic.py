@@ -9,6 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
+from liftplan.model.scene.file import loads_scene
 from liftplan.model.scene.objects import Body, Crane, Lug, Scene
 from liftplan.model.sequence import loads_sequence, run_sequence
 from liftplan.model.sequence.objects import sequence_warnings
@@ -252,3 +253,86 @@ def test_a_move_after_an_angle_that_is_not_held_is_refused():
     seq = loads_sequence(staged_text(turn, MOVE))
     with pytest.raises(EquilibriumNotFound, match="turn ends at 88 deg, an angle it cannot hold"):
         stage_model(seq, seq.stages[1])
+
+
+# -- slings in a move stage ----------------------------------------------------------------------
+
+SLUNG = """[body]
+weight = 100.0
+cog = [0.5, 0.2, 0.0]
+
+[[lugs]]
+name = "A1"
+at = [10.0, 3.0, 0.0]
+
+[[lugs]]
+name = "A2"
+at = [10.0, -3.0, 0.0]
+
+[[lugs]]
+name = "B"
+at = [-10.0, 3.0, 0.0]
+
+[[lugs]]
+name = "C"
+at = [-10.0, -3.0, 0.0]
+
+[ropes]
+EA = 20000.0
+
+[[cranes]]
+name = "A"
+rope_length = 20.0
+boom_height = HA
+sling = { legs = [{ lug = "A1", length = 8.0, EA = LEG }, { lug = "A2", length = 8.5, EA = LEG }] }
+
+[[cranes]]
+name = "B"
+lug = "B"
+rope_length = 20.0
+boom_height = 21.0
+
+[[cranes]]
+name = "C"
+lug = "C"
+rope_length = 20.0
+boom_height = 21.0
+"""
+
+
+def slung(stages, ha=29.95, leg=40000.0):
+    return SLUNG.replace("HA", str(ha)).replace("LEG", str(leg)) + stages
+
+
+def test_a_sling_in_a_move_stage_is_the_rigging_solve_of_the_same_scene():
+    """Crane A on a 2-leg sling hoists 0.3 m: every state is liftplan solve (the rigging model,
+    elastic legs) of the scene with A's boom that much higher; each lug's load is its leg's
+    tension, the legs are reported as sling tensions and their maxima found."""
+    text = slung('[sequence]\nkind = "move"\nsteps = 2\nmoves = [{crane = "A", hoist = 0.3}]\n')
+    result = run_sequence(loads_sequence(text)).stages[0]
+    for state in result.states:
+        eq = solve(loads_scene(SLUNG.replace("HA", str(29.95 + 0.3 * state.angle)).replace("LEG", "40000.0")))
+        assert eq.model == "rigging"
+        for key in "ABC":
+            assert state.hook_loads[key] == pytest.approx(eq.tensions[key], abs=1e-9 * W)
+        for lug in ("A1", "A2"):
+            assert state.sling_tensions[f"A/{lug}"] == pytest.approx(
+                eq.rigging.legs[f"A/{lug}"], abs=1e-9 * W
+            )
+            assert state.lug_loads[lug].load == pytest.approx(state.sling_tensions[f"A/{lug}"], abs=1e-9 * W)
+    assert result.maxima["leg:A/A2"].value >= max(s.sling_tensions["A/A2"] for s in result.states)
+
+
+def test_a_move_after_a_turn_on_a_sling_starts_at_the_turns_last_state():
+    """The turn's legs are of fixed length, the move's stretch: with legs 1e4 times stiffer than
+    the ropes the move's first state is the turn's last to 1e-5 W."""
+    stages = (
+        '[[stages]]\nname = "turn"\nkind = "turnover"\naxis = "x"\nfrom = 0.0\nto = 12.0\nstep = 6.0\n'
+        '[[stages]]\nname = "hoist"\nkind = "move"\nsteps = 2\nmoves = [{crane = "B", hoist = 0.02}]\n'
+    )
+    result = run_sequence(loads_sequence(slung(stages, leg=2e8)))
+    last, first = result.stages[0].states[-1], result.stages[1].states[0]
+    for key in "ABC":
+        assert first.hook_loads[key] == pytest.approx(last.hook_loads[key], abs=1e-5 * W)
+    for leg in ("A/A1", "A/A2"):
+        assert first.sling_tensions[leg] == pytest.approx(last.sling_tensions[leg], abs=1e-5 * W)
