@@ -257,26 +257,11 @@ def test_a_move_after_an_angle_that_is_not_held_is_refused():
 
 # -- slings in a move stage ----------------------------------------------------------------------
 
-SLUNG = """[body]
-weight = 100.0
-cog = [0.5, 0.2, 0.0]
-
-[[lugs]]
-name = "A1"
-at = [10.0, 3.0, 0.0]
-
-[[lugs]]
-name = "A2"
-at = [10.0, -3.0, 0.0]
-
-[[lugs]]
-name = "B"
-at = [-10.0, 3.0, 0.0]
-
-[[lugs]]
-name = "C"
-at = [-10.0, -3.0, 0.0]
-
+SLUNG_LUGS = {"A1": (10.0, 3.0), "A2": (10.0, -3.0), "B": (-10.0, 3.0), "C": (-10.0, -3.0)}
+SLUNG = (
+    "[body]\nweight = 100.0\ncog = [0.5, 0.2, 0.0]\n"
+    + "".join(f'\n[[lugs]]\nname = "{name}"\nat = [{x}, {y}, 0.0]\n' for name, (x, y) in SLUNG_LUGS.items())
+    + """
 [ropes]
 EA = 20000.0
 
@@ -298,6 +283,7 @@ lug = "C"
 rope_length = 20.0
 boom_height = 21.0
 """
+)
 
 
 def slung(stages, ha=29.95, leg=40000.0):
