@@ -20,7 +20,7 @@ the solver cannot hold (fewer than three taut ropes, no convergence) raises
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -28,6 +28,7 @@ from liftplan.model.errors import EquilibriumNotFound
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.scene.objects import Scene
 from liftplan.model.sequence.objects import crane_key
+from liftplan.model.sequence.pivoted import OnPivot
 from liftplan.model.sequence.states import LugLoad, SequenceState
 from liftplan.model.sequence.statics import Support, sling_apex
 from liftplan.model.solve import solve
@@ -99,6 +100,51 @@ def turned_end(sequence, stage, held, anchor):
     return ChainStart(held.rotation, anchor - held.rotation @ anchor, tips, stage.where)
 
 
+#: A reaction above -this x W is the body resting on its pivot (rounding), not lifting off.
+REACTION_TOL = 1e-12
+#: A free-hanging pivot point this far below the ground is rounding, not a contradiction  [m].
+LIFT_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class BodyPose:
+    """What a move stage's equilibrium gives at one parameter.
+
+    Parameters
+    ----------
+    rotation : ndarray (3, 3)
+        Base frame -> world.
+    position : ndarray (3,)  [m]
+        World position of the base frame's origin.
+    heel, trim : float  [deg]
+    tensions : dict of str to float  [t]
+        Each crane's hook load.
+    pulls : dict of str to ndarray (3,)  [t]
+        Each one-rope crane's pull on its lug, world.
+    legs : dict of str to float  [t]
+        Sling legs, ``"CRANE/LUG"``.
+    slings : dict of str to ndarray (3,)  [m]
+        Each sling crane's hook, world.
+    reaction : float  [t]
+        The ground's push at the pivot (0: none, or lifted off).
+    slack : tuple of str
+        ``("pivot",)`` when the body has lifted off its pivot.
+    model : str
+    """
+
+    rotation: np.ndarray
+    position: np.ndarray
+    heel: float
+    trim: float
+    tensions: dict
+    pulls: dict
+    legs: dict = field(default_factory=dict)
+    slings: dict = field(default_factory=dict)
+    reaction: float = 0.0
+    slack: tuple = ()
+    model: str = ""
+
+
 class MoveModel:
     """The loads of one move stage as functions of its parameter s in [0, 1].
 
@@ -151,6 +197,16 @@ class MoveModel:
             name: np.array(sequence.lug(name).normal or stage.axis_vector, dtype=float) for name in self.lugs
         }
         self.based_at = {lug.name: lug.at for lug in self.scene.lugs}
+        self.on_pivot = None
+        if stage.pivot is not None:  # vertical ropes only (checked on reading)
+            self.on_pivot = OnPivot(
+                sequence.body.weight,
+                self.scene.body.cog,
+                [self.based_at[c.lug] for c in self.cranes],
+                self._based(stage.pivot),
+                [c.EA / c.rope_length for c in self.cranes],
+                [c.rope_length for c in self.cranes],
+            )
         self.legs = [f"{key}/{lug}" for key, c in zip(stage.cranes, self.cranes) if c.sling for lug in c.lugs]
 
     def _joining_tip(self, crane):
@@ -175,6 +231,8 @@ class MoveModel:
     def names(self):
         """Every load's key."""
         out = [f"hook:{k}" for k in self.stage.cranes]
+        if self.stage.pivot is not None:
+            out.append("ground")
         for lug in self.lugs:
             out += [f"lug:{lug}", f"lug_in:{lug}", f"lug_out:{lug}"]
         return out + [f"leg:{leg}" for leg in self.legs]
@@ -197,29 +255,23 @@ class MoveModel:
 
     def __call__(self, s):
         """``(SequenceState, {load key: value})`` at parameter ``s``."""
-        eq, rot = self.solved(s)
-        # the elastic model keeps the base frame's origin at plan (0, 0); the inclined one moves it
-        position = np.array(eq.position if eq.position is not None else (0.0, 0.0, eq.pose.lift_height))
-        pulls, hook_loads, legs, slack = {}, {}, {}, []
+        pose = self.pose(s)
+        rot = pose.rotation
+        pulls, hook_loads, legs, slack = {}, {}, {}, list(pose.slack)
         for key, crane in zip(self.stage.cranes, self.cranes):
-            name = crane.name if crane.sling is not None else crane.lug  # the solve's key
-            hook_loads[key] = max(float(eq.tensions[name]), 0.0)
-            if hook_loads[key] <= 0.0 or name in eq.slack:
+            hook_loads[key] = pose.tensions[key]
+            if hook_loads[key] <= 0.0:
                 slack.append(key)
             if crane.sling is None:
-                pulls[crane.lug] = (
-                    np.array(eq.rope_forces[name].force, dtype=float)
-                    if eq.rope_forces is not None
-                    else np.array([0.0, 0.0, hook_loads[key]])
-                )
+                pulls[crane.lug] = pose.pulls[key]
                 continue
-            hook = np.array(eq.rigging.hook_positions[name], dtype=float)
+            hook = pose.slings[key]
             for lug in crane.lugs:
                 leg = f"{key}/{lug}"
-                legs[leg] = max(float(eq.rigging.legs[f"{name}/{lug}"]), 0.0)
+                legs[leg] = pose.legs[leg]
                 if legs[leg] <= 0.0:
                     slack.append(leg)
-                at = position + rot @ np.array(self.based_at[lug], dtype=float)
+                at = pose.position + rot @ np.array(self.based_at[lug], dtype=float)
                 pulls[lug] = legs[leg] * (hook - at) / np.linalg.norm(hook - at)
         loads = {}
         for lug, pull in pulls.items():
@@ -236,18 +288,19 @@ class MoveModel:
             tilt=0.0,
             held=True,
             hook_loads=hook_loads,
-            ground_reaction=0.0,
+            ground_reaction=pose.reaction,
             lug_loads=loads,
             sling_tensions=legs,
             hooks={k: tuple(float(v) for v in tips[k]) for k in self.stage.cranes},
             slack=tuple(slack),
-            note=f"{eq.model} model",
-            heel=eq.pose.heel,
-            trim=eq.pose.trim,
-            # the elastic model keeps the body origin at plan (0, 0); the inclined one moves it
-            origin=tuple(float(v) for v in position + rot @ self.offset),
+            note=pose.model,
+            heel=pose.heel,
+            trim=pose.trim,
+            origin=tuple(float(v) for v in pose.position + rot @ self.offset),
         )
         values = {f"hook:{k}": v for k, v in hook_loads.items()}
+        if self.stage.pivot is not None:
+            values["ground"] = pose.reaction
         for lug, ld in loads.items():
             values[f"lug:{lug}"], values[f"lug_in:{lug}"], values[f"lug_out:{lug}"] = (
                 ld.load,
@@ -259,18 +312,73 @@ class MoveModel:
         values["_held"] = 1.0
         return state, values
 
-    def solved(self, s):
-        """``(Equilibrium, rotation of the base frame)`` at parameter ``s``."""
+    def pose(self, s):
+        """The body's :class:`BodyPose` at parameter ``s``: on its pivot while the ground pushes,
+        else on its ropes alone (``liftplan solve`` of the stage's scene)."""
+        where = f"{self.stage.where} at s = {s:.6g}"
+        if self.on_pivot is not None:
+            heights = [self.tips(s)[key][2] for key in self.stage.cranes]
+            rest = self.on_pivot.solve(heights, where)
+            if rest.reaction >= -REACTION_TOL * self.sequence.body.weight:
+                return BodyPose(
+                    rotation=rest.rotation,
+                    position=self.on_pivot.pivot - rest.rotation @ self.on_pivot.pivot,
+                    heel=rest.heel,
+                    trim=rest.trim,
+                    tensions={k: float(t) for k, t in zip(self.stage.cranes, rest.tensions)},
+                    pulls={
+                        k: np.array([0.0, 0.0, float(t)]) for k, t in zip(self.stage.cranes, rest.tensions)
+                    },
+                    reaction=max(rest.reaction, 0.0),
+                    model="elastic model, on the pivot",
+                )
         try:
             eq = solve(self.scene_at(s))
         except EquilibriumNotFound as err:
-            raise EquilibriumNotFound(f"{self.stage.where} at s = {s:.6g}: {err}") from None
-        return eq, rotation_matrix(eq.pose.heel, eq.pose.trim, eq.pose.yaw)
+            raise EquilibriumNotFound(f"{where}: {err}") from None
+        rot = rotation_matrix(eq.pose.heel, eq.pose.trim, eq.pose.yaw)
+        # the elastic model keeps the base frame's origin at plan (0, 0); the inclined one moves it
+        position = np.array(eq.position if eq.position is not None else (0.0, 0.0, eq.pose.lift_height))
+        slack = ()
+        if self.on_pivot is not None:
+            lifted = self.on_pivot.height(rot, position) - self.on_pivot.pivot[2]
+            if lifted < -LIFT_TOL:
+                raise EquilibriumNotFound(
+                    f"{where}: the ropes alone would put the pivot {-lifted:.3g} m below the ground, and "
+                    "on the ground it would have to pull; no state"
+                )
+            slack = ("pivot",)
+        tensions, pulls, legs, slings = {}, {}, {}, {}
+        for key, crane in zip(self.stage.cranes, self.cranes):
+            name = crane.name if crane.sling is not None else crane.lug  # the solve's key
+            tensions[key] = 0.0 if name in eq.slack else max(float(eq.tensions[name]), 0.0)
+            if crane.sling is None:
+                pulls[key] = (
+                    np.array(eq.rope_forces[name].force, dtype=float)
+                    if eq.rope_forces is not None
+                    else np.array([0.0, 0.0, tensions[key]])
+                )
+                continue
+            slings[key] = np.array(eq.rigging.hook_positions[name], dtype=float)
+            for lug in crane.lugs:
+                legs[f"{key}/{lug}"] = max(float(eq.rigging.legs[f"{name}/{lug}"]), 0.0)
+        return BodyPose(
+            rotation=rot,
+            position=position,
+            heel=eq.pose.heel,
+            trim=eq.pose.trim,
+            tensions=tensions,
+            pulls=pulls,
+            legs=legs,
+            slings=slings,
+            slack=slack,
+            model=f"{eq.model} model",
+        )
 
     def end(self):
         """The :class:`ChainStart` this stage leaves at its end (s = 1)."""
         state, _ = self(1.0)
-        _, rot = self.solved(1.0)
+        rot = self.pose(1.0).rotation
         tips = {k: np.asarray(v, dtype=float) for k, v in state.hooks.items()}
         return ChainStart(rot @ self.base, np.asarray(state.origin, dtype=float), tips, self.stage.where)
 

@@ -31,8 +31,8 @@ SUPPORTS = 2
 #: Supports from which a turning stage is statically indeterminate: its cranes need
 #: ``rope_length`` and ``EA``.
 ELASTIC_SUPPORTS = 4
-#: Fewest cranes of a move stage: the elastic model on vertical ropes needs three taut ropes
-#: to hold a body (two leave it free to roll about the line between them).
+#: Fewest supports of a move stage: the elastic model on vertical ropes needs three taut ropes,
+#: or two and a pivot, to hold a body (two leave it free to roll about the line between them).
 MOVE_CRANES = 3
 #: A move stage's reported grid when ``steps`` is not given.
 MOVE_STEPS = 10
@@ -157,15 +157,7 @@ class Stage:
         object.__setattr__(self, "start", start)
         object.__setattr__(self, "stop", stop)
         object.__setattr__(self, "step", step)
-        if self.pivot is not None:
-            object.__setattr__(self, "pivot", point(f"{where}.pivot", self.pivot))
-        if self.friction is not None:
-            mu = finite(f"{where}.friction", self.friction)
-            if mu < 0.0:
-                raise InvalidScene(f"{where}.friction = {self.friction!r}: expected a number >= 0")
-            if self.pivot is None:
-                raise InvalidScene(f"{where}.friction: given without a pivot; expected pivot = [x, y, z]")
-            object.__setattr__(self, "friction", mu)
+        self._check_pivot(where)
         if self.plumb is not True:
             raise InvalidScene(
                 f"{where}.plumb = {self.plumb!r}: only plumb hooks are modelled (each hook follows "
@@ -184,6 +176,17 @@ class Stage:
                 "one cannot hold an angle"
             )
 
+    def _check_pivot(self, where):
+        if self.pivot is not None:
+            object.__setattr__(self, "pivot", point(f"{where}.pivot", self.pivot))
+        if self.friction is not None:
+            mu = finite(f"{where}.friction", self.friction)
+            if mu < 0.0:
+                raise InvalidScene(f"{where}.friction = {self.friction!r}: expected a number >= 0")
+            if self.pivot is None:
+                raise InvalidScene(f"{where}.friction: given without a pivot; expected pivot = [x, y, z]")
+            object.__setattr__(self, "friction", mu)
+
     def _check_move(self, where):
         """Refuse what a move stage does not model, each with its reason."""
         if self.stop is not None:
@@ -191,10 +194,12 @@ class Stage:
                 f"{where}.to: a move stage holds no turning angle (the body's pose follows from the "
                 "hooks); expected each crane's end position in moves = [{crane, hoist, to}]"
             )
-        if self.pivot is not None or self.friction is not None:
+        self._check_pivot(where)
+        if self.pivot is not None and any(m.to is not None for m in self.moves):
             raise InvalidScene(
-                f"{where}.pivot: ground contact is not modelled in a move stage (the body hangs on its "
-                'elastic ropes only); expected no pivot, or kind = "upend"'
+                f"{where}.moves.to: a tip moved in plan inclines its rope and loads the pivot sideways; "
+                "a move stage on a pivot models vertical ropes only (the pivot's friction and sliding "
+                "are not modelled); expected hoist only"
             )
         if self.steps is None:
             object.__setattr__(self, "steps", MOVE_STEPS)
@@ -204,10 +209,12 @@ class Stage:
             or not 1 <= self.steps <= MOST_STEPS
         ):
             raise InvalidScene(f"{where}.steps = {self.steps!r}: expected an integer from 1 to {MOST_STEPS}")
-        if len(self.cranes) < MOVE_CRANES:
+        if len(self.cranes) + (self.pivot is not None) < MOVE_CRANES:
             raise InvalidScene(
-                f"{where}: held by {len(self.cranes)} crane(s); a move stage solves the body on elastic "
-                f"ropes, which needs {MOVE_CRANES} or more"
+                f"{where}: held by {len(self.cranes)} crane(s)"
+                + (" and the pivot" if self.pivot is not None else "")
+                + f"; a move stage solves the body on elastic ropes, which needs {MOVE_CRANES} or more "
+                "supports (cranes, and a pivot)"
             )
         if not self.moves:
             raise InvalidScene(f"{where}.moves: missing; expected one or more {{crane, hoist, to}}")
@@ -368,6 +375,12 @@ def check_move_crane(stage, crane, opens=True):
     """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip (``opens``:
     the stage opens the sequence, so its tips start where the file puts them)."""
     where = f"{stage.where}: cranes[{crane_key(crane)}]"
+    if stage.pivot is not None and (crane.sling is not None or (opens and crane.tip is not None)):
+        raise InvalidScene(
+            f"{where}.{'sling' if crane.sling is not None else 'tip'}: on a pivot a move stage models "
+            "vertical ropes only (an inclined rope or sling leg loads the pivot sideways; its friction "
+            "and sliding are not modelled); expected one rope per lug under a boom_height"
+        )
     if crane.sling is not None and any(leg.EA is None for leg in crane.sling.legs):
         raise InvalidScene(
             f"{where}.sling: a leg without EA or diameter; a move stage solves the sling's legs as "

@@ -322,3 +322,82 @@ def test_a_move_after_a_turn_on_a_sling_starts_at_the_turns_last_state():
         assert first.hook_loads[key] == pytest.approx(last.hook_loads[key], abs=1e-5 * W)
     for leg in ("A/A1", "A/A2"):
         assert first.sling_tensions[leg] == pytest.approx(last.sling_tensions[leg], abs=1e-5 * W)
+
+
+# -- a move stage on a pivot ---------------------------------------------------------------------
+
+K = 1000.0  # EA / l0 of every rope below  [t/m]
+PIVOTED = {"A": (10.0, 3.0, 0.0), "B": (-10.0, 3.0, 0.0), "C": (10.0, -3.0, 0.0)}
+GROUND = (-10.0, -3.0, 0.0)  # the fourth corner rests on the ground
+PIVOT_COG = (0.5, 0.2, 0.0)
+
+
+def pivot_text(moves, heights, pivot=True):
+    text = f"[body]\nweight = {W}\ncog = {list(PIVOT_COG)}\n"
+    for name, at in PIVOTED.items():
+        text += f'\n[[lugs]]\nname = "{name}"\nat = {list(at)}\n'
+    for name in PIVOTED:
+        text += (
+            f'\n[[cranes]]\nname = "{name}"\nlug = "{name}"\nEA = {K * L0}\nrope_length = {L0}\n'
+            f"boom_height = {heights[name]}\n"
+        )
+    where = f"pivot = {list(GROUND)}\n" if pivot else ""
+    return text + f'\n[sequence]\nkind = "move"\nsteps = 4\n{where}moves = [{", ".join(moves)}]\n'
+
+
+def attitude_by_hand(heel, trim):
+    h, t = math.radians(heel), math.radians(trim)
+    rx = np.array([[1, 0, 0], [0, math.cos(h), -math.sin(h)], [0, math.sin(h), math.cos(h)]])
+    ry = np.array([[math.cos(t), 0, math.sin(t)], [0, 1, 0], [-math.sin(t), 0, math.cos(t)]])
+    return rx @ ry
+
+
+def test_a_move_on_a_pivot_is_an_equilibrium_of_the_ropes_and_the_ground():
+    """Three ropes and a corner on the ground (statically indeterminate): A hoists 0.3 m. At
+    every state, the body turned about the pivot by the reported heel and trim gives each rope
+    its reported tension (k times its stretch), the moments about the pivot balance, and the
+    ground carries the rest of the weight, pushing."""
+    heights = {"A": 20.02, "B": 20.04, "C": 20.03}
+    result = run_sequence(loads_sequence(pivot_text(['{crane = "A", hoist = 0.3}'], heights))).stages[0]
+    pivot = np.array(GROUND)
+    for state in result.states:
+        rot = attitude_by_hand(state.heel, state.trim)
+        tips = dict(heights, A=heights["A"] + 0.3 * state.angle)
+        levers, tensions = [], []
+        for name, at in PIVOTED.items():
+            r = rot @ (np.array(at) - pivot)
+            stretch = tips[name] - (pivot[2] + r[2]) - L0
+            assert state.hook_loads[name] == pytest.approx(K * max(stretch, 0.0), abs=1e-9 * W)
+            levers.append(r[:2])
+            tensions.append(state.hook_loads[name])
+        g = (rot @ (np.array(PIVOT_COG) - pivot))[:2]
+        assert np.array(tensions) @ np.array(levers) == pytest.approx(W * g, abs=1e-9 * W)
+        assert state.ground_reaction == pytest.approx(W - sum(tensions), abs=1e-9 * W)
+        assert state.ground_reaction > 0.0 and "pivot" not in state.slack
+    assert result.maxima["ground"].value == pytest.approx(max(s.ground_reaction for s in result.states))
+    assert result.states[-1].hook_loads["A"] > result.states[0].hook_loads["A"] + 10.0
+
+
+def test_hoisting_every_rope_lifts_the_body_off_its_pivot_where_the_hand_calculation_says():
+    """Hanging free, three ropes carry the body by the statics alone, so hoisting all three by d
+    raises it rigidly by d: the pivot point leaves the ground at d* = (ground) - (its height
+    hanging free at d = 0), found by liftplan solve. The sweep's "pivot" slack range starts
+    there (1e-6 of the stage), and from there the states are those of the body without pivot."""
+    heights = {"A": 20.0, "B": 20.0, "C": 20.0}
+    moves = [f'{{crane = "{k}", hoist = 0.1}}' for k in PIVOTED]
+    free = run_sequence(loads_sequence(pivot_text(moves, heights, pivot=False))).stages[0]
+    first = free.states[0]
+    rot = attitude_by_hand(first.heel, first.trim)
+    below = GROUND[2] - (np.array(first.origin) + rot @ np.array(GROUND))[2]
+    assert 0.0 < below < 0.1
+    result = run_sequence(loads_sequence(pivot_text(moves, heights))).stages[0]
+    (lifted,) = [r for r in result.slack if r.what == "pivot"]
+    assert lifted.start == pytest.approx(below / 0.1, abs=1e-6)
+    assert lifted.stop == 1.0
+    for on, off in zip(result.states, free.states):
+        if on.angle > lifted.start:
+            assert on.ground_reaction == 0.0 and "pivot" in on.slack
+            for key in PIVOTED:
+                assert on.hook_loads[key] == pytest.approx(off.hook_loads[key], abs=1e-9 * W)
+        else:
+            assert on.ground_reaction > 0.0
