@@ -135,8 +135,14 @@ class SequenceResult:
 
         def where(peak, stage):
             if stage in moves:  # a move stage's maximum is at a parameter, not an angle
-                return {"value": peak.value, "angle": None, "param": peak.angle, "stage": stage}
-            return {"value": peak.value, "angle": peak.angle, "stage": stage}
+                return {
+                    "value": peak.value,
+                    "angle": None,
+                    "param": peak.angle,
+                    "stage": stage,
+                    "bound": peak.bound,
+                }
+            return {"value": peak.value, "angle": peak.angle, "stage": stage, "bound": peak.bound}
 
         def table(prefix):
             return {k: where(p, stage) for k, (p, stage) in self.maxima(prefix).items()}
@@ -151,11 +157,7 @@ class SequenceResult:
                 "lug_in_plane": table("lug_in"),
                 "lug_out_of_plane": table("lug_out"),
                 "sling_tensions": table("leg"),
-                "ground_reaction": (
-                    {"value": ground[0].value, "angle": ground[0].angle, "stage": ground[1]}
-                    if ground
-                    else None
-                ),
+                "ground_reaction": (where(ground[0], ground[1]) if ground else None),
             },
             "slack": [_range_json(r, s.stage) for s in self.stages for r in s.slack],
             "not_held": [r.to_json() for s in self.stages for r in s.not_held],
