@@ -297,6 +297,8 @@ class MoveModel:
             heel=pose.heel,
             trim=pose.trim,
             origin=tuple(float(v) for v in pose.position + rot @ self.offset),
+            rotation=tuple(tuple(float(v) for v in row) for row in rot @ self.base),
+            sling_hooks={k: tuple(float(v) for v in hook) for k, hook in pose.slings.items()},
         )
         values = {f"hook:{k}": v for k, v in hook_loads.items()}
         if self.stage.pivot is not None:

@@ -311,7 +311,11 @@ def test_a_sling_in_a_move_stage_is_the_rigging_solve_of_the_same_scene():
 
 def test_a_move_after_a_turn_on_a_sling_starts_at_the_turns_last_state():
     """The turn's legs are of fixed length, the move's stretch: with legs 1e4 times stiffer than
-    the ropes the move's first state is the turn's last to 1e-5 W."""
+    the ropes the move's first state is the turn's last to 1e-5 W. In the 3D view the move's
+    first body has the turn's last rotation (not the file's pose), and the sling crane is drawn
+    as a hoist rope up to its tip and two legs from its hook."""
+    from liftplan.planner.sequence.view import sequence_view  # the view lives in the planner
+
     stages = (
         '[[stages]]\nname = "turn"\nkind = "turnover"\naxis = "x"\nfrom = 0.0\nto = 12.0\nstep = 6.0\n'
         '[[stages]]\nname = "hoist"\nkind = "move"\nsteps = 2\nmoves = [{crane = "B", hoist = 0.02}]\n'
@@ -322,6 +326,12 @@ def test_a_move_after_a_turn_on_a_sling_starts_at_the_turns_last_state():
         assert first.hook_loads[key] == pytest.approx(last.hook_loads[key], abs=1e-5 * W)
     for leg in ("A/A1", "A/A2"):
         assert first.sling_tensions[leg] == pytest.approx(last.sling_tensions[leg], abs=1e-5 * W)
+    view = sequence_view(result)
+    names = [s.name for s in view.states]
+    turned, moved = view.states[names.index("turn: 12 deg")], view.states[names.index("hoist: s = 0")]
+    assert np.array(moved.rotation) == pytest.approx(np.array(turned.rotation), abs=1e-6)
+    assert np.array(moved.origin) == pytest.approx(np.array(turned.origin), abs=1e-6)
+    assert sorted(r.role for r in moved.ropes if r.key.startswith("A")) == ["hoist", "leg", "leg"]
 
 
 # -- a move stage on a pivot ---------------------------------------------------------------------
