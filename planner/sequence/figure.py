@@ -56,7 +56,7 @@ def sequence_figure(result):
                     label=label if kind != "lug_out" else None,
                 )[0]
                 colours.setdefault(name, line.get_color())
-                if kind == "lug_out" and peak.value <= 1e-9:
+                if kind == "lug_out" and peak.value < 0.05:  # would read 0.0 t: no label
                     continue
                 ax.plot([peak.angle], [peak.value], "o", ms=3.5, color=line.get_color())
                 labels.append((peak, line.get_color()))
