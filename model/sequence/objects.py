@@ -4,8 +4,9 @@ Frozen dataclasses in the ``z-up`` frame. A :class:`Stage` turns the body about 
 horizontal axes from one angle to another, held by the cranes it names (and, for an upend,
 by a pivot on the ground), or moves boom tips (``kind = "move"``, each crane's :class:`Move`)
 with the body on its elastic ropes. :class:`Sequence` checks what needs the whole picture:
-names, which crane holds which lug, that every turning stage is statically determinate at a
-held angle and that every crane of a move stage hangs on an elastic rope from its boom tip.
+names, which crane holds which lug, that no turning stage has its supports in one vertical
+plane, that every crane of a stage on four or more supports gives its rope's stiffness, and
+that every crane of a move stage hangs on an elastic rope from its boom tip.
 """
 
 from __future__ import annotations
@@ -81,7 +82,7 @@ class Stage:
 
     Parameters
     ----------
-    kind : {"upend", "turnover"}
+    kind : {"upend", "turnover", "move"}
         ``"upend"``: the head crane(s) lift one end while the other rests on the ground at
         ``pivot`` or hangs from a tailing crane; ``"turnover"``: the body hangs from two or
         more cranes and turns in the air; ``"move"``: boom tips move (``moves``) and the body
@@ -97,7 +98,8 @@ class Stage:
     cranes : tuple of str
         The cranes that hold the body in this stage (their keys); the others are released.
     pivot : tuple of 3 float or None  [m]
-        Body point resting on the ground (``upend``); the body turns about it.
+        Body point resting on the ground (``upend``, or a ``move`` on vertical ropes); the
+        body turns about it.
     friction : float or None  [-]
         Friction coefficient at the pivot.
     plumb : bool
