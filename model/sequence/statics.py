@@ -347,10 +347,35 @@ class HeldAngle:
                 break
         return self._tilt_scan(active, angle)
 
+    def _offsets(self, pair, angle, tilts):
+        """:meth:`_offset` of two supports on points (no sling) at many ``tilts`` (deg)."""
+        turned = (np.vstack([s.points[0] for s in pair] + [self.cog]) - self.anchor) @ pose_matrix(
+            self.axis, angle, 0.0
+        ).T
+        axis = 0 if self.axis == "y" else 1  # the world axis the tilt turns about
+        other = 1 - axis
+        c, sn = np.cos(np.radians(tilts))[:, None], np.sin(np.radians(tilts))[:, None]
+        # the plan coordinate the tilt moves: y for a tilt about x (y c - z s), x for one about y
+        sign = -1.0 if axis == 0 else 1.0
+        moved = turned[None, :, other] * c + sign * turned[None, :, 2] * sn
+        fixed = np.broadcast_to(turned[None, :, axis], moved.shape)
+        plan = np.stack([fixed, moved], axis=-1) if axis == 0 else np.stack([moved, fixed], axis=-1)
+        q1, q2, g = plan[:, 0], plan[:, 1], plan[:, 2]
+        d = q2 - q1
+        length = np.hypot(d[:, 0], d[:, 1])
+        cross = d[:, 0] * (g - q1)[:, 1] - d[:, 1] * (g - q1)[:, 0]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = cross / length
+        out[length < COINCIDENT * self.size] = np.nan
+        return out
+
     def _tilt_scan(self, active, angle):
         """Bracket and bisect the tilt when Newton did not converge."""
         grid = np.linspace(-MAX_TILT, MAX_TILT, 241)
-        vals = [self._offset(active, angle, p) for p in grid]
+        if any(s.legs for s in active):
+            vals = [self._offset(active, angle, p) for p in grid]
+        else:  # two points: every tilt of the grid at once
+            vals = self._offsets(active, angle, grid).tolist()
         roots = []
         for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
             if math.isfinite(fa) and math.isfinite(fb) and fa * fb <= 0.0:
