@@ -1,17 +1,23 @@
 """A ``kind = "move"`` stage: boom tips moved, the body solved on its elastic ropes at each state.
 
 Each crane named in the stage's ``moves`` has its boom tip moved in a straight line from where
-the file puts it (its ``tip``, else above its lug at its ``boom_height``) to its end position
-(``to``, else where it starts, raised by ``hoist``), over a stage parameter s from 0 to 1; the
-other cranes' tips stay. At every s the body's equilibrium is that of
-:func:`liftplan.model.solve.solve` on the scene of the stage's cranes with their tips there:
+it starts to its end position (``to``, else where it starts, raised by ``hoist``), over a stage
+parameter s from 0 to 1; the other cranes' tips stay. A move that opens the sequence starts
+from the file (each crane's ``tip``, else above its lug, or its sling's lugs, at its
+``boom_height``); a later one where the stage before left the body and the tips
+(:class:`ChainStart`), its scene written in that frame. At every s the body's equilibrium is
+that of :func:`liftplan.model.solve.solve` on the scene of the stage's cranes with their tips
+there:
 
-* tips that only rise and fall (no ``to``, no ``tip`` in the file): the ``elastic`` model,
-  vertical ropes from the boom heights H_i + s hoist_i;
+* tips that only rise and fall (no ``to``, no ``tip`` in the file, no sling): the ``elastic``
+  model, vertical ropes from the boom heights H_i + s hoist_i;
 * a tip moved in plan (``to``) or placed in the world (``tip``): the ``inclined`` model, every
-  rope from its tip to its lug (the body swings until the rope directions balance).
+  rope from its tip to its lug (the body swings until the rope directions balance); a crane on
+  a 2-leg sling: the ``rigging`` model (hoist rope to a free hook, elastic legs);
+* on a ``pivot`` (vertical ropes only), :mod:`liftplan.model.sequence.pivoted` while the ground
+  pushes, the ``elastic`` model once the body lifts off.
 
-Both are elastic (T = EA max(0, stretch) / l0): four or more ropes share the load as their
+All are elastic (T = EA max(0, stretch) / l0): four or more ropes share the load as their
 stretches decide, and a rope whose stretch falls to zero is slack and carries nothing. A state
 the solver cannot hold (fewer than three taut ropes, no convergence) raises
 :class:`~liftplan.model.errors.EquilibriumNotFound` naming the parameter: no number is made up.
