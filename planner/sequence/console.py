@@ -68,8 +68,9 @@ def sequence_table(result):
             )
         for key, travel in stage.hook_travel.items():
             lines.append(
-                f"  hook {key}: rises {travel['rise']:+.2f} m (height {travel['lowest']:.2f} to "
-                f"{travel['highest']:.2f} m), travels up to {travel['plan']:.2f} m in plan"
+                f"  hook {key}: rises {travel['rise']:+.2f} m start to end (always between "
+                f"{travel['lowest']:.2f} and {travel['highest']:.2f} m high), travels up to "
+                f"{travel['plan']:.2f} m in plan"
             )
         for r in stage.slack:
             lines.append(
