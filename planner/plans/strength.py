@@ -194,7 +194,8 @@ class StrengthContext:
         #: (K,) [t/m] rope stiffness of each class
         self.stiffness = np.array([c.EA / c.rope_length for c in fleet])
         #: (C, K) [m] boom heights with the rope unstretched at level
-        self.boom_zero = problem.lift_height + self.points[:, 2][:, None] + np.array([c.rope_length for c in fleet])
+        ropes = np.array([c.rope_length for c in fleet])
+        self.boom_zero = problem.lift_height + self.points[:, 2][:, None] + ropes
         self.boom_max = np.array([c.boom_max for c in fleet])
         self.clashes = clash_columns(problem, self.classes)
 
@@ -887,8 +888,19 @@ class StrengthPlan(InFileFrame):
         """Each planned lug's hook-height tolerance  [m]: its crane's own, or the plan's."""
         p = self.problem
         own = [p.fleet[j].hook_tolerance for j in self.chosen.cranes]
+        values = [float(p.hook_tolerance if value is None else value) for value in own]
+        return dict(zip(self.labels, values))
+
+    def _fleet_json(self):
+        """Which crane takes each lug, its radius [m], its chart SWL there [t] and nominal
+        T / SWL, as a fleet's held plan says them."""
+        p, c = self.problem, self.chosen
+        radius, swl = (v[list(c.indices), list(c.cranes)] for v in p.reach)
         return {
-            label: float(p.hook_tolerance if value is None else value) for label, value in zip(self.labels, own)
+            "cranes": dict(zip(self.labels, c.crane_names)),
+            "radius": dict(zip(self.labels, radius.tolist())),
+            "swl": dict(zip(self.labels, swl.tolist())),
+            "utilisation": dict(zip(self.labels, (c.preload / swl).tolist())),
         }
 
     def _set_json(self, s, stats):
@@ -933,6 +945,7 @@ class StrengthPlan(InFileFrame):
             "tensions": self.tensions,
             "spread": self.spread,
             "worst_spread": self.worst_spread,
+            **self._fleet_json(),
             "objective": self.objective,
             "control": self.control,
             "weight": weight_json(self.problem),
