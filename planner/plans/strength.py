@@ -27,6 +27,7 @@ with the objective max - min tension), so an engineer sees what each costs the o
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import time
@@ -36,10 +37,19 @@ from functools import cached_property
 import numpy as np
 
 from liftplan.model.checks import Check
-from liftplan.model.errors import PlanInfeasible, SolverFailed
+from liftplan.model.errors import InvalidScene, PlanInfeasible, SolverFailed
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redundant, Scene
 from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.plans.breakout import breakout_json
 from liftplan.planner.plans.common import InFileFrame, weight_json
+from liftplan.planner.plans.design_loads import (
+    CraneDesign,
+    DesignBuilder,
+    DesignLoads,
+    PlanChain,
+    TiltCase,
+)
+from liftplan.planner.plans.held import Plan as HeldPlan
 from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.evaluator import GapMixin, Interrupted
@@ -196,6 +206,7 @@ class StrengthContext:
         #: (C, K) [m] boom heights with the rope unstretched at level
         ropes = np.array([c.rope_length for c in fleet])
         self.boom_zero = problem.lift_height + self.points[:, 2][:, None] + ropes
+        self.boom_min = np.array([c.boom_min for c in fleet])
         self.boom_max = np.array([c.boom_max for c in fleet])
         self.clashes = clash_columns(problem, self.classes)
 
@@ -683,7 +694,8 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
     level_high = np.minimum(
         np.minimum(ctx.limit, ctx.share), ctx.stiffness[None, :] * (ctx.boom_max[None, :] - ctx.boom_zero)
     )
-    limits = (np.full(count, p.min_tension), ctx.limit, level_high)
+    level_low = ctx.stiffness[None, :] * (ctx.boom_min[None, :] - ctx.boom_zero)  # the boom range
+    limits = (np.full(count, p.min_tension), ctx.limit, level_high, level_low)
     rows = _mip_rows(ctx, states, sections)
     mip = CandidateMIP(
         count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False, counts=ctx.counts
@@ -852,8 +864,34 @@ class StrengthPlan(InFileFrame):
         return self.chosen.worst_spread
 
     @cached_property
+    def design_loads(self):
+        """The rules' design loads of the chosen set, per crane
+        (:class:`~liftplan.planner.plans.design_loads.DesignLoads`; ``docs/design-loads.md``).
+
+        Hoist control: the held plans' chain (:class:`~.design_loads.DesignBuilder`): each
+        rope's worst over the box, the CG envelope and the hook errors with the planned T*,
+        its share at the rules' tilt, and with ``[plan] breakout_scene`` its held tension at
+        breakout. Force control: each jack's force, which it holds at every attitude (the
+        worst and the share at the tilt are the force itself).
+        """
+        builder = DesignBuilder(self.problem)
+        if self.control == "hoist":
+            return builder.build(self.chosen, self.labels)
+        return force_design(self.problem, builder, self.chosen, self.labels)
+
+    @property
+    def ranked_design(self):
+        """The design loads of the plan (a strength plan ranks no other set)."""
+        return [self.design_loads]
+
+    #: per planned lug its crane's least plan clearance to another's (the held plans' own)
+    clearances = HeldPlan.clearances
+
+    @cached_property
     def checks(self):
-        """The strength envelopes at the worst state and the tension limits, as checks."""
+        """The strength envelopes at the worst state, the tension limits, the rules' design
+        loads per crane (with a breakout case its breakout checks), and with crane positions
+        each crane's least plan clearance to the others' booms and hoist lines, as checks."""
         p, c = self.problem, self.chosen
         out = []
         for name, peak, envelope, unit in (
@@ -881,6 +919,18 @@ class StrengthPlan(InFileFrame):
                 note="lowest tension over the states",
             )
         )
+        out += list(self.design_loads.checks)
+        for crane, distance, nearest in self.clearances.values():
+            out.append(
+                Check.lower(
+                    "crane_clearance",
+                    crane,
+                    distance,
+                    p.crane_clearance,
+                    "m",
+                    note=f"boom and hoist line to {nearest}'s, in plan",
+                )
+            )
         return out
 
     @property
@@ -965,12 +1015,69 @@ class StrengthPlan(InFileFrame):
             # what the plan held and was allowed, as a held plan's JSON says it (the hook
             # tolerance is in its states; the time limit shared 80/20 with the spread partner)
             "hooks": {"tolerance": self._hook_tolerance},
+            "design_loads": self.design_loads.to_json(),
+            "checks": [check.to_json() for check in self.checks],
+            **breakout_json(self),
             "search": {
                 "method": self.stats.method,
                 "stopped": self.stats.stopped,
                 "limits": {"gap": self.problem.gap, "time_limit": self.problem.time_limit},
             },
         }
+
+
+def force_design(problem, builder, chosen, labels):
+    """The rules' design loads of a force-controlled set: each jack holds its force F at every
+    attitude, so its nominal, its worst over the states and its share at the rules' tilt are
+    all F, and no hook error skews it (skew 1).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    builder : DesignBuilder   for its chain inputs (CG envelope searched, lug capacities)
+    chosen : StrengthSet
+    labels : tuple of str
+
+    Returns
+    -------
+    DesignLoads
+    """
+    lugset = LugSet(problem, chosen.indices, chosen.cranes)
+    tilt = problem.rules.design_tilt()[0]
+    note = "strand jacks hold their forces at any tilt: the share at the rules' tilt is the force"
+    cranes = []
+    for k, label in enumerate(labels):
+        force = float(chosen.preload[k])
+        cranes.append(
+            CraneDesign(
+                label=label,
+                crane=lugset.crane_names[k],
+                lug=lugset.names[k],
+                radius=None if problem.fleet[lugset.cranes[k]].position is None else float(lugset.radius[k]),
+                swl=float(lugset.swl[k]),
+                nominal=force,
+                worst=force,
+                worst_at=Scenario(0.0, 0.0),
+                tilt=TiltCase(load=force, tilt=tilt, axis=(1.0, 0.0, 0.0), cog_offset=(0.0, 0.0, 0.0)),
+                skewed=force,
+            )
+        )
+    chain, missing = None, None
+    try:
+        chain = PlanChain(
+            cranes=tuple(builder._loads(c) for c in cranes),
+            weight=problem.body.weight,
+            rules=problem.rules,
+            cog_searched=builder.searched,
+            tilt_note=note,
+            inputs=tuple((c.crane, c) for c in cranes),
+        )
+        results = chain.results
+    except InvalidScene as err:
+        chain, missing = None, str(err)
+    else:
+        cranes = [dataclasses.replace(c, design=r) for c, r in zip(cranes, results)]
+    return DesignLoads(cranes=tuple(cranes), tilt=tilt, tilt_note=note, chain=chain, missing=missing)
 
 
 def free_three(points):

@@ -566,6 +566,7 @@ class CandidateMIP:
         self.low = cp.Parameter(c, nonneg=True, name="low")
         self.high = cp.Parameter(c * kinds, nonneg=True, name="high")
         self.level_high = cp.Parameter(c * kinds, nonneg=True, name="level_high")
+        self.level_low = cp.Parameter(c * kinds, nonneg=True, name="level_low")
         self.usable = cp.Parameter(c * kinds, nonneg=True, name="usable")
         self.big = cp.Parameter(nonneg=True, name="big")
         self.statics = [(cp.Parameter((3, c), name=f"A{j}"), cp.Parameter(3, name=f"b{j}")) for j in range(k)]
@@ -577,6 +578,7 @@ class CandidateMIP:
             used <= 1,
             z <= self.usable,
             tensions[0] <= per_candidate @ cp.multiply(self.level_high, z),
+            tensions[0] >= per_candidate @ cp.multiply(self.level_low, z),
             self.centre_row @ tensions[0] >= self.centre_low,
         ]
         for j in range(k):
@@ -614,9 +616,10 @@ class CandidateMIP:
         weights : (3,)
         statics : list of (A (3, C), b (3,))   per scenario (shared: only the first is used)
         rows : list of ((g_m, h_m), (g_q, h_q))   per scenario block, padded here
-        limits : (low (C,), high (C, K), level_high (C, K))  [t]   per column; NaN (or a
-            level_high below low) where a class cannot take the candidate; (C,) arrays for one
-            class
+        limits : (low (C,), high (C, K), level_high (C, K)[, level_low (C, K)])  [t]   per
+            column; NaN (or a level range empty) where a class cannot take the candidate; (C,)
+            arrays for one class. ``level_low`` (default ``low``): the least level tension (the
+            boom range's)
         centre : (row (C,), low) or None
         cuts : sequence of tuples of (candidate, class)   (set, assignment) rows to exclude
             (no-good cuts; :attr:`MIPResult.columns`)
@@ -636,12 +639,16 @@ class CandidateMIP:
         for j, (a, b) in enumerate(self.statics):
             a.value, b.value = (np.asarray(v, float) for v in statics[min(j, len(statics) - 1)])
         low = np.asarray(limits[0], float)
-        high, level_high = (np.asarray(v, float).reshape(count, kinds) for v in limits[1:])
-        usable = ~np.isnan(high) & ~np.isnan(level_high) & (np.minimum(level_high, high) >= low[:, None])
+        high, level_high = (np.asarray(v, float).reshape(count, kinds) for v in limits[1:3])
+        level_low = np.broadcast_to(low[:, None], high.shape)
+        if len(limits) > 3:
+            level_low = np.fmax(level_low, np.asarray(limits[3], float).reshape(count, kinds))
+        usable = ~np.isnan(high) & ~np.isnan(level_high) & (np.minimum(level_high, high) >= level_low)
         high = np.where(usable, high, 0.0)
         level_high = np.where(usable, np.minimum(level_high, high), 0.0)
         self.low.value = low
         self.high.value, self.level_high.value = high.ravel(), level_high.ravel()
+        self.level_low.value = np.where(usable, level_low, 0.0).ravel()
         self.usable.value = usable.ravel().astype(float)
         self.big.value = float(max(np.max(high), np.max(low), 0.0))
         row, floor = centre if centre is not None else (np.zeros(count), -1.0)
