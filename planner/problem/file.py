@@ -162,7 +162,8 @@ class _Plan(Table):
             "load left before the first crane reaches its SWL); `bending`, the worst |M| / allowable "
             "of the hull girder (`strength.bending_moment`) over the states and along the body; "
             '`shear`, the same of |Q|; `strength`, `strength_weights` x both (README "Lift forces for '
-            "the hull's strength\"; equal cranes, no slings; needs `body.weight_curve`)"
+            "the hull's strength\"; equal cranes or a fleet with charts, no slings; needs "
+            "`body.weight_curve`)"
         ),
         absent="`spread` for equal cranes, `utilisation` when they differ",
         example='objective = "bending"',
@@ -305,8 +306,9 @@ class _Plan(Table):
             "static input to the design-load chain becomes the larger of its worst in the box and its "
             "breakout tension (the plan says which governs), a check `breakout_hook_load` per crane "
             "(tension + rigging <= chart SWL) and `breakout_min_tension` are added, and the plan JSON "
-            "gains `breakout`. The scene's body weight and CG must equal `[body]`'s. Not with slings "
-            "or the strength objectives"
+            "gains `breakout`. The scene's body weight and CG must equal `[body]`'s. With the strength "
+            "objectives (hoist control) the same enters the strength plan's design loads and checks. "
+            'Not with slings or `control = "force"`'
         ),
         values="string (a path)",
         absent="no breakout case",
@@ -372,7 +374,8 @@ class _Crane(Table):
             "model: a tilt comes from the hooks moving as a plane, the preload held); `force`, as a "
             "strand jack: it holds its force at every attitude and the body takes the attitude where "
             'the forces balance its weight (README "Lift forces for the hull\'s strength"); `force` '
-            "only with the strength objectives, and every crane the same"
+            "only with the strength objectives, and every crane the same (in a fleet each jack's "
+            "capacity is its table's `swl` or `load_chart`, through the rules' chain)"
         ),
         absent='`"hoist"`',
         example='control = "force"',
