@@ -197,7 +197,10 @@ class StrengthContext:
         first = [group[0] for group in self.classes]
         swl = problem.reach[1][:, first]  # (C, K), NaN out of reach
         out = np.isnan(swl)
-        limit, share = rule_limits(problem, np.where(out, 1.0, swl), np.broadcast_to(first, swl.shape))
+        # the rules' chain of n ropes (its code margin depends on n): each column as one of n
+        tiled = np.repeat(np.where(out, 1.0, swl)[..., None], problem.cranes, axis=-1)
+        cranes = np.broadcast_to(np.array(first)[None, :, None], tiled.shape)
+        limit, share = (v[..., 0] for v in rule_limits(problem, tiled, cranes))
         #: (C, K) [t]: the largest tension in the box, and at level, of a class on a candidate
         self.limit, self.share = np.where(out, np.nan, limit), np.where(out, np.nan, share)
         fleet = [problem.fleet[j] for j in first]

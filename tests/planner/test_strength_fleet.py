@@ -163,3 +163,16 @@ def test_bad_input_one_line(changes, message):
     with pytest.raises(InvalidScene) as err:
         fleet_problem(**changes)
     assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_column_limits_are_the_sets_limits():
+    """Each (candidate, crane) column's limits are the ones the set's LP holds that crane to
+    on that candidate: the rules' chain for n ropes (its code margin depends on n; with the
+    margin of one rope the MIP offered sets the LP then found infeasible)."""
+    problem = fleet_problem()
+    ctx = StrengthContext(problem)
+    indices, cranes = (1, 3, 4, 6), (2, 0, 3, 1)
+    lugset = LugSet(problem, indices, cranes)
+    np.testing.assert_allclose(ctx.limit[list(indices), list(cranes)], lugset.limit, rtol=1e-12)
+    np.testing.assert_allclose(ctx.share[list(indices), list(cranes)], lugset.share_limit, rtol=1e-12)
+    assert np.isnan(ctx.limit[4, 0])  # Big aft does not reach S2P (31 m > its chart's 30 m)
