@@ -20,6 +20,7 @@ from support.fleet import buildable
 from support.strength import small_problem
 
 from liftplan.model.errors import InvalidScene, PlanInfeasible
+from liftplan.model.scene.vessel import Vessel
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.strength import StrengthContext, StrengthEvaluator, search_strength
 from liftplan.planner.problem.definition import CogEnvelope
@@ -157,6 +158,10 @@ def test_plan_json_names_each_crane():
             "planned for cranes on single ropes",
         ),
         ({"fleet": fleet(hook_tolerance=0.02)}, 'hook_tolerance = 0.02 m with control = "force"'),
+        (
+            {"fleet": fleet(vessel=Vessel(9000.0, 2800.0, 6.0, 180.0, flotation=(0.0, 0.0)))},
+            "planned for cranes on land",
+        ),
     ],
 )
 def test_bad_input_one_line(changes, message):
