@@ -21,8 +21,15 @@ the body). Over the candidates:
   cut, and the MIP re-solved until the bound meets the best set found (logic-based Benders)
   or the time limit stops it with the gap stated.
 
+With a fleet of unequal cranes (``[[cranes]]``) the MIP chooses the crane on each lug too: a
+column per (candidate, crane class) with that class's limits at its radius (chart SWL through
+the rules' chain, the code margin, the boom range with its rope) and no two columns whose booms
+clash (:func:`clash_columns`); each (set, assignment) it picks is evaluated exactly with its
+cranes' ropes, and the no-good cuts exclude one (set, assignment) at a time.
+
 The plan carries the strength-optimal choice beside the spread-optimal one (the same search
-with the objective max - min tension), so an engineer sees what each costs the other.
+with the objective max - min tension), so an engineer sees what each costs the other, and the
+rules' design loads per crane (with ``breakout_scene``, the breakout case) as checks.
 """
 
 from __future__ import annotations
