@@ -19,10 +19,15 @@ from scipy.optimize import linprog
 from support.fleet import buildable
 from support.strength import small_problem
 
+from liftplan.model import solve
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.model.scene.vessel import Vessel
-from liftplan.planner.plan import plan
-from liftplan.planner.plans.strength import StrengthContext, StrengthEvaluator, search_strength
+from liftplan.planner.plans.strength import (
+    StrengthContext,
+    StrengthEvaluator,
+    StrengthPlan,
+    search_strength,
+)
 from liftplan.planner.problem.definition import CogEnvelope
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec
 from liftplan.planner.search.scenarios import LugSet
@@ -131,13 +136,15 @@ def test_crossing_booms_ruled_out():
     assert buildable(far, found.indices, found.cranes) and stats.stopped == "proved"
 
 
-def test_plan_json_names_each_crane():
+def test_plan_json_names_each_crane_and_its_scene_solves_to_the_plan():
     """The plan JSON says which crane takes each lug, its radius and chart SWL (as a fleet's
-    held plan does), and the written scene carries each crane's own rope."""
-    problem = fleet_problem(time_limit=20.0)
-    result = plan(problem)
+    held plan does); the written scene carries each crane's own rope (EA, l0) and boom height,
+    and its elastic solve at level gives the planned T* of every crane (to 1e-6 t) and a level
+    pose, as for equal cranes (tests/cli/test_strength_report.py)."""
+    problem = fleet_problem("hoist")
+    chosen, stats = search_strength(problem, (1.0, 0.0, 0.0))
+    result = StrengthPlan(problem, chosen, stats, spread_plan=None, spread_stats=None)
     out = result.to_json()
-    chosen = result.chosen
     assert out["cranes"] == dict(zip(result.labels, chosen.crane_names))
     for k, label in enumerate(result.labels):
         crane = problem.fleet[chosen.cranes[k]]
@@ -148,6 +155,10 @@ def test_plan_json_names_each_crane():
             crane.EA,
             crane.rope_length,
         )
+    assert len({(problem.fleet[j].EA, problem.fleet[j].rope_length) for j in chosen.cranes}) == 4
+    eq = solve(result.scene)
+    assert eq.tensions == pytest.approx(dict(zip(chosen.names, chosen.preload.tolist())), abs=1e-6)
+    assert abs(eq.pose.heel) < 1e-6 and abs(eq.pose.trim) < 1e-6
 
 
 @pytest.mark.parametrize(
