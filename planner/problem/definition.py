@@ -597,7 +597,7 @@ class PlanProblem:
             )
 
     def _check_breakout(self, fleet):
-        """The breakout scene: a seabed scene of this body, for a held plan of single ropes."""
+        """The breakout scene: a seabed scene of this body, for a held plan (single ropes or slings)."""
         scene, key = self.breakout_scene, "plan.breakout_scene"
         if scene is None:
             return
@@ -612,10 +612,10 @@ class PlanProblem:
                 "expected the hull resting on the seabed with [hull], [water] and "
                 "[ground]"
             )
-        if any(c.sling is not None for c in fleet) or self.control == "force":
+        if self.control == "force":
             raise InvalidScene(
-                f"{key}: given for a plan with slings or force control; expected cranes on "
-                "single ropes held by their hoists (the breakout case is the held model's)"
+                f'{key}: given with control = "force"; expected cranes held by their hoists '
+                "(the breakout case is the held model's, on hoists or slings)"
             )
         body, mine = scene.body, self.body
         if not math.isclose(body.weight, mine.weight, rel_tol=1e-9) or not np.allclose(

@@ -166,5 +166,5 @@ def test_a_breakout_too_heavy_fails_its_check(tmp_path):
 def test_force_control_refused_one_line():
     with pytest.raises(InvalidScene) as err:
         dataclasses.replace(block_problem(), controls=("force",) * 4, hook_tolerance=0.0)
-    assert "breakout_scene: given for a plan with slings or force control" in str(err.value)
+    assert 'breakout_scene: given with control = "force"' in str(err.value)
     assert "\n" not in str(err.value)
