@@ -21,12 +21,20 @@ the body). Over the candidates:
   cut, and the MIP re-solved until the bound meets the best set found (logic-based Benders)
   or the time limit stops it with the gap stated.
 
+With a fleet of unequal cranes (``[[cranes]]``) the MIP chooses the crane on each lug too: a
+column per (candidate, crane class) with that class's limits at its radius (chart SWL through
+the rules' chain, the code margin, the boom range with its rope) and no two columns whose booms
+clash (:func:`clash_columns`); each (set, assignment) it picks is evaluated exactly with its
+cranes' ropes, and the no-good cuts exclude one (set, assignment) at a time.
+
 The plan carries the strength-optimal choice beside the spread-optimal one (the same search
-with the objective max - min tension), so an engineer sees what each costs the other.
+with the objective max - min tension), so an engineer sees what each costs the other, and the
+rules' design loads per crane (with ``breakout_scene``, the breakout case) as checks.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import time
@@ -36,10 +44,20 @@ from functools import cached_property
 import numpy as np
 
 from liftplan.model.checks import Check
-from liftplan.model.errors import PlanInfeasible, SolverFailed
+from liftplan.model.errors import InvalidScene, PlanInfeasible, SolverFailed
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redundant, Scene
 from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.plans.breakout import breakout_json
 from liftplan.planner.plans.common import InFileFrame, weight_json
+from liftplan.planner.plans.design_loads import (
+    CraneDesign,
+    DesignBuilder,
+    DesignLoads,
+    PlanChain,
+    TiltCase,
+)
+from liftplan.planner.plans.held import Plan as HeldPlan
+from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.evaluator import GapMixin, Interrupted
 from liftplan.planner.search.progress import best_bound, progress_bar
@@ -100,6 +118,8 @@ class StrengthSet:
     ----------
     indices : tuple of int   candidate indices
     names : tuple of str
+    cranes : tuple of int   fleet index of the crane on each lug
+    crane_names : tuple of str
     preload : (n,)  [t]   level tensions T* (force control: the held forces)
     boom_heights : (n,) or None  [m]   hoist control
     bending, shear : Peak   worst |M| / allowable [t m], |Q| / allowable [t], with the state
@@ -113,6 +133,8 @@ class StrengthSet:
 
     indices: tuple[int, ...]
     names: tuple[str, ...]
+    cranes: tuple[int, ...]
+    crane_names: tuple[str, ...]
     preload: np.ndarray
     boom_heights: np.ndarray | None
     bending: Peak
@@ -154,6 +176,11 @@ class StrengthStats(GapMixin):
 class StrengthContext:
     """What every lug set of a problem shares: loads, envelopes, states, limits.
 
+    The fleet in its classes of interchangeable cranes (:attr:`PlanProblem.crane_classes`;
+    one class for equal cranes): the limits are per (candidate, class), from each class's
+    chart SWL at its radius to the candidate through the rules' chain (NaN where it cannot
+    reach), for the lug choice's columns (:class:`CandidateMIP`).
+
     Parameters
     ----------
     problem : PlanProblem
@@ -172,12 +199,32 @@ class StrengthContext:
         self.points = problem.points
         self.offsets = problem.cog_envelope.offsets()
         self.sections = Sections.initial(self.loads, self.points[:, 0], self.envelopes)
-        swl = problem.reach[1][:, 0]
-        self.limit, self.share = rule_limits(problem, swl, np.zeros(len(swl), dtype=int))
-        crane = problem.fleet[0]
-        self.stiffness = crane.EA / crane.rope_length
-        self.boom_zero = problem.lift_height + self.points[:, 2] + crane.rope_length
-        self.boom_range = (crane.boom_min, crane.boom_max)
+        self.classes = problem.crane_classes
+        self.counts = tuple(len(group) for group in self.classes)
+        first = [group[0] for group in self.classes]
+        swl = problem.reach[1][:, first]  # (C, K), NaN out of reach
+        out = np.isnan(swl)
+        # the rules' chain of n ropes (its code margin depends on n): each column as one of n
+        tiled = np.repeat(np.where(out, 1.0, swl)[..., None], problem.cranes, axis=-1)
+        cranes = np.broadcast_to(np.array(first)[None, :, None], tiled.shape)
+        limit, share = (v[..., 0] for v in rule_limits(problem, tiled, cranes))
+        #: (C, K) [t]: the largest tension in the box, and at level, of a class on a candidate
+        self.limit, self.share = np.where(out, np.nan, limit), np.where(out, np.nan, share)
+        fleet = [problem.fleet[j] for j in first]
+        #: (K,) [t/m] rope stiffness of each class
+        self.stiffness = np.array([c.EA / c.rope_length for c in fleet])
+        #: (C, K) [m] boom heights with the rope unstretched at level
+        ropes = np.array([c.rope_length for c in fleet])
+        self.boom_zero = problem.lift_height + self.points[:, 2][:, None] + ropes
+        self.boom_min = np.array([c.boom_min for c in fleet])
+        self.boom_max = np.array([c.boom_max for c in fleet])
+        self.clashes = clash_columns(problem, self.classes)
+
+    def cranes_of(self, result):
+        """Fleet indices of the cranes on a :class:`MIPResult`'s lugs: each class's members
+        handed out in candidate order (interchangeable, so any order is the same row)."""
+        taken = [list(group) for group in self.classes]
+        return tuple(taken[kind].pop(0) for kind in result.kinds)
 
     def allowable(self, which, x):
         return allowable(self.envelopes[which], x)
@@ -217,6 +264,30 @@ class StrengthContext:
         return max(need)
 
 
+def clash_columns(problem, classes):
+    """Pairs of (candidate, class) columns whose cranes' booms cross in plan or come nearer
+    than ``plan.crane_clearance`` (:mod:`liftplan.planner.problem.clearance`), numbered
+    candidate x K + class; none without crane positions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (P, 2), int
+    """
+    distances, kinds = problem.boom_distances, len(classes)
+    out = [np.empty((0, 2), dtype=np.int64)]
+    if distances is None:
+        return out[0]
+    for a in range(kinds):
+        for b in range(a, kinds):
+            if a == b and len(classes[a]) < 2:
+                continue  # one crane of the class: never on two candidates
+            ja, jb = classes[a][0], classes[b][1 if a == b else 0]
+            first, second = np.nonzero(~clear(distances[:, ja, :, jb], problem.crane_clearance))
+            keep = first < second if a == b else first != second
+            out.append(np.column_stack([first[keep] * kinds + a, second[keep] * kinds + b]))
+    return np.concatenate(out)
+
+
 # -- one lug set ---------------------------------------------------------------------------------
 class StrengthEvaluator:
     """Evaluate lug sets exactly: the LP on growing lists of states and sections.
@@ -230,8 +301,16 @@ class StrengthEvaluator:
         self.context = context
         self.count = 0
 
-    def evaluate(self, indices, weights):
-        """The best tensions for one lug set and its exact worst values.
+    def evaluate(self, indices, weights, cranes=None):
+        """The best tensions for one lug set, with the given crane on each lug, and its exact
+        worst values.
+
+        Parameters
+        ----------
+        indices : sequence of int   candidate indices
+        weights : (3,)   bending ratio, shear ratio, spread
+        cranes : sequence of int, optional   fleet index of the crane on each lug, in the
+            order of ``indices`` (default crane k on the k-th: any order for equal cranes)
 
         Returns
         -------
@@ -245,7 +324,17 @@ class StrengthEvaluator:
             The cutting planes did not converge in :data:`ROUNDS` rounds.
         """
         self.count += 1
-        indices = tuple(sorted(int(i) for i in indices))
+        indices = [int(i) for i in indices]
+        cranes = list(range(len(indices))) if cranes is None else [int(j) for j in cranes]
+        order = np.argsort(indices)
+        indices, cranes = tuple(indices[k] for k in order), tuple(cranes[k] for k in order)
+        p = self.context.problem
+        swl = p.reach[1][list(indices), list(cranes)]
+        if np.any(np.isnan(swl)):
+            k = int(np.argmax(np.isnan(swl)))
+            raise PlanInfeasible(
+                f"crane {p.fleet[cranes[k]].name} cannot reach lug {p.names[indices[k]]} (outside its chart)"
+            )
         plan = self.context.points[list(indices), :2]
         if (
             np.linalg.matrix_rank(
@@ -257,8 +346,8 @@ class StrengthEvaluator:
             names = ", ".join(self.context.problem.names[i] for i in indices)
             raise PlanInfeasible(f"lugs {names}: on one line in plan; they cannot hold the body")
         if self.context.control == "force":
-            return self._force(indices, weights)
-        return self._hoist(indices, weights)
+            return self._force(indices, cranes, weights)
+        return self._hoist(indices, cranes, weights)
 
     # rows of the LP for states whose tensions are P T* + q
     def _rows(self, points, sections, states, gains, offsets, hook):
@@ -280,12 +369,13 @@ class StrengthEvaluator:
         """Exact worst ratio of M and Q over the given states (tensions (k, n))."""
         return exact_peaks(self.context.loads, self.context.envelopes, points, tensions, states, hook)
 
-    def _finish(self, indices, preload, boom, peaks, spread, worst_spread, weights, bound, states, trange):
-        names = tuple(self.context.problem.names[i] for i in indices)
+    def _finish(self, lugset, preload, boom, peaks, spread, worst_spread, weights, bound, states, trange):
         value = weights[0] * peaks[0].ratio + weights[1] * peaks[1].ratio + weights[2] * worst_spread
         return StrengthSet(
-            indices=indices,
-            names=names,
+            indices=lugset.indices,
+            names=lugset.names,
+            cranes=lugset.cranes,
+            crane_names=lugset.crane_names,
             preload=preload,
             boom_heights=boom,
             bending=peaks[0],
@@ -298,11 +388,11 @@ class StrengthEvaluator:
             tension_range=trange,
         )
 
-    def _force(self, indices, weights):
+    def _force(self, indices, cranes, weights):
         ctx, p = self.context, self.context.problem
         points = ctx.points[list(indices)]
         n = len(indices)
-        lugset = LugSet(p, indices)
+        lugset = LugSet(p, indices, cranes)
         a0, b0 = lugset.level_statics
         floor = ctx.centre_floor()
         centre = (points[:, 2] * 1.0, p.body.weight * floor)
@@ -311,7 +401,7 @@ class StrengthEvaluator:
                 "force control: every lug is too low above the CG for the body to "
                 "hang stable within the tolerance box"
             )
-        limit, share = ctx.limit[list(indices)], ctx.share[list(indices)]
+        limit, share = lugset.limit, lugset.share_limit  # each jack's own capacity
         tension_rows = (
             np.eye(n)[None],
             np.zeros((1, n)),
@@ -340,7 +430,7 @@ class StrengthEvaluator:
             if moved < 1e-12 and exact <= lp_value * (1 + CONVERGED) + 1e-12:
                 described = [self._describe(s) for s in states]
                 return self._finish(
-                    indices,
+                    lugset,
                     result.preload,
                     None,
                     peaks,
@@ -362,9 +452,9 @@ class StrengthEvaluator:
         heel, trim = body_tilt(state.up)
         return {"heel": heel, "trim": trim, "cog_offset": list(state.cog_offset)}
 
-    def _hoist(self, indices, weights):
+    def _hoist(self, indices, cranes, weights):
         ctx, p = self.context, self.context.problem
-        lugset = LugSet(p, indices)
+        lugset = LugSet(p, indices, cranes)
         points, n = lugset.points, lugset.n
         hook = lugset.hook_uncertain
         scenarios = ctx.hoist_states()
@@ -411,7 +501,7 @@ class StrengthEvaluator:
                     {"heel": s.heel, "trim": s.trim, "cog_offset": list(s.cog_offset)} for s in dense
                 ]
                 return self._finish(
-                    indices,
+                    lugset,
                     result.preload,
                     lugset.boom_heights(result.preload),
                     peaks,
@@ -538,7 +628,7 @@ def _search_force(ctx, evaluator, weights, started, limit):
     centre = (ctx.points[:, 2].copy(), p.body.weight * floor)
     sections = ctx.sections
     statics = [_statics(ctx, 0.0, 0.0, (0.0, 0.0, 0.0))]
-    limits = (np.full(count, p.min_tension), ctx.limit, np.minimum(ctx.limit, ctx.share))
+    limits = (np.full(count, p.min_tension), ctx.limit, np.fmin(ctx.limit, ctx.share))
     tensions = np.full(count, p.body.weight / n)
     best, rounds, bound = None, 0, -math.inf
     bar = _bar(weights, ROUNDS)
@@ -560,12 +650,16 @@ def _search_force(ctx, evaluator, weights, started, limit):
                 tuple(np.concatenate([b[0][j] for b in blocks]) for j in range(2)),
                 tuple(np.concatenate([b[1][j] for b in blocks]) for j in range(2)),
             )
-            mip = CandidateMIP(count, n, len(stacked[0][1]), len(stacked[1][1]), 1, shared=True)
+            mip = CandidateMIP(
+                count, n, len(stacked[0][1]), len(stacked[1][1]), 1, shared=True, counts=ctx.counts
+            )
             remaining = None if limit is None else limit - (time.perf_counter() - started)
-            result = mip.solve(weights, statics, [stacked], limits, centre, time_limit=remaining)
+            result = mip.solve(
+                weights, statics, [stacked], limits, centre, time_limit=remaining, clashes=ctx.clashes
+            )
             rounds += 1
             bound = result.value
-            current = evaluator.evaluate(result.chosen, weights)
+            current = evaluator.evaluate(result.chosen, weights, ctx.cranes_of(result))
             if best is None or current.value < best.value:
                 best = current
             _show(bar, best, bound)
@@ -608,11 +702,14 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
     statics = [_statics(ctx, s.heel, s.trim, s.cog_offset) for s in scen]
     # at level the tensions are T* itself: the code margin and the boom range hold exactly
     level_high = np.minimum(
-        np.minimum(ctx.limit, ctx.share), ctx.stiffness * (ctx.boom_range[1] - ctx.boom_zero)
+        np.minimum(ctx.limit, ctx.share), ctx.stiffness[None, :] * (ctx.boom_max[None, :] - ctx.boom_zero)
     )
-    limits = (np.full(count, p.min_tension), ctx.limit, np.maximum(level_high, 0.0))
+    level_low = ctx.stiffness[None, :] * (ctx.boom_min[None, :] - ctx.boom_zero)  # the boom range
+    limits = (np.full(count, p.min_tension), ctx.limit, level_high, level_low)
     rows = _mip_rows(ctx, states, sections)
-    mip = CandidateMIP(count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False)
+    mip = CandidateMIP(
+        count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False, counts=ctx.counts
+    )
     best, cuts, rounds, bound, stopped = None, [], 0, -math.inf, "proved"
     bar = _bar(weights)
     try:
@@ -622,7 +719,9 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
                 stopped = "time_limit"
                 break
             try:
-                result = mip.solve(weights, statics, rows, limits, cuts=cuts, time_limit=remaining)
+                result = mip.solve(
+                    weights, statics, rows, limits, cuts=cuts, time_limit=remaining, clashes=ctx.clashes
+                )
             except PlanInfeasible:
                 if best is None:
                     raise
@@ -636,13 +735,13 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
                 stopped = "proved" if bound >= best.value - 1e-9 else "gap"
                 break
             try:
-                current = evaluator.evaluate(result.chosen, weights)
+                current = evaluator.evaluate(result.chosen, weights, ctx.cranes_of(result))
             except PlanInfeasible:
                 current = None
             if current is not None and (best is None or current.value < best.value):
                 best = current
             _show(bar, best, bound)
-            cuts.append(result.chosen)
+            cuts.append(result.columns)
             if not result.complete:
                 break
     except KeyboardInterrupt:
@@ -733,10 +832,10 @@ class StrengthPlan(InFileFrame):
         """
         p, c = self.problem, self.chosen
         indices = list(c.indices)
-        points, swl, crane = p.points[indices], p.reach[1][indices, 0], p.fleet[0]
-        heights = (
-            c.boom_heights if c.boom_heights is not None else p.lift_height + points[:, 2] + crane.rope_length
-        )
+        points, swl = p.points[indices], p.reach[1][indices, list(c.cranes)]
+        fleet = [p.fleet[j] for j in c.cranes]
+        ropes = np.array([crane.rope_length for crane in fleet])
+        heights = c.boom_heights if c.boom_heights is not None else p.lift_height + points[:, 2] + ropes
         if self.control == "force":
             free = free_three(points)
             analysis = Analysis(
@@ -759,8 +858,9 @@ class StrengthPlan(InFileFrame):
                     rope_length=crane.rope_length,
                     EA=crane.EA,
                     swl=float(limit),
+                    name=crane.name,
                 )
-                for name, h, limit in zip(c.names, heights, swl)
+                for name, h, limit, crane in zip(c.names, heights, swl, fleet)
             ),
             attitude=Attitude(lift_height=p.lift_height, yaw=p.yaw),
             analysis=analysis,
@@ -774,8 +874,34 @@ class StrengthPlan(InFileFrame):
         return self.chosen.worst_spread
 
     @cached_property
+    def design_loads(self):
+        """The rules' design loads of the chosen set, per crane
+        (:class:`~liftplan.planner.plans.design_loads.DesignLoads`; ``docs/design-loads.md``).
+
+        Hoist control: the held plans' chain (:class:`~.design_loads.DesignBuilder`): each
+        rope's worst over the box, the CG envelope and the hook errors with the planned T*,
+        its share at the rules' tilt, and with ``[plan] breakout_scene`` its held tension at
+        breakout. Force control: each jack's force, which it holds at every attitude (the
+        worst and the share at the tilt are the force itself).
+        """
+        builder = DesignBuilder(self.problem)
+        if self.control == "hoist":
+            return builder.build(self.chosen, self.labels)
+        return force_design(self.problem, builder, self.chosen, self.labels)
+
+    @property
+    def ranked_design(self):
+        """The design loads of the plan (a strength plan ranks no other set)."""
+        return [self.design_loads]
+
+    #: per planned lug its crane's least plan clearance to another's (the held plans' own)
+    clearances = HeldPlan.clearances
+
+    @cached_property
     def checks(self):
-        """The strength envelopes at the worst state and the tension limits, as checks."""
+        """The strength envelopes at the worst state, the tension limits, the rules' design
+        loads per crane (with a breakout case its breakout checks), and with crane positions
+        each crane's least plan clearance to the others' booms and hoist lines, as checks."""
         p, c = self.problem, self.chosen
         out = []
         for name, peak, envelope, unit in (
@@ -803,14 +929,39 @@ class StrengthPlan(InFileFrame):
                 note="lowest tension over the states",
             )
         )
+        out += list(self.design_loads.checks)
+        for crane, distance, nearest in self.clearances.values():
+            out.append(
+                Check.lower(
+                    "crane_clearance",
+                    crane,
+                    distance,
+                    p.crane_clearance,
+                    "m",
+                    note=f"boom and hoist line to {nearest}'s, in plan",
+                )
+            )
         return out
 
     @property
     def _hook_tolerance(self):
-        """The cranes' hook-height tolerance  [m] (one crane class: the [crane]'s own, or the
-        plan's)."""
-        own = self.problem.fleet[0].hook_tolerance
-        return float(self.problem.hook_tolerance if own is None else own)
+        """Each planned lug's hook-height tolerance  [m]: its crane's own, or the plan's."""
+        p = self.problem
+        own = [p.fleet[j].hook_tolerance for j in self.chosen.cranes]
+        values = [float(p.hook_tolerance if value is None else value) for value in own]
+        return dict(zip(self.labels, values))
+
+    def _fleet_json(self):
+        """Which crane takes each lug, its radius [m], its chart SWL there [t] and nominal
+        T / SWL, as a fleet's held plan says them."""
+        p, c = self.problem, self.chosen
+        radius, swl = (v[list(c.indices), list(c.cranes)] for v in p.reach)
+        return {
+            "cranes": dict(zip(self.labels, c.crane_names)),
+            "radius": dict(zip(self.labels, radius.tolist())),
+            "swl": dict(zip(self.labels, swl.tolist())),
+            "utilisation": dict(zip(self.labels, (c.preload / swl).tolist())),
+        }
 
     def _set_json(self, s, stats):
         def peak(pk):
@@ -854,6 +1005,7 @@ class StrengthPlan(InFileFrame):
             "tensions": self.tensions,
             "spread": self.spread,
             "worst_spread": self.worst_spread,
+            **self._fleet_json(),
             "objective": self.objective,
             "control": self.control,
             "weight": weight_json(self.problem),
@@ -872,13 +1024,70 @@ class StrengthPlan(InFileFrame):
             ),
             # what the plan held and was allowed, as a held plan's JSON says it (the hook
             # tolerance is in its states; the time limit shared 80/20 with the spread partner)
-            "hooks": {"tolerance": dict.fromkeys(self.labels, self._hook_tolerance)},
+            "hooks": {"tolerance": self._hook_tolerance},
+            "design_loads": self.design_loads.to_json(),
+            "checks": [check.to_json() for check in self.checks],
+            **breakout_json(self),
             "search": {
                 "method": self.stats.method,
                 "stopped": self.stats.stopped,
                 "limits": {"gap": self.problem.gap, "time_limit": self.problem.time_limit},
             },
         }
+
+
+def force_design(problem, builder, chosen, labels):
+    """The rules' design loads of a force-controlled set: each jack holds its force F at every
+    attitude, so its nominal, its worst over the states and its share at the rules' tilt are
+    all F, and no hook error skews it (skew 1).
+
+    Parameters
+    ----------
+    problem : PlanProblem
+    builder : DesignBuilder   for its chain inputs (CG envelope searched, lug capacities)
+    chosen : StrengthSet
+    labels : tuple of str
+
+    Returns
+    -------
+    DesignLoads
+    """
+    lugset = LugSet(problem, chosen.indices, chosen.cranes)
+    tilt = problem.rules.design_tilt()[0]
+    note = "strand jacks hold their forces at any tilt: the share at the rules' tilt is the force"
+    cranes = []
+    for k, label in enumerate(labels):
+        force = float(chosen.preload[k])
+        cranes.append(
+            CraneDesign(
+                label=label,
+                crane=lugset.crane_names[k],
+                lug=lugset.names[k],
+                radius=None if problem.fleet[lugset.cranes[k]].position is None else float(lugset.radius[k]),
+                swl=float(lugset.swl[k]),
+                nominal=force,
+                worst=force,
+                worst_at=Scenario(0.0, 0.0),
+                tilt=TiltCase(load=force, tilt=tilt, axis=(1.0, 0.0, 0.0), cog_offset=(0.0, 0.0, 0.0)),
+                skewed=force,
+            )
+        )
+    chain, missing = None, None
+    try:
+        chain = PlanChain(
+            cranes=tuple(builder._loads(c) for c in cranes),
+            weight=problem.body.weight,
+            rules=problem.rules,
+            cog_searched=builder.searched,
+            tilt_note=note,
+            inputs=tuple((c.crane, c) for c in cranes),
+        )
+        results = chain.results
+    except InvalidScene as err:
+        chain, missing = None, str(err)
+    else:
+        cranes = [dataclasses.replace(c, design=r) for c, r in zip(cranes, results)]
+    return DesignLoads(cranes=tuple(cranes), tilt=tilt, tilt_note=note, chain=chain, missing=missing)
 
 
 def free_three(points):

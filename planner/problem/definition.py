@@ -562,10 +562,15 @@ class PlanProblem:
                     f"strength.{key}: missing for plan.objective = {self.objective!r}; "
                     "expected the allowable envelope [[x m, value], ...]"
                 )
-        if len(crane_classes(fleet)) > 1 or any(c.sling is not None for c in fleet):
+        if any(c.sling is not None for c in fleet):
             raise InvalidScene(
-                f"plan.objective = {self.objective!r}: planned for equal cranes on single "
-                "ropes (one [crane] class, no slings); expected [crane] with plan.cranes"
+                f"plan.objective = {self.objective!r}: planned for cranes on single ropes (the "
+                "strength search has no sling legs in its girder loads); expected no sling on the cranes"
+            )
+        if any(c.vessel is not None for c in fleet):
+            raise InvalidScene(
+                f"plan.objective = {self.objective!r}: planned for cranes on land (the strength "
+                "search does not put a vessel in series with the rope); expected no cranes.vessel"
             )
         # keys the strength planner would not use: refused, not ignored
         if self.search != "auto":
@@ -577,6 +582,12 @@ class PlanProblem:
             raise InvalidScene(
                 f"crane.rope_length = {{ min, max }}: a range with plan.objective = {self.objective!r}, "
                 "whose planner takes one rope length; expected a fixed rope_length"
+            )
+        own = next((c for c in fleet if c.hook_tolerance), None)
+        if controls[0] == "force" and own is not None:
+            raise InvalidScene(
+                f'cranes[{own.name}].hook_tolerance = {own.hook_tolerance:g} m with control = "force": '
+                "jacks hold their forces, so hook heights do not change them; expected no hook_tolerance"
             )
         if controls[0] == "force" and self.hook_tolerance > 0.0:
             raise InvalidScene(
@@ -601,11 +612,10 @@ class PlanProblem:
                 "expected the hull resting on the seabed with [hull], [water] and "
                 "[ground]"
             )
-        if self.objective in STRENGTH_OBJECTIVES:
+        if self.control == "force":
             raise InvalidScene(
-                f"{key}: given for a plan with a strength objective; "
-                "expected objective spread, utilisation "
-                "or reserve (the breakout case is carried into those plans only)"
+                f'{key}: given with control = "force"; expected cranes held by their hoists '
+                "(the breakout case is the held model's, on hoists or slings)"
             )
         body, mine = scene.body, self.body
         if not math.isclose(body.weight, mine.weight, rel_tol=1e-9) or not np.allclose(

@@ -163,7 +163,8 @@ class _Plan(Table):
             "load left before the first crane reaches its SWL); `bending`, the worst |M| / allowable "
             "of the hull girder (`strength.bending_moment`) over the states and along the body; "
             '`shear`, the same of |Q|; `strength`, `strength_weights` x both (README "Lift forces for '
-            "the hull's strength\"; equal cranes, no slings; needs `body.weight_curve`)"
+            "the hull's strength\"; equal cranes or a fleet with charts, no slings; needs "
+            "`body.weight_curve`)"
         ),
         absent="`spread` for equal cranes, `utilisation` when they differ",
         example='objective = "bending"',
@@ -308,8 +309,9 @@ class _Plan(Table):
             "(tension + rigging <= chart SWL) and `breakout_min_tension` are added, and the plan JSON "
             "gains `breakout`. With slings each crane's hook holds it (two cranes: the lever rule "
             "along the hook line; three or more: the held model on the hooks) and its legs carry "
-            "it into the lug design loads. The scene's body weight and CG must equal `[body]`'s. "
-            "Not with the strength objectives"
+            "it into the lug design loads. With the strength objectives (hoist control) it enters "
+            "the strength plan's design loads and checks the same way. The scene's body weight and "
+            'CG must equal `[body]`\'s. Not with `control = "force"`'
         ),
         values="string (a path)",
         absent="no breakout case",
@@ -375,7 +377,8 @@ class _Crane(Table):
             "model: a tilt comes from the hooks moving as a plane, the preload held); `force`, as a "
             "strand jack: it holds its force at every attitude and the body takes the attitude where "
             'the forces balance its weight (README "Lift forces for the hull\'s strength"); `force` '
-            "only with the strength objectives, and every crane the same"
+            "only with the strength objectives, and every crane the same (in a fleet each jack's "
+            "capacity is its table's `swl` or `load_chart`, through the rules' chain)"
         ),
         absent='`"hoist"`',
         example='control = "force"',

@@ -501,10 +501,11 @@ class MIPResult:
 
     Parameters
     ----------
-    chosen : tuple of int   candidate indices
+    chosen : tuple of int   candidate indices, ascending
+    kinds : tuple of int   the crane class on each chosen candidate (0 for one class)
     forces : (C,)  [t]   the level tensions on every candidate (0 where not chosen)
     value : float   HiGHS's dual bound (at most the optimum less its relative gap): a lower
-        bound on every set not cut off
+        bound on every (set, assignment) not cut off
     incumbent : float   the objective of the set returned
     complete : bool   False when HiGHS stopped at its time limit (the set is its best found)
     """
@@ -514,10 +515,24 @@ class MIPResult:
     value: float
     incumbent: float = math.nan
     complete: bool = True
+    kinds: tuple[int, ...] = ()
+
+    @property
+    def columns(self):
+        """The chosen (candidate, class) columns as :class:`CandidateMIP` numbers them."""
+        return tuple(zip(self.chosen, self.kinds))
 
 
 class CandidateMIP:
-    """Choose n of C candidates and their level tensions (HiGHS branch and bound).
+    """Choose n of C candidates, the crane class on each, and their level tensions (HiGHS
+    branch and bound).
+
+    A binary per (candidate, crane class) column says that a crane of that class takes that
+    candidate: each class places as many cranes as it has, a candidate takes one crane at
+    most, and a tension's limits are those of the class on it (each crane's chart SWL at its
+    radius to that candidate through the rules' chain; a column a crane cannot reach, or whose
+    booms would clash, is excluded). One class (equal cranes) is the plain choice of n
+    candidates.
 
     Scenario 0 is the level state with the nominal CG, its tensions the plan's T* under
     either control. Scenarios 1.. are, for force control, the same tensions (``shared``) and,
@@ -531,28 +546,39 @@ class CandidateMIP:
     rows_m, rows_q : int   ratio rows per scenario
     scenarios : int
     shared : bool   force control (one tension vector for every scenario)
+    counts : sequence of int, optional   cranes of each class (default: one class of n)
     """
 
-    def __init__(self, count, n, rows_m, rows_q, scenarios, shared):
+    def __init__(self, count, n, rows_m, rows_q, scenarios, shared, counts=None):
         c, k = count, scenarios
-        self.shape = (count, n, rows_m, rows_q, scenarios, shared)
+        counts = (n,) if counts is None else tuple(int(v) for v in counts)
+        kinds = len(counts)
+        self.shape = (count, n, rows_m, rows_q, scenarios, shared, kinds)
         self.weights = cp.Parameter(3, nonneg=True, name="weights")
-        z = cp.Variable(c, boolean=True, name="chosen")
+        z = cp.Variable(c * kinds, boolean=True, name="chosen")  # candidate-major columns
+        # each candidate's columns summed: 1 where it is chosen
+        per_candidate = sparse.kron(sparse.eye(c), np.ones((1, kinds)), format="csr")
+        per_class = sparse.kron(np.ones((1, c)), sparse.eye(kinds), format="csr")
+        used = per_candidate @ z
         tensions = [cp.Variable(c, name="T0")]
         tensions += [tensions[0]] * (k - 1) if shared else [cp.Variable(c, name=f"T{j}") for j in range(1, k)]
         t_m, t_q, spread = cp.Variable(name="bending"), cp.Variable(name="shear"), cp.Variable(name="spread")
         self.low = cp.Parameter(c, nonneg=True, name="low")
-        self.high = cp.Parameter(c, nonneg=True, name="high")
-        self.level_high = cp.Parameter(c, nonneg=True, name="level_high")
+        self.high = cp.Parameter(c * kinds, nonneg=True, name="high")
+        self.level_high = cp.Parameter(c * kinds, nonneg=True, name="level_high")
+        self.level_low = cp.Parameter(c * kinds, nonneg=True, name="level_low")
+        self.usable = cp.Parameter(c * kinds, nonneg=True, name="usable")
         self.big = cp.Parameter(nonneg=True, name="big")
         self.statics = [(cp.Parameter((3, c), name=f"A{j}"), cp.Parameter(3, name=f"b{j}")) for j in range(k)]
         self.rows = []
         self.centre_row = cp.Parameter(c, name="centre_row")
         self.centre_low = cp.Parameter(name="centre_low")
-        self.cuts = []
         constraints = [
-            cp.sum(z) == n,
-            tensions[0] <= cp.multiply(self.level_high, z),
+            per_class @ z == np.array(counts, dtype=float),
+            used <= 1,
+            z <= self.usable,
+            tensions[0] <= per_candidate @ cp.multiply(self.level_high, z),
+            tensions[0] >= per_candidate @ cp.multiply(self.level_low, z),
             self.centre_row @ tensions[0] >= self.centre_low,
         ]
         for j in range(k):
@@ -561,10 +587,10 @@ class CandidateMIP:
             hi, lo = cp.Variable(name=f"hi{j}"), cp.Variable(name=f"lo{j}")
             constraints += [
                 a @ tj == b,
-                tj >= cp.multiply(self.low, z),
-                tj <= cp.multiply(self.high, z),
+                tj >= cp.multiply(self.low, used),
+                tj <= per_candidate @ cp.multiply(self.high, z),
                 tj <= hi,
-                tj + self.big * (1 - z) >= lo,
+                tj + self.big * (1 - used) >= lo,
                 hi - lo <= spread,
             ]
             block = []
@@ -581,9 +607,8 @@ class CandidateMIP:
         )
         self.constraints, self.objective = constraints, objective
         self.z, self.tensions = z, tensions
-        self._problem = None
 
-    def solve(self, weights, statics, rows, limits, centre=None, cuts=(), time_limit=None):
+    def solve(self, weights, statics, rows, limits, centre=None, cuts=(), time_limit=None, clashes=()):
         """Solve.
 
         Parameters
@@ -591,16 +616,21 @@ class CandidateMIP:
         weights : (3,)
         statics : list of (A (3, C), b (3,))   per scenario (shared: only the first is used)
         rows : list of ((g_m, h_m), (g_q, h_q))   per scenario block, padded here
-        limits : (low (C,), high (C,), level_high (C,))  [t]
+        limits : (low (C,), high (C, K), level_high (C, K)[, level_low (C, K)])  [t]   per
+            column; NaN (or a level range empty) where a class cannot take the candidate; (C,)
+            arrays for one class. ``level_low`` (default ``low``): the least level tension (the
+            boom range's)
         centre : (row (C,), low) or None
-        cuts : sequence of tuples of int   lug sets to exclude (no-good cuts)
+        cuts : sequence of tuples of (candidate, class)   (set, assignment) rows to exclude
+            (no-good cuts; :attr:`MIPResult.columns`)
         time_limit : float or None  [s]
+        clashes : (P, 2) int   column pairs (candidate x K + class) that may not both be chosen
 
         Returns
         -------
         MIPResult
         """
-        count, n, rows_m, rows_q, k, shared = self.shape
+        count, n, rows_m, rows_q, k, shared, kinds = self.shape
         for j, block in enumerate(self.rows):
             for (g, h), (gv, hv), cap in zip(block, rows[j], (rows_m, rows_q)):
                 gv, hv = np.asarray(gv, float), np.asarray(hv, float)
@@ -608,21 +638,36 @@ class CandidateMIP:
                 g.value, h.value = gv[pad], hv[pad]
         for j, (a, b) in enumerate(self.statics):
             a.value, b.value = (np.asarray(v, float) for v in statics[min(j, len(statics) - 1)])
-        low, high, level_high = (np.asarray(v, float) for v in limits)
-        self.low.value, self.high.value = low, high
-        self.level_high.value = np.minimum(level_high, high)
-        self.big.value = float(np.max(high))
+        low = np.asarray(limits[0], float)
+        high, level_high = (np.asarray(v, float).reshape(count, kinds) for v in limits[1:3])
+        level_low = np.broadcast_to(low[:, None], high.shape)
+        if len(limits) > 3:
+            level_low = np.fmax(level_low, np.asarray(limits[3], float).reshape(count, kinds))
+        usable = ~np.isnan(high) & ~np.isnan(level_high) & (np.minimum(level_high, high) >= level_low)
+        high = np.where(usable, high, 0.0)
+        level_high = np.where(usable, np.minimum(level_high, high), 0.0)
+        self.low.value = low
+        self.high.value, self.level_high.value = high.ravel(), level_high.ravel()
+        self.level_low.value = np.where(usable, level_low, 0.0).ravel()
+        self.usable.value = usable.ravel().astype(float)
+        self.big.value = float(max(np.max(high), np.max(low), 0.0))
         row, floor = centre if centre is not None else (np.zeros(count), -1.0)
         self.centre_row.value, self.centre_low.value = np.asarray(row, float), float(floor)
         self.weights.value = np.asarray(weights, float)
-        extra = [cp.sum(self.z[list(cut)]) <= n - 1 for cut in cuts]
+        extra = []
+        for cut in cuts:
+            cols = [int(i) * kinds + int(kind) for i, kind in cut]
+            extra.append(cp.sum(self.z[cols]) <= n - 1)
+        clashes = np.asarray(clashes, dtype=np.int64).reshape(-1, 2)
+        if len(clashes):
+            extra.append(self.z[clashes[:, 0]] + self.z[clashes[:, 1]] <= 1)
         problem = cp.Problem(cp.Minimize(self.objective), self.constraints + extra)
         options = {"mip_rel_gap": MIP_GAP}
         if time_limit is not None:
             options["time_limit"] = float(max(time_limit, 1.0))
         run_highs(problem, "lug choice (MIP)", **options)
         if problem.status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE):
-            raise PlanInfeasible("lug choice (MIP): no lug set and tensions satisfy the limits")
+            raise PlanInfeasible("lug choice (MIP): no lug set, cranes and tensions satisfy the limits")
         complete = problem.status == cp.OPTIMAL
         if (
             self.z.value is None
@@ -630,7 +675,7 @@ class CandidateMIP:
             or not (complete or problem.status in (cp.OPTIMAL_INACCURATE, cp.USER_LIMIT))
         ):
             raise SolverFailed(f"lug choice (MIP): HiGHS ended with status {problem.status!r} and no lug set")
-        chosen = tuple(int(i) for i in np.nonzero(np.asarray(self.z.value) > 0.5)[0])
+        picked = np.nonzero(np.asarray(self.z.value) > 0.5)[0]
         value = float(problem.value)
         info = problem.solver_stats.extra_stats
         dual = getattr(info, "mip_dual_bound", None)
@@ -640,7 +685,8 @@ class CandidateMIP:
         elif not complete:
             bound = -math.inf  # stopped with no bound known: no gap is claimed
         return MIPResult(
-            chosen=chosen,
+            chosen=tuple(int(i) for i in picked // kinds),
+            kinds=tuple(int(i) for i in picked % kinds),
             forces=np.array(self.tensions[0].value),
             value=bound,
             incumbent=value,

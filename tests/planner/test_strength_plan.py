@@ -105,7 +105,7 @@ def test_strength_lp_equals_linprog():
     allow_m, allow_q = ctx.allowable(0, sections.x), ctx.allowable(1, sections.x)
     a0 = np.vstack([np.ones(n), points[:, :2].T])
     b0 = body.weight * np.array([1.0, body.cog[0], body.cog[1]])
-    limit = np.minimum(ctx.limit[chosen], ctx.share[chosen])
+    limit = np.minimum(ctx.limit[chosen, 0], ctx.share[chosen, 0])
     for weights in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 0.5, 0.0)):
         # --- the module's LP
         rows = {"m": [[], [], []], "q": [[], [], []]}
@@ -123,7 +123,7 @@ def test_strength_lp_equals_linprog():
             np.zeros((1, n)),
             np.zeros((1, n)),
             np.full((1, n), 20.0),
-            ctx.limit[chosen][None],
+            ctx.limit[chosen, 0][None],
         )
         result = lp.solve(weights, rm, rq, trows, a0, b0, (np.full(n, 20.0), limit))
         mine = weights[0] * result.bending + weights[1] * result.shear
@@ -213,7 +213,7 @@ def test_hoist_set_holds_its_limits_on_the_dense_grid():
     ctx = StrengthContext(problem)
     result = StrengthEvaluator(ctx).evaluate((0, 1, 6, 7), (1.0, 0.0, 0.0))
     assert result.tension_range[0] >= problem.min_tension - 1e-6
-    assert result.tension_range[1] <= ctx.limit[0] + 1e-6
+    assert result.tension_range[1] <= ctx.limit[0, 0] + 1e-6
     assert result.bending.ratio >= result.bound - 1e-9
     assert result.bending.ratio <= result.bound * (1 + 1e-6) + 1e-12
 

@@ -83,11 +83,16 @@ def strength_table(plan):
         )
     lines.append("")
     heights = plan.boom_heights
+    fleet = not p.equal_cranes  # which crane takes each lug
+    design = plan.design_loads  # the rules' design hook load per crane over its chart SWL
     head = f"{'lug':5s}{'candidate':>12s}{'x [m]':>9s}{'tension [t]':>13s}"
-    lines.append(head + (f"{'H [m]':>10s}" if heights else ""))
+    head += f"{'H [m]':>10s}" if heights else ""
+    lines.append(head + f"{'design/SWL':>12s}" + ("  crane" if fleet else ""))
     for k, label in enumerate(plan.labels):
         i = c.indices[k]
         row = f"{label:5s}{c.names[k]:>12s}{p.points[i][0]:>9.2f}{c.preload[k]:>13.1f}"
-        lines.append(row + (f"{heights[label]:>10.3f}" if heights else ""))
+        row += f"{heights[label]:>10.3f}" if heights else ""
+        row += f"{design.cranes[k].utilisation:>12.3f}"
+        lines.append(row + (f"  {c.crane_names[k]}" if fleet else ""))
     lines.append(f"spread-optimal lugs: {'-' if o is None else ' '.join(o.names)}")
     return "\n".join(lines)

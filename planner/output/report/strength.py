@@ -483,8 +483,7 @@ def render_html(plan, today=None):
                 if force
                 else [
                     ("hook-height tolerance", f"+-{p.hook_tolerance:g}", "m"),
-                    ("rope EA, length l0", f"{p.fleet[0].EA:.0f} t, {p.fleet[0].rope_length:g} m", "-"),
-                    ("boom height range", f"{p.fleet[0].boom_min:g} to {p.fleet[0].boom_max:g}", "m"),
+                    *_crane_rows(p),
                 ]
             ),
             ("lift height (body origin above datum)", f"{p.lift_height:g}", "m"),
@@ -653,3 +652,31 @@ def render(plan):
     """The report page and the scene file of a strength plan: (HTML, TOML) text; the page
     shows the plan's scene (the one the file holds) solved."""
     return render_html(plan), plan_scene_toml(plan)
+
+
+def _crane_rows(problem):
+    """The basis rows of the cranes' ropes: one pair for equal cranes, one row per crane of a
+    fleet (its own rope, boom range and SWL or chart)."""
+    fleet = problem.fleet
+    if problem.equal_cranes:
+        crane = fleet[0]
+        return [
+            ("rope EA, length l0", f"{crane.EA:.0f} t, {crane.rope_length:g} m", "-"),
+            ("boom height range", f"{crane.boom_min:g} to {crane.boom_max:g}", "m"),
+        ]
+    rows = []
+    for crane in fleet:
+        capacity = (
+            f"SWL {crane.swl:g} t"
+            if crane.swl is not None
+            else "chart " + ", ".join(f"{r:g} m: {w:g} t" for r, w in crane.load_chart)
+        )
+        rows.append(
+            (
+                f"crane {crane.name}",
+                f"EA {crane.EA:.0f} t, l0 {crane.rope_length:g} m, boom {crane.boom_min:g} to "
+                f"{crane.boom_max:g} m, {capacity}",
+                "-",
+            )
+        )
+    return rows
