@@ -415,7 +415,8 @@ class Plan(InFileFrame):
                     self.hull_models[0].lowest,
                     self.problem.min_tension,
                     "t",
-                    note="lowest tension on the flexible hull at the plan's worst states, hook errors at worst",
+                    note="lowest tension on the flexible hull at the plan's worst states, hook errors "
+                    "at worst",
                 )
             )
         return out

@@ -94,9 +94,10 @@ def plan_hull_water(problem, top=None):
     margin = change_bound(problem, bounds) if flexible else 0.0
     ask = wanted
     limit = min(MAX_RANKED, problem.row_count)
+    seen = {}  # (lugs, cranes) -> evaluation: a longer ranking repeats the sets ranked before
     while True:
         first = plan_single_ropes(problem, ask)
-        rows = _evaluate(first, bounds)
+        rows = _evaluate(first, bounds, seen)
         order = sorted(range(len(rows)), key=lambda k: (not rows[k][2], rows[k][0], k))
         good = [rows[k][0] for k in order if rows[k][2]]
         last = max(float(r.worst_value) for r in first.ranking)
@@ -131,13 +132,17 @@ def plan_hull_water(problem, top=None):
     )
 
 
-def _evaluate(first, bounds):
+def _evaluate(first, bounds, seen):
     """Each ranked set's (governing value, HullModel or None, holds) in the search's order."""
     problem = first.problem
     dense = DesignBuilder(problem).dense
     girders = first.ranked_girder
     out = []
     for k, result in enumerate(first.ranking):
+        key = (result.indices, result.cranes, tuple(np.round(result.preload, 9)))
+        if key in seen:
+            out.append(seen[key])
+            continue
         model = None if bounds is None else evaluate_flexible(problem, result, dense, bounds)
         value = float(result.worst_value) if model is None else model.value
         holds = all(w.ratio <= 1.0 for w in girders[k])
@@ -146,7 +151,8 @@ def _evaluate(first, bounds):
             case = in_water_case(problem, lugset, np.asarray(result.preload, dtype=float))
             value = max(value, case.value)
             holds = holds and case.holds
-        out.append((value, model, holds))
+        seen[key] = (value, model, holds)
+        out.append(seen[key])
     return out
 
 
@@ -156,7 +162,8 @@ def _note(certified, proved, complete, ranked, margin, last, good):
     if certified:
         return (
             f"{ranked} sets evaluated; any other is at least {last:.6g} on the rigid hull in air, "
-            f"so no better than {last - margin:.6g} on the governing model, not below the plan's {good[0]:.6g}"
+            f"so no better than {last - margin:.6g} on the governing model, not below the plan's "
+            f"{good[0]:.6g}"
         )
     if not proved:
         return "the search did not prove its ranking: the re-ranking holds over the ranked sets only"

@@ -20,12 +20,12 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene.file import (
+    HullTable,
     Key,
     Num,
     Pair,
     Point,
     Table,
-    HullTable,
     Text,
     VesselTable,
     WaterTable,
