@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from functools import cache
 
 import numpy as np
 
@@ -69,6 +68,9 @@ class InWaterCase:
     cranes, lugs : tuple of str
     tensions : numpy.ndarray, shape (v, n)  [t]   held tension per vertex and rope
     gain : numpy.ndarray, shape (v, n, n)  [t/m]   dT/dH there
+    hook_shift : numpy.ndarray, shape (v, n)  [m]
+        Each hook's motion from its planned height (besides the whole lift's lowering to the
+        start height) that holds the body level there: a rigid motion of the level pattern.
     hook_tolerance : numpy.ndarray, shape (n,)  [m]
     value : float  [t or -]   the objective's worst in water (hook errors at worst)
     """
@@ -78,6 +80,7 @@ class InWaterCase:
     lugs: tuple
     tensions: np.ndarray
     gain: np.ndarray
+    hook_shift: np.ndarray
     hook_tolerance: np.ndarray
     value: float
 
@@ -112,7 +115,6 @@ class InWaterCase:
         ]
 
 
-@cache
 def _loads_at(body, in_water, offset, yaw):
     body = dataclasses.replace(
         body, cog=tuple(float(c + d) for c, d in zip(body.cog, offset)), weight_curve=None
@@ -164,7 +166,7 @@ def in_water_case(problem, lugset, preload):
     loads = water_loads(problem)
     boom = lugset.boom_heights(np.asarray(preload, dtype=float))
     level = np.array([[problem.lift_height, 0.0, 0.0]])
-    tensions, gains = [], []
+    tensions, gains, shifts = [], [], []
     for load in loads:
         params = pack(
             problem,
@@ -175,8 +177,9 @@ def in_water_case(problem, lugset, preload):
             rope_length=lugset.rope_length,
             EA=lugset.EA,
         )
-        t, _, g = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
+        t, d, g = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
         tensions.append(t[0])
+        shifts.append(d[0])
         gains.append(g[0])
     tensions, gains = np.array(tensions), np.array(gains)
     value = float(robust(tensions, gains, lugset)[0].max())
@@ -186,6 +189,7 @@ def in_water_case(problem, lugset, preload):
         lugs=lugset.names,
         tensions=tensions,
         gain=gains,
+        hook_shift=np.array(shifts),
         hook_tolerance=np.asarray(lugset.hook_tolerance, dtype=float),
         value=value,
     )
