@@ -284,7 +284,8 @@ class Plan(InFileFrame):
             lugs=lugs,
             cranes=cranes,
             attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
-            analysis=Analysis(model="elastic"),
+            # in water the written scene carries [hull] and [water]: solve picks its model
+            analysis=Analysis(model=None if problem.in_water is not None else "elastic"),
             name=f"{problem.name or 'plan'}: chosen lugs",
             strength=problem.strength,
             girder=problem.hull_stiffness,  # solve keeps the flexible hull where it changes T > 1 %

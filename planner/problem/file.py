@@ -10,6 +10,7 @@ reference's tables are generated.
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 from typing import Annotated, Literal
@@ -971,7 +972,41 @@ def _in_water(data, base):
             "plan.start_lift_height: missing; expected the lift height (m) where the lift starts "
             "with the hull partly submerged in [water]"
         )
-    return InWater(hull=to_hull(data, base), water=Water(**data.water.model_dump()), start_lift_height=start)
+    return InWater(
+        hull=to_hull(data, base),
+        water=Water(**data.water.model_dump()),
+        start_lift_height=start,
+        hull_lines=_hull_lines(data.hull, base),
+    )
+
+
+def _hull_lines(spec, base):
+    """``[hull]``'s geometry as TOML lines (the file's frame; a mesh by its absolute path), and
+    its compartments as ``[[hull.compartments]]`` tables (without their openings: the plan's
+    held state counts their water full)."""
+
+    def vec(values):
+        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
+
+    def box(b):
+        return f"{{ min = {vec(b.min)}, max = {vec(b.max)} }}"
+
+    lines = [f"box = {box(spec.box)}"] if spec.box is not None else []
+    if spec.mesh is not None:
+        lines.append(f"mesh = {json.dumps(str((Path(base) / spec.mesh).resolve()))}")
+    lines.append(f"flooding = {json.dumps(spec.flooding)}")
+    for key in ("steel_density", "weight_in_water"):
+        if getattr(spec, key) is not None:
+            lines.append(f"{key} = {float(getattr(spec, key))!r}")
+    for c in spec.compartments:
+        lines += [
+            "",
+            "[[hull.compartments]]",
+            f"name = {json.dumps(c.name)}",
+            f"box = {box(c.box)}",
+            f"contents = {json.dumps(c.contents)}",
+        ]
+    return tuple(lines)
 
 
 def _controls(data, count):

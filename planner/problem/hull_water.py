@@ -38,11 +38,15 @@ class InWater:
     start_lift_height : float  [m]
         World height of the body origin when the lift starts (``[plan] start_lift_height``),
         the body level: the hull's draft there is ``water.level`` minus its lowest point.
+    hull_lines : tuple of str
+        The ``[hull]`` geometry keys as TOML lines in the planning file's frame (a mesh by its
+        absolute path), for the plan's written scene.
     """
 
     hull: Hull
     water: Water
     start_lift_height: float
+    hull_lines: tuple = ()
 
     def __post_init__(self):
         if not isinstance(self.hull, Hull):

@@ -4,10 +4,11 @@
 A 60 m box barge, 600 t with its CG 4 m forward of its middle, four equal cranes among eight
 deck candidates. At the start the hull draws 0.6 m: the buoyancy (443 t at the waterplane's
 centre) moves the net load's line 11 m further forward, so the shares change, and the in-water
-state becomes one more of the plan's worst states: the best set in air goes slack in water. The plan must be the
-brute-force optimum over every set on max(box worst, in-water worst) among the sets whose ropes
-stay taut in water; its in-water tensions must be what ``solve``'s hydrostatic model gives for
-the plan's scene placed at the start in water.
+state becomes one more of the plan's worst states: the best set in air goes slack in water.
+The plan must be the brute-force optimum over every set on max(box worst, in-water worst)
+among the sets whose ropes stay taut in water; its written scene (with [hull] and [water])
+must solve, on the hydrostatic model, to the plan's tensions clear of the water and, lowered
+to the start, in it.
 """
 
 from __future__ import annotations
@@ -21,9 +22,11 @@ import pytest
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
+from liftplan.model.scene.file import load_scene
 from liftplan.planner import plan
 from liftplan.planner.output.console.summary import summary
-from liftplan.planner.output.report.held import render_html
+from liftplan.planner.output.report.held import plan_scene_toml, render_html
+from liftplan.planner.output.report.hull_water import with_water
 from liftplan.planner.plans.in_water import in_water_case
 from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
@@ -114,30 +117,54 @@ def test_plan_is_the_brute_force_optimum_with_the_start_in_water(planned, brute)
     assert [r.lugs for r in planned.ranking] == [lugs for _, lugs in order]
 
 
-def test_in_water_tensions_are_solves_hydrostatic_model(planned):
-    """The plan's scene at the start: lowered to the start height with the hooks moved by the
-    case's hook shift, the hull and the water added; ``solve`` (the hydrostatic model, the
-    body free to find its pose on the elastic ropes in the water) gives the plan's tensions."""
+def test_written_scene_reproduces_the_plan_clear_of_and_in_the_water(planned, tmp_path):
+    """plan_scene.toml carries [hull] and [water]: ``solve`` of it (the hydrostatic model, the
+    body free to find its pose on the elastic ropes) gives the plan's level tensions with the
+    hull clear of the water; lowered to the start height, the hooks moved by the case's hook
+    shift, the tensions of the state in water."""
+    path = tmp_path / "plan_scene.toml"
+    path.write_text(plan_scene_toml(planned))
+    scene = load_scene(path)
+    assert scene.hull is not None and scene.water is not None
+    names = [planned.lugs[label] for label in planned.labels]
+    clear = solve(scene)
+    assert clear.model == "hydrostatic"
+    np.testing.assert_allclose([clear.tensions[n] for n in names], planned.chosen.preload, rtol=1e-7)
     case = planned.design_loads.in_water
-    water = planned.problem.in_water
-    drop = water.start_lift_height - planned.problem.lift_height
-    scene = planned.scene
-    scene = dataclasses.replace(
+    start = planned.problem.in_water.start_lift_height
+    drop = start - planned.problem.lift_height
+    lowered = dataclasses.replace(
         scene,
         cranes=tuple(
             dataclasses.replace(c, boom_height=c.boom_height + drop + float(d))
             for c, d in zip(scene.cranes, case.hook_shift[0])
         ),
-        attitude=dataclasses.replace(scene.attitude, lift_height=water.start_lift_height),
-        analysis=dataclasses.replace(scene.analysis, model=None),
-        hull=water.hull,
-        water=water.water,
+        attitude=dataclasses.replace(scene.attitude, lift_height=start),
     )
-    eq = solve(scene)
+    eq = solve(lowered)
     assert eq.model == "hydrostatic"
     assert eq.pose.heel == pytest.approx(0.0, abs=1e-7) and eq.pose.trim == pytest.approx(0.0, abs=1e-7)
-    np.testing.assert_allclose(list(eq.tensions.values()), case.tensions[0], rtol=1e-7)
+    np.testing.assert_allclose([eq.tensions[n] for n in names], case.tensions[0], rtol=1e-7)
     assert eq.afloat.buoyancy == pytest.approx(case.loads[0].buoyancy, rel=1e-9)
+
+
+def test_stiffness_and_geometry_share_one_hull_table():
+    """[hull] EI and box in one planning file: the written scene has one [hull] table with both."""
+    text = (
+        barge()
+        .replace("[hull]\n", "[hull]\nEI = [[0.0, 1.0e9], [60.0, 1.0e9]]\n")
+        .replace(
+            "cog = [34.0, 0.5, 2.0]", "cog = [30.0, 0.5, 2.0]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]"
+        )
+    )
+    problem = loads_problem(text)
+    assert problem.hull_stiffness is not None and problem.in_water is not None
+    written = with_water(
+        "[body]\nweight = 600.0\n\n[hull]\nEI = [[0, 1e9], [60, 1e9]]\n\n[attitude]\nlift_height = 10.0\n",
+        problem.in_water,
+    )
+    assert written.count("[hull]") == 1 and "EI = " in written and "box = " in written
+    assert written.index("box = ") < written.index("[attitude]") < written.index("[water]")
 
 
 def test_design_loads_take_the_larger(planned):
