@@ -15,13 +15,16 @@ than the last one ranked (the search proves its ranking), in water no better tha
 on the flexible hull no better by more than :func:`~.flexible.change_bound` (the bound of the
 flexible correction over every set); when the best governing value is not below the last ranked
 set's rigid value less that bound, no set outside the ranking can beat it (``certified``).
-Otherwise the search is asked for a longer ranking (four times, up to :data:`MAX_RANKED` sets)
-and the sets evaluated again. The reported ranking is the first ``top`` of it.
+Otherwise the search is asked for a longer ranking (four times, up to :data:`MAX_RANKED` sets,
+and not past ``[plan] time_limit``) and the sets evaluated again; where that ends uncertified
+the plan says so (``certified`` false, and the bound). The reported ranking is the first
+``top`` of it.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,8 +36,9 @@ from liftplan.planner.plans.held import Plan
 from liftplan.planner.plans.in_water import in_water_case
 from liftplan.planner.search.scenarios import LugSet
 
-#: The longest ranking asked for to certify the re-ranking.
-MAX_RANKED = 100
+#: The longest ranking asked for to certify the re-ranking (each set costs a few flexible
+#: solves, some 20 ms each on an idle core): beyond it the plan says it is not certified.
+MAX_RANKED = 24
 
 
 @dataclass(frozen=True)
@@ -93,7 +97,8 @@ def plan_hull_water(problem, top=None):
     bounds = deflection_bounds(problem) if flexible else None
     margin = change_bound(problem, bounds) if flexible else 0.0
     ask = wanted
-    limit = min(MAX_RANKED, problem.row_count)
+    limit = min(max(MAX_RANKED, wanted), problem.row_count)
+    started = time.perf_counter()
     seen = {}  # (lugs, cranes) -> evaluation: a longer ranking repeats the sets ranked before
     while True:
         first = plan_single_ropes(problem, ask)
@@ -104,7 +109,8 @@ def plan_hull_water(problem, top=None):
         complete = len(first.ranking) < ask or len(first.ranking) >= problem.row_count
         proved = first.stats.stopped == "proved"
         certified = proved and (complete or (bool(good) and last - margin >= good[0]))
-        if certified or not proved or ask >= limit:
+        late = problem.time_limit is not None and time.perf_counter() - started > problem.time_limit
+        if certified or not proved or ask >= limit or late:
             break
         ask = min(4 * ask, limit)
     note = _note(certified, proved, complete, len(first.ranking), margin, last, good)
