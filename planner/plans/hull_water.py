@@ -110,7 +110,9 @@ def plan_hull_water(problem, top=None):
         proved = first.stats.stopped == "proved"
         certified = proved and (complete or (bool(good) and last - margin >= good[0]))
         late = problem.time_limit is not None and time.perf_counter() - started > problem.time_limit
-        if certified or not proved or ask >= limit or late:
+        # no set's rigid value exceeds the ceiling: past it a longer ranking cannot certify
+        hopeless = bool(good) and good[0] + margin > ceiling(problem)
+        if certified or not proved or ask >= limit or late or hopeless:
             break
         ask = min(4 * ask, limit)
     note = _note(certified, proved, complete, len(first.ranking), margin, last, good)
@@ -136,6 +138,15 @@ def plan_hull_water(problem, top=None):
         hull_models=[rows[k][1] for k in keep] if flexible else None,
         hull_search=search,
     )
+
+
+def ceiling(problem):
+    """No set's objective exceeds this  [t or -]: every tension the search admits lies within
+    [min_tension, its limit], each limit below its crane's chart SWL, so a spread is below the
+    largest SWL less min_tension and a T / SWL (or its spread) below 1."""
+    if problem.goal.per_swl or problem.goal.peak:
+        return 1.0
+    return float(np.nanmax(problem.reach[1])) - problem.min_tension
 
 
 def _evaluate(first, bounds, seen):
@@ -174,7 +185,8 @@ def _note(certified, proved, complete, ranked, margin, last, good):
     if not proved:
         return "the search did not prove its ranking: the re-ranking holds over the ranked sets only"
     return (
-        f"{ranked} sets evaluated (the most asked); a set outside them is no better than "
-        f"{last - margin:.6g} on the governing model (bound {margin:.6g}), "
+        f"{ranked} sets evaluated; a set outside them is no better than {last - margin:.6g} on the "
+        f"governing model (the flexible hull's bound {margin:.6g} on any set's change: safe but wide, "
+        "docs/planning.md), "
         + (f"below the plan's {good[0]:.6g}: not certified" if good else "and none of them holds")
     )
