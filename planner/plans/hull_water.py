@@ -110,8 +110,8 @@ def plan_hull_water(problem, top=None):
         proved = first.stats.stopped == "proved"
         certified = proved and (complete or (bool(good) and last - margin >= good[0]))
         late = problem.time_limit is not None and time.perf_counter() - started > problem.time_limit
-        # no set's rigid value exceeds the ceiling: past it a longer ranking cannot certify
-        hopeless = bool(good) and good[0] + margin > ceiling(problem)
+        # no set's rigid value exceeds the ceiling: past it only a ranking of every row certifies
+        hopeless = bool(good) and good[0] + margin > ceiling(problem) and limit < problem.row_count
         if certified or not proved or ask >= limit or late or hopeless:
             break
         ask = min(4 * ask, limit)

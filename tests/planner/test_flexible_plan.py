@@ -243,6 +243,7 @@ def test_refusals_in_one_line():
         loads_problem(strength)
 
 
+@pytest.mark.slow  # the whole plan again in its own process: the JSON keys are tested above
 def test_cli_exit_and_json(tmp_path):
     path = tmp_path / "barge.toml"
     path.write_text(barge())
