@@ -39,6 +39,9 @@ from liftplan.planner.search.scenarios import LugSet
 #: The longest ranking asked for to certify the re-ranking (each set costs a few flexible
 #: solves, some 20 ms each on an idle core): beyond it the plan says it is not certified.
 MAX_RANKED = 24
+#: Up to this many (set, assignment) rows the ranking may be asked for all of them: every set
+#: evaluated certifies the plan whatever the bound.
+ALL_ROWS = 100
 
 
 @dataclass(frozen=True)
@@ -97,7 +100,7 @@ def plan_hull_water(problem, top=None):
     bounds = deflection_bounds(problem) if flexible else None
     margin = change_bound(problem, bounds) if flexible else 0.0
     ask = wanted
-    limit = min(max(MAX_RANKED, wanted), problem.row_count)
+    limit = problem.row_count if problem.row_count <= ALL_ROWS else max(MAX_RANKED, wanted)
     started = time.perf_counter()
     seen = {}  # (lugs, cranes) -> evaluation: a longer ranking repeats the sets ranked before
     while True:

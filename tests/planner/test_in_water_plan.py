@@ -22,7 +22,7 @@ import pytest
 
 from liftplan.model import solve
 from liftplan.model.errors import InvalidScene
-from liftplan.model.scene.file import load_scene
+from liftplan.model.scene.file import load_scene, loads_scene
 from liftplan.planner import plan
 from liftplan.planner.output.console.summary import summary
 from liftplan.planner.output.report.held import plan_scene_toml, render_html
@@ -220,3 +220,20 @@ def test_outputs_name_the_state_in_water(planned):
 def test_refused_in_one_line(text, message):
     with pytest.raises(InvalidScene, match=message):
         plan(loads_problem(text))
+
+
+@pytest.mark.slow  # a third plan of its own, flexible and in water together
+def test_flexible_hull_and_water_together_written_scene_agrees():
+    """[hull] EI with the box and [water]: the plan's written scene, solved by ``solve`` (the
+    hydrostatic model with the flexible hull, clear of the water), gives the plan's flexible level
+    tensions."""
+    text = barge().replace("[hull]\n", "[hull]\nEI = [[0.0, 1.0e6], [60.0, 1.0e6]]\n")
+    text = text.replace(
+        "cog = [34.0, 0.5, 2.0]", "cog = [30.0, 0.5, 2.0]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]"
+    )
+    both = plan(loads_problem(text))
+    assert both.hull_models[0].used == "flexible" and both.design_loads.in_water is not None
+    eq = solve(loads_scene(plan_scene_toml(both)))
+    names = [both.lugs[label] for label in both.labels]
+    assert eq.flexible_hull.used == "flexible"
+    np.testing.assert_allclose([eq.tensions[n] for n in names], both.hull_models[0].flexible[0], rtol=1e-7)
