@@ -31,5 +31,11 @@ def hull_water_lines(plan):
         governs = [c.label for c in plan.design_loads.cranes if c.governs == "in_water"]
         if governs:
             lines.append(f"  the tension in water governs the design load of {', '.join(governs)}")
+    ranked = "; ".join(
+        f"{k + 1}. {' '.join(r.lugs)} {v:.4g}" for k, (r, v) in enumerate(zip(plan.ranking, search.values))
+    )
+    lines.append(
+        f"ranked on the governing value (the ranking table below shows the rigid hull's in air): {ranked}"
+    )
     lines.append(f"re-ranking on the governing model: {search.note}")
     return lines
