@@ -370,8 +370,9 @@ class DesignBuilder:
         breakout = None if problem.breakout is None else breakout_case(problem, lugset, preload)
         water = None if problem.in_water is None else in_water_case(problem, lugset, preload)
         nominal, worst = preload, tensions[where, range(lugset.n)]
-        if governing is not None:
+        if governing is not None:  # the hook errors are in its worst too: skew 1 on its level load
             nominal, worst = governing
+            skewed = nominal
         cranes = []
         for k, label in enumerate(labels):
             case = at_tilt.get(names[k])

@@ -154,8 +154,11 @@ def test_written_scene_solves_to_the_plans_flexible_tensions(planned, tmp_path):
     np.testing.assert_allclose(flexible, model.flexible[0], rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(rigid, model.rigid[0], rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(rigid, planned.chosen.preload, rtol=1e-7)
-    # the design loads' level input is the flexible hull's, the tension solve gives
+    # the design loads' level input is the flexible hull's, the tension solve gives, and the
+    # chain is built on it (skew 1: the hook errors are in the worst)
     np.testing.assert_allclose([c.nominal for c in planned.capacity], flexible, rtol=1e-9)
+    assert planned.design_loads.missing is None and planned.design_loads.ok
+    assert all(c.skew == pytest.approx(1.0, abs=1e-12) for c in planned.capacity)
 
 
 def test_written_scene_posed_at_each_state_gives_the_plans_numbers(planned, tmp_path):
