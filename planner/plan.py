@@ -42,9 +42,17 @@ class PlanKind:
     make: Callable[[PlanProblem, int | None], LiftPlan]
 
 
+def _slings(problem, top):
+    """A sling plan; with hoist-rope payout ranges, the rope-length search around it (the
+    two kinds of plan do not import each other: they meet here)."""
+    if problem.chooses_rope_lengths:
+        return plan_lengths(problem, top, inner=plan_slings)
+    return plan_slings(problem, top)
+
+
 #: The kinds of plan, tried in order: the first that applies plans the problem.
 KINDS = (
-    PlanKind("slings", uses_slings, plan_slings),  # cranes on sling sets or spreader bars
+    PlanKind("slings", uses_slings, _slings),  # cranes on sling sets or spreader bars
     PlanKind("strength", uses_strength, plan_strength),  # the hull girder's objectives
     PlanKind("lengths", lambda problem: problem.chooses_rope_lengths, plan_lengths),  # payout ranges
     PlanKind("held", lambda problem: True, plan_hull_water),  # single ropes, a held level preload

@@ -199,7 +199,9 @@ BASES = {
         note="the 600 t sunken block, 12 candidates, four equal 400 t cranes, lifted from -20 m",
         fleet=SUNKEN_FLEET,
         girder=SUNKEN_GIRDER,
-        sling={"legs": 4, "length": 12.0, "diameter": 56.0},
+        # 2 legs of 10 m: its candidates (x = 5 .. 55 m) hold only two disjoint 4-leg rigs, and
+        # the hooks must stay low enough for the boom tips' 40 m with 44 m of hoist rope
+        sling={"legs": 2, "length": 10.0, "diameter": 56.0},
         payout={"min": 30.0, "max": 50.0},
         length=(0.0, 60.0),
     ),
@@ -481,7 +483,7 @@ FEATURES = [
     Feature(
         "slings",
         "a sling on every crane (block: 4 legs of 9 m, 56 mm, as block_four_leg_plan.toml; "
-        "sunken block: 4 legs of 12 m; equal cranes become [[cranes]] tables)",
+        "sunken block: 2 legs of 10 m; equal cranes become [[cranes]] tables)",
         apply_slings,
         honoured_slings,
         bases=("block", "sunken"),

@@ -161,7 +161,10 @@ class _Operation(Table):
     )
     pivot: Point | None = Key(
         None,
-        doc="upend: the body point that rests on the ground; the body turns about it",
+        doc=(
+            "upend, or move: the body point that rests on the ground (rigid, pushing only); the body "
+            "turns about it until, in a move, it lifts off"
+        ),
         unit="m",
         frame="body, file frame",
         absent="no ground contact (an upend then needs a tailing crane)",

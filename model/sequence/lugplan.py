@@ -178,6 +178,15 @@ def assignments(choice):
             yield chosen
 
 
+def _depends(choice, stages, index):
+    """The lugs a stage's states depend on: its own, and a move stage's those of the stages it
+    is chained from (it starts where the stage before left the body)."""
+    lugs = _held(choice, stages[index])
+    if stages[index].kind == "move" and index > 0:
+        lugs |= _depends(choice, stages, index - 1)
+    return lugs
+
+
 def _held(choice, stage):
     """The lugs a stage's cranes hold."""
     return {lug for key in stage.cranes for c in choice.parts["cranes"] if _key(c) == key for lug in c.lugs}
@@ -220,7 +229,8 @@ def plan_lugs(choice, top=10):
     """
     started = time.perf_counter()
     placed = {name for name, _ in choice.open}
-    held = {stage.where: sorted(_held(choice, stage) & placed) for stage in choice.parts["stages"]}
+    stages = choice.parts["stages"]
+    held = {stage.where: sorted(_depends(choice, stages, k) & placed) for k, stage in enumerate(stages)}
     grid, swept_stages = {}, {}
     options, refused = [], 0
     for chosen in assignments(choice):

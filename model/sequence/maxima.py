@@ -41,10 +41,14 @@ class Peak:
         In the load's unit (t).
     angle : float  [deg]
         Where it occurs.
+    bound : float or None
+        An upper bound of the load over the whole range (:func:`curvature_bound`), >= value;
+        None where no bound was taken (the lug planner's grid maxima).
     """
 
     value: float
     angle: float
+    bound: float | None = None
 
 
 class Sampler:
@@ -138,5 +142,46 @@ def continuous_maxima(sampler, angles, names, xtol, noise):
                 val = sampler.values(t)[name]
                 if val > peak.value:
                     peak = Peak(float(val), float(t))
-        out[name] = peak
+        out[name] = Peak(peak.value, peak.angle, max(peak.value, curvature_bound(angles, v)))
     return out
+
+
+#: The bound takes each interval's curvature as at most this many times the largest second
+#: difference of the samples around it.
+CURVATURE_SAFETY = 2.0
+
+
+def curvature_bound(angles, values):
+    """An upper bound of a load between its samples, from their curvature.
+
+    On an interval [a, b] where |f''| <= M, f lies below its chord plus M (x - a)(b - x) / 2,
+    so below max(f(a), f(b)) + M (b - a)^2 / 8. M is taken as :data:`CURVATURE_SAFETY` times
+    the largest second difference of the samples at the interval's ends and their neighbours
+    (at a kink, a slack rope's, the second difference is the change of slope over the
+    sampling width, and the term is that change times a quarter of the width: the adaptive
+    sampling has closed in on it). The bound holds whenever the load's curvature within each
+    interval is no more than that; it is not an interval-arithmetic proof.
+
+    Parameters
+    ----------
+    angles : array (m,)
+        Sorted samples.
+    values : array (m,)
+        The load at them.
+
+    Returns
+    -------
+    float
+    """
+    x, v = np.asarray(angles, dtype=float), np.asarray(values, dtype=float)
+    if len(x) < 3:
+        return float(v.max())
+    h = np.diff(x)
+    slope = np.diff(v) / h
+    second = np.zeros(len(x))
+    second[1:-1] = np.abs(2.0 * np.diff(slope) / (h[:-1] + h[1:]))
+    second[0], second[-1] = second[1], second[-2]
+    near = np.maximum.reduce(
+        [second[:-1], second[1:], np.r_[second[0], second[:-2]], np.r_[second[2:], second[-1]]]
+    )
+    return float(np.max(np.maximum(v[:-1], v[1:]) + CURVATURE_SAFETY * near * h * h / 8.0))

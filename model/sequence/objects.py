@@ -4,8 +4,9 @@ Frozen dataclasses in the ``z-up`` frame. A :class:`Stage` turns the body about 
 horizontal axes from one angle to another, held by the cranes it names (and, for an upend,
 by a pivot on the ground), or moves boom tips (``kind = "move"``, each crane's :class:`Move`)
 with the body on its elastic ropes. :class:`Sequence` checks what needs the whole picture:
-names, which crane holds which lug, that every turning stage is statically determinate at a
-held angle and that every crane of a move stage hangs on an elastic rope from its boom tip.
+names, which crane holds which lug, that no turning stage has its supports in one vertical
+plane, that every crane of a stage on four or more supports gives its rope's stiffness, and
+that every crane of a move stage hangs on an elastic rope from its boom tip.
 """
 
 from __future__ import annotations
@@ -23,12 +24,16 @@ KINDS = ("upend", "turnover", "move")
 AXES = ("x", "y")
 #: Most angles a stage may report (its range over its step): a finer grid is a typo.
 MOST_STEPS = 10_000
-#: Fewest and most supports (cranes, and the pivot) of a stage: two or three vertical forces
-#: and the three equations of a body on vertical ropes (vertical force, two moments) leave
-#: no hook height to choose; four or more would need the hook heights the sequence does not fix.
-SUPPORTS = (2, 3)
-#: Fewest cranes of a move stage: the elastic model on vertical ropes needs three taut ropes
-#: to hold a body (two leave it free to roll about the line between them).
+#: Fewest supports (cranes, and the pivot) of a turning stage: one cannot hold an angle.
+#: Two or three vertical forces are fixed by the three equations of a body on vertical ropes
+#: (vertical force, two moments); from four on (:data:`ELASTIC_SUPPORTS`) the ropes' stiffness
+#: shares the load (:mod:`liftplan.model.sequence.statics`).
+SUPPORTS = 2
+#: Supports from which a turning stage is statically indeterminate: its cranes need
+#: ``rope_length`` and ``EA``.
+ELASTIC_SUPPORTS = 4
+#: Fewest supports of a move stage: the elastic model on vertical ropes needs three taut ropes,
+#: or two and a pivot, to hold a body (two leave it free to roll about the line between them).
 MOVE_CRANES = 3
 #: A move stage's reported grid when ``steps`` is not given.
 MOVE_STEPS = 10
@@ -77,7 +82,7 @@ class Stage:
 
     Parameters
     ----------
-    kind : {"upend", "turnover"}
+    kind : {"upend", "turnover", "move"}
         ``"upend"``: the head crane(s) lift one end while the other rests on the ground at
         ``pivot`` or hangs from a tailing crane; ``"turnover"``: the body hangs from two or
         more cranes and turns in the air; ``"move"``: boom tips move (``moves``) and the body
@@ -93,7 +98,8 @@ class Stage:
     cranes : tuple of str
         The cranes that hold the body in this stage (their keys); the others are released.
     pivot : tuple of 3 float or None  [m]
-        Body point resting on the ground (``upend``); the body turns about it.
+        Body point resting on the ground (``upend``, or a ``move`` on vertical ropes); the
+        body turns about it.
     friction : float or None  [-]
         Friction coefficient at the pivot.
     plumb : bool
@@ -153,15 +159,7 @@ class Stage:
         object.__setattr__(self, "start", start)
         object.__setattr__(self, "stop", stop)
         object.__setattr__(self, "step", step)
-        if self.pivot is not None:
-            object.__setattr__(self, "pivot", point(f"{where}.pivot", self.pivot))
-        if self.friction is not None:
-            mu = finite(f"{where}.friction", self.friction)
-            if mu < 0.0:
-                raise InvalidScene(f"{where}.friction = {self.friction!r}: expected a number >= 0")
-            if self.pivot is None:
-                raise InvalidScene(f"{where}.friction: given without a pivot; expected pivot = [x, y, z]")
-            object.__setattr__(self, "friction", mu)
+        self._check_pivot(where)
         if self.plumb is not True:
             raise InvalidScene(
                 f"{where}.plumb = {self.plumb!r}: only plumb hooks are modelled (each hook follows "
@@ -173,13 +171,23 @@ class Stage:
                 "resting on a pivot"
             )
         supports = len(self.cranes) + (self.pivot is not None)
-        if not SUPPORTS[0] <= supports <= SUPPORTS[1]:
+        if supports < SUPPORTS:
             held = f"{len(self.cranes)} crane(s)" + (" and the pivot" if self.pivot is not None else "")
             raise InvalidScene(
-                f"{where}: held by {held}; expected two or three supports (cranes and the pivot): "
-                "one cannot hold an angle, and four or more share the load in a way the hook heights "
-                "decide, which a held-angle sequence does not fix"
+                f"{where}: held by {held}; expected two or more supports (cranes and the pivot): "
+                "one cannot hold an angle"
             )
+
+    def _check_pivot(self, where):
+        if self.pivot is not None:
+            object.__setattr__(self, "pivot", point(f"{where}.pivot", self.pivot))
+        if self.friction is not None:
+            mu = finite(f"{where}.friction", self.friction)
+            if mu < 0.0:
+                raise InvalidScene(f"{where}.friction = {self.friction!r}: expected a number >= 0")
+            if self.pivot is None:
+                raise InvalidScene(f"{where}.friction: given without a pivot; expected pivot = [x, y, z]")
+            object.__setattr__(self, "friction", mu)
 
     def _check_move(self, where):
         """Refuse what a move stage does not model, each with its reason."""
@@ -188,10 +196,12 @@ class Stage:
                 f"{where}.to: a move stage holds no turning angle (the body's pose follows from the "
                 "hooks); expected each crane's end position in moves = [{crane, hoist, to}]"
             )
-        if self.pivot is not None or self.friction is not None:
+        self._check_pivot(where)
+        if self.pivot is not None and any(m.to is not None for m in self.moves):
             raise InvalidScene(
-                f"{where}.pivot: ground contact is not modelled in a move stage (the body hangs on its "
-                'elastic ropes only); expected no pivot, or kind = "upend"'
+                f"{where}.moves.to: a tip moved in plan inclines its rope and loads the pivot sideways; "
+                "a move stage on a pivot models vertical ropes only (the pivot's friction and sliding "
+                "are not modelled); expected hoist only"
             )
         if self.steps is None:
             object.__setattr__(self, "steps", MOVE_STEPS)
@@ -201,10 +211,12 @@ class Stage:
             or not 1 <= self.steps <= MOST_STEPS
         ):
             raise InvalidScene(f"{where}.steps = {self.steps!r}: expected an integer from 1 to {MOST_STEPS}")
-        if len(self.cranes) < MOVE_CRANES:
+        if len(self.cranes) + (self.pivot is not None) < MOVE_CRANES:
             raise InvalidScene(
-                f"{where}: held by {len(self.cranes)} crane(s); a move stage solves the body on elastic "
-                f"ropes, which needs {MOVE_CRANES} or more"
+                f"{where}: held by {len(self.cranes)} crane(s)"
+                + (" and the pivot" if self.pivot is not None else "")
+                + f"; a move stage solves the body on elastic ropes, which needs {MOVE_CRANES} or more "
+                "supports (cranes, and a pivot)"
             )
         if not self.moves:
             raise InvalidScene(f"{where}.moves: missing; expected one or more {{crane, hoist, to}}")
@@ -314,8 +326,11 @@ class Sequence:
                     held[lug] = key
             if stage.kind == "move":
                 for key in stage.cranes:
-                    check_move_crane(stage, self.crane(key))
+                    check_move_crane(stage, self.crane(key), opens=stage is stages[0])
                 continue
+            if len(stage.cranes) + (stage.pivot is not None) >= ELASTIC_SUPPORTS:
+                for key in stage.cranes:
+                    check_elastic_crane(stage, self.crane(key))
             points = [np.mean([by_name[g].at for g in self.crane(k).lugs], axis=0) for k in stage.cranes]
             check_supports_plane(stage, points + ([np.array(stage.pivot)] if stage.pivot is not None else []))
         if not isinstance(self.rules, Rules):
@@ -358,20 +373,38 @@ def _check_crane(crane, names):
         )
 
 
-def check_move_crane(stage, crane):
-    """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip."""
+def check_move_crane(stage, crane, opens=True):
+    """Refuse a crane a move stage cannot hang on an elastic rope from its boom tip (``opens``:
+    the stage opens the sequence, so its tips start where the file puts them)."""
     where = f"{stage.where}: cranes[{crane_key(crane)}]"
-    if crane.sling is not None:
+    if stage.pivot is not None and (crane.sling is not None or (opens and crane.tip is not None)):
         raise InvalidScene(
-            f"{where}.sling: a move stage hangs one elastic rope per lug; expected cranes on one lug"
+            f"{where}.{'sling' if crane.sling is not None else 'tip'}: on a pivot a move stage models "
+            "vertical ropes only (an inclined rope or sling leg loads the pivot sideways; its friction "
+            "and sliding are not modelled); expected one rope per lug under a boom_height"
+        )
+    if crane.sling is not None and any(leg.EA is None for leg in crane.sling.legs):
+        raise InvalidScene(
+            f"{where}.sling: a leg without EA or diameter; a move stage solves the sling's legs as "
+            "elastic lines (the rigging model)"
         )
     missing = [k for k in ("rope_length", "EA") if getattr(crane, k) is None]
-    if crane.boom_height is None and crane.tip is None:
+    if opens and crane.boom_height is None and crane.tip is None:
         missing.append("boom_height or tip")
     if missing:
         raise InvalidScene(
             f"{where}: {', '.join(missing)} missing; a move stage starts from each crane's boom tip "
             "and solves the body on its elastic ropes"
+        )
+
+
+def check_elastic_crane(stage, crane):
+    """Refuse a crane of a turning stage on four or more supports that gives no rope stiffness."""
+    missing = [k for k in ("rope_length", "EA") if getattr(crane, k) is None]
+    if missing:
+        raise InvalidScene(
+            f"{stage.where}: cranes[{crane_key(crane)}]: {', '.join(missing)} missing; a stage on four "
+            "or more supports shares the load by each rope's stiffness EA / rope_length"
         )
 
 
@@ -399,12 +432,29 @@ def sequence_warnings(sequence):
     list of str
     """
     out = []
-    moved = {key for stage in sequence.stages if stage.kind == "move" for key in stage.cranes}
+    first = sequence.stages[0]
+    # a move that opens the sequence starts from the tips the file gives; a later one from
+    # where the stage before left them
+    moved = set(first.cranes) if first.kind == "move" else set()
+    chained = {key for stage in sequence.stages[1:] if stage.kind == "move" for key in stage.cranes}
+    shared = {  # a stage on four or more supports shares the load by the ropes' stiffness
+        key
+        for stage in sequence.stages
+        if len(stage.cranes) + (stage.pivot is not None) >= ELASTIC_SUPPORTS
+        for key in stage.cranes
+    }
     for crane in sequence.cranes:
         if crane_key(crane) in moved:
             continue  # a move stage hangs it from its boom tip on its elastic rope: all used
-        given = [key for key in UNUSED_CRANE_KEYS if getattr(crane, key) is not None]
-        if given:
+        elastic = crane_key(crane) in shared or crane_key(crane) in chained
+        unused = UNUSED_CRANE_KEYS if not elastic else ("boom_height", "tip")
+        given = [key for key in unused if getattr(crane, key) is not None]
+        if given and elastic:
+            out.append(
+                f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (its tip follows "
+                "its lug in a turn, and a move after another stage starts where that stage left it)"
+            )
+        elif given:
             out.append(
                 f"cranes[{crane_key(crane)}]: {', '.join(given)} not used by a sequence (each hook "
                 "follows its lug or sling apex to keep its rope vertical; only swl is checked)"
@@ -421,20 +471,23 @@ def check_supports_plane(stage, points):
     points : list of array (3,)  [m]
         Each support's body point (a lug, a sling's lug midpoint, the pivot).
     """
-    if len(points) != 3:
+    if len(points) < 3:
         return
     pts = np.asarray(points, dtype=float)
     across = AXES.index(stage.axis)  # the turning axis: its coordinate is the plan's other one
     along = 1 - across  # the horizontal body axis that turns (x for a turn about y)
-    ones = np.ones(3)
-    d1 = np.linalg.det(np.vstack([ones, pts[:, along], pts[:, across]]))
-    d2 = np.linalg.det(np.vstack([ones, pts[:, 2], pts[:, across]]))
+    ones = np.ones(len(pts))
     size = max(float(np.ptp(pts, axis=0).max()), 1.0)
-    if abs(d1) < 1e-9 * size**2 and abs(d2) < 1e-9 * size**2:
+
+    def flat(column):  # the points on one line of (column, across): the smallest singular value
+        rows = np.vstack([ones, pts[:, column] / size, pts[:, across] / size]).T
+        return np.linalg.svd(rows, compute_uv=False)[-1] < 1e-9
+
+    if flat(along) and flat(2):
         raise InvalidScene(
-            f"{stage.where}: its three supports are in one vertical plane at every angle; the split "
-            "between them is statically indeterminate; expected two of them (release one) or the third "
-            "out of that plane"
+            f"{stage.where}: its {len(pts)} supports are in one vertical plane at every angle; the split "
+            "between them is statically indeterminate; expected two of them (release the others) or "
+            "one out of that plane"
         )
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 
 @dataclass(frozen=True)
@@ -60,6 +60,11 @@ class SequenceState:
         parameter 0..1 and ``tilt`` 0); None in a turning stage.
     origin : tuple of 3 float or None  [m]
         A move stage: the world position of the body-frame origin.
+    rotation : tuple of 3 tuples or None
+        A move stage: the body -> world rotation (after a turning stage it includes the turn;
+        ``heel`` and ``trim`` are measured from where the stage started).
+    sling_hooks : dict of str to tuple
+        A move stage: each sling crane's hook, world  [m].
     """
 
     stage: str
@@ -76,6 +81,8 @@ class SequenceState:
     heel: float | None = None
     trim: float | None = None
     origin: tuple | None = None
+    rotation: tuple | None = None
+    sling_hooks: dict = field(default_factory=dict)
 
     def to_json(self):
         if self.heel is not None:  # a move stage: no turning angle, its parameter and attitude

@@ -19,7 +19,11 @@ horizontal world axis across it:
   of gravity is in the vertical plane of the two lines of action; the two forces then follow
   from the lever rule;
 * three supports: the three equations give the three forces at ``psi = 0`` (the hooks hold
-  the turning axis level).
+  the turning axis level);
+* four or more: the ropes' stiffness shares the load (:func:`level_share`): each rope's
+  stretch is one plane over the plan positions (the hooks set level and moved only as one
+  rigid pattern, no twist dialled in), the least elastic energy that balances the body at
+  ``psi = 0``; a pivot in contact is rigid (the plane is zero there).
 
 A support whose force would be negative carries nothing: a crane's rope goes slack, or the
 body lifts off its pivot; the state is solved again without it. With one support left the
@@ -34,6 +38,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import nnls
 
 from liftplan.model.errors import InvalidScene
 
@@ -43,6 +48,10 @@ SLACK_TOL = 1e-9
 MAX_TILT = 60.0
 #: Plan distance below which two lines of action are one (x the body's size)  [-].
 COINCIDENT = 1e-9
+#: Newton steps of the level share (each piece of its energy is a quadratic: a few suffice).
+NEWTON_STEPS = 50
+#: Supports from which a stage is statically indeterminate and shared by the ropes' stiffness.
+ELASTIC_FROM = 4
 
 
 def _rot(axis, angle):
@@ -165,8 +174,9 @@ class HeldAngle:
         Body point that stays where it is at angle 0 (the pivot, else the centre of gravity).
     """
 
-    def __init__(self, supports, weight, cog, axis, anchor):
+    def __init__(self, supports, weight, cog, axis, anchor, stiffness=None):
         self.supports = tuple(supports)
+        self.stiffness = dict(stiffness or {})
         self.weight = float(weight)
         self.cog = np.asarray(cog, dtype=float)
         self.axis = axis
@@ -185,7 +195,7 @@ class HeldAngle:
         up = np.array([0.0, 0.0, 1.0])
         if not support.legs:
             return Hook(pts[0], up[None, :] if not support.is_pivot else np.zeros((0, 3)))
-        return _sling_apex(support, pts)
+        return sling_apex(support, pts)
 
     def state(self, angle, tilt=None):
         """Solve the body at turning ``angle``  [deg]; ``tilt`` starts the tilt's Newton.
@@ -197,9 +207,17 @@ class HeldAngle:
         """
         start = self._tilt if tilt is None else tilt
         supports = list(self.supports)
-        for size in range(len(supports), 1, -1):
+        sizes = range(len(supports), 1, -1)
+        if len(supports) >= ELASTIC_FROM:
+            shared = self._elastic(angle)
+            if shared is not None:
+                return shared
+            sizes = (2,)  # the CG is off every taut set at psi = 0: two supports, tilted, or none
+        for size in sizes:
             found = []
             for subset in itertools.combinations(supports, size):
+                if size == 2 and self._apart(subset, angle):
+                    continue
                 solved = self._solve(list(subset), angle, start)
                 if solved is not None and min(solved[0]) >= -SLACK_TOL * self.weight:
                     found.append((abs(solved[1]), subset, solved))
@@ -215,6 +233,61 @@ class HeldAngle:
         only = min(supports, key=lambda s: float(np.linalg.norm(self.hook(s, rot).at[:2] - g)))
         slack = [s.key for s in supports if s.key != only.key]
         return self._single(only, angle, slack)
+
+    def _apart(self, pair, angle):
+        """True when two supports on points (no sling) cannot carry the body at any tilt.
+
+        The tilt turns the body about the world's horizontal axis across the turning axis,
+        which moves no point along the other horizontal axis: along it the centre of gravity
+        must lie between the two lines of action for both forces to be >= 0 (the lever rule).
+        """
+        if any(s.legs for s in pair):
+            return False  # a sling's apex moves along that axis as the lugs tilt
+        rot = pose_matrix(self.axis, angle, 0.0)
+        along = 0 if self.axis == "y" else 1
+        ends = [float(self.world(rot, s.points)[0][along]) for s in pair]
+        g = float(self.world(rot, self.cog)[0][along])
+        slack = COINCIDENT * self.size
+        return not min(ends) - slack <= g <= max(ends) + slack
+
+    # -- four or more supports: the level share of the elastic ropes -----------------------------
+    def _elastic(self, angle):
+        """The body at ``angle`` and no tilt on four or more supports, or None.
+
+        Each rope's stretch is one plane over the plan positions of the lines of action,
+        s_k = c0 + c1 x_k + c2 y_k (the hooks set as if every rope came taut together and were
+        then hoisted as one rigid pattern: no twist dialled in), its tension k_k max(0, s_k);
+        a pivot in contact is rigid (the plane passes through zero there) and pushes only.
+        None when the centre of gravity is outside the plan hull of the supports that could
+        carry it (no state at this tilt).
+        """
+        rot = pose_matrix(self.axis, angle, 0.0)
+        hooks = [self.hook(s, rot) for s in self.supports]
+        g = self.world(rot, self.cog)[0][:2]
+        plan = np.array([h.at[:2] for h in hooks])
+        ropes = [i for i, s in enumerate(self.supports) if not s.is_pivot]
+        k = np.array([self.stiffness[self.supports[i].key] for i in ropes])
+        forces = np.zeros(len(self.supports))
+        pivot = [i for i, s in enumerate(self.supports) if s.is_pivot]
+        shared = None
+        if pivot:  # in contact: the ropes' stretch plane is zero at the pivot, moments about it
+            q = plan[pivot[0]]
+            shared = level_share((plan[ropes] - q) / self.size, k, self.weight * (g - q) / self.size)
+            if shared is not None:
+                reaction = self.weight - float(shared.sum())
+                if reaction < -SLACK_TOL * self.weight:
+                    shared = None  # the pivot would have to pull: the body lifts off it
+                else:
+                    forces[pivot[0]] = max(reaction, 0.0)
+        if shared is None:
+            forces[:] = 0.0
+            rows = np.hstack([np.ones((len(ropes), 1)), plan[ropes] / self.size])
+            shared = level_share(rows, k, self.weight * np.concatenate([[1.0], g / self.size]))
+        if shared is None:
+            return None
+        forces[ropes] = shared
+        slack = [s.key for s, f in zip(self.supports, forces) if f <= 0.0]
+        return self._result(angle, 0.0, rot, list(self.supports), forces, hooks, slack, True, "")
 
     # -- the equilibrium with a set of supports ------------------------------------------------
     def _solve(self, active, angle, start):
@@ -274,10 +347,35 @@ class HeldAngle:
                 break
         return self._tilt_scan(active, angle)
 
+    def _offsets(self, pair, angle, tilts):
+        """:meth:`_offset` of two supports on points (no sling) at many ``tilts`` (deg)."""
+        turned = (np.vstack([s.points[0] for s in pair] + [self.cog]) - self.anchor) @ pose_matrix(
+            self.axis, angle, 0.0
+        ).T
+        axis = 0 if self.axis == "y" else 1  # the world axis the tilt turns about
+        other = 1 - axis
+        c, sn = np.cos(np.radians(tilts))[:, None], np.sin(np.radians(tilts))[:, None]
+        # the plan coordinate the tilt moves: y for a tilt about x (y c - z s), x for one about y
+        sign = -1.0 if axis == 0 else 1.0
+        moved = turned[None, :, other] * c + sign * turned[None, :, 2] * sn
+        fixed = np.broadcast_to(turned[None, :, axis], moved.shape)
+        plan = np.stack([fixed, moved], axis=-1) if axis == 0 else np.stack([moved, fixed], axis=-1)
+        q1, q2, g = plan[:, 0], plan[:, 1], plan[:, 2]
+        d = q2 - q1
+        length = np.hypot(d[:, 0], d[:, 1])
+        cross = d[:, 0] * (g - q1)[:, 1] - d[:, 1] * (g - q1)[:, 0]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = cross / length
+        out[length < COINCIDENT * self.size] = np.nan
+        return out
+
     def _tilt_scan(self, active, angle):
         """Bracket and bisect the tilt when Newton did not converge."""
         grid = np.linspace(-MAX_TILT, MAX_TILT, 241)
-        vals = [self._offset(active, angle, p) for p in grid]
+        if any(s.legs for s in active):
+            vals = [self._offset(active, angle, p) for p in grid]
+        else:  # two points: every tilt of the grid at once
+            vals = self._offsets(active, angle, grid).tolist()
         roots = []
         for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
             if math.isfinite(fa) and math.isfinite(fb) and fa * fb <= 0.0:
@@ -340,7 +438,68 @@ class HeldAngle:
         )
 
 
-def _sling_apex(support, pts):
+def level_share(rows, stiffness, load):
+    """Tensions k_k max(0, rows_k . c) that balance ``load``: sum_k T_k rows_k = load, or None.
+
+    The convex potential E(c) = 1/2 sum_k k_k max(0, rows_k . c)^2 - load . c is least at the
+    balance; it is bounded below only when ``load`` is in the cone of the rows (the centre of
+    gravity inside the plan hull of the supports), which is tested first (non-negative least
+    squares). Newton with a backtracking line search, the taut set re-read at every step, then
+    one exact solve on the final taut set.
+
+    Parameters
+    ----------
+    rows : ndarray (n, d)
+        Each support's row (1 and its plan lever, scaled), d = 2 or 3.
+    stiffness : ndarray (n,)  [t/m]
+    load : ndarray (d,)
+
+    Returns
+    -------
+    ndarray (n,) or None  [t]
+    """
+    rows, k, b = np.asarray(rows, float), np.asarray(stiffness, float), np.asarray(load, float)
+    scale = max(float(np.linalg.norm(b)), 1e-300)
+    _, misfit = nnls(rows.T, b)
+    if misfit > 1e-12 * scale:
+        return None
+
+    def grad(c):
+        s = rows @ c
+        return (k * np.maximum(s, 0.0)) @ rows - b, s
+
+    def energy(c):
+        s = np.maximum(rows @ c, 0.0)
+        return 0.5 * float(k @ (s * s)) - float(b @ c)
+
+    c = np.linalg.lstsq((rows.T * k) @ rows, b, rcond=None)[0]
+    for _ in range(NEWTON_STEPS):
+        f, s = grad(c)
+        taut = s > 0.0
+        if np.linalg.norm(f) < 1e-14 * scale:
+            break
+        jac = (rows[taut].T * k[taut]) @ rows[taut]
+        step = np.linalg.lstsq(jac, -f, rcond=None)[0] if taut.any() else -f
+        if taut.sum() >= rows.shape[1] and np.array_equal(rows @ (c + step) > 0.0, taut):
+            c = c + step  # the least of this piece's quadratic, on the same taut set: the balance
+            break
+        e0, t = energy(c), 1.0
+        while t > 1e-12 and energy(c + t * step) > e0 + 1e-4 * t * float(f @ step):
+            t *= 0.5
+        c = c + t * step
+    s = rows @ c
+    taut = s > 0.0
+    if taut.sum() >= rows.shape[1]:  # polish: the balance on the taut set, exactly
+        exact = np.linalg.lstsq((rows[taut].T * k[taut]) @ rows[taut], b, rcond=None)[0]
+        if np.all((rows @ exact > 0.0) == taut):
+            c = exact
+    f, s = grad(c)
+    if np.linalg.norm(f) > 1e-10 * scale:
+        return None
+    return k * np.maximum(s, 0.0)
+
+
+def sling_apex(support, pts):
     """The hook of a 2-leg sling on lugs ``pts`` (world): apex and the legs' pulls per unit."""
     (l1, l2), (a1, a2) = support.legs, pts
     up = np.array([0.0, 0.0, 1.0])

@@ -19,7 +19,7 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.sequence.maxima import Peak, Sampler, adaptive_samples, continuous_maxima
-from liftplan.model.sequence.move import MoveModel
+from liftplan.model.sequence.move import MoveModel, turned_end
 from liftplan.model.sequence.states import LugLoad, SequenceState
 from liftplan.model.sequence.statics import HeldAngle, Support
 
@@ -135,8 +135,14 @@ class SequenceResult:
 
         def where(peak, stage):
             if stage in moves:  # a move stage's maximum is at a parameter, not an angle
-                return {"value": peak.value, "angle": None, "param": peak.angle, "stage": stage}
-            return {"value": peak.value, "angle": peak.angle, "stage": stage}
+                return {
+                    "value": peak.value,
+                    "angle": None,
+                    "param": peak.angle,
+                    "stage": stage,
+                    "bound": peak.bound,
+                }
+            return {"value": peak.value, "angle": peak.angle, "stage": stage, "bound": peak.bound}
 
         def table(prefix):
             return {k: where(p, stage) for k, (p, stage) in self.maxima(prefix).items()}
@@ -151,11 +157,7 @@ class SequenceResult:
                 "lug_in_plane": table("lug_in"),
                 "lug_out_of_plane": table("lug_out"),
                 "sling_tensions": table("leg"),
-                "ground_reaction": (
-                    {"value": ground[0].value, "angle": ground[0].angle, "stage": ground[1]}
-                    if ground
-                    else None
-                ),
+                "ground_reaction": (where(ground[0], ground[1]) if ground else None),
             },
             "slack": [_range_json(r, s.stage) for s in self.stages for r in s.slack],
             "not_held": [r.to_json() for s in self.stages for r in s.not_held],
@@ -225,7 +227,14 @@ class StageModel:
         self.sequence, self.stage = sequence, stage
         cog = np.array(sequence.body.cog, dtype=float)
         anchor = np.array(stage.pivot, dtype=float) if stage.pivot is not None else cog
-        self.statics = HeldAngle(supports_of(sequence, stage), sequence.body.weight, cog, stage.axis, anchor)
+        stiffness = {
+            key: crane.EA / crane.rope_length
+            for key in stage.cranes
+            if (crane := sequence.crane(key)).EA is not None and crane.rope_length is not None
+        }
+        self.statics = HeldAngle(
+            supports_of(sequence, stage), sequence.body.weight, cog, stage.axis, anchor, stiffness
+        )
         self.lugs = [lug for key in stage.cranes for lug in sequence.crane(key).lugs]
         self.normals = {
             name: np.array(sequence.lug(name).normal or stage.axis_vector, dtype=float) for name in self.lugs
@@ -288,8 +297,25 @@ class StageModel:
 
 def stage_model(sequence, stage):
     """The loads of a stage as functions of its sweep variable: the angle of a turn
-    (:class:`StageModel`), the parameter of a move (:class:`~liftplan.model.sequence.move.MoveModel`)."""
-    return MoveModel(sequence, stage) if stage.kind == "move" else StageModel(sequence, stage)
+    (:class:`StageModel`), the parameter of a move (:class:`~liftplan.model.sequence.move.MoveModel`,
+    started where the stage before left the body and the tips: :func:`chain_start`)."""
+    if stage.kind == "move":
+        return MoveModel(sequence, stage, chain_start(sequence, stage))
+    return StageModel(sequence, stage)
+
+
+def chain_start(sequence, stage):
+    """Where the stage before ``stage`` left the body and the boom tips
+    (:class:`~liftplan.model.sequence.move.ChainStart`), or None for a stage that opens the
+    sequence or turns (a turning stage starts from the body as the file gives it)."""
+    index = next(k for k, s in enumerate(sequence.stages) if s is stage)
+    if stage.kind != "move" or index == 0:
+        return None
+    previous = sequence.stages[index - 1]
+    model = stage_model(sequence, previous)
+    if previous.kind == "move":
+        return model.end()
+    return turned_end(sequence, previous, model.statics.state(previous.angles[-1]), model.statics.anchor)
 
 
 def run_stage(sequence, stage):

@@ -25,13 +25,13 @@ SWL at its radius.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from liftplan.model.checks import Check
-from liftplan.model.statics.model import rope_model
-from liftplan.planner.search.scenarios import pack, run_block
+from liftplan.planner.search.scenarios import held_model, pack, run_block
 
 
 @dataclass(frozen=True)
@@ -59,7 +59,13 @@ class BreakoutCase:
     swl : numpy.ndarray, shape (n,)  [t]
         Chart SWL at each crane's radius.
     rigging : numpy.ndarray, shape (n,)  [t]
-        The rules' rigging weight on each hook.
+        The rules' rigging weight on each hook (with a spreader bar's weight on its hook).
+    extremes : tuple of 2 numpy.ndarray, shape (n,), or None  [t]
+        (least, worst) of each tension over the hook errors where the tensions are not affine
+        in the hook heights (two cranes on slings: the lever rule at the tilts along the hook
+        line the errors give, :func:`~liftplan.planner.plans.slings.two_crane.hooks_breakout`;
+        ``gain`` is then its slope at level). None: ``T -+ |dT/dH| delta``, exact for the
+        held model.
     """
 
     load: object
@@ -71,10 +77,13 @@ class BreakoutCase:
     hook_shift: np.ndarray
     swl: np.ndarray
     rigging: np.ndarray
+    extremes: tuple | None = None
 
     @property
     def hook_widening(self):
-        """What the worst hook errors add to (or take from) each tension at breakout  [t]."""
+        """What the worst hook errors add to each tension at breakout  [t]."""
+        if self.extremes is not None:
+            return self.extremes[1] - self.tensions
         return np.abs(self.gain) @ self.hook_tolerance
 
     @property
@@ -85,7 +94,27 @@ class BreakoutCase:
     @property
     def least(self):
         """Each tension at breakout at its smallest over the hook errors  [t]."""
+        if self.extremes is not None:
+            return self.extremes[0]
         return self.tensions - self.hook_widening
+
+    def ordered(self, order):
+        """The same case with its ropes in ``order`` (indices into this case's order): a sling
+        plan's fleet order from its lug set's."""
+        order = list(order)
+        extremes = None if self.extremes is None else tuple(v[order] for v in self.extremes)
+        return dataclasses.replace(
+            self,
+            cranes=tuple(self.cranes[k] for k in order),
+            lugs=tuple(self.lugs[k] for k in order),
+            tensions=self.tensions[order],
+            gain=self.gain[np.ix_(order, order)],
+            hook_tolerance=self.hook_tolerance[order],
+            hook_shift=self.hook_shift[order],
+            swl=self.swl[order],
+            rigging=self.rigging[order],
+            extremes=extremes,
+        )
 
     @property
     def hook_loads(self):
@@ -128,7 +157,9 @@ class BreakoutCase:
 
 
 def breakout_case(problem, lugset, preload):
-    """Each crane's held tension at breakout for one lug set.
+    """Each crane's held tension at breakout for one lug set (single ropes, or the hooks of
+    three or more cranes on slings: the lug set is then of the slings' hooks, hinged where
+    the problem carries hinges, and each tension is the body's share on that hook).
 
     Parameters
     ----------
@@ -152,9 +183,11 @@ def breakout_case(problem, lugset, preload):
         weight=load.total,
         rope_length=lugset.rope_length,
         EA=lugset.EA,
+        hinges=lugset.hinges,
     )
     level = np.array([[problem.lift_height, 0.0, 0.0]])
-    tensions, shift, gain = run_block(rope_model(lugset.n).held_block, lugset.n, level, params)
+    model = held_model(problem, lugset.n)  # hooks hinged about their lug pairs where slings are
+    tensions, shift, gain = run_block(model.held_block, lugset.n, level, params)
     rigging = np.array([problem.rules.rigging_for(name) for name in lugset.crane_names], dtype=float)
     return BreakoutCase(
         load=load,
@@ -219,5 +252,63 @@ def breakout_json(plan):
             "ok": d.breakout.ok,
         }
         for d in plan.ranked_design
+    ]
+    return {"breakout": out}
+
+
+def hooks_breakout_json(plan):
+    """``{"breakout": {...}}`` for a sling plan's JSON, or ``{}`` without a breakout case.
+
+    As :func:`breakout_json`, per crane (fleet order): its lugs, the body's share on its hook
+    at breakout and with the hook errors at worst and least, the rigging (a spreader bar's
+    weight in it), the hook load against the chart SWL, the share's box worst, which of the two
+    is the chain's static input, and each of its legs' tension at breakout (the worst hook
+    load split by the sling's statics, the lug design loads' input where it governs).
+    """
+    case = plan.breakout
+    if case is None:
+        return {}
+    out = case.load.to_json()
+    out["point"] = list(plan.in_file_frame(case.load.point))
+    out["frame"] = plan.frame
+    out["scene"] = plan.problem.breakout_scene.name
+    out["tensions"] = dict(zip(case.cranes, case.tensions.tolist()))
+    out["tensions_with_hook_errors"] = dict(zip(case.cranes, case.worst.tolist()))
+    labels = iter(plan.labels)
+    cranes = []
+    for c, name in enumerate(case.cranes):
+        box = float(plan.box_shares[c])
+        worst = float(case.worst[c])
+        mine = [next(labels) for _ in plan.groups[c]]
+        cranes.append(
+            {
+                "crane": name,
+                "lugs": {label: plan.lugs[label] for label in mine},
+                "tension": float(case.tensions[c]),
+                "hook_errors": float(case.hook_widening[c]),
+                "tension_with_hook_errors": worst,
+                "least_with_hook_errors": float(case.least[c]),
+                "rigging": float(case.rigging[c]),
+                "hook_load": float(case.hook_loads[c]),
+                "swl": float(case.swl[c]),
+                "hook_shift": float(case.hook_shift[c]),
+                "box_worst": box,
+                "static_input": max(box, worst),
+                "governs": "breakout" if worst > box else "box",
+                "legs": dict(zip(mine, np.asarray(plan.breakout_legs[c], dtype=float).tolist())),
+            }
+        )
+    out["cranes"] = cranes
+    out["checks"] = [c.to_json() for c in case.checks]
+    out["ok"] = case.ok
+    out["ranking"] = [
+        {
+            "lugs": list(lugs),
+            "cranes": list(ranked.cranes),
+            "tensions": ranked.tensions.tolist(),
+            "tensions_with_hook_errors": ranked.worst.tolist(),
+            "ok": ranked.ok,
+        }
+        for lugs, ranked in plan.ranked_breakouts
     ]
     return {"breakout": out}

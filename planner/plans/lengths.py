@@ -20,6 +20,13 @@ monotonically with the length until the boom range makes the plan infeasible, so
 choice is the longest payout the boom range allows, which the halvings place to within
 1/16 of the range. The plan's certified lower bound is the least of the trials' bounds:
 certified over the lengths tried, not over the continuous range between them.
+
+Cranes on slings (issue 24 item 3): the range is the hoist rope's, tip to hook, and each trial
+is an exact sling plan (``inner``, passed by :func:`liftplan.planner.plan.plan`, which imports
+both kinds of plan; they do not import each other). Two or three cranes on slings are
+statically determinate, so the length changes only the boom heights: every length within the
+booms' range plans the same, and the first (shortest) of equal values is kept (values compared
+to 12 significant digits, so round-off does not pick among equals).
 """
 
 from __future__ import annotations
@@ -32,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
-from liftplan.planner.plans.held import girder_first, plan_held
+from liftplan.planner.plans.held import Plan, girder_first, plan_held
 from liftplan.planner.search.evaluator import Interrupted
 from liftplan.planner.search.progress import best_bound, progress_bar
 
@@ -153,7 +160,7 @@ def first_pass(ranges):
     return [np.linspace(lo, hi, steps) if hi > lo else np.array([lo]) for lo, hi in ranges]
 
 
-def plan_lengths(problem, top=None):
+def plan_lengths(problem, top=None, inner=None):
     """Plan lugs, boom heights and rope lengths (cranes with a ``rope_length`` range).
 
     Parameters
@@ -161,10 +168,15 @@ def plan_lengths(problem, top=None):
     problem : PlanProblem
         At least one crane with ``rope_length_range``.
     top : int, optional
+    inner : callable, optional
+        ``inner(problem, top) -> plan``: the planner at fixed lengths. Default: the held
+        plan of single ropes. Cranes on slings pass the sling planner
+        (:func:`liftplan.planner.plan.plan` does): the range is then the hoist rope's, tip to
+        hook, and the result a sling plan with ``with_lengths`` and ``length_summary``.
 
     Returns
     -------
-    Plan
+    Plan or sling plan
         Planned at the chosen lengths (its ``problem`` is the copy with them fixed, so its
         scene, boom heights and design loads follow), with ``lengths`` the
         :class:`LengthSearch` and ``stats`` over every trial (the lower bound the least of
@@ -180,6 +192,7 @@ def plan_lengths(problem, top=None):
     """
 
     start = time.perf_counter()
+    planner = inner
     classes = varying_classes(problem)
     ranges = tuple(problem.fleet[g[0]].rope_length_range for g in classes)
     results = {}
@@ -204,7 +217,7 @@ def plan_lengths(problem, top=None):
                 return None
             inner = dataclasses.replace(inner, time_limit=left)
         try:
-            result = plan_held(inner, top, girder_order=False)
+            result = plan_held(inner, top, girder_order=False) if planner is None else planner(inner, top)
         except PlanInfeasible as err:
             result = None
             trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
@@ -213,14 +226,16 @@ def plan_lengths(problem, top=None):
         results[key] = result
         if bar is not None:
             bar.update(1)
-            found = [float(r.chosen.worst_value) for r in results.values() if r is not None]
+            found = [_summary(r)[0] for r in results.values() if r is not None]
             low = min((t.lower_bound for t in trials), default=None)
             bar.set_postfix_str(best_bound(min(found, default=None), low))
         return result
 
     def value(key):
         result = results[key]
-        return math.inf if result is None else float(result.chosen.worst_value)
+        # to 12 significant digits: lengths that plan the same (two or three cranes on slings,
+        # statically determinate) tie, and the first (shortest) is kept, not round-off's pick
+        return math.inf if result is None else float(f"{_summary(result)[0]:.12g}")
 
     try:
         for lengths in _product(grids):
@@ -253,7 +268,7 @@ def plan_lengths(problem, top=None):
             raise Interrupted([], None, phase=what) from None
         best = min(results, key=value)
         chosen = _chosen(problem, classes, ranges, trials, results, best, start, "interrupted")
-        raise Interrupted(chosen.ranking, chosen.stats, plan=chosen, phase=what) from None
+        raise Interrupted(chosen.ranking, getattr(chosen, "stats", None), plan=chosen, phase=what) from None
     finally:
         if bar is not None:
             bar.close()
@@ -268,10 +283,19 @@ def plan_lengths(problem, top=None):
     return _chosen(problem, classes, ranges, trials, results, best, start, stopped)
 
 
+def _summary(result):
+    """(worst value, certified lower bound, lug names, rows evaluated) of a trial's plan: a
+    held :class:`Plan`'s, or a sling plan's ``length_summary``."""
+    if isinstance(result, Plan):
+        chosen, stats = result.chosen, result.stats
+        return float(chosen.worst_value), float(stats.lower_bound), tuple(chosen.lugs), stats.evaluated
+    return result.length_summary
+
+
 def _trial(key, result, reason=""):
     """The :class:`LengthTrial` of a plan at lengths ``key``."""
-    value, bound = float(result.chosen.worst_value), float(result.stats.lower_bound)
-    return LengthTrial(key, value, bound, tuple(result.chosen.lugs), reason)
+    value, bound, lugs, _ = _summary(result)
+    return LengthTrial(key, value, bound, lugs, reason)
 
 
 def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
@@ -285,13 +309,20 @@ def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
         chosen=best,
     )
     finished = [r for r in results.values() if r is not None]
-    stats = dataclasses.replace(
-        chosen.stats,
-        lower_bound=min(search.lower_bound, chosen.stats.lower_bound),
-        evaluated=sum(r.stats.evaluated for r in finished),
-        seconds=time.perf_counter() - start,
-        stopped=stopped or chosen.stats.stopped,
+    own = getattr(chosen, "stats", None)  # a two-crane sling plan's search has none: exhaustive
+    stats = (
+        None
+        if own is None
+        else dataclasses.replace(
+            own,
+            lower_bound=min(search.lower_bound, own.lower_bound),
+            evaluated=sum(_summary(r)[3] for r in finished),
+            seconds=time.perf_counter() - start,
+            stopped=stopped or own.stopped,
+        )
     )
+    if not isinstance(chosen, Plan):  # a sling plan: its own outputs carry the search
+        return chosen.with_lengths(search, stats)
     ranking, girders = girder_first(chosen.problem, chosen.ranking)
     return dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
 

@@ -596,7 +596,7 @@ class PlanProblem:
             )
 
     def _check_breakout(self, fleet):
-        """The breakout scene: a seabed scene of this body, for a held plan of single ropes."""
+        """The breakout scene: a seabed scene of this body, for a held plan (single ropes or slings)."""
         scene, key = self.breakout_scene, "plan.breakout_scene"
         if scene is None:
             return
@@ -611,10 +611,10 @@ class PlanProblem:
                 "expected the hull resting on the seabed with [hull], [water] and "
                 "[ground]"
             )
-        if any(c.sling is not None for c in fleet) or self.objective in STRENGTH_OBJECTIVES:
+        if self.objective in STRENGTH_OBJECTIVES:
             raise InvalidScene(
-                f"{key}: given for a plan with slings or a strength objective; "
-                "expected cranes on single ropes and objective spread, utilisation "
+                f"{key}: given for a plan with a strength objective; "
+                "expected objective spread, utilisation "
                 "or reserve (the breakout case is carried into those plans only)"
             )
         body, mine = scene.body, self.body

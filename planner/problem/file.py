@@ -63,7 +63,8 @@ class _Body(Table):
             "what `weight` is: `air`, the body's weight in air, or `water`, its weight in water "
             "(less its buoyancy, flooded compartments included); the plan says it beside W in the "
             "console, the report's basis table and the JSON (`weight.basis`). The planner uses W as "
-            "given either way"
+            "given either way; with `water` and the DAF taken from 0027/ND Table 5-1 (the table for "
+            "lifts in air; no `[rules] daf`) the plan warns, on the console and page 1"
         ),
         absent='not stated: the plan says "not stated"',
         example='weight_basis = "water"',
@@ -311,8 +312,10 @@ class _Plan(Table):
             "static input to the design-load chain becomes the larger of its worst in the box and its "
             "breakout tension (the plan says which governs), a check `breakout_hook_load` per crane "
             "(tension + rigging <= chart SWL) and `breakout_min_tension` are added, and the plan JSON "
-            "gains `breakout`. The scene's body weight and CG must equal `[body]`'s. Not with slings "
-            "or the strength objectives"
+            "gains `breakout`. With slings each crane's hook holds it (two cranes: the lever rule "
+            "along the hook line; three or more: the held model on the hooks) and its legs carry "
+            "it into the lug design loads. The scene's body weight and CG must equal `[body]`'s. "
+            "Not with the strength objectives"
         ),
         values="string (a path)",
         absent="no breakout case",
@@ -525,7 +528,7 @@ class _FleetCrane(Table):
         None,
         doc=(
             "unstretched rope length, boom tip to lug; a table: the payout range the planner chooses "
-            "in, as `crane.rope_length` (not with a sling)"
+            "in, as `crane.rope_length` (with a sling: the hoist rope's, tip to hook)"
         ),
         unit="m",
         values="number > 0, or table { min, max }",

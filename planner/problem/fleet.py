@@ -191,11 +191,6 @@ class FleetCrane:
                 )
         if self.rope_length_range is not None:
             _set(self, "rope_length_range", length_range(f"{key}.rope_length", self.rope_length_range))
-            if self.sling is not None:
-                raise InvalidScene(
-                    f"{key}.rope_length: a range with a sling; expected a number (the "
-                    "sling planner does not choose rope lengths)"
-                )
         if self.hook_tolerance is not None:
             value = finite(f"{key}.hook_tolerance", self.hook_tolerance)
             if value < 0.0:

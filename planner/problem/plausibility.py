@@ -48,6 +48,7 @@ def problem_warnings(problem):
         *coordinate_warnings("candidates", [(c.name, c.at) for c in problem.candidates]),
     ]
     out += _undrained_water(problem)
+    out += _daf_in_water(problem)
     if problem.breakout_scene is not None:
         out += bed_warnings(problem.breakout_scene, "plan.breakout_scene: ground.breakout")
     if problem.hook_tolerance > MAX_HOOK_TOLERANCE:
@@ -63,6 +64,19 @@ def problem_warnings(problem):
                 "each way; a slip (radians? a total instead of a half-width?)"
             )
     return out
+
+
+def _daf_in_water(problem):
+    """A weight in water with the DAF from 0027/ND Table 5-1, the table for lifts in air."""
+    rules = problem.rules
+    if problem.weight_basis != "water" or rules.daf is not None or rules.chart_includes_dynamics:
+        return []
+    return [
+        'body.weight_basis = "water" with the DAF from 0027/ND Table 5-1, which is for lifts in '
+        "air: below the surface added mass, drag and slamming load the hooks too; expected "
+        "[rules] daf from a calculation for the lift in water where it governs (the in-air "
+        "Table 5-1 DAF is applied to W as given)"
+    ]
 
 
 def _undrained_water(problem):

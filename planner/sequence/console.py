@@ -62,7 +62,10 @@ def sequence_table(result):
                 "lug_out": "lug load out of plane",
                 "leg": "sling leg",
             }[kind]
-            lines.append(f"  {label} {name}".rstrip() + f": {peak.value:.3f} t{at} {peak.angle:.4f}{unit}")
+            lines.append(
+                f"  {label} {name}".rstrip()
+                + f": {peak.value:.3f} t{at} {peak.angle:.4f}{unit} (bound {peak.bound:.3f} t)"
+            )
         for key, travel in stage.hook_travel.items():
             lines.append(
                 f"  hook {key}: rises {travel['rise']:+.2f} m (height {travel['lowest']:.2f} to "

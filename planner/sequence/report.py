@@ -91,9 +91,14 @@ def _page(result, payload):
             row.append(("" if s.held else "not held ") + ", ".join(s.slack))
             rows.append(row)
         parts.append(one_table(head, rows, "States on the grid", text_columns=(len(head) - 1,)))
-        peaks = [[k, f"{p.value:.3f}", f"{p.angle:.4f}"] for k, p in stage.maxima.items()]
+        peaks = [[k, f"{p.value:.3f}", f"{p.angle:.4f}", f"{p.bound:.3f}"] for k, p in stage.maxima.items()]
         parts.append(
-            one_table(["load", "maximum [t]", f"at {at}"], peaks, "Continuous maxima", text_columns=(0,))
+            one_table(
+                ["load", "maximum [t]", f"at {at}", "bound [t]"],
+                peaks,
+                "Continuous maxima",
+                text_columns=(0,),
+            )
         )
         ranges = [[r.what, f"{r.start:.4f}", f"{r.stop:.4f}"] for r in (*stage.slack, *stage.not_held)]
         if ranges:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from liftplan.model.frames import rotation_matrix
 from liftplan.model.sequence import pose_matrix
 from liftplan.planner.output.view.geometry import CraneMark, LiftView, Rope, ViewState
 from liftplan.planner.output.view.states import STUB, body_box
@@ -40,7 +39,7 @@ def sequence_view(result):
         move = stage.kind == "move"
         for state in stage_result.states:
             if move:  # the body where its elastic ropes hold it, each rope up to its boom tip
-                rot = rotation_matrix(state.heel, state.trim)
+                rot = np.asarray(state.rotation, dtype=float)
                 origin = np.asarray(state.origin, dtype=float)
             else:
                 rot = pose_matrix(stage.axis, state.angle, state.tilt)
@@ -52,10 +51,12 @@ def sequence_view(result):
                 use = load / crane.swl if crane.swl is not None else None
                 hook = np.asarray(state.hooks[key])
                 top = hook + [0.0, 0.0, STUB * size]
-                if move:
+                if move and crane.sling is None:
                     at = rot @ np.asarray(seq.lug(crane.lug).at) + origin
                     ropes.append(Rope(key, "rope", _t(at), _t(hook), load, use, crane.lug))
                     continue
+                if move:  # the hoist rope from the sling's hook up to the boom tip
+                    hook, top = np.asarray(state.sling_hooks[key]), hook
                 if crane.sling is None:
                     ropes.append(Rope(key, "rope", _t(hook), _t(top), load, use, crane.lug))
                     continue

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.optimize import minimize_scalar
 
 from liftplan.model.errors import InvalidScene
 from liftplan.model.sequence import loads_sequence, run_sequence
@@ -314,6 +315,35 @@ def test_a_sharp_peak_narrower_than_the_step_is_bracketed_and_refined():
     assert max(evaluate(a)[1]["load"] for a in grid) < 30.0
     assert peak.angle == pytest.approx(exact_angle, abs=1e-6)
     assert peak.value == pytest.approx(exact, abs=1e-9)
+    assert exact <= peak.bound < exact + 1e-3  # the curvature bound holds, and is tight
+
+
+def test_the_bound_of_a_maximum_is_above_the_prisms_closed_form_and_close_to_it():
+    """The prism of the lever-rule test with its -x lug's plate across the prism (normal x): the
+    rope's load W (1/2 - h/L tan theta), vertical, is sin theta out of the plate, an interior
+    maximum of W (1/2 - h/L tan theta) sin theta. The refined maximum is the closed form's
+    (1e-9 W), and its bound is above it by less than 1e-4 W; every bound is at least its
+    maximum."""
+    length, h = 20.0, 1.0
+    text = sequence_text(
+        [("A", (10.0, 0.0, h), ""), ("B", (-10.0, 0.0, h), "normal = [1.0, 0.0, 0.0]")],
+        ['name = "East"\nlug = "A"', 'name = "West"\nlug = "B"'],
+        'kind = "turnover"\naxis = "y"\nfrom = 0.0\nto = 80.0\nstep = 10.0',
+    )
+    stage = run_sequence(loads_sequence(text)).stages[0]
+
+    def across(theta):
+        t = math.radians(theta)
+        return W * (0.5 - h / length * math.tan(t)) * math.sin(t)
+
+    best = minimize_scalar(
+        lambda a: -across(a), bounds=(20.0, 70.0), method="bounded", options={"xatol": 1e-10}
+    )
+    peak = stage.maxima["lug_out:B"]
+    assert peak.value == pytest.approx(across(best.x), abs=1e-9 * W)
+    assert across(best.x) <= peak.bound < across(best.x) + 1e-4 * W
+    for found in stage.maxima.values():
+        assert found.bound >= found.value
 
 
 # -- refusals -------------------------------------------------------------------------------------
@@ -326,7 +356,7 @@ def test_a_sharp_peak_narrower_than_the_step_is_bracketed_and_refined():
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\naxis = "z"', "axis"),
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\nstep = 0.0', "step > 0"),
         ('kind = "turnover"\nfrom = 0.0\nto = 90.0\npivot = [0.0, 0.0, 0.0]', "hangs in the air"),
-        ('kind = "upend"\nfrom = 0.0\nto = 90.0\ncranes = ["A"]', "two or three supports"),
+        ('kind = "upend"\nfrom = 0.0\nto = 90.0\ncranes = ["A"]', "two or more supports"),
         ('kind = "upend"\nfrom = 0.0\nto = 90.0\ncranes = ["Q", "A"]', "no such crane"),
     ],
 )

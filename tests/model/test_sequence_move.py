@@ -164,7 +164,16 @@ def test_move_stage_runs_the_rules_chain_and_its_checks():
 @pytest.mark.parametrize(
     ("change", "expected"),
     [
-        (lambda t: t.replace('kind = "move"', 'kind = "move"\npivot = [0.0, 0.0, 0.0]'), "pivot"),
+        (
+            lambda t: t.replace('kind = "move"', 'kind = "move"\npivot = [0.0, 0.0, 0.0]').replace(
+                "hoist = 0.02", "to = [5.0, 3.5, 21.0]"
+            ),
+            "a move stage on a pivot models vertical ropes only",
+        ),
+        (
+            lambda t: t.replace('kind = "move"', 'kind = "move"\nfriction = 0.3'),
+            "friction: given without a pivot",
+        ),
         (lambda t: t.replace('kind = "move"', 'kind = "move"\nto = 90.0'), "no turning angle"),
         (lambda t: t.replace("moves = [", 'moves = [{crane = "X"}, '), "not a crane of the stage"),
         (lambda t: t.replace("moves = [", 'moves = [{crane = "A", hoist = 1.0}, '), "moved twice"),

@@ -323,14 +323,6 @@ def test_bad_breakout_scene_exits_2_on_the_command_line(tmp_path):
     assert "ground.breakout.factor = -1.0" in out.stderr
 
 
-def test_slings_refuse_a_breakout_scene(tmp_path):
-    text = (EXAMPLES / "block_sling_plan.toml").read_text()
-    text = re.sub(r"(\[plan\]\n)", r'\1breakout_scene = "seabed.toml"\n', text)
-    (tmp_path / "seabed.toml").write_text(SCENE.read_text())
-    with pytest.raises(InvalidScene, match=r"plan.breakout_scene: given for a plan with slings"):
-        loads_problem(text, base=tmp_path)
-
-
 @pytest.mark.skipif(_pdf_missing() is not None, reason=_pdf_missing() or "")
 def test_the_report_prints_the_breakout_within_the_text_width(block, tmp_path):
     from liftplan.planner.output.report.write import write_report

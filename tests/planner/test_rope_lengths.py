@@ -119,10 +119,3 @@ def test_bad_ranges_are_one_line_errors(bad):
         loads_problem(BASE.replace("rope_length = 30.0 ", bad))
     text = str(err.value)
     assert "\n" not in text and "rope_length" in text
-
-
-def test_a_range_with_a_sling_is_refused():
-    text = (EXAMPLES / "block_sling_plan.toml").read_text()
-    assert "rope_length = 24.0" in text
-    with pytest.raises(InvalidScene, match="rope_length: a range with a sling"):
-        loads_problem(text.replace("rope_length = 24.0", "rope_length = { min = 20.0, max = 30.0 }", 1))

@@ -258,3 +258,20 @@ def test_bad_multi_sling_input():
 
 def test_four_leg_slings_are_a_sling_plan():
     assert plan(load_problem(FOUR_LEG)).kind == "slings"
+
+
+def test_a_tilt_case_that_could_not_be_evaluated_is_named_in_the_failed_chain(monkeypatch):
+    """When the rules' tilt case cannot be solved, the failed design chain says why (not the
+    chain's own "tilt: missing", which hid the reason)."""
+    from liftplan.model.errors import EquilibriumNotFound
+    from liftplan.model.rules.tilt import TiltGeometry
+
+    def fails(*_args, **_kwargs):
+        raise EquilibriumNotFound("no equilibrium at the tilt (made to fail by the test)")
+
+    monkeypatch.setattr(TiltGeometry, "worst_per_direction", fails)
+    result = plan(load_problem(FOUR_LEG))
+    (chain,) = [c for c in result.checks if c.name == "design_chain"]
+    assert not chain.ok
+    assert chain.note.startswith("rules' tilt not evaluated:") and "made to fail by the test" in chain.note
+    assert "tilt: missing" not in chain.note

@@ -34,3 +34,22 @@ def test_a_basis_other_than_air_or_water_is_refused():
     with pytest.raises(InvalidScene) as err:
         loads_problem(bad, base=EXAMPLES)
     assert "weight_basis" in str(err.value) and "\n" not in str(err.value)
+
+
+def _daf_warnings(text):
+    from liftplan.planner.problem.plausibility import problem_warnings
+
+    return [w for w in problem_warnings(loads_problem(text, base=EXAMPLES)) if "Table 5-1" in w]
+
+
+def test_a_weight_in_water_with_the_in_air_daf_table_is_warned():
+    """0027/ND Table 5-1 is the DAF table for lifts in air: a weight in water planned with it is
+    said (one line, naming the key to give), and the warning goes once [rules] daf is given or
+    the chart includes the dynamics."""
+    text = (EXAMPLES / "tanker_plan.toml").read_text()
+    (line,) = _daf_warnings(text)
+    assert 'weight_basis = "water"' in line and "[rules] daf" in line and "\n" not in line
+    assert _daf_warnings(text.replace('weight_basis = "water"', 'weight_basis = "air"')) == []
+    assert "[rules]" not in text
+    assert _daf_warnings(text + "\n[rules]\ndaf = 1.3\n") == []
+    assert _daf_warnings(text + "\n[rules]\nchart_includes_dynamics = true\n") == []

@@ -86,6 +86,8 @@ def sling_table(plan):
         "design = the rules' chain, docs/design-loads.md; util. = design / chart SWL)"
     )
     lines.append(f"location: {plan.problem.rules.location_text} (the DAF column of Table 5-1)")
+    lines += _length_lines(plan)
+    lines += _breakout_lines(plan)
     if chain is None:
         lines.append(f"design loads not computed: {plan.design}")
     lug_design = {} if chain is None else {lug.lug: lug for r in chain.results for lug in r.lugs}
@@ -127,13 +129,65 @@ def sling_table(plan):
             f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
             f"({dx:+.2f}, {dy:+.2f}, {dz:+.2f}) m",
         ]
-    lines += girder_lines(plan, plan.girder, plan.girder_over)
+    over = plan.girder_over
+    if plan.breakout is not None:  # docs/planning.md "What the planner does not plan"
+        over += " (not the breakout state: the seabed's hold is not in the planner's girder)"
+    lines += girder_lines(plan, plan.girder, over)
     unit, scale = ("[t]", 1.0) if plan.objective == "spread" else ("[%]", 100.0)
     lines += ["", f"{'rank':<6}{'worst ' + unit:>12}  slings (crane)"]
     for k, slings, value in _ranking(plan):
         lines.append(f"{k:<6}{scale * value:>12.2f}  {slings[0]}")
         lines += [f"{'':<20}{text}" for text in slings[1:]]
     return "\n".join(folded for line in lines for folded in fold(line))
+
+
+def _length_lines(plan):
+    """The hoist rope lengths the planner chose (cranes with a ``rope_length`` range)."""
+    search = plan.lengths
+    if search is None:
+        return []
+    return [
+        f"hoist rope length {length:.3f} m (tip to hook) chosen within {lo:g} to {hi:g} m for "
+        f"{', '.join(names)} ({len(search.trials)} lengths tried)"
+        for names, (lo, hi), length in zip(search.classes, search.ranges, search.chosen)
+    ]
+
+
+def _breakout_lines(plan):
+    """The breakout case on the hooks: the peak load, each crane's share, what governs."""
+    case = plan.breakout
+    if case is None:
+        return []
+    load, force = case.load, case.load.breakout
+    x, y, z = plan.in_file_frame(load.point)
+    how = (
+        "by the lever rule along the hook line, the hook errors tilting it"
+        if hasattr(plan, "chosen")
+        else "held at the level attitude with the plan's preload held (the hooks moved rigidly)"
+    )
+    lines = [
+        "",
+        f"breakout from the seabed ({plan.problem.breakout_scene.name or 'breakout scene'}):",
+        f"  peak total hook load {load.total:.2f} t = submerged weight {force.submerged_weight:.2f} t "
+        f"+ breakout force {force.force:.2f} t ({force.describe()}), {load.weight_factor:.3f} x W, "
+        f"through ({x:.3f}, {y:.3f}, {z:.3f}) m",
+        f"each hook's share {how}, at its worst over the hook errors:",
+        f"{'crane':<13}{'T breakout [t]':>15}{'hook errors [t]':>16}{'+ rigging [t]':>14}"
+        f"{'SWL [t]':>9}{'box worst [t]':>14}  governs  check",
+    ]
+    for c, name in enumerate(case.cranes):
+        box = float(plan.box_shares[c])
+        governs = "breakout" if case.worst[c] > box else "box"
+        lines.append(
+            f"{name[:12]:<13}{case.worst[c]:>15.2f}{case.hook_widening[c]:>16.2f}"
+            f"{case.rigging[c]:>14.2f}{case.swl[c]:>9.1f}{box:>14.2f}  {governs:<8} "
+            f"{'ok' if case.checks[c].ok else 'FAIL'}"
+        )
+    lines.append(
+        "(the larger of breakout and box worst is the crane's static input to the design chain; "
+        "its legs at breakout enter the lug design loads; the check: T + rigging <= chart SWL)"
+    )
+    return lines
 
 
 def _ranking(plan):

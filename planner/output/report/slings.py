@@ -368,6 +368,8 @@ def render_html(plan, today=None):
             legs,
             spreaders,
             result,
+            *_lengths_section(plan),
+            *_breakout_section(plan),
             "<h2>2 Basis of the plan</h2>",
             inputs,
             factors,
@@ -389,6 +391,101 @@ def render_html(plan, today=None):
     return report_page.document(
         name, body, report_page.running_header(info, name), report_page.running_footer(info)
     )
+
+
+def _lengths_section(plan):
+    """The hoist rope lengths the planner chose in each crane's range, and every length tried."""
+    search = plan.lengths
+    if search is None:
+        return []
+    chosen = _table(
+        ["cranes", "range [m]", "chosen hoist rope length, tip to hook [m]"],
+        [
+            (", ".join(names), f"{lo:g} to {hi:g}", f"{length:.3f}")
+            for names, (lo, hi), length in zip(search.classes, search.ranges, search.chosen)
+        ],
+        "Hoist rope lengths chosen by the planner",
+        full=False,
+        text_columns=(0,),
+    )
+    unit, scale = ("t", 1.0) if plan.objective == "spread" else ("%", 100.0)
+    trials = _table(
+        ["lengths [m]", f"worst [{unit}]", "lugs, or why no plan"],
+        [
+            (
+                ", ".join(f"{v:.3f}" for v in t.lengths),
+                "-" if t.value is None else f"{scale * t.value:.2f}",
+                " ".join(t.lugs) if t.value is not None else t.reason,
+            )
+            for t in search.trials
+        ],
+        "Every length tried (each an exact plan at those lengths), in the order tried",
+        text_columns=(2,),
+    )
+    return ["<h3>Hoist rope lengths</h3>", chosen, trials]
+
+
+def _breakout_section(plan):
+    """The breakout case on the hooks: the peak load, each crane's share, what governs."""
+    case = plan.breakout
+    if case is None:
+        return []
+    problem = plan.problem
+    load, force = case.load, case.load.breakout
+    how = (
+        "by the lever rule along the hook line; the crew's hook errors tilt the body along it, "
+        "and the share is taken at its worst over them"
+        if hasattr(plan, "chosen")
+        else "held at the level attitude with the plan's preload held (the hooks moved together "
+        "as a rigid pattern), at its worst over every hook within the hook tolerance"
+    )
+    text = (
+        f"<p>The hull rests on the seabed as in the scene &ldquo;"
+        f"{html.escape(problem.breakout_scene.name)}&rdquo;. Breaking it out takes a peak total "
+        f"hook load of <b>{load.total:.2f} t</b> ({load.weight_factor:.3f} x W): the submerged "
+        f"weight {force.submerged_weight:.2f} t and the breakout force {force.force:.2f} t "
+        f"({html.escape(force.describe())}), on a line through ({_xyz(problem, load.point)}) m. "
+        f"Each hook's share is found {how}; the larger of it and the share's worst in the box is "
+        "the crane's static input to the design-load chain, and each sling's legs at breakout "
+        "enter its lug design loads. The breakout hook load (share + rigging, no dynamic factor) "
+        "is checked against the chart SWL.</p>"
+    )
+    rows = []
+    for c, name in enumerate(case.cranes):
+        box = float(plan.box_shares[c])
+        legs = ", ".join(f"{t:.2f}" for t in plan.breakout_legs[c])
+        rows.append(
+            (
+                name,
+                f"{case.worst[c]:.2f}",
+                f"{case.hook_widening[c]:.2f}",
+                f"{case.rigging[c]:.2f}",
+                f"{case.hook_loads[c]:.2f}",
+                f"{case.swl[c]:.1f}",
+                f"{box:.2f}",
+                "breakout" if case.worst[c] > box else "box",
+                legs,
+                "ok" if case.checks[c].ok else "FAIL",
+            )
+        )
+    table = _table(
+        [
+            "crane",
+            "share at breakout [t]",
+            "of it, hook errors [t]",
+            "rigging [t]",
+            "breakout hook load [t]",
+            "chart SWL [t]",
+            "share, worst in the box [t]",
+            "static input",
+            "legs at breakout [t]",
+            "check",
+        ],
+        rows,
+        "Breakout from the seabed: each hook's share of the peak load",
+        text_columns=(0, 7, 8, 9),
+    )
+    return ["<h3>Breakout from the seabed</h3>", text, table]
 
 
 def plan_scene_toml(plan):

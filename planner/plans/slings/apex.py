@@ -48,6 +48,7 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.errors import InvalidScene, PlanInfeasible
 from liftplan.model.frames import rotation_matrix
+from liftplan.planner.plans.breakout import breakout_case
 from liftplan.planner.plans.held import Plan
 from liftplan.planner.plans.slings.geometry import hinge_rows, hinged_hooks, leg_split, parallel_spreader_legs
 from liftplan.planner.plans.slings.lift import SlingLift, rules_with_bars
@@ -55,7 +56,7 @@ from liftplan.planner.plans.slings.rigs import crane_rigs
 from liftplan.planner.problem.definition import Candidate
 from liftplan.planner.search.evaluator import Interrupted
 from liftplan.planner.search.methods import search
-from liftplan.planner.search.scenarios import Scenario
+from liftplan.planner.search.scenarios import LugSet, Scenario
 
 #: Heel x trim points per axis of the grid the leg tensions are taken over (with the CG vertices).
 LEG_GRID = 9
@@ -188,12 +189,54 @@ class ApexSlingPlan(SlingLift):
     rigs : Rigs
         Rig j is the derived problem's candidate j.
     ruled_out : dict of str to int
+    lengths : LengthSearch or None
+        How the hoist ropes' lengths were chosen (:mod:`liftplan.planner.plans.lengths`); None
+        when every length was given. With it, ``problem`` is the problem at the chosen lengths.
     """
 
     problem: object
     inner: object
     rigs: object
     ruled_out: dict
+    lengths: object = None
+
+    # -- the breakout case and the rope lengths ------------------------------------------------
+    @cached_property
+    def breakout(self):
+        """Each crane's hook at breakout, fleet order: the held model on the chosen hooks (the
+        derived problem's, hinged where the slings hinge), the body's share on each hook; None
+        without a breakout case."""
+        case = self._design.breakout
+        return None if case is None else case.ordered(self._order)
+
+    @cached_property
+    def ranked_breakouts(self):
+        derived, names = self.inner.problem, self.problem.names
+        if derived.breakout is None:
+            return []
+        return [
+            (
+                ["+".join(names[i] for i in self.rigs.lugs[j]) for j in r.indices],
+                breakout_case(derived, LugSet(derived, r.indices, r.cranes), r.preload),
+            )
+            for r in self.ranking
+        ]
+
+    def level_legs(self, c, load):
+        """Crane c's lug legs under a vertical hook load ``load`` [t] at level  [t]."""
+        return self.sling_legs(c, load, rotation_matrix(0.0, 0.0, self.problem.yaw))[0]
+
+    def with_lengths(self, search, stats=None):
+        inner = self.inner if stats is None else dataclasses.replace(self.inner, stats=stats)
+        return dataclasses.replace(self, inner=inner, lengths=search)
+
+    @property
+    def length_summary(self):
+        """(worst value, certified lower bound, lug names, rows evaluated) for the rope-length
+        search's trials."""
+        chosen, names = self.inner.chosen, self.problem.names
+        lugs = tuple(names[i] for g in self.groups for i in g)
+        return float(chosen.worst_value), float(self.stats.lower_bound), lugs, int(self.stats.evaluated)
 
     @property
     def lift_text(self):
@@ -305,6 +348,9 @@ class ApexSlingPlan(SlingLift):
 
     @property
     def tilt_note(self):
+        missing = self._design.missing
+        if missing is not None and any(t is None for t in self.tilt_shares):
+            return f"rules' tilt not evaluated: {missing}"
         return self._design.tilt_note
 
     @property

@@ -30,6 +30,7 @@ from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.model.scene.rigging_gear import Leg, RiggingLimits, Sling, Spreader
 from liftplan.model.statics.rigging import solve_rigging
+from liftplan.planner.plans.breakout import hooks_breakout_json
 from liftplan.planner.plans.common import InFileFrame, contract_json, weight_json
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, moved_body, solved_worst, worst_of
@@ -113,6 +114,52 @@ class SlingLift(InFileFrame):
 
     #: Agreement of the plan's hook loads with the rigging model, as a fraction of W.
     AGREEMENT = 0.01
+
+    # -- the breakout case and the rope lengths ------------------------------------------------
+    @property
+    def breakout(self):
+        """Each crane's hook at breakout (``[plan] breakout_scene``), fleet order: a
+        :class:`~liftplan.planner.plans.breakout.BreakoutCase` whose tensions are the body's
+        shares on the hooks (a spreader bar's weight in its ``rigging``); None without one."""
+        return None
+
+    @property
+    def ranked_breakouts(self):
+        """(lug names, :class:`BreakoutCase`) of each ranked option (empty without a case)."""
+        return []
+
+    @cached_property
+    def box_shares(self):
+        """Each crane's largest share of the body in the box (its hook's worst less a bar, at
+        least the level share)  [t]."""
+        bars = self.bar_weights
+        return np.maximum(np.asarray(self.hook_worst) - bars, np.asarray(self.hook_nominal) - bars)
+
+    @cached_property
+    def breakout_legs(self):
+        """Each crane's lug legs at breakout  [t] (per crane, (k,)): its worst hook load there
+        (hook errors at worst, with a bar's weight) split by the sling's statics at level; None
+        without a breakout case."""
+        case = self.breakout
+        if case is None:
+            return None
+        return tuple(
+            np.asarray(self.level_legs(c, float(case.worst[c] + self.bar_weights[c])), dtype=float)
+            for c in range(len(self.crane_names))
+        )
+
+    @property
+    def rope_lengths(self):
+        """Planned label -> the hoist rope's unstretched length (tip to hook) of the crane whose
+        sling takes that lug  [m] (the plan JSON's ``rope_lengths``, keyed as a single-rope plan's)."""
+        length = {c.name: c.rope_length for c in self.problem.fleet}
+        return {label: length[crane] for label, crane in self.cranes.items()}
+
+    def with_lengths(self, search, stats=None):
+        """This plan with the rope-length search that chose its lengths
+        (:mod:`liftplan.planner.plans.lengths`); ``stats`` over every trial where the plan
+        has a search's stats."""
+        return dataclasses.replace(self, lengths=search)
 
     @property
     def hook_skews(self):
@@ -206,11 +253,19 @@ class SlingLift(InFileFrame):
         reason it could not be built (str)."""
 
         problem = self.problem
+        if len(self.crane_names) > 1 and any(t is None for t in self.tilt_shares):
+            # the chain would only say "tilt: missing"; the reason is the tilt case's
+            return self.tilt_note or "rules' tilt not evaluated"
         cranes = []
         for c, name in enumerate(self.crane_names):
             group = self.groups[c]
             angles = np.asarray(self.leg_angles[c])
             worst_legs = np.asarray(self.legs_worst[c])
+            nominal = float(self.hook_nominal[c] - self.bar_weights[c])
+            worst = float(self.box_shares[c])
+            if self.breakout is not None:  # the static input: the larger of box and breakout
+                worst = max(worst, float(self.breakout.worst[c]))
+                worst_legs = np.maximum(worst_legs, self.breakout_legs[c])
             lugs = tuple(
                 LugLoads(
                     name=problem.names[i],
@@ -220,8 +275,6 @@ class SlingLift(InFileFrame):
                 )
                 for i, a, t in zip(group, angles, worst_legs)
             )
-            nominal = float(self.hook_nominal[c] - self.bar_weights[c])
-            worst = max(float(self.hook_worst[c] - self.bar_weights[c]), nominal)
             cranes.append(
                 CraneLoads(
                     name=name,
@@ -314,6 +367,8 @@ class SlingLift(InFileFrame):
                     note="rigging model hook load vs the plan's",
                 )
             )
+        if self.breakout is not None:
+            out += self.breakout.checks
         return out + self._girder_checks()
 
     # -- the hull girder -------------------------------------------------------------------------
@@ -492,4 +547,10 @@ class SlingLift(InFileFrame):
                 "time_limit": problem.time_limit,
                 "work_limit": problem.work_limit,
             },
+            **hooks_breakout_json(self),
+            **(
+                {}
+                if self.lengths is None
+                else {"rope_lengths": self.rope_lengths, "rope_length_search": self.lengths.to_json()}
+            ),
         }

@@ -34,9 +34,10 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene, PlanInfeasible
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import TiltGeometry, governing_tilt
+from liftplan.planner.plans.breakout import BreakoutCase
 from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
 from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
-from liftplan.planner.plans.slings.rigs import crane_rigs, turned_hooks
+from liftplan.planner.plans.slings.rigs import Rigs, crane_rigs, turned_hooks
 from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.fleet import rule_limits
 
@@ -98,6 +99,8 @@ class SlingOption:
 
 #: The cause of a pair of rigs dropped before the pairs are considered (a lug in both slings).
 SHARED = "lugs shared by both slings"
+#: The cause of a pair whose boom tips would sit outside a crane's ``boom_height`` range.
+BOOM_RANGE = "a boom tip outside its boom_height range"
 
 
 def _where(loads, tilts, offsets):
@@ -186,6 +189,7 @@ def plan_two_slings(problem, top=None):
         "the two hooks (nearly) coincide": 0,
         "a hook unloaded (the CG beyond a hook)": 0,
         "booms crossing or within plan.crane_clearance in plan": 0,
+        BOOM_RANGE: 0,
     }
     per_crane = []
     rig_causes = {"beyond the crane's reach"}  # counts of one crane's rigs, not of pairs
@@ -276,6 +280,7 @@ def plan_two_slings(problem, top=None):
         (np.any(worst_share > in_box, axis=1), "hook load over the rules' limit within the tolerance"),
         (roll > roll_tol + 1e-9, "roll about the hook line beyond the tolerance"),
         (~_booms_clear(problem, hook1, hook2, yaw), "booms crossing or within plan.crane_clearance in plan"),
+        (~_booms_in_range(problem, np.stack([hook1[:, 2], hook2[:, 2]], axis=1), nominal + bars), BOOM_RANGE),
     ]
     for k, (failed, text) in enumerate(checks, start=1):
         fresh = failed & (bad == 0)
@@ -341,6 +346,104 @@ def _booms_clear(problem, hook1, hook2, yaw):
     return clear(segment_distance(starts[0], tips[0], starts[1], tips[1]), problem.crane_clearance)
 
 
+def _booms_in_range(problem, hook_z, hook_loads):
+    """Per option: each crane's boom tip at level (hook height + hoist rope l0 + its stretch
+    under the level hook load) within its ``boom_height`` range.
+
+    hook_z : (N, 2) [m] the hooks' heights at level, body frame; hook_loads : (N, 2) [t]
+    """
+    fleet = problem.fleet
+    length = np.array([c.rope_length for c in fleet])
+    stiffness = np.array([c.stiffness for c in fleet])
+    boom = problem.lift_height + hook_z + length + hook_loads / stiffness
+    low = np.array([c.boom_min for c in fleet]) - 1e-9
+    high = np.array([c.boom_max for c in fleet]) + 1e-9
+    with np.errstate(invalid="ignore"):
+        return np.all((boom >= low) & (boom <= high), axis=1)
+
+
+def _option_rigs(problem, option):
+    """The chosen option's two rigs as :class:`~.rigs.Rigs` of one rig each (fleet order)."""
+    out = []
+    for c, crane in enumerate(problem.fleet):
+        sling = crane.sling
+        kind = "spreader" if sling.spreader is not None else ("fixed" if sling.body_fixed else "pair")
+        lugs = np.array([option.pairs[c]], dtype=np.int64)
+        out.append(Rigs(kind, lugs, option.apex[c][None, :], np.atleast_2d(option.sling_angles[c])))
+    return out
+
+
+def hooks_breakout(problem, option):
+    """The breakout case held by the two hooks of one option (fleet order).
+
+    The body's shares of the breakout load (``total`` at the breakout point) by the lever rule
+    along the hook line at level, as the plan takes its hook loads; the crew's hook errors
+    (each hook within its tolerance) tilt the body along the hook line by up to
+    atan((delta_1 + delta_2) / span) either way, and the shares are taken there too: ``extremes``
+    are the least and largest of the three (exact: the lever rule moves one way over so small
+    a tilt), ``gain`` the shares' slope per metre of each hook at level. ``hook_shift``: the boom
+    rise that takes up each hoist rope's extra stretch (the hook at its planned height).
+
+    Parameters
+    ----------
+    problem : PlanProblem   with ``breakout_scene``
+    option : SlingOption
+
+    Returns
+    -------
+    BreakoutCase
+    """
+    load, fleet = problem.breakout, problem.fleet
+    total, point = float(load.total), np.asarray(load.point, dtype=float)
+    hooks = np.asarray(option.apex, dtype=float)
+    line = hooks[1] - hooks[0]
+    line[2] = 0.0
+    span = float(np.linalg.norm(line))
+    e = line / span
+    axis = np.cross([0.0, 0.0, 1.0], e)[None, :]
+    rigs = _option_rigs(problem, option)
+
+    def shares(angle):
+        """The body's shares of the breakout load at a tilt along the hook line [rad]  [t]."""
+        a = np.array([angle])
+
+        def turn(p):
+            return _turn(axis, a, p)
+
+        along = [
+            float((turned_hooks(rig, crane, problem.points, turn, 0.5 * total) * e).sum())
+            for rig, crane in zip(rigs, fleet)
+        ]
+        g = float((_turn(axis, a, point[None, :]) * e).sum())
+        second = total * (g - along[0]) / (along[1] - along[0])
+        return np.array([total - second, second])
+
+    tolerance = np.array(
+        [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in fleet]
+    )
+    tilt = float(np.arctan((tolerance[0] + tolerance[1]) / span))
+    level = shares(0.0)
+    every = np.stack([level, shares(-tilt), shares(tilt)])
+    step = 1e-6  # rad: the slope at level by central difference
+    slope = (shares(step) - shares(-step)) / (2.0 * step)
+    gain = np.outer(slope, [1.0 / span, -1.0 / span])  # + tilt: hook 1 up, hook 2 down
+    bars = np.array([bar_weight(c) for c in fleet])
+    stiffness = np.array([c.stiffness for c in fleet])
+    rules = rules_with_bars(problem)
+    return BreakoutCase(
+        load=load,
+        cranes=tuple(c.name for c in fleet),
+        lugs=tuple("+".join(problem.names[i] for i in pair) for pair in option.pairs),
+        tensions=level,
+        gain=gain,
+        hook_tolerance=tolerance,
+        hook_shift=(level + bars - np.asarray(option.hook_nominal, dtype=float)) / stiffness,
+        swl=np.asarray(option.swl, dtype=float),
+        rigging=np.array([rules.rigging_for(c.name) for c in fleet], dtype=float),
+        extremes=(every.min(axis=0), every.max(axis=0)),
+    )
+
+
 def _no_plan(problem, counts):
     causes = "; ".join(f"{n} options: {text}" for text, n in counts.items() if n)
     return f"no two rigs among {len(problem.candidates)} candidates can take the two slings ({causes})"
@@ -370,8 +473,39 @@ class SlingPlan(SlingLift):
     options: int
     ruled_out: dict
     rig_causes: tuple = ()
+    lengths: object = None
 
     lift_text = "two-crane slings"
+
+    # -- the breakout case and the rope lengths ------------------------------------------------
+    @cached_property
+    def breakout(self):
+        """Each crane's hook at breakout (:func:`hooks_breakout`), None without a breakout case."""
+        return None if self.problem.breakout is None else hooks_breakout(self.problem, self.chosen)
+
+    @cached_property
+    def ranked_breakouts(self):
+        if self.problem.breakout is None:
+            return []
+        names = self.problem.names
+        return [
+            ([names[i] for p in r.pairs for i in p], hooks_breakout(self.problem, r)) for r in self.ranking
+        ]
+
+    def level_legs(self, c, load):
+        """Crane c's lug legs under a vertical hook load ``load`` [t] at level  [t]."""
+        lugs = self.problem.points[list(self.groups[c])]
+        return rig_legs(self.problem.fleet[c], self.hooks[c], lugs, load)[0]
+
+    @property
+    def length_summary(self):
+        """(worst value, lower bound, lug names, options considered) for the rope-length
+        search's trials: the search over every pair of rigs is exhaustive, so its bound is
+        its value."""
+        names = self.problem.names
+        lugs = tuple(names[i] for g in self.groups for i in g)
+        value = float(self.chosen.worst_value)
+        return value, value, lugs, int(self.options)
 
     @property
     def chosen(self):
