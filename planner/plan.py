@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from liftplan.planner.plans.floating import plan_single_ropes
+from liftplan.planner.plans.hull_water import plan_hull_water
 from liftplan.planner.plans.lengths import plan_lengths
 from liftplan.planner.plans.protocol import LiftPlan
 from liftplan.planner.plans.slings import plan_slings, uses_slings
@@ -55,8 +55,9 @@ KINDS = (
     PlanKind("slings", uses_slings, _slings),  # cranes on sling sets or spreader bars
     PlanKind("strength", uses_strength, plan_strength),  # the hull girder's objectives
     PlanKind("lengths", lambda problem: problem.chooses_rope_lengths, plan_lengths),  # payout ranges
-    PlanKind("held", lambda problem: True, plan_single_ropes),  # single ropes, a held level preload
-    # (with floating cranes: the vessels in series with the ropes, planner/plans/floating.py)
+    PlanKind("held", lambda problem: True, plan_hull_water),  # single ropes, a held level preload
+    # (with floating cranes: the vessels in series with the ropes, planner/plans/floating.py;
+    # with [hull] EI or [water]: ranked again on the governing model, planner/plans/hull_water.py)
 )
 
 

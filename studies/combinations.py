@@ -298,8 +298,23 @@ def apply_flexible_hull(doc, base):
     doc["hull"] = {"EI": [[start, 5.3e7], [end, 5.3e7]], "GJ": [[start, 5.2e7], [end, 5.2e7]]}
 
 
+#: The sunken block's hull (examples/sunken_block_breakout.toml), for the start in water.
+SUNKEN_HULL = {
+    "box": {"min": [0.0, -6.0, 0.0], "max": [60.0, 6.0, 6.0]},
+    "flooding": "flooded",
+    "steel_density": 7.85,
+    "compartments": [
+        {"name": "fore tank", "box": {"min": [55.0, -6.0, 0.0], "max": [60.0, 6.0, 2.0]}, "contents": "air"},
+        {"name": "aft tank", "box": {"min": [0.0, -6.0, 0.0], "max": [6.0, 6.0, 2.0]}, "contents": "water"},
+    ],
+}
+
+
 def apply_water(doc, base):
+    """The lift starting with the sunken block's hull half submerged (its home base)."""
     doc["water"] = {"density": 1.025, "level": 0.0}
+    doc.setdefault("hull", {}).update(copy.deepcopy(SUNKEN_HULL))
+    doc["plan"]["start_lift_height"] = -3.0
 
 
 # -- is each feature visible in the plan? ---------------------------------------------------
@@ -400,6 +415,19 @@ def honoured_time_limit(out, doc):
     return f"time_limit in the plan: {limits or 'absent'}"
 
 
+def honoured_flexible_hull(out, doc):
+    if "flexible_hull" in out and all("hull_model" in r for r in out.get("ranking", [])):
+        return None
+    return "no flexible_hull in the plan"
+
+
+def honoured_water(out, doc):
+    names = [c.get("name") for c in out.get("checks", [])]
+    if "in_water" in out and "in_water_min_tension" in names:
+        return None
+    return "no in_water in the plan"
+
+
 def honoured_never(out, doc):
     return "planned, but the plan has no trace of this table (the planner does not model it)"
 
@@ -498,11 +526,20 @@ FEATURES = [
     Feature("time_limit", f"`[plan] time_limit = {TIME_LIMIT:g}`", apply_time_limit, honoured_time_limit),
     Feature(
         "flexible_hull",
-        "`[hull] EI, GJ` (constant along the body, the tanker_flexible.toml values)",
+        "`[hull] EI, GJ` (constant along the body, the tanker_flexible.toml values; with the "
+        "girder's weight curve, which the beam is loaded by)",
         apply_flexible_hull,
-        honoured_never,
+        honoured_flexible_hull,
+        requires=("girder",),
     ),
-    Feature("water", "`[water] density = 1.025, level = 0.0`", apply_water, honoured_never),
+    Feature(
+        "water",
+        "`[water] density = 1.025, level = 0.0`, the sunken block's `[hull]` box, `[plan] "
+        "start_lift_height = -3.0` (half submerged)",
+        apply_water,
+        honoured_water,
+        bases=("sunken",),
+    ),
 ]
 BY_NAME = {f.name: f for f in FEATURES}
 

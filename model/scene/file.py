@@ -1319,3 +1319,19 @@ def _expected(loc, root):
     if typing.get_origin(node) is list:
         return "an array of tables"
     return "a value"
+
+
+#: The scene's ``[hull]`` and ``[water]`` tables: a planning file reads the same keys.
+HullTable, WaterTable = _Hull, _Water
+
+
+def to_hull(data, base):
+    """The ``[hull]`` geometry of a file's validated tables (``data.hull``, ``data.water``,
+    ``data.frame``), in z-up; None for a stiffness alone in air. ``base``: the folder a
+    relative ``hull.mesh`` is read from."""
+    return _to_hull(data, choi_to_zup if data.frame == "choi" else tuple, Path(base))
+
+
+def to_girder(spec):
+    """``[hull] EI`` and ``GJ`` as a :class:`GirderStiffness` (None without them)."""
+    return _to_girder(spec)

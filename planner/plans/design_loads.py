@@ -20,6 +20,11 @@ planner found for the lug set:
   breaks out of the seabed, at its worst over the hook errors
   (:mod:`liftplan.planner.plans.breakout`); the chain's static input is
   then the larger of it and the worst in the box, and the plan says which governs.
+* ``in_water`` (with ``[water]`` and ``plan.start_lift_height``): the crane's held tension at the
+  start of the lift with the hull partly submerged, at its worst over the hook errors and the
+  CG envelope (:mod:`liftplan.planner.plans.in_water`); the static input takes the larger too.
+* with ``[hull] EI`` a set on which the flexible hull governs (:mod:`liftplan.planner.plans.flexible`)
+  has its ``nominal`` and ``worst`` from the flexible hull at its worst states.
 
 Then the chain's factors (weight contingency, DAF, rigging weight; yaw only with slings) turn
 it into the design hook load, checked against the chart SWL, with the crane-code margin and,
@@ -37,6 +42,7 @@ from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads, TiltGeometry, governing_tilt
 from liftplan.planner.plans.breakout import BreakoutCase, breakout_case
+from liftplan.planner.plans.in_water import InWaterCase, in_water_case
 from liftplan.planner.search.evaluator import DENSE
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
@@ -143,6 +149,9 @@ class CraneDesign:
     breakout : float or None  [t]
         Held tension when the hull breaks out of the seabed (``[plan] breakout_scene``), at
         its worst over the hook errors; None without a breakout case.
+    in_water : float or None  [t]
+        Held tension at the start in water (``[water]``), at its worst over the hook errors
+        and the CG envelope; None without ``[water]``.
     """
 
     label: str
@@ -157,27 +166,33 @@ class CraneDesign:
     skewed: float
     design: object = None
     breakout: float | None = None
+    in_water: float | None = None
 
     @property
     def static_input(self):
         """The chain's static input  [t]: the worst in the box (at least the level tension),
-        or the breakout tension where that is larger."""
+        or the breakout or in-water tension where that is larger."""
         box = max(self.worst, self.nominal)
-        return box if self.breakout is None else max(box, self.breakout)
+        return max(v for v in (box, self.breakout, self.in_water) if v is not None)
 
     @property
     def governs(self):
-        """``"breakout"`` when the breakout tension is the static input, else ``"box"``."""
-        return (
-            "breakout"
-            if self.breakout is not None and self.breakout > max(self.worst, self.nominal)
-            else "box"
-        )
+        """``"in_water"`` or ``"breakout"`` when that tension is the static input, else ``"box"``."""
+        box = max(self.worst, self.nominal)
+        if self.in_water is not None and self.in_water > max(box, self.breakout or 0.0):
+            return "in_water"
+        return "breakout" if self.breakout is not None and self.breakout > box else "box"
 
     @property
     def static_note(self):
         """Which load is the chain's static input, in words."""
         box = max(self.worst, self.nominal)
+        if self.in_water is not None:
+            water = f"in water at the start {self.in_water:.4g} t (hook errors at worst)"
+            if self.governs == "in_water":
+                return f"{water} governs over the worst in the box {box:.4g} t"
+            if self.governs == "box":
+                return f"worst in the box {box:.4g} t governs over {water}"
         if self.breakout is None:
             return f"worst in the box {box:.4g} t (no breakout case)"
         if self.governs == "breakout":
@@ -197,6 +212,8 @@ class CraneDesign:
             return ""
         box = max(self.worst, self.nominal)
         against = f"the worst in the box {box:.4g} t"  # a lower breakout: said by static_note
+        if self.governs == "in_water":
+            against = f"the tension in water {self.in_water:.4g} t (over the worst in the box {box:.4g} t)"
         if self.governs == "breakout":
             against = (
                 f"the breakout tension {self.breakout:.4g} t (breakout governs over the worst "
@@ -278,6 +295,7 @@ class DesignLoads:
     chain: DesignLoadChain | None
     missing: str | None = None
     breakout: BreakoutCase | None = None
+    in_water: InWaterCase | None = None
 
     @property
     def ok(self):
@@ -307,7 +325,8 @@ class DesignLoads:
             ]
         else:
             out = list(self.chain.checks)
-        return out + ([] if self.breakout is None else self.breakout.checks)
+        out += [] if self.breakout is None else self.breakout.checks
+        return out + ([] if self.in_water is None else self.in_water.checks)
 
     def crane(self, label):
         """The :class:`CraneDesign` of a planned lug label."""
@@ -334,7 +353,10 @@ class DesignBuilder:
         self.vertices = offsets[1:] if len(offsets) > 1 else offsets
         self.searched = any(w > 0.0 for w in problem.cog_envelope.half_widths)
 
-    def build(self, result, labels):
+    def build(self, result, labels, governing=None):
+        """The :class:`DesignLoads` of a ranked set; ``governing``: (nominal, worst) tensions [t]
+        per rope of the hull that governs it when not the search's (the flexible hull,
+        :mod:`~liftplan.planner.plans.flexible`), else None."""
         problem = self.problem
         lugset = LugSet(problem, result.indices, result.cranes)
         preload = np.asarray(result.preload, dtype=float)
@@ -346,6 +368,11 @@ class DesignBuilder:
         tilt, tilt_note, at_tilt, missing = self._tilt(lugset, preload)
         fleet = [problem.fleet[j] for j in lugset.cranes]
         breakout = None if problem.breakout is None else breakout_case(problem, lugset, preload)
+        water = None if problem.in_water is None else in_water_case(problem, lugset, preload)
+        nominal, worst = preload, tensions[where, range(lugset.n)]
+        if governing is not None:  # the hook errors are in its worst too: skew 1 on its level load
+            nominal, worst = governing
+            skewed = nominal
         cranes = []
         for k, label in enumerate(labels):
             case = at_tilt.get(names[k])
@@ -356,12 +383,13 @@ class DesignBuilder:
                     lug=lugset.names[k],
                     radius=None if fleet[k].position is None else float(lugset.radius[k]),
                     swl=float(lugset.swl[k]),
-                    nominal=float(preload[k]),
-                    worst=float(tensions[where[k], k]),
+                    nominal=float(nominal[k]),
+                    worst=float(worst[k]),
                     worst_at=self.dense[where[k]],
                     tilt=case,
                     skewed=float(skewed[k]),
                     breakout=None if breakout is None else float(breakout.worst[k]),
+                    in_water=None if water is None else float(water.worst[k]),
                 )
             )
         chain = None
@@ -387,6 +415,7 @@ class DesignBuilder:
             chain=chain,
             missing=missing,
             breakout=breakout,
+            in_water=water,
         )
 
     def _tilt(self, lugset, preload):

@@ -22,8 +22,10 @@ from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Scene
 from liftplan.planner.plans.breakout import breakout_json
 from liftplan.planner.plans.common import InFileFrame, contract_json, weight_json
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
+from liftplan.planner.plans.flexible import flexible_hull_json
 from liftplan.planner.plans.girder import applies as girder_applies
 from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.in_water import in_water_json
 from liftplan.planner.plans.vessel_loads import vessel_plans, wind_json
 from liftplan.planner.plans.watch_basis import watch_basis
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
@@ -144,6 +146,11 @@ class Plan(InFileFrame):
     girders : list of tuple of GirderWorst, optional
         The hull girder's worst of each ranked set when already computed (by
         :func:`girder_first`); else computed when first asked for.
+    hull_models : list of HullModel, optional
+        With ``[hull] EI``: each ranked set on the rigid and the flexible hull at its worst
+        states, and which governs (:mod:`.flexible`); None without.
+    hull_search : HullSearch, optional
+        With ``[hull] EI`` or ``[water]``: how the ranking was redone (:mod:`.hull_water`).
     """
 
     problem: PlanProblem
@@ -151,6 +158,8 @@ class Plan(InFileFrame):
     stats: SearchStats
     lengths: object = None
     girders: list | None = None
+    hull_models: list | None = None
+    hull_search: object = None
 
     # -- the chosen set ------------------------------------------------------------------
     @property
@@ -275,9 +284,11 @@ class Plan(InFileFrame):
             lugs=lugs,
             cranes=cranes,
             attitude=Attitude(lift_height=problem.lift_height, yaw=problem.yaw),
-            analysis=Analysis(model="elastic"),
+            # in water the written scene carries [hull] and [water]: solve picks its model
+            analysis=Analysis(model=None if problem.in_water is not None else "elastic"),
             name=f"{problem.name or 'plan'}: chosen lugs",
             strength=problem.strength,
+            girder=problem.hull_stiffness,  # solve keeps the flexible hull where it changes T > 1 %
         )
 
     @cached_property
@@ -309,13 +320,22 @@ class Plan(InFileFrame):
     @cached_property
     def design_loads(self):
         """The rules' design loads of the chosen set (:class:`~.design_loads.DesignLoads`)."""
-        return self._design_builder.build(self.chosen, self.labels)
+        return self._design_builder.build(self.chosen, self.labels, self._governing(0))
+
+    def _governing(self, k):
+        """(nominal, worst) of ranked set k on the flexible hull where it governs, else None."""
+        if not self.hull_models or self.hull_models[k].used != "flexible":
+            return None
+        return self.hull_models[k].nominal, self.hull_models[k].worst
 
     @cached_property
     def ranked_design(self):
         """The same design loads for every ranked set, best first (``ranked_design[0]`` is
         :attr:`design_loads`)."""
-        return [self.design_loads] + [self._design_builder.build(r, self.labels) for r in self.ranking[1:]]
+        return [self.design_loads] + [
+            self._design_builder.build(r, self.labels, self._governing(k))
+            for k, r in enumerate(self.ranking[1:], start=1)
+        ]
 
     @cached_property
     def ranked_girder(self):
@@ -388,6 +408,18 @@ class Plan(InFileFrame):
                 note="lowest tension in the box",
             )
         )
+        if self.hull_models and self.hull_models[0].used == "flexible":
+            out.append(
+                Check.lower(
+                    "flexible_min_tension",
+                    "all ropes",
+                    self.hull_models[0].lowest,
+                    self.problem.min_tension,
+                    "t",
+                    note="lowest tension on the flexible hull at the plan's worst states, hook errors "
+                    "at worst",
+                )
+            )
         return out
 
     @cached_property
@@ -587,8 +619,8 @@ class Plan(InFileFrame):
             | {
                 "weight": weight_json(self.problem),
                 "ranking": [
-                    self._ranking_entry(r, d, g)
-                    for r, d, g in zip(self.ranking, self.ranked_design, self.ranked_girder)
+                    self._ranking_entry(r, d, g) | self._hull_entry(k)
+                    for k, (r, d, g) in enumerate(zip(self.ranking, self.ranked_design, self.ranked_girder))
                 ],
                 "frame": self.frame,
                 "worst_attitude": self.scenario_json(self.chosen.worst),
@@ -654,6 +686,8 @@ class Plan(InFileFrame):
                 else {"rope_lengths": self.rope_lengths, "rope_length_search": self.lengths.to_json()}
             )
             | breakout_json(self)
+            | flexible_hull_json(self)
+            | in_water_json(self)
             | ({"vessels": {v.crane: v.to_json() for v in self.vessels}} if self.vessels else {})
             | wind_json(self)
         )
@@ -691,6 +725,23 @@ class Plan(InFileFrame):
             "utilisation": c.utilisation if c.design is not None else None,
             "ok": ok,
         }
+
+    def _hull_entry(self, k):
+        """A ranked set's hull keys: ``hull_model`` (which hull governs), its
+        ``max_tension_change`` and ``governing_value`` (the value it is ranked on), with
+        ``[water]`` its ``value_in_water``; empty without ``[hull] EI`` or ``[water]``."""
+        if self.hull_search is None:
+            return {}
+        out = {"governing_value": self.hull_search.values[k]}
+        if self.hull_models:
+            model = self.hull_models[k]
+            out |= {
+                "hull_model": model.used,
+                "max_tension_change": model.max_change if np.isfinite(model.max_change) else None,
+            }
+        if self.problem.in_water is not None:
+            out["value_in_water"] = self.ranked_design[k].in_water.value
+        return out
 
     def _ranking_entry(self, result, design, girder):
         return {

@@ -17,7 +17,7 @@ import numpy as np
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix, zup_to_choi
 from liftplan.model.rules import CODE_MARGIN, CODE_MARGIN_MANY, DEFAULT_SKEW_FACTOR, Rules, code_margin
-from liftplan.model.scene.objects import Body, Scene, Strength, finite, point, positive
+from liftplan.model.scene.objects import Body, GirderStiffness, Scene, Strength, finite, point, positive
 from liftplan.model.scene.wind import Wind
 from liftplan.model.statics.model import check_hinges
 from liftplan.model.water.breakout import breakout_load
@@ -29,6 +29,7 @@ from liftplan.planner.problem.fleet import (
     length_range,
     reach_table,
 )
+from liftplan.planner.problem.hull_water import InWater, check_hull_water
 from liftplan.planner.problem.objectives import OBJECTIVES, STRENGTH_OBJECTIVES
 from liftplan.planner.problem.readings_accuracy import ReadingsAccuracy
 from liftplan.planner.problem.report_info import ReportInfo
@@ -272,6 +273,12 @@ class PlanProblem:
         (:mod:`liftplan.planner.problem.vessels`); single-rope held plans only.
     readings : ReadingsAccuracy
         The live readings' accuracies (``[readings]``) that ``liftplan watch`` weighs them by.
+    hull_stiffness : GirderStiffness or None
+        ``[hull] EI`` (and ``GJ``): the ranked sets are evaluated again on the flexible hull
+        (:mod:`liftplan.planner.plans.flexible`). None: the hull is rigid.
+    in_water : InWater or None
+        ``[water]``, ``[hull]``'s geometry and ``[plan] start_lift_height``: the state where the
+        lift starts in water is one more worst state (:mod:`liftplan.planner.plans.in_water`).
     """
 
     body: Body
@@ -307,6 +314,8 @@ class PlanProblem:
     weight_basis: str | None = None
     wind: Wind | None = None
     readings: ReadingsAccuracy = field(default_factory=ReadingsAccuracy)
+    hull_stiffness: GirderStiffness | None = None
+    in_water: InWater | None = None
 
     def __post_init__(self):
         if self.weight_basis not in WEIGHT_BASES:
@@ -449,6 +458,7 @@ class PlanProblem:
             )
         self._check_strength(fleet)
         self._check_breakout(fleet)
+        check_hull_water(self)
         if self.wind is not None and (
             any(c.sling is not None or c.rope_length_range is not None for c in fleet)
             or self.objective in STRENGTH_OBJECTIVES

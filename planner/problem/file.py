@@ -10,6 +10,7 @@ reference's tables are generated.
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 from typing import Annotated, Literal
@@ -20,6 +21,7 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.rules import RulesTable, rules_from_table
 from liftplan.model.scene.file import (
+    HullTable,
     Key,
     Num,
     Pair,
@@ -27,17 +29,21 @@ from liftplan.model.scene.file import (
     Table,
     Text,
     VesselTable,
+    WaterTable,
     WindTable,
     load_scene,
     load_with,
     one_line,
     parse_toml,
+    to_girder,
+    to_hull,
     to_vessel,
     to_wind,
 )
-from liftplan.model.scene.objects import Body, Strength
+from liftplan.model.scene.objects import Body, Strength, Water
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.problem.fleet import FleetCrane, SlingSpec, SpreaderSpec
+from liftplan.planner.problem.hull_water import InWater
 from liftplan.planner.problem.readings_accuracy import (
     DEFAULT_HOOK,
     DEFAULT_INCLINOMETER,
@@ -316,6 +322,22 @@ class _Plan(Table):
         values="string (a path)",
         absent="no breakout case",
         example='breakout_scene = "sunken_block_breakout.toml"',
+    )
+    start_lift_height: Num | None = Key(
+        None,
+        doc=(
+            "with `[water]` and `[hull]`'s `box` or `mesh`: the lift height (world height of the body "
+            "origin, `[water] level` the surface) where the lift starts, the body level and the hull "
+            "partly submerged. There W + trapped water - B and its line of action (buoyancy from the "
+            "hull cut by the water plane) set each rope's share with the plan's preload held; that "
+            "state is one more of the plan's worst states: in its objective (the ranking is redone "
+            "on it), its lowest tension, the design loads (the larger) and the checks "
+            '(docs/planning.md "A lift that starts in water")'
+        ),
+        unit="m",
+        frame="world height",
+        absent="needed with [water]",
+        example="start_lift_height = -2.0",
     )
 
 
@@ -684,6 +706,26 @@ class _PlanFile(Table):
         absent="none",
         example="[strength]",
     )
+    hull: HullTable | None = Key(
+        None,
+        doc=(
+            "the scene file's `[hull]`: `EI` (and `GJ`) make the plan evaluate its ranked sets again "
+            "on the flexible hull at their worst states, the flexible numbers governing a set where "
+            'they change a tension by more than 1 % (docs/planning.md "The flexible hull in a '
+            'plan"); `box` or `mesh` (with its flooding and compartments) is the hull in `[water]`'
+        ),
+        absent="a rigid hull, clear of the water",
+        example="[hull]",
+    )
+    water: WaterTable | None = Key(
+        None,
+        doc=(
+            "the scene file's `[water]`: with `[hull]`'s geometry and `plan.start_lift_height`, the "
+            "lift starts in water (one more worst state)"
+        ),
+        absent="no state in water",
+        example="[water]",
+    )
 
 
 def load_problem(path: str | os.PathLike[str]) -> PlanProblem:
@@ -718,19 +760,9 @@ def loads_problem(text: str, base: str | os.PathLike[str] | None = None) -> Plan
 #: Scene tables a planning file refuses, each with why and what to do instead (docs/planning.md
 #: "What the planner does not plan").
 NOT_PLANNED = {
-    "hull": (
-        "the planner plans on a rigid hull in air; expected [hull] (its geometry, EI, GJ) in a "
-        "scene: solve the plan's written scene (plan_scene.toml, --report DIR) with [hull] added "
-        "to see whether the flexible hull changes its tensions by more than 1 %"
-    ),
-    "water": (
-        "the planner plans the lift clear of the water; expected the case in water as "
-        "plan.breakout_scene (a scene with [hull], [water] and [ground]: the breakout loads "
-        "enter the plan's design loads) and `liftplan lift` of that scene for the whole lift"
-    ),
     "ground": (
         "the planner plans the lift clear of the seabed; expected [ground] in the scene that "
-        "plan.breakout_scene names"
+        "plan.breakout_scene names (its breakout case is the lift off the seabed)"
     ),
 }
 
@@ -915,7 +947,72 @@ def _to_problem(data, base):
         controls=_controls(data, cranes),
         breakout_scene=_breakout_scene(data.plan.breakout_scene, base),
         wind=to_wind(data.wind, data.frame, plan=True),
+        hull_stiffness=to_girder(data.hull),
+        in_water=_in_water(data, base),
     )
+
+
+def _in_water(data, base):
+    """``[water]``, ``[hull]``'s geometry and ``plan.start_lift_height`` as an :class:`InWater`
+    (None without ``[water]``); each missing part refused in one line."""
+    start = data.plan.start_lift_height
+    if data.water is None:
+        if start is not None:
+            raise InvalidScene(
+                f"plan.start_lift_height = {start!r}: given without [water]; expected [water] and "
+                "[hull] (box or mesh) for a lift that starts in water"
+            )
+        if data.hull is not None and (data.hull.box is not None or data.hull.mesh is not None):
+            raise InvalidScene(
+                "hull: box or mesh given without [water]; expected [water] (and "
+                "plan.start_lift_height) for a lift that starts in water, or only EI / GJ"
+            )
+        return None
+    if data.hull is None or (data.hull.box is None and data.hull.mesh is None):
+        raise InvalidScene(
+            "water: given without the hull's geometry; expected [hull] box = {min, max} or mesh = "
+            '"file.stl" (the buoyancy of the hull in water)'
+        )
+    if start is None:
+        raise InvalidScene(
+            "plan.start_lift_height: missing; expected the lift height (m) where the lift starts "
+            "with the hull partly submerged in [water]"
+        )
+    return InWater(
+        hull=to_hull(data, base),
+        water=Water(**data.water.model_dump()),
+        start_lift_height=start,
+        hull_lines=_hull_lines(data.hull, base),
+    )
+
+
+def _hull_lines(spec, base):
+    """``[hull]``'s geometry as TOML lines (the file's frame; a mesh by its absolute path), and
+    its compartments as ``[[hull.compartments]]`` tables (without their openings: the plan's
+    held state counts their water full)."""
+
+    def vec(values):
+        return "[" + ", ".join(repr(float(v)) for v in values) + "]"
+
+    def box(b):
+        return f"{{ min = {vec(b.min)}, max = {vec(b.max)} }}"
+
+    lines = [f"box = {box(spec.box)}"] if spec.box is not None else []
+    if spec.mesh is not None:
+        lines.append(f"mesh = {json.dumps(str((Path(base) / spec.mesh).resolve()))}")
+    lines.append(f"flooding = {json.dumps(spec.flooding)}")
+    for key in ("steel_density", "weight_in_water"):
+        if getattr(spec, key) is not None:
+            lines.append(f"{key} = {float(getattr(spec, key))!r}")
+    for c in spec.compartments:
+        lines += [
+            "",
+            "[[hull.compartments]]",
+            f"name = {json.dumps(c.name)}",
+            f"box = {box(c.box)}",
+            f"contents = {json.dumps(c.contents)}",
+        ]
+    return tuple(lines)
 
 
 def _controls(data, count):

@@ -71,8 +71,10 @@ def test_rope_length_trials_share_one_time_limit():
 @pytest.mark.parametrize(
     ("table", "said"),
     [
-        ("[hull]\nEI = 1.0e9\n", r"\[hull\]: not in a planning file; the planner plans on a rigid hull"),
-        ("[water]\nlevel = 10.0\n", r"\[water\]: not in a planning file; the planner plans the lift clear"),
+        # planned since issue 24 item 3 (tests/planner/test_flexible_plan.py, test_in_water_plan.py);
+        # what each needs is asked for in one line
+        ("[hull]\nEI = [[0.0, 1.0e9], [82.05, 1.0e9]]\n", r"hull.EI: .*expected body.weight_curve"),
+        ("[water]\nlevel = 10.0\n", r"water: given without the hull's geometry; expected \[hull\] box"),
         ("[ground]\nz = 0.0\n", r"\[ground\]: not in a planning file"),
     ],
 )

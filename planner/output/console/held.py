@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from liftplan.model.frames import FRAME_TEXT
+from liftplan.planner.output.console.hull_water import hull_water_lines
 from liftplan.planner.output.console.text import GROUP, WIDTH, fold, grouped
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
 from liftplan.planner.plans.vessel_loads import vessel_lines, wind_lines
@@ -79,6 +80,7 @@ def plan_table(plan):
             )
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
+    lines += hull_water_lines(plan)
     lines += vessel_lines(plan.vessels)
     lines += wind_lines(plan)
     over = "over the box, the CG envelope and the hook errors"

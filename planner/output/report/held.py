@@ -19,6 +19,7 @@ from liftplan.model.version import __version__
 from liftplan.planner.batch.montecarlo import hook_monte_carlo
 from liftplan.planner.output.figures import plan as figures
 from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.report.hull_water import hull_water_section, with_water
 from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
 from liftplan.planner.search.scenarios import Scenario
@@ -233,6 +234,8 @@ def _governing_case(capacity):
         return f"the rules' tilt, {capacity.tilt.tilt:.2f} deg"
     if capacity.governs == "breakout":
         return "breakout from the seabed"
+    if capacity.governs == "in_water":
+        return "the start in water"
     at = capacity.worst_at
     return f"the box: heel {at.heel:+.2f}, trim {at.trim:+.2f} deg"
 
@@ -387,6 +390,7 @@ def _checks(plan):
         _design_table(plan),
         *_design_details(plan),
         *_breakout_section(plan),
+        *hull_water_section(plan),
         *_vessel_section(plan),
         hooks,
         sensitivity,
@@ -937,7 +941,7 @@ def plan_scene_toml(plan):
         f"Coordinates in the planning file's frame: {FRAME_TEXT[plan.frame]}.",
     )
     notes = {plan.lugs[label]: f"{plan.cranes[label]} (planned lug {label})" for label in plan.labels}
-    return scene_toml(plan.named_scene, header=header, crane_notes=notes)
+    return with_water(scene_toml(plan.named_scene, header=header, crane_notes=notes), problem.in_water)
 
 
 def render(plan):
