@@ -25,7 +25,13 @@ import math
 from dataclasses import dataclass
 
 from liftplan.model.checks import Check
-from liftplan.planner.problem.vessels import tip_compliance, tip_offsets, wind_shift, wind_tip_error
+from liftplan.planner.problem.vessels import (
+    tip_compliance,
+    tip_offsets,
+    vessel_worst,
+    wind_shift,
+    wind_tip_error,
+)
 from liftplan.planner.search.evaluator import robust
 
 
@@ -151,7 +157,8 @@ def vessel_plans(plan):
         load = float(chosen.preload[k])
         heel = load * starboard / vessel.heel_stiffness
         trim = load * forward / vessel.trim_stiffness
-        swing = max(abs(high[k] - load), abs(low[k] - load))
+        extremes = (float(low[k]), float(high[k]))
+        worst = vessel_worst(vessel, (forward, starboard), load, extremes)
         out.append(
             VesselPlan(
                 crane=crane.name,
@@ -164,32 +171,16 @@ def vessel_plans(plan):
                 trim=math.degrees(trim),
                 tip_drop=float(tip_compliance(vessel, point)[0]) * load,
                 ballast=(0.0 - load * starboard, 0.0 - load * forward),
-                worst_heel=math.degrees(swing * abs(starboard) / vessel.heel_stiffness),
-                worst_trim=math.degrees(swing * abs(forward) / vessel.trim_stiffness),
-                worst_load=(float(low[k]), float(high[k])),
+                worst_heel=worst.heel,
+                worst_trim=worst.trim,
+                worst_load=extremes,
                 max_heel=vessel.max_heel,
                 max_trim=vessel.max_trim,
-                freeboard=_worst_freeboard(vessel, load, (float(low[k]), float(high[k])), forward, starboard),
+                freeboard=worst.freeboard,
                 min_freeboard=vessel.min_freeboard,
             )
         )
     return tuple(out)
-
-
-def _worst_freeboard(vessel, load, extremes, forward, starboard):
-    """The lowest deck corner's freeboard over the rope's tensions ``extremes`` (lowest,
-    highest) [t], the levelling ballast for ``load`` [t] set (module docstring)  [m]; None
-    without the vessel's freeboard."""
-    if vessel.freeboard is None:
-        return None
-    return min(
-        vessel.lowest_freeboard(
-            t / vessel.heave_stiffness,
-            (t - load) * starboard / vessel.heel_stiffness,
-            (t - load) * forward / vessel.trim_stiffness,
-        )
-        for t in extremes
-    )
 
 
 def vessel_lines(vessels):

@@ -197,16 +197,20 @@ class LugSet:
     cranes : sequence of int, optional
         Fleet index of the crane on each lug (default: crane k on the k-th lug, which is any
         assignment for a fleet of equal cranes).
+    fleet : tuple of FleetCrane, optional
+        The cranes to use instead of ``problem.fleet`` (fleet order; the same positions and
+        charts): each floating crane in series with its vessel at the lug it takes
+        (:func:`~liftplan.planner.problem.vessels.series_fleet`).
     """
 
-    def __init__(self, problem, indices, cranes=None):
+    def __init__(self, problem, indices, cranes=None, fleet=None):
         self.problem = problem
         self.indices = tuple(int(i) for i in indices)
         self.n = len(self.indices)
         self.cranes = tuple(range(self.n)) if cranes is None else tuple(int(j) for j in cranes)
         self.points = problem.points[list(self.indices)]
         self.names = tuple(problem.names[i] for i in self.indices)
-        fleet = [problem.fleet[j] for j in self.cranes]
+        fleet = [(problem.fleet if fleet is None else fleet)[j] for j in self.cranes]
         self.crane_names = tuple(c.name for c in fleet)
         self.rope_length = np.array([c.rope_length for c in fleet])
         self.EA = np.array([c.EA for c in fleet])
