@@ -38,7 +38,7 @@ from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads, TiltGeometry, governing_tilt
 from liftplan.planner.plans.breakout import BreakoutCase, breakout_case
 from liftplan.planner.search.evaluator import DENSE
-from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.scenarios import Scenario, box_attitudes, set_lugset
 
 
 @dataclass(frozen=True)
@@ -336,7 +336,7 @@ class DesignBuilder:
 
     def build(self, result, labels):
         problem = self.problem
-        lugset = LugSet(problem, result.indices, result.cranes)
+        lugset = set_lugset(problem, result.indices, result.cranes)
         preload = np.asarray(result.preload, dtype=float)
         tensions, gain = lugset.tensions_and_gain(preload, self.dense)
         tensions = tensions + np.abs(gain) @ lugset.hook_tolerance  # the hook errors' worst

@@ -24,8 +24,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from liftplan.model.checks import Check
 from liftplan.planner.problem.vessels import (
+    VesselWorst,
+    limit_checks,
     tip_compliance,
     tip_offsets,
     vessel_worst,
@@ -93,22 +94,9 @@ class VesselPlan:
     def checks(self):
         """``vessel_heel`` and ``vessel_trim`` where the vessel gives its limit, and
         ``vessel_freeboard`` where it gives its freeboard."""
-        out = []
-        for name, value, limit, what in (
-            ("vessel_heel", self.worst_heel, self.max_heel, "heel"),
-            ("vessel_trim", self.worst_trim, self.max_trim, "trim"),
-        ):
-            if limit is not None:
-                note = f"largest |{what}| over the box and hook errors, the levelling ballast set"
-                out.append(Check.upper(name, self.crane, value, limit, "deg", note=note))
-        if self.freeboard is not None:
-            note = "lowest deck corner over the box and hook errors, the levelling ballast set"
-            out.append(
-                Check.lower(
-                    "vessel_freeboard", self.crane, self.freeboard, self.min_freeboard, "m", note=note
-                )
-            )
-        return out
+        worst = VesselWorst(self.worst_heel, self.worst_trim, self.freeboard)
+        limits = (self.max_heel, self.max_trim, self.min_freeboard)
+        return limit_checks("", self.crane, worst, limits, "over the box and hook errors")
 
     def to_json(self):
         return {

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from liftplan.model.checks import Check
 from liftplan.model.errors import InvalidScene
 
 
@@ -95,6 +96,44 @@ class VesselWorst:
         if self.freeboard is not None and not self.freeboard >= vessel.min_freeboard:
             return "freeboard"
         return None
+
+
+def limit_checks(prefix, crane, worst, limits, where):
+    """The checks of a vessel's worst heel, trim and freeboard against its limits.
+
+    Parameters
+    ----------
+    prefix : str
+        Before each check's name: ``""`` (``vessel_heel``, ``vessel_trim``,
+        ``vessel_freeboard``) or ``"breakout_"``.
+    crane : str
+        The crane's name (the checks' subject).
+    worst : VesselWorst
+    limits : tuple
+        (max_heel [deg] or None, max_trim [deg] or None, min_freeboard [m] or None); a check
+        only where its limit is given (the freeboard where ``worst`` has one).
+    where : str
+        The states, for the notes ("over the box and hook errors", "at breakout ...").
+
+    Returns
+    -------
+    list of Check
+    """
+    max_heel, max_trim, min_freeboard = limits
+    out = []
+    for name, value, limit, what in (
+        ("vessel_heel", worst.heel, max_heel, "heel"),
+        ("vessel_trim", worst.trim, max_trim, "trim"),
+    ):
+        if limit is not None:
+            note = f"largest |{what}| {where}, the levelling ballast set"
+            out.append(Check.upper(prefix + name, crane, value, limit, "deg", note=note))
+    if worst.freeboard is not None:
+        note = f"lowest deck corner {where}, the levelling ballast set"
+        out.append(
+            Check.lower(prefix + "vessel_freeboard", crane, worst.freeboard, min_freeboard, "m", note=note)
+        )
+    return out
 
 
 def vessel_worst(vessel, offset, load, extremes):

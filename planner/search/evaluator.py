@@ -20,11 +20,11 @@ import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.problem.objectives import OBJECTIVES
-from liftplan.planner.problem.vessels import has_limits, series_fleet, uses_vessels, vessel_breach
+from liftplan.planner.problem.vessels import has_limits, vessel_breach
 from liftplan.planner.search.bounds import PreloadMinimax
 from liftplan.planner.search.progress import best_bound
 from liftplan.planner.search.rows import row_spread
-from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.scenarios import Scenario, box_attitudes, set_lugset
 from liftplan.planner.search.screen import (
     BOOM_RANGE,
     BOX_OVERLOAD,
@@ -362,7 +362,6 @@ class SetEvaluator:
 
     def __init__(self, problem):
         self.problem = problem
-        self.floating = uses_vessels(problem)
         self.limited = has_limits(problem)
         hooks = problem.hook_tolerance > 0 or any(c.hook_tolerance for c in problem.fleet)
         self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective, separable=not hooks)
@@ -399,10 +398,8 @@ class SetEvaluator:
             the set's preload, the LP's, puts a vessel beyond a limit at a worst state: the
             limits rule the set out as its plan stands, they are no constraint of the LP.
         """
-        indices = tuple(int(i) for i in indices)
-        cranes = tuple(range(len(indices))) if cranes is None else tuple(int(j) for j in cranes)
-        fleet = series_fleet(self.problem, indices, cranes) if self.floating else None
-        lugset = LugSet(self.problem, indices, cranes, fleet=fleet)
+        lugset = set_lugset(self.problem, indices, cranes)
+        indices, cranes = lugset.indices, lugset.cranes
         scenarios = list(self.start)
         a_level, b_level = lugset.level_statics
         if np.linalg.matrix_rank(a_level[:, :], tol=1e-9 * np.abs(a_level).max()) < 3:

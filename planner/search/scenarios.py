@@ -31,6 +31,7 @@ import numpy as np
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.statics.model import BLOCK, hinged_model, rope_model
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.problem.vessels import series_fleet, uses_vessels
 
 
 def run_block(block, n, attitudes, params):
@@ -184,6 +185,17 @@ class Scenario:
     heel: float
     trim: float
     cog_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+def set_lugset(problem, indices, cranes=None):
+    """A :class:`LugSet` with each floating crane in series with its vessel at the lug it takes
+    (:func:`~liftplan.planner.problem.vessels.series_fleet`), whatever stiffness the problem's
+    fleet stands at; the problem's own cranes where none floats."""
+    if not uses_vessels(problem):
+        return LugSet(problem, indices, cranes)
+    indices = tuple(int(i) for i in indices)
+    cranes = tuple(range(len(indices))) if cranes is None else tuple(int(j) for j in cranes)
+    return LugSet(problem, indices, cranes, fleet=series_fleet(problem, indices, cranes))
 
 
 class LugSet:

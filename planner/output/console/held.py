@@ -280,6 +280,16 @@ def _breakout_lines(plan, design):
             f"{shift:>15.3f}  {'ok' if check.ok else 'FAIL'}"
         )
         lines.append(f"{'':<5}{c.static_note}")
+    if case.vessels:
+        lines.append(
+            "crane vessels at breakout (largest |heel|, |trim| [deg], least freeboard [m]; the "
+            "levelling ballast set):"
+        )
+        for v in case.vessels:
+            freeboard = "-" if v.worst.freeboard is None else f"{v.worst.freeboard:.2f}"
+            lines.append(
+                f"  {v.crane}: heel {v.worst.heel:.2f}, trim {v.worst.trim:.2f}, freeboard {freeboard}"
+            )
     return lines
 
 
