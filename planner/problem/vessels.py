@@ -10,10 +10,17 @@ stiffness EA / l0 becomes one of 1 / (l0 / EA + c), i.e. ``EA`` becomes l0 / (l0
 ``EA`` (the held preload, the robust worst case over the box, the hook-height tolerance's
 twist, the boom heights) then works with the coupled stiffness, unchanged.
 
-c depends on the lug the crane takes: :func:`series_problem` sets it for one assignment
-(exact for that lug set), :func:`reference_problem` for the search, at each crane's stiffest
+c depends on the lug the crane takes: :func:`series_fleet` / :func:`series_problem` set it
+for one assignment (exact for that lug set, from the crane as given however the problem's
+fleet stands), :func:`reference_problem` for the search's bounds, at each crane's stiffest
 lug within its reach (the one nearest its vessel's axes: the largest twist a hook error puts
 in, the safe side for the hook tolerance).
+
+Limits (:func:`vessel_worst`, :func:`vessel_breach`): with the levelling ballast set for the
+rope's level tension T0, a state where it holds T heels the vessel by (T - T0) y_t /
+(disp GM_T) and trims it by (T - T0) x_t / (disp GM_L); over a plan's worst states the largest
+|heel| is max(|T_max - T0|, |T_min - T0|) |y_t| / (disp GM_T), and the search rules out a set
+that breaks ``max_heel``, ``max_trim`` or ``min_freeboard`` there.
 
 Wind (``[wind]`` of a planning file, from any direction; :mod:`liftplan.model.scene.wind`):
 the body's couple F (h - h_lugs) moves its weight's line by F (h - h_lugs) / W downwind, so
