@@ -171,12 +171,18 @@ def vessel_plans(plan):
     return tuple(out)
 
 
-def vessel_lines(vessels):
-    """The console's lines for a plan's floating cranes (none without)."""
+def vessel_lines(vessels, infeasible=None):
+    """The console's lines for a plan's floating cranes (none without), and how many sets the
+    vessels' limits ruled out of the search (``infeasible``: the search's reasons and counts)."""
     if not vessels:
         return []
+    ruled = {text: n for text, n in (infeasible or {}).items() if text.startswith("a crane vessel")}
     lines = [
         "",
+        *(
+            f"ruled out by a vessel's limit: {n} set{'' if n == 1 else 's'}, {text}"
+            for text, n in ruled.items()
+        ),
         "crane vessels at the level tension (heave + down, heel + starboard down, trim + bow down; tip "
         "drop: the extra hoist as the load comes on; ballast: heeling, trimming moment to set before "
         "the lift, levels the vessel at this load; worst: largest |heel|, |trim| over the box and the "

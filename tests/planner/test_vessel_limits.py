@@ -20,6 +20,7 @@ from helpers import EXAMPLES
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.model.scene.vessel import Vessel
+from liftplan.planner.output.console.summary import summary
 from liftplan.planner.plan import plan
 from liftplan.planner.problem.file import load_problem
 from liftplan.planner.problem.vessels import VesselWorst, series_problem, vessel_worst
@@ -109,6 +110,8 @@ def test_the_plan_is_the_best_set_within_the_heel_limit_by_brute_force(rows):
     assert tender.worst_heel == pytest.approx(within[0][4], rel=1e-9)
     heel = [c for c in result.checks if c.name == "vessel_heel"]
     assert [(c.subject, c.ok) for c in heel] == [(TENDER, True)]
+    assert result.to_json()["search"]["infeasible"][REASONS[VESSEL_HEEL]] == ruled
+    assert "ruled out by a vessel's limit: " in summary(result)
     # without the limit the plan is the unconstrained optimum, its heel check absent
     free = plan(_problem(None))
     assert (free.chosen.indices, free.chosen.cranes) == free_best[2:4]

@@ -79,7 +79,7 @@ def plan_table(plan):
             )
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
-    lines += vessel_lines(plan.vessels)
+    lines += vessel_lines(plan.vessels, plan.stats.infeasible)
     lines += wind_lines(plan)
     over = "over the box, the CG envelope and the hook errors"
     if problem.breakout is not None:  # docs/planning.md "What the planner does not plan"
