@@ -17,6 +17,16 @@ worst over every hook within its tolerance (``T + |dT/dH| delta``, the same clos
 the box, with dT/dH at the breakout state), so the hook tolerance and the skew factor 1 of the
 chain hold for the breakout case too.
 
+With floating cranes the held model takes each rope in series with its vessel at the lug its
+crane takes (the lug set's stiffness, :func:`~liftplan.planner.search.scenarios.set_lugset`):
+the crew's hook motions stay a rigid motion of the level hook pattern, each tension changes by
+the series stiffness 1 / (l0 / EA + c) times its hook's motion, c the vessel's tip compliance.
+Each vessel's heel, trim and freeboard at breakout, the largest hook loads of the lift, are
+checked against its limits (``breakout_vessel_heel``, ``breakout_vessel_trim``,
+``breakout_vessel_freeboard``): with the levelling ballast set for the level tension T0, heel
+(T - T0) y_t / (disp GM_T) at the rope's least and largest breakout tension over the hook
+errors (:func:`~liftplan.planner.problem.vessels.vessel_worst`).
+
 Each crane's static input to the rules' chain becomes the larger of its worst in the box and
 its breakout tension (:mod:`liftplan.planner.plans.design_loads`), and a check per crane compares
 the breakout hook load (tension + the rules' rigging weight, no dynamic factor) with the chart
@@ -31,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.checks import Check
+from liftplan.planner.problem.vessels import limit_checks, tip_offsets, vessel_worst
 from liftplan.planner.search.scenarios import held_model, pack, run_block
 
 
@@ -66,6 +77,8 @@ class BreakoutCase:
         line the errors give, :func:`~liftplan.planner.plans.slings.two_crane.hooks_breakout`;
         ``gain`` is then its slope at level). None: ``T -+ |dT/dH| delta``, exact for the
         held model.
+    vessels : tuple of BreakoutVessel
+        Each floating crane's vessel at breakout (empty: every crane on land).
     """
 
     load: object
@@ -78,6 +91,7 @@ class BreakoutCase:
     swl: np.ndarray
     rigging: np.ndarray
     extremes: tuple | None = None
+    vessels: tuple = ()
 
     @property
     def hook_widening(self):
@@ -149,11 +163,68 @@ class BreakoutCase:
                 "goes slack and the held model no longer holds",
             )
         )
+        for v in self.vessels:
+            out += limit_checks("breakout_", v.crane, v.worst, v.limits, "at breakout, hook errors at worst")
         return out
 
     @property
     def ok(self):
         return all(c.ok for c in self.checks)
+
+
+@dataclass(frozen=True)
+class BreakoutVessel:
+    """A floating crane's vessel at breakout.
+
+    Parameters
+    ----------
+    crane : str
+    offset, load, extremes
+        As :func:`~liftplan.planner.problem.vessels.vessel_worst` takes them: the tip's offset
+        (x_t, y_t) [m], the level tension T0 [t] the ballast levels, and the rope's least and
+        largest tension at breakout over the hook errors [t].
+    worst : VesselWorst
+        The largest |heel|, |trim| [deg] and the least freeboard [m] there.
+    limits : tuple
+        (max_heel, max_trim, min_freeboard) of the vessel, each None when not given.
+    """
+
+    crane: str
+    offset: tuple[float, float]
+    load: float
+    extremes: tuple[float, float]
+    worst: object
+    limits: tuple
+
+    def to_json(self):
+        return {
+            "heel": self.worst.heel,
+            "trim": self.worst.trim,
+            "freeboard": self.worst.freeboard,
+            "tensions": list(self.extremes),
+        }
+
+
+def breakout_vessels(problem, lugset, preload, least, worst):
+    """:class:`BreakoutVessel` of each floating crane of a lug set (in its order)."""
+    out = []
+    for k, (i, j) in enumerate(zip(lugset.indices, lugset.cranes)):
+        vessel = problem.fleet[j].vessel
+        if vessel is None:
+            continue
+        offset = tuple(float(v) for v in tip_offsets(vessel, problem.plan_points[i]))
+        extremes = (float(least[k]), float(worst[k]))
+        out.append(
+            BreakoutVessel(
+                crane=problem.fleet[j].name,
+                offset=offset,
+                load=float(preload[k]),
+                extremes=extremes,
+                worst=vessel_worst(vessel, offset, float(preload[k]), extremes),
+                limits=(vessel.max_heel, vessel.max_trim, vessel.min_freeboard),
+            )
+        )
+    return tuple(out)
 
 
 def breakout_case(problem, lugset, preload):
@@ -166,6 +237,8 @@ def breakout_case(problem, lugset, preload):
     problem : PlanProblem
         With ``breakout_scene`` (``problem.breakout`` is its :class:`BreakoutLoad`).
     lugset : LugSet
+        Each floating crane in series with its vessel at its lug
+        (:func:`~liftplan.planner.search.scenarios.set_lugset`).
     preload : array_like, shape (n,)  [t]
         The level preload T* the boom heights dial in.
 
@@ -189,6 +262,8 @@ def breakout_case(problem, lugset, preload):
     model = held_model(problem, lugset.n)  # hooks hinged about their lug pairs where slings are
     tensions, shift, gain = run_block(model.held_block, lugset.n, level, params)
     rigging = np.array([problem.rules.rigging_for(name) for name in lugset.crane_names], dtype=float)
+    widening = np.abs(gain[0]) @ np.asarray(lugset.hook_tolerance, dtype=float)
+    vessels = breakout_vessels(problem, lugset, preload, tensions[0] - widening, tensions[0] + widening)
     return BreakoutCase(
         load=load,
         cranes=lugset.crane_names,
@@ -199,6 +274,7 @@ def breakout_case(problem, lugset, preload):
         hook_shift=shift[0],
         swl=np.asarray(lugset.swl, dtype=float),
         rigging=rigging,
+        vessels=vessels,
     )
 
 
@@ -241,6 +317,8 @@ def breakout_json(plan):
             design.cranes, case.tensions, case.hook_widening, case.rigging, case.hook_loads, case.hook_shift
         )
     ]
+    if case.vessels:
+        out["vessels"] = {v.crane: v.to_json() for v in case.vessels}
     out["checks"] = [c.to_json() for c in case.checks]
     out["ok"] = case.ok
     out["ranking"] = [

@@ -44,7 +44,7 @@ from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads, TiltGeom
 from liftplan.planner.plans.breakout import BreakoutCase, breakout_case
 from liftplan.planner.plans.in_water import InWaterCase, in_water_case
 from liftplan.planner.search.evaluator import DENSE
-from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.scenarios import Scenario, box_attitudes, set_lugset
 
 
 @dataclass(frozen=True)
@@ -358,7 +358,7 @@ class DesignBuilder:
         per rope of the hull that governs it when not the search's (the flexible hull,
         :mod:`~liftplan.planner.plans.flexible`), else None."""
         problem = self.problem
-        lugset = LugSet(problem, result.indices, result.cranes)
+        lugset = set_lugset(problem, result.indices, result.cranes)
         preload = np.asarray(result.preload, dtype=float)
         tensions, gain = lugset.tensions_and_gain(preload, self.dense)
         tensions = tensions + np.abs(gain) @ lugset.hook_tolerance  # the hook errors' worst

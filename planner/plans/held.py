@@ -33,7 +33,7 @@ from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
 from liftplan.planner.search.methods import search
 from liftplan.planner.search.progress import phase
-from liftplan.planner.search.scenarios import LugSet, Scenario
+from liftplan.planner.search.scenarios import Scenario, set_lugset
 
 #: Heel and trim steps of the guidance table  [deg] (Choi & Shin 2003, Table 3).
 GUIDANCE_STEP = 5.0
@@ -238,7 +238,7 @@ class Plan(InFileFrame):
 
     @cached_property
     def lugset(self):
-        return LugSet(self.problem, self.chosen.indices, self.chosen.cranes)
+        return set_lugset(self.problem, self.chosen.indices, self.chosen.cranes)
 
     def tensions_at(self, heel, trim, cog_offset=(0.0, 0.0, 0.0)):
         """Tensions with the plan's preload held, at many attitudes.
@@ -766,7 +766,7 @@ class Plan(InFileFrame):
 
 def set_girder(problem, result, scenarios):
     """A ranked set's hull girder worst over the scenarios, its hook errors at their worst."""
-    lugset = LugSet(problem, result.indices, result.cranes)
+    lugset = set_lugset(problem, result.indices, result.cranes)
     tensions, gain = lugset.tensions_and_gain(np.asarray(result.preload, dtype=float), scenarios)
     hook = (gain, lugset.hook_tolerance) if lugset.hook_uncertain else None
     return girder_worst(problem, lugset.points, scenarios, tensions, hook)
@@ -802,7 +802,7 @@ def girder_first(problem, ranking):
 
 def _twist_stiffness(problem, result):
     """A ranked set's largest tension change per cm of every hook off (worst signs)  [t/cm]."""
-    gain = LugSet(problem, result.indices, result.cranes).twist_gain(result.preload)
+    gain = set_lugset(problem, result.indices, result.cranes).twist_gain(result.preload)
     return float(np.abs(gain).sum(axis=1).max() / 100.0)
 
 

@@ -24,8 +24,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from liftplan.model.checks import Check
-from liftplan.planner.problem.vessels import tip_compliance, tip_offsets, wind_shift, wind_tip_error
+from liftplan.planner.problem.vessels import (
+    VesselWorst,
+    limit_checks,
+    tip_compliance,
+    tip_offsets,
+    vessel_worst,
+    wind_shift,
+    wind_tip_error,
+)
 from liftplan.planner.search.evaluator import robust
 
 
@@ -87,22 +94,9 @@ class VesselPlan:
     def checks(self):
         """``vessel_heel`` and ``vessel_trim`` where the vessel gives its limit, and
         ``vessel_freeboard`` where it gives its freeboard."""
-        out = []
-        for name, value, limit, what in (
-            ("vessel_heel", self.worst_heel, self.max_heel, "heel"),
-            ("vessel_trim", self.worst_trim, self.max_trim, "trim"),
-        ):
-            if limit is not None:
-                note = f"largest |{what}| over the box and hook errors, the levelling ballast set"
-                out.append(Check.upper(name, self.crane, value, limit, "deg", note=note))
-        if self.freeboard is not None:
-            note = "lowest deck corner over the box and hook errors, the levelling ballast set"
-            out.append(
-                Check.lower(
-                    "vessel_freeboard", self.crane, self.freeboard, self.min_freeboard, "m", note=note
-                )
-            )
-        return out
+        worst = VesselWorst(self.worst_heel, self.worst_trim, self.freeboard)
+        limits = (self.max_heel, self.max_trim, self.min_freeboard)
+        return limit_checks("", self.crane, worst, limits, "over the box and hook errors")
 
     def to_json(self):
         return {
@@ -151,7 +145,8 @@ def vessel_plans(plan):
         load = float(chosen.preload[k])
         heel = load * starboard / vessel.heel_stiffness
         trim = load * forward / vessel.trim_stiffness
-        swing = max(abs(high[k] - load), abs(low[k] - load))
+        extremes = (float(low[k]), float(high[k]))
+        worst = vessel_worst(vessel, (forward, starboard), load, extremes)
         out.append(
             VesselPlan(
                 crane=crane.name,
@@ -164,40 +159,30 @@ def vessel_plans(plan):
                 trim=math.degrees(trim),
                 tip_drop=float(tip_compliance(vessel, point)[0]) * load,
                 ballast=(0.0 - load * starboard, 0.0 - load * forward),
-                worst_heel=math.degrees(swing * abs(starboard) / vessel.heel_stiffness),
-                worst_trim=math.degrees(swing * abs(forward) / vessel.trim_stiffness),
-                worst_load=(float(low[k]), float(high[k])),
+                worst_heel=worst.heel,
+                worst_trim=worst.trim,
+                worst_load=extremes,
                 max_heel=vessel.max_heel,
                 max_trim=vessel.max_trim,
-                freeboard=_worst_freeboard(vessel, load, (float(low[k]), float(high[k])), forward, starboard),
+                freeboard=worst.freeboard,
                 min_freeboard=vessel.min_freeboard,
             )
         )
     return tuple(out)
 
 
-def _worst_freeboard(vessel, load, extremes, forward, starboard):
-    """The lowest deck corner's freeboard over the rope's tensions ``extremes`` (lowest,
-    highest) [t], the levelling ballast for ``load`` [t] set (module docstring)  [m]; None
-    without the vessel's freeboard."""
-    if vessel.freeboard is None:
-        return None
-    return min(
-        vessel.lowest_freeboard(
-            t / vessel.heave_stiffness,
-            (t - load) * starboard / vessel.heel_stiffness,
-            (t - load) * forward / vessel.trim_stiffness,
-        )
-        for t in extremes
-    )
-
-
-def vessel_lines(vessels):
-    """The console's lines for a plan's floating cranes (none without)."""
+def vessel_lines(vessels, infeasible=None):
+    """The console's lines for a plan's floating cranes (none without), and how many sets the
+    vessels' limits ruled out of the search (``infeasible``: the search's reasons and counts)."""
     if not vessels:
         return []
+    ruled = {text: n for text, n in (infeasible or {}).items() if text.startswith("a crane vessel")}
     lines = [
         "",
+        *(
+            f"ruled out by a vessel's limit: {n} set{'' if n == 1 else 's'}, {text}"
+            for text, n in ruled.items()
+        ),
         "crane vessels at the level tension (heave + down, heel + starboard down, trim + bow down; tip "
         "drop: the extra hoist as the load comes on; ballast: heeling, trimming moment to set before "
         "the lift, levels the vessel at this load; worst: largest |heel|, |trim| over the box and the "

@@ -157,6 +157,10 @@ class FleetCrane:
         With a vessel, once the planner has put the vessel in series with the rope
         (:mod:`liftplan.planner.problem.vessels`): the hoist rope's own EA, ``EA`` being the
         series stiffness l0 / (l0 / EA_rope + c). None: ``EA`` is the rope's own.
+    given : FleetCrane or None
+        With a vessel in series: the crane as the file gives it (its own EA and hook
+        tolerance), from which the planner puts the vessel in series at another lug. None: this
+        is the crane as given. Not compared.
     """
 
     name: str
@@ -173,6 +177,7 @@ class FleetCrane:
     rope_length_range: tuple[float, float] | None = None
     vessel: Vessel | None = None
     rope_EA: float | None = None
+    given: FleetCrane | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.strip():

@@ -20,10 +20,11 @@ import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.problem.objectives import OBJECTIVES
+from liftplan.planner.problem.vessels import has_limits, vessel_breach
 from liftplan.planner.search.bounds import PreloadMinimax
 from liftplan.planner.search.progress import best_bound
 from liftplan.planner.search.rows import row_spread
-from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
+from liftplan.planner.search.scenarios import Scenario, box_attitudes, set_lugset
 from liftplan.planner.search.screen import (
     BOOM_RANGE,
     BOX_OVERLOAD,
@@ -34,12 +35,17 @@ from liftplan.planner.search.screen import (
     LEVEL_MIN_TENSION,
     LEVEL_SWL,
     REASONS,
+    VESSEL_FREEBOARD,
+    VESSEL_HEEL,
+    VESSEL_TRIM,
 )
 
 #: Dense check grid: heel x trim points over the box.
 DENSE = 21
 #: Finer grids around the worst dense point: points per side, and rounds.
 ZOOM, ZOOM_ROUNDS = 11, 2
+#: The rule-out code of each vessel limit (:func:`~liftplan.planner.problem.vessels.vessel_breach`).
+VESSEL_CODES = {"heel": VESSEL_HEEL, "trim": VESSEL_TRIM, "freeboard": VESSEL_FREEBOARD}
 #: Cutting-plane rounds before the evaluation stops (and says so in ``converged``).
 MAX_ROUNDS = 12
 SLOTS = 9 * 9 + 3 * MAX_ROUNDS
@@ -268,6 +274,8 @@ class DenseSearch:
     highest : float  [t]
     rope_max : numpy.ndarray  [t]
         Each rope's largest tension.
+    rope_min : numpy.ndarray  [t]
+        Each rope's lowest tension.
     spread : float  [t]
         The largest tension spread.
     utilisation_spread : float  [-]
@@ -281,6 +289,7 @@ class DenseSearch:
     rope_max: np.ndarray
     spread: float
     utilisation_spread: float
+    rope_min: np.ndarray | None = None
 
 
 def robust(tensions, gain, lugset, delta=None):
@@ -340,10 +349,20 @@ def _limits(count, low, high):
 
 
 class SetEvaluator:
-    """Evaluates lug sets of one problem (the LP is built once and re-solved)."""
+    """Evaluates lug sets of one problem (the LP is built once and re-solved).
+
+    With floating cranes each set is evaluated with its vessels in series at its own lugs
+    (:func:`~liftplan.planner.problem.vessels.series_fleet`, whatever stiffness the problem's
+    fleet stands at), and a set whose worst states put a vessel beyond its ``max_heel`` or
+    ``max_trim``, or below its ``min_freeboard``, is ruled out (:data:`VESSEL_CODES`): the
+    states of the dense search (the box for every CG vertex, each with the hook errors at their
+    worst), the levelling ballast set for the set's level tensions
+    (:func:`~liftplan.planner.problem.vessels.vessel_worst`).
+    """
 
     def __init__(self, problem):
         self.problem = problem
+        self.limited = has_limits(problem)
         hooks = problem.hook_tolerance > 0 or any(c.hook_tolerance for c in problem.fleet)
         self.minimax = PreloadMinimax(problem.cranes, SLOTS, problem.objective, separable=not hooks)
         self.offsets = [tuple(map(float, o)) for o in problem.cog_envelope.offsets()]
@@ -375,9 +394,12 @@ class SetEvaluator:
         ------
         SetInfeasible
             No preload of this set keeps every rope within [min_tension, SWL] over the box;
-            the message names the first constraint that cannot be met.
+            the message names the first constraint that cannot be met. Or (floating cranes)
+            the set's preload, the LP's, puts a vessel beyond a limit at a worst state: the
+            limits rule the set out as its plan stands, they are no constraint of the LP.
         """
-        lugset = LugSet(self.problem, indices, cranes)
+        lugset = set_lugset(self.problem, indices, cranes)
+        indices, cranes = lugset.indices, lugset.cranes
         scenarios = list(self.start)
         a_level, b_level = lugset.level_statics
         if np.linalg.matrix_rank(a_level[:, :], tol=1e-9 * np.abs(a_level).max()) < 3:
@@ -421,6 +443,10 @@ class SetEvaluator:
         if not converged and (low[0] < low_limit - self.tol or over[0] > self.tol):
             raise SetInfeasible(BOX_SLACK if low[0] < low_limit - self.tol else BOX_OVERLOAD)
         preload = result.preload
+        if self.limited:
+            cause = vessel_breach(self.problem, indices, cranes, preload, found.rope_min, found.rope_max)
+            if cause is not None:
+                raise SetInfeasible(VESSEL_CODES[cause])
         return SetResult(
             lugs=lugset.names,
             indices=lugset.indices,
@@ -474,6 +500,7 @@ class SetEvaluator:
             over=(float(excess.max()), self.dense[over]),
             highest=float(high.max()),
             rope_max=high.max(axis=0),
+            rope_min=low.min(axis=0),
             spread=max(float(spread.max()), worst[0] if width and not per_swl else 0.0),
             utilisation_spread=max(float(util.max()), worst[0] if width and per_swl else 0.0),
         )

@@ -31,6 +31,7 @@ import numpy as np
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.statics.model import BLOCK, hinged_model, rope_model
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.problem.vessels import series_fleet, uses_vessels
 
 
 def run_block(block, n, attitudes, params):
@@ -186,6 +187,17 @@ class Scenario:
     cog_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
+def set_lugset(problem, indices, cranes=None):
+    """A :class:`LugSet` with each floating crane in series with its vessel at the lug it takes
+    (:func:`~liftplan.planner.problem.vessels.series_fleet`), whatever stiffness the problem's
+    fleet stands at; the problem's own cranes where none floats."""
+    if not uses_vessels(problem):
+        return LugSet(problem, indices, cranes)
+    indices = tuple(int(i) for i in indices)
+    cranes = tuple(range(len(indices))) if cranes is None else tuple(int(j) for j in cranes)
+    return LugSet(problem, indices, cranes, fleet=series_fleet(problem, indices, cranes))
+
+
 class LugSet:
     """One choice of lugs and of the crane on each: level statics and tensions across scenarios.
 
@@ -197,16 +209,20 @@ class LugSet:
     cranes : sequence of int, optional
         Fleet index of the crane on each lug (default: crane k on the k-th lug, which is any
         assignment for a fleet of equal cranes).
+    fleet : tuple of FleetCrane, optional
+        The cranes to use instead of ``problem.fleet`` (fleet order; the same positions and
+        charts): each floating crane in series with its vessel at the lug it takes
+        (:func:`~liftplan.planner.problem.vessels.series_fleet`).
     """
 
-    def __init__(self, problem, indices, cranes=None):
+    def __init__(self, problem, indices, cranes=None, fleet=None):
         self.problem = problem
         self.indices = tuple(int(i) for i in indices)
         self.n = len(self.indices)
         self.cranes = tuple(range(self.n)) if cranes is None else tuple(int(j) for j in cranes)
         self.points = problem.points[list(self.indices)]
         self.names = tuple(problem.names[i] for i in self.indices)
-        fleet = [problem.fleet[j] for j in self.cranes]
+        fleet = [(problem.fleet if fleet is None else fleet)[j] for j in self.cranes]
         self.crane_names = tuple(c.name for c in fleet)
         self.rope_length = np.array([c.rope_length for c in fleet])
         self.EA = np.array([c.EA for c in fleet])

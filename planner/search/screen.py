@@ -51,6 +51,9 @@ LEVEL_MIN_TENSION = 3
 BOOM_RANGE = 4
 BOX_SLACK = 5
 BOX_OVERLOAD = 6
+VESSEL_HEEL = 9
+VESSEL_TRIM = 10
+VESSEL_FREEBOARD = 11
 REASONS = {
     COLLINEAR: "the lugs are collinear in plan (the statics are singular)",
     CG_OUTSIDE: "the CG lies outside the lugs' polygon in plan",
@@ -63,6 +66,12 @@ REASONS = {
     BOX_SLACK: "a rope falls below min_tension somewhere in the tolerance box",
     BOX_OVERLOAD: "a rope exceeds the crane SWL (with the rules' DAF, contingency and rigging) "
     "somewhere in the tolerance box",
+    VESSEL_HEEL: "a crane vessel heels beyond its max_heel at a worst state (the box, the CG "
+    "envelope and the hook errors; the levelling ballast set for the level tension)",
+    VESSEL_TRIM: "a crane vessel trims beyond its max_trim at a worst state (the box, the CG "
+    "envelope and the hook errors; the levelling ballast set for the level tension)",
+    VESSEL_FREEBOARD: "a crane vessel's lowest deck corner falls below its min_freeboard at a worst "
+    "state (the box, the CG envelope and the hook errors; the levelling ballast set)",
 }
 
 CHUNK = 8192

@@ -81,7 +81,7 @@ def plan_table(plan):
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
     lines += hull_water_lines(plan)
-    lines += vessel_lines(plan.vessels)
+    lines += vessel_lines(plan.vessels, plan.stats.infeasible)
     lines += wind_lines(plan)
     over = "over the box, the CG envelope and the hook errors"
     if problem.breakout is not None:  # docs/planning.md "What the planner does not plan"
@@ -282,6 +282,16 @@ def _breakout_lines(plan, design):
             f"{shift:>15.3f}  {'ok' if check.ok else 'FAIL'}"
         )
         lines.append(f"{'':<5}{c.static_note}")
+    if case.vessels:
+        lines.append(
+            "crane vessels at breakout (largest |heel|, |trim| [deg], least freeboard [m]; the "
+            "levelling ballast set):"
+        )
+        for v in case.vessels:
+            freeboard = "-" if v.worst.freeboard is None else f"{v.worst.freeboard:.2f}"
+            lines.append(
+                f"  {v.crane}: heel {v.worst.heel:.2f}, trim {v.worst.trim:.2f}, freeboard {freeboard}"
+            )
     return lines
 
 
