@@ -393,6 +393,27 @@ def coupled_solver(n, m):
     return FastCall(ca.Function(f"coupled_solve_{n}_{m}", [p, taut], outputs))
 
 
+def coupled_stiffness(length, ea, compliance, taut):
+    """G_S = (D_S^-1 + C_SS)^-1 on the taut ropes S, zero elsewhere  [t/m] (n x n), in numpy
+    (what :func:`coupled_solver` forms inside its function).
+
+    Parameters
+    ----------
+    length, ea : numpy.ndarray, shape (n,)  [m, t]
+        Unstretched lengths and EA.
+    compliance : numpy.ndarray, shape (n, n)  [m/t]
+        The tips' compliance C (:meth:`Fleet.compliance`).
+    taut : numpy.ndarray of bool, shape (n,)
+    """
+    n = len(length)
+    out = np.zeros((n, n))
+    on = np.flatnonzero(taut)
+    if on.size:
+        block = np.diag(length[on] / ea[on]) + compliance[np.ix_(on, on)]
+        out[np.ix_(on, on)] = np.linalg.inv(block)
+    return out
+
+
 #: Taut sets tried by :func:`solve_coupled` before it hands over to the full Newton.
 TAUT_SETS = 8
 
@@ -413,11 +434,11 @@ def check_floating(scene, model):
             "expected one of them"
         )
     shared = [name for name, (_, on) in scene.vessels.items() if len(on) > 1]
-    if shared and model != "elastic":
+    if shared and model not in ("elastic", "hydrostatic"):
         raise InvalidScene(
             f"cranes.vessel: {shared[0]!r} carries {len(scene.vessels[shared[0]][1])} cranes, whose "
-            f"coupling the {model} model does not take; expected the elastic model in air, or one "
-            "crane per vessel"
+            f"coupling the {model} model does not take; expected the elastic or hydrostatic model, "
+            "or one crane per vessel"
         )
     slung = [c.label for c in scene.cranes if c.vessel is not None and c.sling is not None]
     if slung:
@@ -528,7 +549,7 @@ def _solve_reduced(scene, fleet):
         x, tensions, stretch, residual, minors, _ = solver(p, taut)
         if not elastic_verdict(scene, x, residual, minors).ok:
             return None
-        now = _next_taut(taut, tensions, stretch)
+        now = next_taut(taut, tensions, stretch)
         if np.array_equal(now, taut):
             seconds = time.perf_counter() - start
             how = " on the ropes' coupled stiffness"
@@ -539,7 +560,7 @@ def _solve_reduced(scene, fleet):
     return None
 
 
-def _next_taut(taut, tensions, stretch):
+def next_taut(taut, tensions, stretch):
     """The next taut set: the rope pulling least (a compression) taken slack, one at a time
     (dropping every rope in compression at once can leave fewer than three), and every slack
     rope found stretched taken taut; ``taut`` itself when it holds."""

@@ -16,6 +16,8 @@ Modules, bottom-up (each imports only those above it in this list):
   (:func:`solve_hydrostatic`).
 * :mod:`.draining` - water in compartments with openings: the inside level at a pose and
   the orifice flow (Torricelli) through each opening, integrated in time at a hoist speed.
+* :mod:`.vessels` - crane vessels under several cranes: the ropes' coupled stiffness over a
+  hull in water, and the taut set found around the solve.
 
 The load curve that puts them together is :mod:`liftplan.model.lift`.
 """
