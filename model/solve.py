@@ -56,6 +56,7 @@ from liftplan.model.strength.flexible import (
 from liftplan.model.strength.flexible_water import solve_hull_in_water
 from liftplan.model.water.equilibrium import solve_hydrostatic
 from liftplan.model.water.held import held_loads
+from liftplan.model.water.hull_vessels import solve_hull_vessels
 from liftplan.model.water.vessels import solve_coupled_in_water
 
 
@@ -183,6 +184,8 @@ def _hydrostatic(scene, method):
 
 
 def _elastic(scene, method):
+    if any(v.hull is not None for v, _ in scene.vessels.values()):  # vessels as hull meshes
+        return solve_hull_vessels(scene)
     if scene.vessels:
         return solve_floating(scene)
     return solve_elastic(scene) if scene.girder is None else solve_hull_on_ropes(scene)

@@ -422,6 +422,13 @@ def check_floating(scene, model):
     """Refuse a scene with crane vessels on a model that does not couple them."""
     if not scene.vessels:
         return
+    hulls = [name for name, (v, _) in scene.vessels.items() if v.hull is not None]
+    if hulls and (model != "elastic" or scene.hull is not None):
+        raise InvalidScene(
+            f"cranes.vessel {hulls[0]!r}: a vessel given by her hull (mesh or box) is modelled with the "
+            f"elastic model in air; expected model 'elastic' without [hull] and [water] (got {model}), "
+            "or her small-angle particulars (waterplane_area, gm_t, gm_l, flotation)"
+        )
     if model not in FLOATING_MODELS:
         raise InvalidScene(
             f"cranes.vessel given, but the {model} model holds the boom tips fixed; expected model "
