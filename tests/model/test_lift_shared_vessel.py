@@ -10,11 +10,11 @@ import math
 import numpy as np
 import pytest
 from helpers import EXAMPLES
-from support.cli import run
 
 from liftplan.model import solve
 from liftplan.model.lift import EVENT_TOL, load_curve
 from liftplan.model.scene.file import load_scene
+from liftplan.planner import cli
 
 BARGE = EXAMPLES / "sunken_block_barge.toml"
 
@@ -90,20 +90,29 @@ def test_a_heel_limit_broken_midway_is_flagged_where_it_is_first_broken():
     assert any(c["name"] == "vessel_heel" and not c["ok"] for c in data["checks"])
 
 
-def test_the_lift_command_exits_4_on_a_broken_vessel_limit(tmp_path):
+def test_the_lift_command_exits_4_on_a_broken_vessel_limit(tmp_path, capsys):
     """`liftplan lift` prints the broken limit with its first hoist (console) and in JSON, and
     exits 4; the same barge within its limit exits 0."""
     text = BARGE.read_text()
     assert "max_heel = 0.4" in text
-    for limit, code in (("0.4", 4), ("3.0", 0)):
+    for limit, code, json_out in (("0.4", 4, False), ("3.0", 0, True)):
         path = tmp_path / f"barge_{code}.toml"
         path.write_text(text.replace("max_heel = 0.4", f"max_heel = {limit}"))
-        figure = str(tmp_path / f"curve_{code}.png")
-        out = run("lift", str(path), "--to", "1.0", "--step", "0.5", "--figure", figure)
-        assert out.returncode == code, out.stderr
-        assert ("broken first at hoist" in out.stdout) == (code == 4)
-        out = run("lift", str(path), "--to", "1.0", "--step", "0.5", "--json", "--figure", figure)
-        assert out.returncode == code, out.stderr
-        data = json.loads(out.stdout)
-        assert [m["ok"] for m in data["vessel_limits"] if m["vessel"] == "Barge"] == [code == 0]
-        assert "vessel_within_limits_Barge" in data["curve"][0]
+        argv = [
+            "lift",
+            str(path),
+            "--to",
+            "1.0",
+            "--step",
+            "0.5",
+            "--figure",
+            str(tmp_path / f"curve_{code}.png"),
+        ]
+        assert cli.main(argv + (["--json"] if json_out else [])) == code
+        out = capsys.readouterr().out
+        if json_out:
+            data = json.loads(out)
+            assert [m["ok"] for m in data["vessel_limits"] if m["vessel"] == "Barge"] == [True]
+            assert data["curve"][0]["vessel_within_limits_Barge"] is True
+        else:
+            assert "FAIL |heel| <= 0.4 deg broken first at hoist 0.37" in out
