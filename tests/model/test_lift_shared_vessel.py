@@ -14,6 +14,8 @@ from helpers import EXAMPLES
 from liftplan.model import solve
 from liftplan.model.lift import EVENT_TOL, load_curve
 from liftplan.model.scene.file import load_scene
+from liftplan.model.statics.floating import solve_coupled
+from liftplan.model.water import WaterSetup, submerged_scene
 from liftplan.planner import cli
 
 BARGE = EXAMPLES / "sunken_block_barge.toml"
@@ -45,8 +47,9 @@ def _barge_heel(scene, tensions):
 def test_two_cranes_on_one_vessel_follow_solve_along_the_curve():
     """At hoists on the ground, at lift-off's bracket and hanging: the curve's tensions equal
     solve of the scene with every boom raised by the hoist to 1e-6 W, the barge's heel its
-    closed form from the two hook loads; the coupling matters (the same barge copied under
-    each crane gives other tensions)."""
+    closed form from the two hook loads; hanging submerged, the in-air Newton on body and vessels
+    gives them too; the coupling matters (the same barge copied under each crane gives other
+    tensions)."""
     scene = _shared(30.0)
     curve = load_curve(scene, stop=1.0, step=0.25)
     assert not curve.failed and curve.lift_off is not None
@@ -61,6 +64,15 @@ def test_two_cranes_on_one_vessel_follow_solve_along_the_curve():
         assert heel == pytest.approx(_barge_heel(scene, curve.equilibria[k].tensions), abs=1e-9)
         states.add(curve.state[k])
     assert {"grounded", "hanging submerged"} <= states
+    # hanging submerged, the hull is a constant force (W - B at its centre): the in-air Newton on
+    # the body and the vessels' heave, heel and trim as unknowns (another implementation of the
+    # coupling) gives the last hoist's tensions
+    last = len(curve.hoist) - 1
+    assert curve.state[last] == "hanging submerged"
+    hanging = submerged_scene(WaterSetup(_raised(scene, float(curve.hoist[last]))))
+    full = solve_coupled(hanging, reduced=False)
+    assert "on the ropes' coupled stiffness" not in full.solver.method
+    assert list(full.tensions.values()) == pytest.approx(curve.tensions[last], abs=1e-6 * w)
     own = scene.with_crane("L2", vessel=scene.cranes[0].vessel)  # a barge of its own
     apart = load_curve(own, stop=1.0, step=1.0)
     assert abs(apart.tensions[-1] - curve.tensions[-1]).max() > 1e-3 * w
