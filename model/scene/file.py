@@ -1268,12 +1268,18 @@ def _to_crane(c, data, to_zup, base=None):
 
 
 def to_vessel(spec, frame, base=None):
-    """A crane's ``vessel`` (table or shared name) in ``z-up``; None for none. ``base``: the folder
-    a relative ``mesh`` path is read from (default the working directory)."""
+    """A crane's ``vessel`` (table or shared name) in ``z-up``; None for none. ``base``: the scene
+    file's folder, a relative ``mesh`` path is read from; None (a planning file): a hull is refused."""
     if spec is None or isinstance(spec, str):
         return spec
     fields = spec.model_dump()
     mesh, box = fields.pop("mesh"), fields.pop("box")
+    if base is None and (mesh is not None or box is not None):
+        raise InvalidScene(
+            f"vessel.{'mesh' if mesh is not None else 'box'}: a vessel given by her hull is solved by "
+            "liftplan solve (the elastic model in air), not planned; expected her small-angle particulars "
+            "(waterplane_area, gm_t, gm_l, flotation) in a planning file"
+        )
     choi = frame == "choi"
     for key in ("flotation", "origin"):
         if choi and spec.model_dump()[key] is not None:  # plan (x, z starboard) -> (x, y port)

@@ -21,6 +21,7 @@ from liftplan.model.scene.file import load_scene, loads_scene
 from liftplan.model.scene.hull import Hull
 from liftplan.model.scene.hullfit import write_stl
 from liftplan.model.scene.vessel import Vessel
+from liftplan.planner.problem.file import loads_problem
 
 TWIN = EXAMPLES / "tanker_twin_barge.toml"
 SIZES = {"T1": (100.0, 30.0, 8.0), "T3": (80.0, 35.0, 7.0), "T4": (80.0, 35.0, 7.0)}
@@ -244,3 +245,18 @@ def test_a_mesh_file_is_the_box_it_describes(tmp_path):
     for name in boxed.lug_names:
         assert a.tensions[name] == pytest.approx(b.tensions[name], abs=1e-9 * boxed.body.weight)
     assert a.vessels["Barge"].heel == pytest.approx(b.vessels["Barge"].heel, abs=1e-9)
+
+
+def test_a_planning_file_refuses_a_hull_vessel():
+    """The planner takes small-angle vessels only: a box vessel in a planning file is refused
+    in one line naming the key and what is expected."""
+    text = (EXAMPLES / "tanker_floating_fleet.toml").read_text()
+    old = next(line for line in text.splitlines() if line.startswith("vessel = { displacement"))
+    box = (
+        "vessel = { box = { min = [-40.0, 0.0, -17.5], max = [40.0, 7.0, 17.5] }, displacement = 9000.0, "
+        "cog = [0.0, 28.0, 0.0], origin = [16.2, 52.0], heading = -90.0 }"
+    )
+    with pytest.raises(
+        InvalidScene, match="vessel.box: a vessel given by her hull is solved by liftplan solve"
+    ):
+        loads_problem(text.replace(old, box, 1), base=EXAMPLES)
