@@ -38,6 +38,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from liftplan.model.checks import Check
 from liftplan.model.errors import EquilibriumNotFound, InvalidScene
 from liftplan.model.frames import rotation_matrix
 from liftplan.model.statics.floating import (
@@ -49,6 +50,7 @@ from liftplan.model.statics.floating import (
 )
 from liftplan.model.water import WaterSetup, hull_heights, settle
 from liftplan.model.water.draining import RTOL, Drainage, TankSummary, integrate
+from liftplan.model.water.vessels import CoupledWater
 
 # Bracket width [m] at which an event's bisection stops (the event is reported at the
 # bracket's middle, to +-half of it). Hooks are set to centimetres; 0.1 mm costs about a
@@ -156,6 +158,82 @@ class MaxLoad:
         }
 
 
+#: A crane vessel's limits followed over the curve: (check name, VesselState attribute, the
+#: Vessel's limit attribute, unit, what the sign means).
+VESSEL_LIMITS = (
+    ("vessel_heel", "heel", "max_heel", "deg", "+ starboard down"),
+    ("vessel_trim", "trim", "max_trim", "deg", "+ bow down"),
+    ("vessel_freeboard", "freeboard", "min_freeboard", "m", "the lowest deck corner"),
+)
+
+
+@dataclass(frozen=True)
+class VesselLimit:
+    """One crane vessel's limit followed over the load curve.
+
+    Parameters
+    ----------
+    vessel : str
+    check : str
+        ``vessel_heel``, ``vessel_trim`` (|angle| <= limit) or ``vessel_freeboard``
+        (freeboard >= limit), as :func:`liftplan.model.solve_checks.vessel_checks` names them.
+    limit : float  [deg or m]
+        ``max_heel``, ``max_trim`` or ``min_freeboard``.
+    unit : str
+    worst : float  [deg or m]
+        The largest |heel| or |trim|, or the lowest freeboard, over the curve's hoists.
+    worst_signed : float  [deg or m]
+        The heel or trim there with its sign (ballast included).
+    worst_hoist : float  [m]
+    first_broken : float or None  [m]
+        The first hoist where the limit is broken: bisected between the last hoist within it
+        and the first beyond it to ``EVENT_TOL`` (the middle of the final bracket), or the
+        first hoist if it is broken from the start; None when it holds all along.
+    tolerance : float or None  [m]
+        Half the final bracket's width (0 broken from the start).
+    sense : str
+        What the sign means.
+    """
+
+    vessel: str
+    check: str
+    limit: float
+    unit: str
+    worst: float
+    worst_signed: float
+    worst_hoist: float
+    first_broken: float | None
+    tolerance: float | None
+    sense: str = ""
+
+    @property
+    def ok(self):
+        return self.first_broken is None
+
+    def as_check(self):
+        """The flagged :class:`~liftplan.model.checks.Check` of the whole curve (its worst value)."""
+        where = f"worst {self.worst_signed:+.3f} {self.unit} ({self.sense}) at hoist {self.worst_hoist:.4f} m"
+        if self.first_broken is not None:
+            where += f"; first broken at hoist {self.first_broken:.4f} m +- {1e3 * self.tolerance:.2f} mm"
+        make = Check.lower if self.check == "vessel_freeboard" else Check.upper
+        check = make(self.check, self.vessel, self.worst, self.limit, self.unit, note=where)
+        return replace(check, ok=self.ok and check.ok)
+
+    def to_json(self):
+        return {
+            "vessel": self.vessel,
+            "check": self.check,
+            "limit": self.limit,
+            "unit": self.unit,
+            "worst": self.worst,
+            "worst_signed": self.worst_signed,
+            "worst_hoist": self.worst_hoist,
+            "first_broken_hoist": self.first_broken,
+            "first_broken_tolerance": self.tolerance,
+            "ok": self.ok,
+        }
+
+
 @dataclass(frozen=True)
 class LoadCurve:
     """Crane loads, attitude and water forces against hoist (and time, with a speed).
@@ -210,6 +288,9 @@ class LoadCurve:
         Floating cranes: per crane vessel, its ``heave`` [m], ``heel``, ``trim`` [deg],
         ``tip_drop`` [m] and, where it gives one, ``freeboard`` [m] (the lowest deck
         corner's) at each hoist (:class:`~liftplan.model.results.VesselState`).
+    vessel_limits : tuple of VesselLimit
+        Each vessel's ``max_heel``, ``max_trim`` and ``min_freeboard`` (where it gives them)
+        over the curve, with the first hoist where each is broken; :attr:`checks` flags them.
     """
 
     lugs: tuple[str, ...]
@@ -240,6 +321,12 @@ class LoadCurve:
     drainage_note: str = ""
     equilibria: tuple = field(default=(), repr=False, compare=False)
     vessels: dict = field(default_factory=dict)
+    vessel_limits: tuple = ()
+
+    @property
+    def checks(self):
+        """The curve's checks (list of Check): each vessel limit, flagged when broken at any hoist."""
+        return [limit.as_check() for limit in self.vessel_limits]
 
     @property
     def crane_load(self):
@@ -299,8 +386,23 @@ class LoadCurve:
                 row["water_in_compartments"] = float(self.water[k])
             for name, series in self.vessels.items():
                 row.update({f"vessel_{key}_{name}": float(v[k]) for key, v in series.items()})
+                if any(limit.vessel == name for limit in self.vessel_limits):
+                    row[f"vessel_within_limits_{name}"] = self.within_limits(name, k)
             out.append(row)
         return out
+
+    def within_limits(self, vessel, k):
+        """Whether crane vessel ``vessel`` is within its limits at hoist step ``k`` (bool)."""
+        series = self.vessels[vessel]
+        for limit in self.vessel_limits:
+            if limit.vessel == vessel:
+                key = next(attr for name, attr, *_ in VESSEL_LIMITS if name == limit.check)
+                value = float(series[key][k])
+                if not (
+                    value >= limit.limit if limit.check == "vessel_freeboard" else abs(value) <= limit.limit
+                ):
+                    return False
+        return True
 
     def to_json(self):
         load, at = self.peak_crane_load
@@ -316,6 +418,9 @@ class LoadCurve:
             "curve": self.rows(),
             "failed": [{"hoist": h, "reason": r} for h, r in self.failed],
         }
+        if self.vessel_limits:
+            out["vessel_limits"] = [limit.to_json() for limit in self.vessel_limits]
+            out["checks"] = [check.to_json() for check in self.checks]
         if self.breakout is not None or self.speed is not None or self.drainage:
             out["max_crane_load"] = {"load": load, "hoist": at, "time": self.hoist_time(at)}
             out["breakout"] = self.breakout.to_json() if self.breakout is not None else None
@@ -362,10 +467,11 @@ class _Point:
 class _Lift:
     """Solves at any hoist from a given pose (one built model)."""
 
-    def __init__(self, scene, speed=None):
+    def __init__(self, scene, speed=None, coupled=None):
 
         self.scene = scene
-        self.setup = WaterSetup(scene)
+        self.coupled = coupled  # a CoupledWater: crane vessels under several cranes
+        self.setup = WaterSetup(scene) if coupled is None else coupled.setup
         self.drainage = Drainage(self.setup, speed) if scene.openings else None
         self.history = None  # the timed tanks' volumes in time, once integrated
         self.speed = speed
@@ -379,12 +485,14 @@ class _Lift:
     def at(self, hoist, start=None):
         """The solved :class:`_Point` at ``hoist`` [m]; raises EquilibriumNotFound."""
         scene, drainage = self.scene, self.drainage
-        timed = None
-        if drainage is None:
-            state = settle(self.setup, hoist, start)
-        else:
-            timed = self.timed(hoist)
-            state = drainage.settle(hoist, timed, start)
+        timed = None if drainage is None else self.timed(hoist)
+
+        def solve():
+            if drainage is None:
+                return settle(self.setup, hoist, start)
+            return drainage.settle(hoist, timed, start)
+
+        state = solve() if self.coupled is None else self.coupled.hold(solve, hoist)
         eq, pose = state.eq, state.start
         bottom, top = hull_heights(scene.hull, pose.rotation, pose.zo)
         water = state.loads.trapped
@@ -550,11 +658,15 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
                 f"(at each hoist: boom_height raised by the hoist), or the scene without [{key}]"
             )
     floating = scene  # with its crane vessels, for their states at each hoist
-    fleet = None
-    if scene.vessels:  # each rope in series with its vessel (one crane each), as solve's hydrostatic
+    fleet = coupled = None
+    if scene.vessels:  # each rope in series with its vessel, as solve's hydrostatic
         check_floating(scene, "hydrostatic")
         fleet = scene_fleet(scene)
-        scene = series_scene(scene, fleet)
+        if np.all(fleet.membership.sum(axis=1) == 1.0):  # one crane each: the series stiffness
+            scene = series_scene(scene, fleet)
+        else:  # a vessel under several cranes: the ropes' coupled stiffness
+            coupled = CoupledWater(scene, fleet)
+            scene = coupled.scene
     if stop is not None:
         _check_stop(scene, stop)
     stop = default_stop(scene) if stop is None else float(stop)
@@ -569,7 +681,7 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
             f"{MAX_STEPS} (--step at least {stop / MAX_STEPS:.3g} m, or a lower --to)"
         )
     count = int(np.floor(steps + 1e-9)) + 1
-    lift = _Lift(scene, speed)
+    lift = _Lift(scene, speed, coupled)
     hoists = np.linspace(0.0, step * (count - 1), count)
     points, failed = [], []
     note = ""
@@ -624,7 +736,10 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
     points = _with_brackets(lift, points)
     tensions = np.array([list(p.eq.tensions.values()) for p in points])
     max_load = _max_load(lift, points, failed, scene.lug_names, tensions)
-    points = _with_brackets(lift, points)  # and the plateau's own bracket ends
+    breaks = {}
+    if fleet is not None:
+        breaks = _breaks(lift, _with_brackets(lift, points), failed, floating, fleet)
+    points = _with_brackets(lift, points)  # and the plateau's and limits' own bracket ends
     if fleet is not None:
         points = [
             replace(p, eq=with_vessels(p.eq, vessel_states(floating, fleet, list(p.eq.tensions.values()))))
@@ -667,7 +782,65 @@ def load_curve(scene, stop=None, step=0.25, speed=None, progress=False):
         drainage_note=note,
         equilibria=tuple(p.eq for p in points),
         vessels=_vessel_series(points),
+        vessel_limits=_vessel_limits(points, floating, breaks) if fleet is not None else (),
     )
+
+
+def _limits(scene):
+    """(vessel, check, attribute, limit, unit, sense, lower) of every limit the crane vessels give."""
+    out = []
+    for name, (vessel, _) in scene.vessels.items():
+        for check, attr, key, unit, sense in VESSEL_LIMITS:
+            limit = getattr(vessel, key)
+            if limit is not None and (check != "vessel_freeboard" or vessel.freeboard is not None):
+                out.append((name, check, attr, limit, unit, sense, check == "vessel_freeboard"))
+    return out
+
+
+def _measure(state, attr, lower):
+    """The value a limit is checked on: the freeboard, or |heel| or |trim|."""
+    value = getattr(state, attr)
+    return value if lower else abs(value)
+
+
+def _breaks(lift, points, failed, scene, fleet):
+    """The first hoist (middle, half-width) [m] where each vessel limit is broken, keyed by
+    (vessel, check); bisected between steps as the events are (the brackets join the curve)."""
+    pairs = set(_adjacent(points, failed))
+    out = {}
+    for name, check, attr, limit, _, _, lower in _limits(scene):
+
+        def broken(point, name=name, attr=attr, limit=limit, lower=lower):
+            state = vessel_states(scene, fleet, list(point.eq.tensions.values()))[name]
+            value = _measure(state, attr, lower)
+            return not (value >= limit if lower else value <= limit)
+
+        first = next((j for j, p in enumerate(points) if broken(p)), None)
+        if first == 0:
+            out[name, check] = (points[0].hoist, 0.0)
+        elif first is not None and first - 1 in pairs:
+            out[name, check] = lift.bisect(points[first - 1], points[first], broken)
+        elif first is not None:  # a failed step lies between: the two solved neighbours
+            a, b = points[first - 1].hoist, points[first].hoist
+            out[name, check] = (0.5 * (a + b), 0.5 * (b - a))
+    return out
+
+
+def _vessel_limits(points, scene, breaks):
+    """Each vessel limit over the curve's points (with their vessels' states): its worst value
+    and where, and the first hoist where it is broken (``breaks``)."""
+    out = []
+    for name, check, attr, limit, unit, sense, lower in _limits(scene):
+        values = np.array([_measure(p.eq.vessels[name], attr, lower) for p in points])
+        k = int(np.argmin(values) if lower else np.argmax(values))
+        hoist, tolerance = breaks.get((name, check), (None, None))
+        signed = float(getattr(points[k].eq.vessels[name], attr))
+        out.append(
+            VesselLimit(
+                name, check, limit, unit, float(values[k]), signed, points[k].hoist, hoist, tolerance, sense
+            )
+        )
+    return tuple(out)
 
 
 def _vessel_series(points):

@@ -56,6 +56,8 @@ from liftplan.model.strength.flexible import (
 from liftplan.model.strength.flexible_water import solve_hull_in_water
 from liftplan.model.water.equilibrium import solve_hydrostatic
 from liftplan.model.water.held import held_loads
+from liftplan.model.water.hull_vessels import solve_hull_vessels
+from liftplan.model.water.vessels import solve_coupled_in_water
 
 
 def pick_model(scene):
@@ -170,7 +172,10 @@ def _wind_share(eq, still, model, method):
 def _hydrostatic(scene, method):
     if scene.vessels:  # floating cranes: each rope in series with its vessel (one crane each)
         fleet = scene_fleet(scene)
-        eq = _hydrostatic(series_scene(scene, fleet), method)
+        if np.all(fleet.membership.sum(axis=1) == 1.0):
+            eq = _hydrostatic(series_scene(scene, fleet), method)
+        else:  # a vessel under several cranes: the ropes' coupled stiffness
+            eq = dataclasses.replace(solve_coupled_in_water(scene, fleet, method), frame=scene.frame)
         return with_vessels(eq, vessel_states(scene, fleet, list(eq.tensions.values())))
     if scene.girder is not None:  # a flexible hull in water
         return solve_hull_in_water(scene, method=method)
@@ -179,6 +184,8 @@ def _hydrostatic(scene, method):
 
 
 def _elastic(scene, method):
+    if any(v.hull is not None for v, _ in scene.vessels.values()):  # vessels as hull meshes
+        return solve_hull_vessels(scene)
     if scene.vessels:
         return solve_floating(scene)
     return solve_elastic(scene) if scene.girder is None else solve_hull_on_ropes(scene)

@@ -426,7 +426,8 @@ def _lift(args):
         print(json.dumps(_stamped(curve.to_json())))
     else:
         print(lift_table(scene, curve))
-    return _unwritten(unwritten)
+    code = _verdict(curve.checks, table=not args.json)  # crane vessels' limits over the curve
+    return _unwritten(unwritten) or code
 
 
 def _view_file(args):

@@ -264,31 +264,79 @@ class _Sling(Table):
 
 
 class VesselTable(Table):
+    mesh: Text | None = Key(
+        None,
+        doc=(
+            "the vessel's hull as a closed, outward-oriented triangle mesh (STL, path relative to the "
+            "scene file), in her own axes (x forward, y to port, z up in `z-up`; x forward, y up, z to "
+            "starboard in `choi`): her heave, heel and trim under the hook loads from the clipped-mesh "
+            "hydrostatics at any angle, solved with the body (the `elastic` model, in air); with it give "
+            "`displacement`, `cog` and `origin`, and no waterplane_area, gm_t, gm_l, flotation, ballast "
+            "or freeboard. The water surface is at world height 0 (the tips' height over it sets the "
+            "arm their loads gain as she heels)"
+        ),
+        values="string (path)",
+        absent="the small-angle vessel (waterplane_area, gm_t, gm_l, flotation)",
+        frame="the vessel's own axes, file frame",
+        example='mesh = "barge.stl"',
+    )
+    box: _Box | None = Key(
+        None,
+        doc="the vessel's hull as an axis-aligned box in her own axes (as `mesh`; corners in m)",
+        values="table { min = [x, y, z], max = [x, y, z] }",
+        absent="see `mesh`",
+        frame="the vessel's own axes, file frame",
+        example="box = { min = [-50, -15, 0], max = [50, 15, 8] }",
+    )
+    cog: Point | None = Key(
+        None,
+        doc="with `mesh` or `box`: her centre of gravity (crane and ballast included) in her own axes",
+        unit="m",
+        absent="required with `mesh` or `box`",
+        frame="the vessel's own axes, file frame",
+        example="cog = [0.0, 0.0, 12.0]",
+    )
+    origin: Pair | None = Key(
+        None,
+        doc="with `mesh` or `box`: where the origin of her own axes lies in plan",
+        unit="m",
+        values="[x, y] or [x, z]",
+        absent="required with `mesh` or `box`",
+        frame="world plan, file frame",
+        example="origin = [40.0, -30.0]",
+    )
     displacement: Num = Key(
         doc="the crane vessel's displacement before the lift (crane and ballast included)",
         unit="t",
         values="number > 0",
         example="displacement = 9000.0",
     )
-    waterplane_area: Num = Key(
+    waterplane_area: Num | None = Key(
+        None,
         doc="A_wp, its waterplane area: the hook load T sinks it by T / (density A_wp)",
         unit="m2",
         values="number > 0",
+        absent="required without `mesh` or `box`; refused with them",
         example="waterplane_area = 2800.0",
     )
-    gm_t: Num = Key(
+    gm_t: Num | None = Key(
+        None,
         doc="transverse metacentric height GM_T: heel = T y_t / (displacement GM_T)",
         unit="m",
         values="number > 0",
+        absent="required without `mesh` or `box`; refused with them",
         example="gm_t = 6.0",
     )
-    gm_l: Num = Key(
+    gm_l: Num | None = Key(
+        None,
         doc="longitudinal metacentric height GM_L: trim = T x_t / (displacement GM_L)",
         unit="m",
         values="number > 0",
+        absent="required without `mesh` or `box`; refused with them",
         example="gm_l = 180.0",
     )
-    flotation: Pair = Key(
+    flotation: Pair | None = Key(
+        None,
         doc=(
             "centre of flotation in plan: (x, y) in `z-up`, (x, z) in `choi`; the boom tip's offset "
             "from it (x_t forward, y_t to starboard, in the vessel's axes) sets the heel and trim"
@@ -296,6 +344,7 @@ class VesselTable(Table):
         unit="m",
         values="[x, y] or [x, z]",
         frame="world plan, file frame",
+        absent="required without `mesh` or `box`; refused with them",
         example="flotation = [20.0, -45.0]",
     )
     heading: Num = Key(
@@ -1116,7 +1165,7 @@ def _zup_box(box, to_zup):
 def _to_scene(data, base):
     to_zup = choi_to_zup if data.frame == "choi" else tuple
     lugs = [to_lug(lug, to_zup) for lug in data.lugs]
-    cranes = [_to_crane(c, data, to_zup) for c in data.cranes]
+    cranes = [_to_crane(c, data, to_zup, base) for c in data.cranes]
     red = data.analysis.redundant
     red = [] if red is None else [red] if isinstance(red, _Redundant) else red
     return Scene(
@@ -1199,7 +1248,7 @@ def _to_ground(spec, to_zup):
     return Ground(contact=to_zup(spec.contact), friction=spec.friction, breakout=breakout)
 
 
-def _to_crane(c, data, to_zup):
+def _to_crane(c, data, to_zup, base=None):
     """One crane; errors of its sling are prefixed with the crane's key."""
     try:
         sling = _to_sling(c.sling) if c.sling is not None else None
@@ -1214,18 +1263,43 @@ def _to_crane(c, data, to_zup):
         tip=to_zup(c.tip) if c.tip is not None else None,
         name=c.name,
         sling=sling,
-        vessel=to_vessel(c.vessel, data.frame),
+        vessel=to_vessel(c.vessel, data.frame, base),
     )
 
 
-def to_vessel(spec, frame):
-    """A crane's ``vessel`` (table or shared name) in ``z-up``; None for none."""
+def to_vessel(spec, frame, base=None):
+    """A crane's ``vessel`` (table or shared name) in ``z-up``; None for none. ``base``: the scene
+    file's folder, a relative ``mesh`` path is read from; None (a planning file): a hull is refused."""
     if spec is None or isinstance(spec, str):
         return spec
     fields = spec.model_dump()
-    if frame == "choi":  # plan (x, z starboard) -> (x, y port); the heading turns the other way
-        fields["flotation"] = (spec.flotation[0], 0.0 - spec.flotation[1])
+    mesh, box = fields.pop("mesh"), fields.pop("box")
+    if base is None and (mesh is not None or box is not None):
+        raise InvalidScene(
+            f"vessel.{'mesh' if mesh is not None else 'box'}: a vessel given by her hull is solved by "
+            "liftplan solve (the elastic model in air), not planned; expected her small-angle particulars "
+            "(waterplane_area, gm_t, gm_l, flotation) in a planning file"
+        )
+    choi = frame == "choi"
+    for key in ("flotation", "origin"):
+        if choi and spec.model_dump()[key] is not None:  # plan (x, z starboard) -> (x, y port)
+            fields[key] = (fields[key][0], 0.0 - fields[key][1])
+    if choi:  # the heading turns the other way
         fields["heading"] = 0.0 - spec.heading
+    if choi and spec.cog is not None:
+        fields["cog"] = choi_to_zup(spec.cog)
+    if mesh is not None and box is not None:
+        raise InvalidScene('vessel: expected one of mesh = "file.stl" or box = {min, max}, not both')
+    if box is not None:
+        corners = _zup_box(spec.box, choi_to_zup if choi else tuple)
+        fields["hull"] = Hull.box(corners["min"], corners["max"])
+    elif mesh is not None:
+        hull = Hull.from_stl(Path(base or Path.cwd()) / mesh)
+        if choi:
+            hull = Hull(
+                np.array([[choi_to_zup(v) for v in tri] for tri in hull.triangles]), source=hull.source
+            )
+        fields["hull"] = hull
     return Vessel(**fields)
 
 

@@ -88,13 +88,22 @@ class Vessel:
     beam, length : float or None  [m]
         The hull's breadth and length, centred on the flotation centre: where the deck
         corners are. Required with ``freeboard``.
+    hull : Hull or None
+        Her hull as a closed mesh in her own axes (x forward, y to port, z up; ``z-up``):
+        her heave, heel and trim under the hook loads from the clipped-mesh hydrostatics
+        (:mod:`liftplan.model.water.hull_vessels`) instead of the small-angle particulars,
+        which are then None (as are ballast and freeboard).
+    cog : tuple of 3 float or None  [m]
+        With ``hull``: her centre of gravity (crane and ballast included) in her axes.
+    origin : tuple of 2 float or None  [m]
+        With ``hull``: where her axes' origin lies in world plan (x, y), ``z-up``.
     """
 
     displacement: float
-    waterplane_area: float
-    gm_t: float
-    gm_l: float
-    flotation: tuple[float, float]
+    waterplane_area: float | None = None
+    gm_t: float | None = None
+    gm_l: float | None = None
+    flotation: tuple[float, float] | None = None
     heading: float = 0.0
     density: float = 1.025
     max_heel: float | None = None
@@ -104,12 +113,26 @@ class Vessel:
     min_freeboard: float | None = None
     beam: float | None = None
     length: float | None = None
+    hull: object | None = None  # a Hull (liftplan.model.scene.hull)
+    cog: tuple[float, float, float] | None = None
+    origin: tuple[float, float] | None = None
 
     def __post_init__(self):
-        for name in ("displacement", "waterplane_area", "gm_t", "gm_l", "density"):
+        linear = ("waterplane_area", "gm_t", "gm_l", "flotation")
+        if self.hull is not None:
+            self._check_hull(linear)
+            linear = ()
+        missing = [name for name in linear if getattr(self, name) is None]
+        if missing:
+            raise InvalidScene(
+                f"vessel.{missing[0]}: missing; expected waterplane_area, gm_t, gm_l and flotation (the "
+                "small-angle vessel), or her hull (mesh or box, with cog and origin)"
+            )
+        for name in ("displacement", *linear[:3], "density"):
             object.__setattr__(self, name, _number(f"vessel.{name}", getattr(self, name), "> 0"))
         object.__setattr__(self, "heading", _number("vessel.heading", self.heading))
-        object.__setattr__(self, "flotation", _pair("vessel.flotation", self.flotation, "m"))
+        if linear:
+            object.__setattr__(self, "flotation", _pair("vessel.flotation", self.flotation, "m"))
         object.__setattr__(self, "ballast", _pair("vessel.ballast", self.ballast, "t m"))
         for name in ("max_heel", "max_trim"):
             value = getattr(self, name)
@@ -119,6 +142,43 @@ class Vessel:
                     raise InvalidScene(f"vessel.{name} = {value!r}: expected a limit below 90 deg")
                 object.__setattr__(self, name, value)
         self._check_freeboard()
+
+    def _check_hull(self, linear):
+        """A hull vessel: cog and origin given, no small-angle particulars, ballast or freeboard."""
+        given = [
+            n
+            for n in (*linear, "freeboard", "beam", "length", "min_freeboard")
+            if getattr(self, n) is not None
+        ]
+        if given:
+            raise InvalidScene(
+                f"vessel.{given[0]} given with the vessel's hull (mesh or box): expected her "
+                "displacement, cog and origin alone (the hull gives her waterplane, stability and "
+                "flotation centre; freeboard is not checked on a hull)"
+            )
+        if self.ballast != (0.0, 0.0):
+            raise InvalidScene(
+                "vessel.ballast given with the vessel's hull: expected the ballast in her displacement "
+                "and cog (where it is)"
+            )
+        for name, size in (("cog", 3), ("origin", 2)):
+            value = getattr(self, name)
+            if value is None:
+                raise InvalidScene(
+                    f"vessel.{name}: missing with the vessel's hull; expected "
+                    + (
+                        "her centre of gravity [x, y, z] in the hull's axes"
+                        if size == 3
+                        else "where the hull's origin lies in plan (file frame)"
+                    )
+                )
+            try:
+                values = tuple(_number(f"vessel.{name}", v) for v in value)
+            except TypeError:
+                values = ()
+            if len(values) != size:
+                raise InvalidScene(f"vessel.{name} = {value!r}: expected {size} numbers [m]")
+            object.__setattr__(self, name, values)
 
     def _check_freeboard(self):
         """freeboard with beam and length (the deck corners), min_freeboard only with freeboard."""
@@ -162,19 +222,31 @@ class Vessel:
             return None
         return self.freeboard - heave - 0.5 * self.beam * abs(heel) - 0.5 * self.length * abs(trim)
 
+    def _small_angle(self):
+        """Refuse the small-angle particulars of a vessel given by her hull."""
+        if self.hull is not None:
+            raise InvalidScene(
+                "vessel given by her hull (mesh or box): modelled by the elastic model in air "
+                "(liftplan solve); here the small-angle particulars are needed, expected "
+                "waterplane_area, gm_t, gm_l and flotation instead of the hull"
+            )
+
     @property
     def heave_stiffness(self):
         """density A_wp: the load per m of sinkage  [t/m]."""
+        self._small_angle()
         return self.density * self.waterplane_area
 
     @property
     def heel_stiffness(self):
         """displacement GM_T: the heeling moment per rad  [t m/rad]."""
+        self._small_angle()
         return self.displacement * self.gm_t
 
     @property
     def trim_stiffness(self):
         """displacement GM_L: the trimming moment per rad  [t m/rad]."""
+        self._small_angle()
         return self.displacement * self.gm_l
 
     def axes(self, plan):
@@ -190,6 +262,7 @@ class Vessel:
         tuple of 2 float  [m]
             (x_t forward, y_t to starboard).
         """
+        self._small_angle()
         h = math.radians(self.heading)
         dx, dy = plan[0] - self.flotation[0], plan[1] - self.flotation[1]
         forward = dx * math.cos(h) + dy * math.sin(h)

@@ -153,6 +153,11 @@ def _vessel(vessel, frame):
     """A crane's vessel as an inline table in the file's frame (or the shared vessel's name)."""
     if isinstance(vessel, str):
         return _string(vessel)
+    if vessel.hull is not None:  # its hull, cog and origin: refused, as the lifted hull is
+        raise InvalidScene(
+            "cranes.vessel: a vessel given by her hull (mesh or box) cannot be written as a scene file "
+            "(a hull is kept as triangles, not as the file that made it); expected a small-angle vessel"
+        )
     flotation, heading = vessel.flotation, vessel.heading
     if frame == "choi":  # (x, y port) -> (x, z starboard); the heading turns the other way
         flotation, heading = (flotation[0], 0.0 - flotation[1]), 0.0 - heading

@@ -19,6 +19,13 @@ rows of :mod:`liftplan.model.statics.model`) with the vessels' balances; IPOPT o
 fallback, polished by Newton; every answer passes the one acceptance (residual, energy
 Hessian positive definite, upright).
 
+With the hydrostatics linear the vessels' unknowns are eliminated exactly: the tips drop by
+C T (C the tips' compliance matrix), so over the taut ropes T = (D^-1 + C)^-1 s0 = G s0
+(D = EA / l0, s0 the stretch with the tips at rest), and the body's three unknowns are all
+Newton solves (:class:`CoupledRopeModel`, :func:`coupled_solver`: one compiled function per
+rope and vessel count, G formed inside it). That is what :func:`solve_coupled` does first; the
+Newton on body and vessels together is its fallback.
+
 A vessel under one crane is a spring in series with the rope, of compliance
 1 / (rho A_wp) + y_t^2 / (disp GM_T) + x_t^2 / (disp GM_L): the tensions equal the rope-only
 model's with each rope's stiffness replaced by the series stiffness. A vessel carrying two
@@ -44,11 +51,18 @@ from liftplan.model.statics.model import (
     NEWTON_OPTIONS,
     FastCall,
     Layout,
+    RopeModel,
     pose_points,
     rope_tensions,
     statics_system,
 )
-from liftplan.model.statics.vertical import equilibrium_of, pack_params, solve_elastic, worst_residual
+from liftplan.model.statics.vertical import (
+    elastic_verdict,
+    equilibrium_of,
+    pack_params,
+    solve_elastic,
+    worst_residual,
+)
 
 
 @dataclass(frozen=True)
@@ -82,18 +96,20 @@ class Fleet:
 
     def own_compliance(self):
         """Each tip's drop per unit of its own hook load (C's diagonal)  [m/t]."""
-        per = self.membership.T @ (1.0 / self.stiffness)  # n x 3: 1/k_h, 1/k_phi, 1/k_theta
-        return per[:, 0] + self.starboard**2 * per[:, 1] + self.forward**2 * per[:, 2]
+        jac, inverse = self._springs
+        return (jac * jac) @ inverse
 
     def compliance(self):
         """The tips' compliance matrix C, drop = C T  [m/t] (n x n)."""
-        out = np.zeros((self.forward.size,) * 2)
-        for v in range(len(self.names)):
-            on = self.membership[v] > 0
-            k_h, k_phi, k_theta = self.stiffness[v]
-            x, y = self.forward * on, self.starboard * on
-            out += np.outer(on, on) / k_h + np.outer(y, y) / k_phi + np.outer(x, x) / k_theta
-        return out
+        jac, inverse = self._springs
+        return (jac * inverse) @ jac.T
+
+    @cached_property
+    def _springs(self):
+        """(J, 1/k): the tips drop by J q, q = (1/k) J^T T the vessels' (heave, heel, trim)."""
+        on = self.membership.T
+        jac = np.hstack([on, on * self.starboard[:, None], on * self.forward[:, None]])
+        return jac, 1.0 / self.stiffness.T.ravel()
 
 
 def tip_plan(scene):
@@ -108,16 +124,21 @@ def scene_fleet(scene):
     """:class:`Fleet` of a scene with crane vessels (one rope per lug)."""
     vessels = scene.vessels
     n, m = scene.n, len(vessels)
-    membership = np.zeros((m, n))
-    forward, starboard = np.zeros(n), np.zeros(n)
-    stiffness = np.zeros((m, 3))
-    tips = tip_plan(scene)
+    membership = [[0.0] * n for _ in range(m)]
+    forward, starboard = [0.0] * n, [0.0] * n
+    tips = tip_plan(scene).tolist()
     for v, (vessel, on) in enumerate(vessels.values()):
-        stiffness[v] = (vessel.heave_stiffness, vessel.heel_stiffness, vessel.trim_stiffness)
         for i in on:
-            membership[v, i] = 1.0
+            membership[v][i] = 1.0
             forward[i], starboard[i] = vessel.axes(tips[i])
-    return Fleet(tuple(vessels), membership, forward, starboard, stiffness)
+    stiffness = [(v.heave_stiffness, v.heel_stiffness, v.trim_stiffness) for v, _ in vessels.values()]
+    return Fleet(
+        tuple(vessels),
+        np.array(membership).reshape(m, n),
+        np.array(forward),
+        np.array(starboard),
+        np.array(stiffness).reshape(m, 3),
+    )
 
 
 def vessel_states(scene, fleet, tensions):
@@ -134,26 +155,27 @@ def vessel_states(scene, fleet, tensions):
     -------
     dict of str to VesselState
     """
-    t = [float(v) for v in np.asarray(tensions, dtype=float).ravel()]
-    forward, starboard = fleet.forward.tolist(), fleet.starboard.tolist()
+    t = np.asarray(tensions, dtype=float).ravel()
+    member = fleet.membership
+    loads = member @ t
+    moments = (member @ (t * fleet.starboard), member @ (t * fleet.forward))  # heeling, trimming
+    q = np.column_stack([loads, *moments]) / fleet.stiffness  # heave, heel, trim [m, rad]
+    drops = (
+        member.T @ q[:, 0] + fleet.starboard * (member.T @ q[:, 1]) + fleet.forward * (member.T @ q[:, 2])
+    ).tolist()
     labels = [c.label for c in scene.cranes]
     out = {}
-    for name, (vessel, on) in scene.vessels.items():
-        load = sum(t[i] for i in on)
-        heeling = sum(t[i] * starboard[i] for i in on)
-        trimming = sum(t[i] * forward[i] for i in on)
-        heave = load / vessel.heave_stiffness
-        heel = heeling / vessel.heel_stiffness
-        trim = trimming / vessel.trim_stiffness
+    for v, (name, (vessel, on)) in enumerate(scene.vessels.items()):
+        heave, heel, trim = q[v].tolist()
         heel_set = heel + vessel.ballast[0] / vessel.heel_stiffness  # with the ballast moment
         trim_set = trim + vessel.ballast[1] / vessel.trim_stiffness
         out[name] = VesselState(
             heave=heave,
             heel=math.degrees(heel_set),
             trim=math.degrees(trim_set),
-            tip_drops={labels[i]: heave + starboard[i] * heel + forward[i] * trim for i in on},
-            load=load,
-            levelling_ballast=(0.0 - heeling, 0.0 - trimming),
+            tip_drops={labels[i]: drops[i] for i in on},
+            load=float(loads[v]),
+            levelling_ballast=(0.0 - float(moments[0][v]), 0.0 - float(moments[1][v])),
             max_heel=vessel.max_heel,
             max_trim=vessel.max_trim,
             freeboard=vessel.lowest_freeboard(heave, heel_set, trim_set),
@@ -280,10 +302,133 @@ def floating_model(n, m):
     return FloatingModel(n, m)
 
 
+@dataclass(frozen=True)
+class CoupledLayout(Layout):
+    """:class:`~liftplan.model.statics.model.Layout` with the ropes' coupled stiffness G
+    (n x n, column-major, t/m) APPENDED: ``[..., L, G]`` (every offset of Layout holds)."""
+
+    @property
+    def size(self):
+        return 6 * self.n + 6 + self.n * self.n
+
+    def coupling(self, p):
+        """G (n x n) from a parameter vector."""
+        return ca.reshape(p[6 * self.n + 6 :], self.n, self.n)
+
+
+class CoupledRopeModel(RopeModel):
+    """The ``elastic`` model with the crane vessels eliminated: T = G s0. Use
+    :func:`coupled_rope_model`.
+
+    With the vessels' hydrostatics linear, each vessel's heave, heel and trim are linear in its
+    hook loads, and the tips drop by C T (:meth:`Fleet.compliance`). Over a set S of taut ropes
+    T_S = D_S (s0_S - C_SS T_S), D = EA / l0, s0 the stretch with the tips at rest, so::
+
+        T_S = G_S s0_S,   G_S = (D_S^-1 + C_SS)^-1            (the slack ropes' rows 0)
+
+    and minimising the potential energy over the vessels' unknowns leaves
+    V(x) = W z_c + s0^T G s0 / 2 (Woodbury on the vessels' block, which is positive definite):
+    the same equilibria and the same stability on the body's three unknowns, where
+    :class:`FloatingModel` carries three more per vessel. G is a parameter (one compiled model
+    per rope count, whatever the vessels); :func:`solve_coupled` picks the taut set.
+    The ``stretch`` output is s0; the ropes' own stretch is s0 - C T.
+    """
+
+    layout_class = CoupledLayout
+
+    def _rope_law(self, boom, heights, length, stiffness):
+        """T = G s0, s0 (the stretch with the tips at rest) and s0^T G s0 / 2."""
+        free = boom - heights - length
+        coupling = self.layout.coupling(self._p)
+        tension = ca.mtimes(coupling, free)
+        return tension, free, 0.5 * ca.dot(free, tension)
+
+    @cached_property
+    def elastic_start(self):
+        """p -> x: one Newton step on the residual from level (exact for the linearised
+        kinematics, the tensions being linear in the stretches)."""
+        x, p = self._x, self._p
+        x_ref = ca.vertcat(0, 0, 0)
+        residual = self._elastic[2]
+        step = ca.solve(ca.substitute(ca.jacobian(residual, x), x, x_ref), ca.substitute(residual, x, x_ref))
+        return ca.Function("coupled_start", [p], [x_ref - step])
+
+
+@cache
+def coupled_rope_model(n):
+    """The cached :class:`CoupledRopeModel` for n ropes."""
+    return CoupledRopeModel(n)
+
+
+@cache
+def coupled_solver(n, m):
+    """(p, taut) -> (x, T, stretch, residual [t, t m], minors, q): the reduced Newton in one call.
+
+    ``p`` is the rope layout's vector then :attr:`Fleet.params`; ``taut`` (n) is 1 on the ropes
+    taken taut. One compiled function per rope and vessel count (built once, cached): the
+    compliance C = J K^-1 J^T, G = (D^-1 + C)^-1 on the taut set (a linear solve), the Newton of
+    :class:`CoupledRopeModel` from its start, each rope's own stretch s0 - C T and the vessels'
+    q = K^-1 J^T T (heave, then heel, then trim of each vessel  [m, rad]).
+    """
+    model = coupled_rope_model(n)
+    size = model.layout.size - n * n
+    p = ca.MX.sym("p", size + m * n + 2 * n + 3 * m)
+    taut = ca.MX.sym("taut", n)
+    _, _, _, _, _, length, stiffness, _ = Layout(n).split(p[:size])
+    member = ca.reshape(p[size : size + m * n], m, n).T  # n x m
+    forward = p[size + m * n : size + m * n + n]
+    starboard = p[size + m * n + n : size + m * n + 2 * n]
+    springs = ca.reshape(p[size + m * n + 2 * n :], 3, m)  # 3 x m: k_h, k_phi, k_theta
+    jac = ca.horzcat(member, member * ca.repmat(starboard, 1, m), member * ca.repmat(forward, 1, m))
+    inverse = 1.0 / ca.reshape(springs.T, 3 * m, 1)
+    compliance = ca.mtimes(jac * ca.repmat(inverse.T, n, 1), jac.T)
+    mask = ca.mtimes(taut, taut.T)
+    block = (compliance + ca.diag(length / stiffness)) * mask + ca.diag(1.0 - taut)
+    coupling = ca.solve(block, ca.diag(taut), "qr")
+    inner = model.elastic_solver.function
+    x, tension, free, residual, minors = inner(ca.vertcat(p[:size], ca.reshape(coupling, n * n, 1)))
+    stretch = free - ca.mtimes(compliance, tension)
+    q = inverse * ca.mtimes(jac.T, tension)
+    outputs = [x, tension, stretch, residual, minors, q]
+    return FastCall(ca.Function(f"coupled_solve_{n}_{m}", [p, taut], outputs))
+
+
+def coupled_stiffness(length, ea, compliance, taut):
+    """G_S = (D_S^-1 + C_SS)^-1 on the taut ropes S, zero elsewhere  [t/m] (n x n), in numpy
+    (what :func:`coupled_solver` forms inside its function).
+
+    Parameters
+    ----------
+    length, ea : numpy.ndarray, shape (n,)  [m, t]
+        Unstretched lengths and EA.
+    compliance : numpy.ndarray, shape (n, n)  [m/t]
+        The tips' compliance C (:meth:`Fleet.compliance`).
+    taut : numpy.ndarray of bool, shape (n,)
+    """
+    n = len(length)
+    out = np.zeros((n, n))
+    on = np.flatnonzero(taut)
+    if on.size:
+        block = np.diag(length[on] / ea[on]) + compliance[np.ix_(on, on)]
+        out[np.ix_(on, on)] = np.linalg.inv(block)
+    return out
+
+
+#: Taut sets tried by :func:`solve_coupled` before it hands over to the full Newton.
+TAUT_SETS = 8
+
+
 def check_floating(scene, model):
     """Refuse a scene with crane vessels on a model that does not couple them."""
     if not scene.vessels:
         return
+    hulls = [name for name, (v, _) in scene.vessels.items() if v.hull is not None]
+    if hulls and (model != "elastic" or scene.hull is not None):
+        raise InvalidScene(
+            f"cranes.vessel {hulls[0]!r}: a vessel given by her hull (mesh or box) is modelled with the "
+            f"elastic model in air; expected model 'elastic' without [hull] and [water] (got {model}), "
+            "or her small-angle particulars (waterplane_area, gm_t, gm_l, flotation)"
+        )
     if model not in FLOATING_MODELS:
         raise InvalidScene(
             f"cranes.vessel given, but the {model} model holds the boom tips fixed; expected model "
@@ -296,11 +441,11 @@ def check_floating(scene, model):
             "expected one of them"
         )
     shared = [name for name, (_, on) in scene.vessels.items() if len(on) > 1]
-    if shared and model != "elastic":
+    if shared and model not in ("elastic", "hydrostatic"):
         raise InvalidScene(
             f"cranes.vessel: {shared[0]!r} carries {len(scene.vessels[shared[0]][1])} cranes, whose "
-            f"coupling the {model} model does not take; expected the elastic model in air, or one "
-            "crane per vessel"
+            f"coupling the {model} model does not take; expected the elastic or hydrostatic model, "
+            "or one crane per vessel"
         )
     slung = [c.label for c in scene.cranes if c.vessel is not None and c.sling is not None]
     if slung:
@@ -348,14 +493,24 @@ def solve_floating(scene):
     return with_vessels(eq, vessel_states(scene, fleet, list(eq.tensions.values())))
 
 
-def solve_coupled(scene, fleet=None):
-    """Body and vessels by Newton on the body's statics and every vessel's balance together.
+def solve_coupled(scene, fleet=None, reduced=True):
+    """Body and vessels together, any number of cranes per vessel.
 
-    Any number of cranes per vessel; the IPOPT fallback on the potential energy, polished by
-    Newton, when Newton's answer is not accepted. Returns and raises as
-    :func:`solve_floating`.
+    First the body's three unknowns with the vessels eliminated (:class:`CoupledRopeModel`,
+    T = G s0), from all ropes taut: a rope found pulling less than nothing is taken slack, a
+    slack one found stretched taut, and solved again until the set holds (each answer passes
+    the acceptance). If that does not settle in :data:`TAUT_SETS` sets, or ``reduced`` is
+    False: Newton on the body's statics and every vessel's balance together
+    (:class:`FloatingModel`, the vessels' heave, heel and trim as unknowns), IPOPT on the
+    potential energy as its fallback, polished by Newton. Both answer the same equations: the
+    tensions agree to the solvers' tolerance (``tests/model/test_vessels.py``). Returns and
+    raises as :func:`solve_floating`.
     """
     fleet = scene_fleet(scene) if fleet is None else fleet
+    if reduced:
+        found = _solve_reduced(scene, fleet)
+        if found is not None:
+            return found
     model = floating_model(scene.n, len(fleet.names))
     p = np.concatenate([pack_params(scene, "elastic"), fleet.params])
     start = time.perf_counter()
@@ -374,6 +529,10 @@ def solve_coupled(scene, fleet=None):
                 "taut ropes"
             )
     seconds = time.perf_counter() - start
+    return _coupled_result(scene, fleet, z[:3], tensions, stretch, residual[:3], used, seconds)
+
+
+def _coupled_result(scene, fleet, x, tensions, stretch, residual, used, seconds, how=""):
     slack = tuple(name for name, s in zip(scene.lug_names, stretch) if s <= 0.0)
     if scene.n - len(slack) < 3:
         raise EquilibriumNotFound(
@@ -381,9 +540,43 @@ def solve_coupled(scene, fleet=None):
             "expected three or more to hold the body"
         )
     eq = equilibrium_of(
-        scene, "elastic", z[:3], tensions, residual[:3], used + " (body and crane vessels)", seconds, slack
+        scene, "elastic", x, tensions, residual, used + " (body and crane vessels)" + how, seconds, slack
     )
     return with_vessels(eq, vessel_states(scene, fleet, tensions))
+
+
+def _solve_reduced(scene, fleet):
+    """:func:`solve_coupled` on the body's unknowns (:func:`coupled_solver`); None when no taut
+    set settles with an accepted answer (the caller goes on to the full Newton)."""
+    solver = coupled_solver(scene.n, len(fleet.names))
+    p = np.concatenate([pack_params(scene, "elastic"), fleet.params])
+    taut = np.ones(scene.n)
+    start = time.perf_counter()
+    for _ in range(TAUT_SETS):
+        x, tensions, stretch, residual, minors, _ = solver(p, taut)
+        if not elastic_verdict(scene, x, residual, minors).ok:
+            return None
+        now = next_taut(taut, tensions, stretch)
+        if np.array_equal(now, taut):
+            seconds = time.perf_counter() - start
+            how = " on the ropes' coupled stiffness"
+            return _coupled_result(scene, fleet, x, tensions, stretch, residual, "newton", seconds, how)
+        if now.sum() < 3:
+            return None
+        taut = now
+    return None
+
+
+def next_taut(taut, tensions, stretch):
+    """The next taut set: the rope pulling least (a compression) taken slack, one at a time
+    (dropping every rope in compression at once can leave fewer than three), and every slack
+    rope found stretched taken taut; ``taut`` itself when it holds."""
+    now = np.where(stretch > 0.0, 1.0, 0.0)
+    pushed = (taut > 0.0) & (stretch <= 0.0)
+    if pushed.any():
+        now = np.where(taut > 0.0, 1.0, now)
+        now[int(np.argmin(np.where(pushed, tensions, np.inf)))] = 0.0
+    return now
 
 
 def series_stiffness(scene, fleet):

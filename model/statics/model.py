@@ -452,6 +452,12 @@ class RopeModel:
         return ca.Function("held_tensions", [self._x, self._p], [t_held, hook_shift], ["x", "p"], ["T", "dH"])
 
     # -- forward elastic model -------------------------------------------------------------
+    def _rope_law(self, boom, heights, length, stiffness):
+        """The ropes' tensions [t], stretches [m] and elastic energy [t m] with their lugs at
+        world ``heights``: each rope on its own, slack ones carrying nothing."""
+        tension, stretch = rope_tensions(boom, heights, length, stiffness)
+        return tension, stretch, ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
+
     @cached_property
     def _elastic(self):
         """Symbolic tension, stretch, scaled residual and energy of the forward model."""
@@ -459,12 +465,11 @@ class RopeModel:
         _, _, _, weight, boom, length, stiffness, scale = self._parts
         lugs, cog_w, a_mat, b_vec = self._pose
         row_scale = ca.vertcat(weight, weight * scale, weight * scale)
-        tension, stretch = rope_tensions(boom, lugs[2, :].T, length, stiffness)
+        tension, stretch, springs = self._rope_law(boom, lugs[2, :].T, length, stiffness)
         residual = (ca.mtimes(a_mat, tension) - b_vec) / row_scale
         # Potential energy; its stationary points are the equilibria (for |heel| < 90 deg),
         # and the stable ones are its minima: leading principal minors of the Hessian > 0.
-        energy = weight * cog_w[2] + ca.sum1(stiffness * ca.fmax(0, stretch) ** 2 / (2 * length))
-        energy = energy / (weight * scale)
+        energy = (weight * cog_w[2] + springs) / (weight * scale)
         hess = ca.hessian(energy, x)[0]
         minors = ca.vertcat(hess[0, 0], ca.det(hess[:2, :2]), ca.det(hess))
         return tension, stretch, residual, row_scale, energy, minors

@@ -16,6 +16,10 @@ Modules, bottom-up (each imports only those above it in this list):
   (:func:`solve_hydrostatic`).
 * :mod:`.draining` - water in compartments with openings: the inside level at a pose and
   the orifice flow (Torricelli) through each opening, integrated in time at a hoist speed.
+* :mod:`.vessels` - crane vessels under several cranes: the ropes' coupled stiffness over a
+  hull in water, and the taut set found around the solve.
+* :mod:`.hull_vessels` - crane vessels given by their hulls: each one's clipped-mesh
+  hydrostatics under her hook loads, solved with the body on its ropes (in air).
 
 The load curve that puts them together is :mod:`liftplan.model.lift`.
 """

@@ -72,18 +72,21 @@ def buoyancy_weights(hull, weight, density):
 class Layout:
     """The parameter vector of :class:`AfloatModel` with n ropes:
     ``[R0 (9, column-major), W, G (3), c (3), ground height over the water, L, P (3n),
-    H - level (n), l0 (n), EA (n)]`` (t, m)."""
+    H - level (n), l0 (n), EA (n)]`` (t, m), and with ``coupled`` the ropes' coupled stiffness
+    G (n x n, t/m) appended (crane vessels under several cranes:
+    :class:`~liftplan.model.statics.floating.CoupledRopeModel`)."""
 
     n: int
+    coupled: bool = False
     HOOKS = 18  # offset of P; the hooks start at HOOKS + 3n
 
     @property
     def size(self):
-        return 18 + 6 * self.n
+        return 18 + 6 * self.n + (self.n * self.n if self.coupled else 0)
 
     def split(self, p):
         n = self.n
-        parts = [9, 1, 3, 3, 1, 1, 3 * n, n, n, n]
+        parts = [9, 1, 3, 3, 1, 1, 3 * n, n, n, n] + ([n * n] if self.coupled else [])
         out, k = [], 0
         for m in parts:
             out.append(p[k : k + m])
@@ -100,15 +103,18 @@ class AfloatModel:
     kappa : numpy.ndarray, shape (m,)  [t/m3]
     n : int
         Number of vertical ropes (0 for a stranded or floating hull).
+    coupled : bool
+        The ropes' tensions T = G s0 (G in the parameters, s0 = H - h - l0 with no max(0, .):
+        the caller picks the taut set) instead of each rope's EA / l0 max(0, s0).
     """
 
-    def __init__(self, triangles, kappa, n):
+    def __init__(self, triangles, kappa, n, coupled=False):
         self.n = n
-        self.layout = Layout(n)
+        self.layout = Layout(n, coupled)
         x3 = ca.MX.sym("x", 3)  # zo, a, b
         p = ca.MX.sym("p", self.layout.size)
         zo = x3[0]
-        start, weight, cog, pivot, ground, scale, points, hook, length, ea = self.layout.split(p)
+        start, weight, cog, pivot, ground, scale, points, hook, length, ea, *coupling = self.layout.split(p)
         start = ca.reshape(start, 3, 3)
         rot = ca.mtimes(tilt(x3[1], x3[2]), start)
         lift = ca.vertcat(0, 0, zo)
@@ -123,7 +129,10 @@ class AfloatModel:
         if n:
             lugs = ca.mtimes(rot, ca.reshape(points, 3, n)) + ca.repmat(lift, 1, n)
             stretch = hook - lugs[2, :].T - length
-            tension = ea / length * ca.fmax(0, stretch)
+            if coupled:
+                tension = ca.mtimes(ca.reshape(coupling[0], n, n), stretch)
+            else:
+                tension = ea / length * ca.fmax(0, stretch)
             force += ca.sum1(tension)
             mx += ca.dot(tension, lugs[1, :].T - c[1])
             my -= ca.dot(tension, lugs[0, :].T - c[0])

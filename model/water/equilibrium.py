@@ -99,9 +99,13 @@ class WaterSetup:
     scene : Scene
         With ``hull`` and ``water``; ropes (vertical, above their lugs) and ``ground``
         optional.
+    coupling : numpy.ndarray, shape (n, n), optional  [t/m]
+        The ropes' coupled stiffness G: tensions T = G (H - h - l0) on the taut set G is
+        made for (crane vessels under several cranes, :mod:`liftplan.model.water.vessels`);
+        :meth:`couple` changes it.
     """
 
-    def __init__(self, scene):
+    def __init__(self, scene, coupling=None):
         if scene.hull is None:
             raise InvalidScene("scene: no [hull] and [water]; expected them for a solve in water")
         self.scene = scene
@@ -112,7 +116,7 @@ class WaterSetup:
         gravity = body.weight + self.trapped
         cog = (body.weight * np.asarray(body.cog) + sum(w * np.asarray(c) for w, c in trapped)) / gravity
         self.gravity, self.cog = gravity, cog
-        self.model = AfloatModel(tris, kappa, scene.n)
+        self.model = AfloatModel(tris, kappa, scene.n, coupled=coupling is not None)
         self.envelope = MeshHydrostatics(hull.triangles)
         a = scene.attitude
         ground = scene.ground
@@ -150,8 +154,14 @@ class WaterSetup:
                 pivot,
                 [self.ground_height, hull.size],
                 *ropes,
+                [] if coupling is None else np.asarray(coupling, dtype=float).ravel(order="F"),
             ]
         )
+
+    def couple(self, coupling):
+        """Set the ropes' coupled stiffness G (n x n, t/m) of a coupled setup."""
+        n = self.scene.n
+        self.base[self.base.size - n * n :] = np.asarray(coupling, dtype=float).ravel(order="F")
 
     def gravity_of(self, loads):
         """Total downward force [t] and its body-frame point [m] with ``loads``

@@ -60,12 +60,8 @@ def test_the_load_curve_follows_the_crane_vessels():
 
 
 def test_the_load_curve_refuses_what_it_does_not_follow():
-    """Two cranes on one vessel, a tide or a wind: refused in one line."""
+    """A tide or a wind: refused in one line (two cranes on one vessel are followed:
+    tests/model/test_lift_shared_vessel.py)."""
     scene = load_scene(EXAMPLES / "sunken_block_tide.toml")
     with pytest.raises(InvalidScene, match=r"lift: \[tide\] is not followed through a load curve"):
         load_curve(scene, stop=0.3, step=0.3)
-    barges = _barges()
-    first = barges.cranes[0]
-    shared = barges.with_crane(barges.cranes[1].lug, vessel=first.vessel_name)
-    with pytest.raises(InvalidScene, match="carries 2 cranes"):
-        load_curve(shared, stop=0.3, step=0.3)

@@ -391,6 +391,9 @@ WRITTEN = {
         "min_freeboard",
         "beam",
         "length",
+        "hull",  # with cog and origin: a vessel's hull, refused by the writer as [hull] is
+        "cog",
+        "origin",
     },
     Sling: {"legs", "spreader", "equalised"},
     Leg: {"lug", "length", "EA", "diameter", "end"},

@@ -129,24 +129,9 @@ def test_four_vessels_equal_the_series_stiffness():
 
 def _twin_scene():
     """T1 and T2 on one crane barge (a twin-crane vessel off the starboard side), T3 and T4 on
-    sheerlegs; the barge heels by degrees (both hooks 18 m to port of her centreline)."""
-    scene = _tanker()
-    barge = Vessel(
-        displacement=12000.0,
-        waterplane_area=3000.0,
-        gm_t=8.0,
-        gm_l=250.0,
-        flotation=(40.9, -30.0),
-        heading=0.0,
-    )
-    cranes = []
-    for c in scene.cranes:
-        if c.lug == "T1":
-            c = dataclasses.replace(c, name="Barge", vessel=barge)
-        elif c.lug == "T2":
-            c = dataclasses.replace(c, vessel="Barge")
-        cranes.append(c)
-    return dataclasses.replace(scene, cranes=tuple(cranes))
+    sheerlegs (``examples/tanker_twin_barge.toml``); the barge heels by degrees (both hooks
+    18 m to port of her centreline)."""
+    return load_scene(EXAMPLES / "tanker_twin_barge.toml")
 
 
 def _numpy_newton(scene):

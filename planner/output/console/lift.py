@@ -44,8 +44,9 @@ def lift_table(scene, curve, rows=25):
             )
     if curve.vessels:
         lines.append(
-            "crane vessels over the curve (each rope in series with its vessel; heel + starboard down, "
-            "trim + bow down, ballast included; tip drop: the extra hoist beyond a crane on land):"
+            "crane vessels over the curve (each rope in series with its vessel, coupled on a vessel "
+            "under several cranes; heel + starboard down, trim + bow down, ballast included; tip drop: "
+            "the extra hoist beyond a crane on land):"
         )
         for name, v in curve.vessels.items():
             heel, trim = (f"{_signed(v[k].min())} .. {_signed(v[k].max())}" for k in ("heel", "trim"))
@@ -53,7 +54,22 @@ def lift_table(scene, curve, rows=25):
                 f"  {name}: heel {heel} deg, trim {trim} deg, tip drop up to {v['tip_drop'].max():.3f} m"
                 + (f", lowest freeboard {v['freeboard'].min():.3f} m" if "freeboard" in v else "")
             )
+            lines += [f"    {_limit_line(limit)}" for limit in curve.vessel_limits if limit.vessel == name]
     return "\n".join(lines)
+
+
+def _limit_line(limit):
+    """One vessel limit over the curve: held, or the first hoist where it is broken."""
+    what = {"vessel_heel": "|heel| <=", "vessel_trim": "|trim| <=", "vessel_freeboard": "freeboard >="}[
+        limit.check
+    ]
+    worst = f"worst {_signed(limit.worst_signed)} {limit.unit} at hoist {limit.worst_hoist:.4f} m"
+    if limit.ok:
+        return f"ok   {what} {limit.limit:g} {limit.unit} over the whole curve ({worst})"
+    return (
+        f"FAIL {what} {limit.limit:g} {limit.unit} broken first at hoist {limit.first_broken:.4f} m "
+        f"+- {1e3 * limit.tolerance:.2f} mm ({worst})"
+    )
 
 
 def _signed(value):

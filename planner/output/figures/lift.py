@@ -68,7 +68,59 @@ def lift_figure(curve, swl=None):
                     color="tab:green",
                 )
     water.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    if curve.vessel_limits:
+        _vessel_limits(fig.axes[:4], pose, curve)
     return fig
+
+
+def _vessel_limits(panels, pose, curve):
+    """Each crane vessel's limited angle against hoist on the attitude panel (dashed, its limit
+    dotted), and the first hoist where a limit is broken as a red line on every panel."""
+    colours = iter(["tab:red", "tab:purple", "tab:olive", "tab:cyan", "tab:pink", "tab:gray"])
+    for limit in curve.vessel_limits:
+        if limit.check == "vessel_freeboard":
+            continue
+        colour = next(colours, "k")
+        key = "heel" if limit.check == "vessel_heel" else "trim"
+        pose.plot(
+            curve.hoist,
+            curve.vessels[limit.vessel][key],
+            ls="--",
+            color=colour,
+            lw=1.0,
+            label=f"vessel {limit.vessel} {key} (limit +-{limit.limit:g} deg)",
+        )
+        for sign in (1.0, -1.0):
+            pose.axhline(sign * limit.limit, ls=":", color=colour, lw=0.8)
+    for limit in curve.vessel_limits:
+        if limit.ok:
+            continue
+        for ax in panels:
+            ax.axvline(limit.first_broken, color="red", lw=1.0)
+        _hoist_label(
+            pose,
+            f"{limit.vessel}: {limit.check.removeprefix('vessel_')} limit {limit.limit:g} {limit.unit} "
+            f"broken from {limit.first_broken:.3f} m",
+            (limit.first_broken, 0.95),
+            "red",
+            va="top",
+        )
+    pose.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+
+
+def _hoist_label(ax, text, at, colour, va="center"):
+    """A label written up a hoist line: ``at`` is (hoist [m], height as a fraction of the axes)."""
+    ax.annotate(
+        text,
+        at,
+        xycoords=("data", "axes fraction"),
+        rotation=90,
+        va=va,
+        ha="right",
+        fontsize=7,
+        color=colour,
+        bbox={"fc": "w", "ec": "none", "pad": 0.5},
+    )
 
 
 def _breakout_inset(ax, curve, breakout, released):
@@ -86,17 +138,7 @@ def _breakout_inset(ax, curve, breakout, released):
         if lo <= event.hoist <= hi:
             inset.axvline(event.hoist, color="tab:green", lw=0.8, ls="-.")
             when = f", {event.time:.1f} s" if event.time is not None else ""
-            inset.annotate(
-                f"{event.name} {event.hoist:.3f} m{when}",
-                (event.hoist, 0.5),
-                xycoords=("data", "axes fraction"),
-                rotation=90,
-                va="center",
-                ha="right",
-                fontsize=7,
-                color="tab:green",
-                bbox={"fc": "w", "ec": "none", "pad": 0.5},
-            )
+            _hoist_label(inset, f"{event.name} {event.hoist:.3f} m{when}", (event.hoist, 0.5), "tab:green")
     inset.set_xlim(lo, hi)
     peak = curve.peak_crane_load[0]
     inset.set_title(
