@@ -17,12 +17,15 @@ def test_the_example_reports_parameters_slack_and_its_failed_checks(capsys):
     assert [s["param"] for s in states] == [k / 10 for k in range(11)]
     assert all(s["angle"] is None for s in states)
     assert states[0]["hook_loads"]["A"] < states[-1]["hook_loads"]["A"]
-    assert out["maxima"]["hook_loads"]["A"] == {
+    peak = out["maxima"]["hook_loads"]["A"]
+    assert peak == {
         "value": states[-1]["hook_loads"]["A"],
         "angle": None,
         "param": 1.0,
         "stage": "sequence",
+        "bound": peak["bound"],
     }
+    assert peak["bound"] >= peak["value"]  # the samples' curvature bound (docs/sequences.md)
     (slack,) = out["slack"]
     assert slack["what"] == "D" and 0.9 < slack["from_param"] < 0.95 and slack["to_param"] == 1.0
     failed = {(c["name"], c["subject"]) for c in out["checks"] if not c["ok"]}
