@@ -31,7 +31,12 @@ rope (the hook plane takes up the errors' plane through the statics), so a scena
 a hook error for every candidate (:class:`Cut`: the worst errors the dense check finds for the
 chosen set, each other candidate with its nearest chosen lug's) and stays linear. The list
 starts with none (a part of the errors' box, so still a lower bound) and grows by the chosen
-set's worst errors.
+set's worst errors. When the candidates lie on one plane of the body (a deck) the errors'
+worst over their whole box is instead written exactly for every set at once
+(:mod:`~liftplan.planner.search.mip_hooks`): each rope's own worst change in its band and
+limit rows at every scenario, and the spread's pair widening at the scenarios marked ``box``
+(the first plans' worst, then each round's), so a round adds one scenario, never one error
+pattern.
 
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
@@ -65,6 +70,13 @@ from liftplan.planner.search.evaluator import (
 from liftplan.planner.search.exact import search_exact
 from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.local import search_local
+from liftplan.planner.search.mip_hooks import (
+    Columns,
+    lug_coefficients,
+    on_one_plane,
+    residuals,
+    widening,
+)
 from liftplan.planner.search.progress import best_bound, progress_bar
 from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
 from liftplan.planner.search.screen import REASONS
@@ -73,6 +85,8 @@ from liftplan.planner.search.screen import REASONS
 ANGLES = 720
 #: Cutting-plane rounds at most.
 MAX_ROUNDS = 20
+#: With the hook errors' box rows: the first plans whose worst scenarios start the pair rows.
+BOX_FIRST = 3
 
 
 @dataclass(frozen=True)
@@ -118,10 +132,13 @@ def poses(problem, scenarios):
 @dataclass(frozen=True)
 class Cut:
     """A scenario with hook-height errors: ``errors`` ((column, metres), ...) over the MIP's
-    (candidate, crane class) columns, candidate-major; a column not named has none."""
+    (candidate, crane class) columns, candidate-major; a column not named has none. ``box``:
+    the spread's pair rows with the hook errors' worst over their whole box at this scenario
+    (:meth:`LugMip._box_rows`; then ``errors`` is empty)."""
 
     scenario: Scenario
     errors: tuple = ()
+    box: bool = False
 
 
 def worst_errors(lugset, preload, scenario, kind):
@@ -371,6 +388,15 @@ class LugMip:
         self.usable = ~np.isnan(self.swl) & (self.preload_low <= self.preload_high)
         self.scale = problem.goal.scale(reach_swl)
         self.reach_swl = reach_swl
+        #: each class's hook-height tolerance [m]
+        self.hook = np.array(
+            [
+                problem.hook_tolerance if fleet[j].hook_tolerance is None else fleet[j].hook_tolerance
+                for j in first
+            ]
+        )
+        #: the hook errors' worst case as rows over the whole box (:mod:`mip_hooks`), else cuts
+        self.box = bool(np.any(self.hook > 0.0)) and on_one_plane(problem)
         self.mirror = mirror_map(problem)
         self.count = count
         # candidates on two lines: each count of lugs per line has a bound of its own
@@ -395,6 +421,75 @@ class LugMip:
         i, c, i2, c2 = np.nonzero(~clear(sub, self.problem.crane_clearance))
         keep = (i * kinds + c) < (i2 * kinds + c2)
         return np.column_stack([i[keep] * kinds + c[keep], i2[keep] * kinds + c2[keep]])
+
+    def _box_rows(self, cp, chosen, values, bands, layout):
+        """The limits' and the objective's rows with the hook errors' exact worst over their
+        box (:mod:`~liftplan.planner.search.mip_hooks`).
+
+        Each rope's own worst change enters its band and limit rows (and, for ``reserve``, the
+        objective) at every scenario of the list; the spread's pair rows, whose widening is of
+        a pair, at the scenarios marked ``box`` only (:class:`Cut`).
+
+        ``chosen`` (y, Y per candidate, z); ``values`` (tensions, scaled tensions) per scenario
+        and candidate; ``bands`` (band low, band high, floor, ceiling); ``layout`` (each
+        column's candidate, its stiffness, the sets' least width, the column-to-candidate sum,
+        the indices of the box scenarios).
+        """
+        problem = self.problem
+        y, per_set, z = chosen
+        load, scaled = values
+        band_low, band_high, floor, ceiling = bands
+        col_cand, kappa, width, per_candidate, boxed = layout
+        count = self.count
+        columns = Columns(
+            col_cand,
+            kappa,
+            self.hook[np.tile(np.arange(len(self.classes.members)), count)],
+            (problem.points @ rotation_matrix(0.0, 0.0, problem.yaw).T)[:, :2],
+            problem.cranes,
+        )
+        off = 1 - per_set
+        across = np.ones((load.shape[0], 1))
+
+        def spread_out(v):  # a per-candidate row to every scenario
+            return across @ cp.reshape(v, (1, v.shape[0]), order="C")
+
+        # each rope's own change: its low side above the band's low (and min_tension), its high
+        # side below the limit and the band's high
+        ones = np.ones(len(col_cand))
+        own, cons = residuals(cp, y, columns, lug_coefficients(ones, col_cand, count), width)
+        rise, more = widening(cp, own, columns)
+        # the residuals' diagonal is the trace of I - H over the chosen lugs: n - 3 at every set
+        diagonal = np.zeros((count, len(col_cand)))
+        diagonal[col_cand, np.arange(len(col_cand))] = 1.0
+        more.append(cp.sum(cp.multiply(diagonal, own)) == problem.cranes - 3)
+        low = per_candidate.T @ cp.multiply(band_low.ravel(), y)
+        high = per_candidate.T @ cp.multiply(np.minimum(self.limit, band_high).ravel(), y)
+        cons += more + [
+            load - spread_out(rise) >= spread_out(low),
+            load + spread_out(rise) <= spread_out(high),
+        ]
+        scale = self.scale.ravel()
+        if np.all(scale == 1.0):
+            scaled_own = own
+        else:
+            scaled_own, more = residuals(cp, y, columns, lug_coefficients(scale, col_cand, count), width)
+            cons += more
+        if problem.goal.peak:  # reserve: each rope's largest scaled tension
+            rise, more = widening(cp, scaled_own, columns)
+            return cons + more + [scaled + spread_out(floor * off + rise) <= z]
+        if not boxed:
+            return cons
+        # the pair (a, b)'s residual is a's less b's (the fit is linear in c)
+        a, b = np.triu_indices(count, k=1)
+        wide, more = widening(cp, scaled_own[a, :] - scaled_own[b, :], columns)
+        first = np.concatenate([a, b])
+        second = np.concatenate([b, a])
+        twice = np.concatenate([np.arange(len(a))] * 2)
+        row = floor * off[first] - ceiling * off[second] + wide[twice]
+        pick = scaled[boxed, :]
+        rows = np.ones((len(boxed), 1)) @ cp.reshape(row, (1, len(first)), order="C")
+        return cons + more + [pick[:, first] - pick[:, second] + rows <= z]
 
     def solve(self, scenarios, gap=0.0, time_limit=None, forbidden=()):
         """Solve over ``scenarios``; a :class:`MipSolution`.
@@ -423,6 +518,7 @@ class LugMip:
         centre, off = hook_bounds(
             problem, data, float(change.max()), classes.stiffness, float(np.abs(errors).max(initial=0.0))
         )
+        width = least_width(problem, data, float(change.max())) if self.box else None
         col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
         col_class = np.tile(np.arange(kinds), count)
         usable = self.usable.ravel()
@@ -469,11 +565,20 @@ class LugMip:
             cons.append(cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) == data.b_vec[:, row])
         z = cp.Variable()
         scaled = cp.multiply(scale, tension)
+        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
         # the largest scaled tension is at least the mean W / n (spread) or W / (n max SWL),
         # the least at most W / n or W / (n min SWL): an unchosen candidate stands at those
         # (the perspective of max / min over the chosen; tighter than a plain big M)
         floor = weight / problem.cranes * float(np.min(scale[:, usable]))
         ceiling = weight / problem.cranes * float(np.max(scale[:, usable]))
+        if self.box:  # the hook errors' worst over the whole box, for every set at once
+            cons += self._box_rows(
+                cp,
+                (y, per_set, z),
+                (tension @ per_candidate, scaled @ per_candidate),
+                (band_low, band_high, floor, ceiling),
+                (col_cand, kappa, width, per_candidate, [k for k, c in enumerate(cuts) if c.box]),
+            )
         if problem.goal.peak:
             cons.append(scaled + floor * (1 - chosen) <= z)
         else:
@@ -484,7 +589,6 @@ class LugMip:
                 low[:, None] @ across <= scaled + ceiling * (1 - chosen),
                 z >= high - low,
             ]
-        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
         if self.line_counts is not None:  # z >= B(n1): n1 lugs on line 0 (planner/search/lines)
             allowed = np.flatnonzero(np.isfinite(self.line_counts))
             pick = cp.Variable(len(allowed), boolean=True)
@@ -573,6 +677,8 @@ def search_mip(problem, started, top=1, progress=None):
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
     scenarios = [Cut(s) for s in first_scenarios(problem)]
+    if mip.box:  # the pair rows over the whole hook box, first at the first plans' worst
+        scenarios += list(dict.fromkeys(Cut(r.worst, box=True) for r in ranking[:BOX_FIRST]))
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
@@ -667,6 +773,8 @@ def _cut(mip, solution, lugset, scenario, kind):
     within the tolerance are a scenario of the box, so the MIP stays a relaxation): a set that
     moves a lug to a neighbour meets nearly the same twist, where errors on the chosen lugs
     alone would leave it none, and the next round would only pick that neighbour."""
+    if mip.box:  # the box rows hold every hook error
+        return Cut(scenario, box=True)
     if not lugset.hook_uncertain:
         return Cut(scenario)
     errors = worst_errors(lugset, solution.preload, scenario, kind)
