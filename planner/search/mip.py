@@ -57,6 +57,7 @@ from scipy import sparse
 
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.frames import rotation_matrix
+from liftplan.model.statics.model import hinged_model
 from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.bounds import run_highs
@@ -78,7 +79,7 @@ from liftplan.planner.search.mip_hooks import (
     widening,
 )
 from liftplan.planner.search.progress import best_bound, progress_bar
-from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
+from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios, pack
 from liftplan.planner.search.screen import REASONS
 
 #: Angles at which the sets' least width is bounded (:func:`least_width`).
@@ -95,15 +96,18 @@ class Poses:
 
     Parameters
     ----------
-    scenarios : list of Scenario
+    scenarios : list
     a_mat : numpy.ndarray, shape (m, 3, C)
         Statics rows (1, X, Y) of each candidate at each scenario's pose (world plan)  [-, m].
     b_vec : numpy.ndarray, shape (m, 3)  [t, t m]
         W (1, X_G, Y_G) at each pose.
     rise : numpy.ndarray, shape (m, C)  [m]
-        Each lug's height at the pose minus its height at level.
+        Each lift point's height at the pose minus its height at level.
     level_plan : numpy.ndarray, shape (C, 2)  [m]
         Level world plan positions (the hook plane's coordinates).
+    moment : numpy.ndarray, shape (m, 3, C)  [t m]
+        What a chosen lift point's spreader bar takes off the statics' right-hand side
+        (:func:`~liftplan.model.statics.model.hinged_points`; zero without bars).
     """
 
     scenarios: list
@@ -111,13 +115,18 @@ class Poses:
     b_vec: np.ndarray
     rise: np.ndarray
     level_plan: np.ndarray
+    moment: np.ndarray
 
 
 def poses(problem, scenarios):
-    """:class:`Poses` of ``scenarios`` (body-fixed candidates)."""
+    """:class:`Poses` of ``scenarios``: body-fixed candidates turn with the body; lift points
+    hinged on slings (``problem.hinge_rows``) are posed by the hinged rope model, each alone
+    (where a lift point hangs at a pose depends on its own sling only)."""
     points = problem.points
     cog = np.array(problem.body.cog, dtype=float)
     level = points @ rotation_matrix(0.0, 0.0, problem.yaw).T
+    if problem.hinge_rows is not None:
+        return _hinged_poses(problem, list(scenarios), level)
     a_mat, b_vec, rise = [], [], []
     for s in scenarios:
         rot = rotation_matrix(s.heel, s.trim, problem.yaw)
@@ -126,7 +135,42 @@ def poses(problem, scenarios):
         a_mat.append(np.vstack([np.ones(len(points)), world[:, 0], world[:, 1]]))
         b_vec.append(problem.body.weight * np.array([1.0, g[0], g[1]]))
         rise.append(world[:, 2] - level[:, 2])
-    return Poses(list(scenarios), np.array(a_mat), np.array(b_vec), np.array(rise), level[:, :2].copy())
+    a_mat = np.array(a_mat)
+    return Poses(
+        list(scenarios), a_mat, np.array(b_vec), np.array(rise), level[:, :2].copy(), np.zeros_like(a_mat)
+    )
+
+
+def _hinged_poses(problem, scenarios, level):
+    """:class:`Poses` of lift points hinged on slings, from the hinged model's statics of
+    each lift point alone (its row of A, its hook's height and its bar's moment)."""
+    count = len(problem.points)
+    model = hinged_model(1)
+    crane = problem.fleet[0]
+    cog = np.array(problem.body.cog, dtype=float)
+    weight = problem.body.weight
+    m = len(scenarios)
+    a_mat, b_vec = np.zeros((m, 3, count)), np.zeros((m, 3))
+    height, moment = np.zeros((m + 1, count)), np.zeros((m, 3, count))
+    for k, s in enumerate([Scenario(0.0, 0.0)] + scenarios):
+        x = np.array([problem.lift_height, math.radians(s.heel), math.radians(s.trim)])
+        for i in range(count):
+            p = pack(
+                problem,
+                problem.points[i : i + 1],
+                cog + np.asarray(s.cog_offset, dtype=float),
+                problem.lift_height + problem.points[i, 2] + crane.rope_length,  # one rope: scalars
+                rope_length=crane.rope_length,
+                EA=crane.EA,
+                hinges=problem.hinge_rows[i : i + 1],
+            )
+            a_flat, b, hooks, cog_w = model.statics_fast(x, p)
+            height[k, i] = hooks[2]
+            if k:
+                full = weight * np.array([1.0, cog_w[0], cog_w[1]])
+                a_mat[k - 1, :, i], b_vec[k - 1] = a_flat, full
+                moment[k - 1, :, i] = full - b
+    return Poses(scenarios, a_mat, b_vec, height[1:] - height[0], level[:, :2].copy(), moment)
 
 
 @dataclass(frozen=True)
@@ -359,10 +403,12 @@ class LugMip:
     """
 
     def __init__(self, problem, cutoff, dense=None):
-        if problem.hinge_rows is not None:
+        hinged = problem.hinge_rows is not None
+        if hinged and np.any(problem.hinge_rows[:, 7] != 0.0):
             raise PlanInfeasible(
-                'search = "mip" takes body-fixed lugs; expected search = '
-                '"exact" or "local" for lift points hinged on slings'
+                'search = "mip" takes lift points hinged on slings without a spreader bar\'s weight '
+                "(a bar's moment moves with the set, and the MIP's bound on the sets' plan width "
+                'does not hold it); expected search = "exact" or "local"'
             )
         self.problem = problem
         self.cutoff = float(cutoff)
@@ -396,8 +442,10 @@ class LugMip:
             ]
         )
         #: the hook errors' worst case as rows over the whole box (:mod:`mip_hooks`), else cuts
-        self.box = bool(np.any(self.hook > 0.0)) and on_one_plane(problem)
-        self.mirror = mirror_map(problem)
+        # (hinged lift points do not turn with the body: their rows are no linear map of the
+        # level ones, and their hook errors come in as cuts)
+        self.box = bool(np.any(self.hook > 0.0)) and not hinged and on_one_plane(problem)
+        self.mirror = None if hinged else mirror_map(problem)
         self.count = count
         # candidates on two lines: each count of lugs per line has a bound of its own
         self.lines = two_lines(problem)
@@ -559,13 +607,18 @@ class LugMip:
         per_candidate = np.zeros((count * kinds, count))
         per_candidate[np.arange(count * kinds), col_cand] = 1.0
         level_a = poses(problem, [Scenario(0.0, 0.0)])
-        cons.append(level_a.a_mat[0] @ (per_candidate.T @ preload) == level_a.b_vec[0])
+        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
+        cons.append(
+            level_a.a_mat[0] @ (per_candidate.T @ preload) + level_a.moment[0] @ per_set == level_a.b_vec[0]
+        )
         load = tension @ per_candidate  # (m, C)
         for row in range(3):
-            cons.append(cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) == data.b_vec[:, row])
+            cons.append(
+                cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) + data.moment[:, row, :] @ per_set
+                == data.b_vec[:, row]
+            )
         z = cp.Variable()
         scaled = cp.multiply(scale, tension)
-        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
         # the largest scaled tension is at least the mean W / n (spread) or W / (n max SWL),
         # the least at most W / n or W / (n min SWL): an unchosen candidate stands at those
         # (the perspective of max / min over the chosen; tighter than a plain big M)
