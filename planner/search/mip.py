@@ -757,7 +757,8 @@ def search_mip(problem, started, top=1, progress=None):
     try:
         while True:
             best = ranking[0].worst_value
-            if best - lower <= problem.gap * best:  # the first plan's bound already suffices
+            # the first plan's bound already suffices (to rounding: 1e-12 of the value)
+            if best - lower <= max(problem.gap * best, 1e-12 * abs(best)):
                 stopped = "gap" if best > lower else "proved"
                 break
             if problem.work_limit is not None and rounds >= problem.work_limit:
