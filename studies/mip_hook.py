@@ -84,12 +84,10 @@ def main():
         row = measure(case)
         rows.append(row)
         print(json.dumps(row), file=sys.stderr)
+    meta = dict(
+        date=time.strftime("%Y-%m-%d %H:%M"), machine=platform.machine(), cpus=multiprocessing.cpu_count()
+    )
     OUT.mkdir(exist_ok=True)
-    meta = {
-        "date": time.strftime("%Y-%m-%d %H:%M"),
-        "machine": platform.machine(),
-        "cpus": multiprocessing.cpu_count(),
-    }
     (OUT / "mip_hook.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=1) + "\n")
     lines = [
         f"Command: `python studies/mip_hook.py`; {meta['date']}, {meta['cpus']} cores {meta['machine']}; "

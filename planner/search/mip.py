@@ -38,6 +38,13 @@ limit rows at every scenario, and the spread's pair widening at the scenarios ma
 (the first plans' worst, then each round's), so a round adds one scenario, never one error
 pattern.
 
+Sling hooks hinged about their lug pairs (``PlanProblem.hinges``, 2-leg slings) fit too: where
+a hook hangs at a pose depends on its own sling only, so each candidate's statics row, rise and
+spreader-bar moment per scenario come from the hinged model of that hook alone
+(:func:`poses`), and the held model is the same expression. A bar's moment enters the statics
+as a constant per chosen hook; with a bar weight the MIP refuses (the least-width bound below
+does not hold the bar's moment).
+
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
 tension and its change |T_k,i - P_i| (:func:`tension_band`) and from it the hook plane, rigorously
@@ -395,7 +402,8 @@ class LugMip:
     Parameters
     ----------
     problem : PlanProblem
-        Body-fixed candidates.
+        Body-fixed candidates, or sling hooks hinged about their lug pairs (``hinge_rows``)
+        without a spreader bar's weight.
     cutoff : float
         An incumbent's worst value (the objective's unit): sets that cannot beat it are cut off.
     dense : list of Scenario, optional
