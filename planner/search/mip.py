@@ -95,6 +95,10 @@ ANGLES = 720
 MAX_ROUNDS = 20
 #: With the hook errors' box rows: the first plans whose worst scenarios start the pair rows.
 BOX_FIRST = 3
+#: The box rows' size at most (candidate pairs x columns, each an absolute value and two rows;
+#: the tanker's 16 candidates: 1 920 for equal cranes, 7 680 for four classes); past it the
+#: hook errors come in as cuts (the MIP's many-point cases would otherwise grow as C^3 K).
+BOX_SIZE = 20_000
 
 
 @dataclass(frozen=True)
@@ -452,7 +456,10 @@ class LugMip:
         #: the hook errors' worst case as rows over the whole box (:mod:`mip_hooks`), else cuts
         # (hinged lift points do not turn with the body: their rows are no linear map of the
         # level ones, and their hook errors come in as cuts)
-        self.box = bool(np.any(self.hook > 0.0)) and not hinged and on_one_plane(problem)
+        pairs = count * (count - 1) // 2 * count * len(first)  # pair rows' absolute values
+        self.box = (
+            bool(np.any(self.hook > 0.0)) and not hinged and pairs <= BOX_SIZE and on_one_plane(problem)
+        )
         self.mirror = None if hinged else mirror_map(problem)
         self.count = count
         # candidates on two lines: each count of lugs per line has a bound of its own

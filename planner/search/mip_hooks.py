@@ -38,8 +38,9 @@ so the residuals (and the widening) vanish from the linear relaxation; the branc
 sees the hook errors only where it has fixed the lugs. See docs/studies.md "The MIP with the
 hook tolerance".
 
-Candidates not on one plane of the body keep the scenario-by-scenario hook-error cuts
-(:class:`~liftplan.planner.search.mip.Cut`).
+Candidates not on one plane of the body, hinged sling hooks, and problems whose pair rows
+would pass :data:`~liftplan.planner.search.mip.BOX_SIZE` keep the scenario-by-scenario
+hook-error cuts (:class:`~liftplan.planner.search.mip.Cut`).
 """
 
 from __future__ import annotations
