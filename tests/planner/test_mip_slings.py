@@ -100,3 +100,31 @@ def test_spreader_bar_weight_is_refused_with_its_reason():
     heavy = dataclasses.replace(problem, hinges=tuple(map(tuple, rows)), search="mip")
     with pytest.raises(PlanInfeasible, match="spreader bar's weight"):
         lug_mip.LugMip(heavy, 1.0)
+
+
+def test_sling_plan_refuses_a_mip_optimum_that_shares_a_lug(monkeypatch):
+    """The MIP ranks only the sets it evaluated: when its proved optimum has two slings on
+    one lug, the next set without one is not proved best, and the sling plan says so."""
+    from types import SimpleNamespace
+
+    import liftplan.planner.plans.slings.apex as apex
+
+    problem = dataclasses.replace(load_problem(EXAMPLES / "block_three_slings_plan.toml"), search="mip")
+    _, rigs = apex_problem(problem)
+    lugs = [set(map(int, r)) for r in rigs.lugs]
+    shared = next(
+        (i, j, k)
+        for i, j, k in itertools.combinations(range(len(lugs)), 3)
+        if lugs[i] & lugs[j] and not lugs[i] & lugs[k] and not lugs[j] & lugs[k]
+    )
+    apart = next(
+        s
+        for s in itertools.combinations(range(len(lugs)), 3)
+        if not any(lugs[a] & lugs[b] for a, b in itertools.combinations(s, 2))
+    )
+    ranking = [SimpleNamespace(indices=shared), SimpleNamespace(indices=apart)]
+    monkeypatch.setattr(apex, "search", lambda derived, ask: (ranking, SimpleNamespace(rows=1)))
+    with pytest.raises(
+        PlanInfeasible, match='search = "mip" proved a set of apexes whose slings share a lug'
+    ):
+        apex.plan_apex_slings(problem, top=1)
