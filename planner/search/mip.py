@@ -31,7 +31,19 @@ rope (the hook plane takes up the errors' plane through the statics), so a scena
 a hook error for every candidate (:class:`Cut`: the worst errors the dense check finds for the
 chosen set, each other candidate with its nearest chosen lug's) and stays linear. The list
 starts with none (a part of the errors' box, so still a lower bound) and grows by the chosen
-set's worst errors.
+set's worst errors. When the candidates lie on one plane of the body (a deck) the errors'
+worst over their whole box is instead written exactly for every set at once
+(:mod:`~liftplan.planner.search.mip_hooks`): each rope's own worst change in its band and
+limit rows at every scenario, and the spread's pair widening at the scenarios marked ``box``
+(the first plans' worst, then each round's), so a round adds one scenario, never one error
+pattern.
+
+Sling hooks hinged about their lug pairs (``PlanProblem.hinges``, 2-leg slings) fit too: where
+a hook hangs at a pose depends on its own sling only, so each candidate's statics row, rise and
+spreader-bar moment per scenario come from the hinged model of that hook alone
+(:func:`poses`), and the held model is the same expression. A bar's moment enters the statics
+as a constant per chosen hook; with a bar weight the MIP refuses (the least-width bound below
+does not hold the bar's moment).
 
 Tightening (the big-M relaxation alone closes little gap): the incumbent's worst value z_bar
 (a local search first) cuts off every set that cannot beat it, which bounds each chosen rope's
@@ -52,6 +64,7 @@ from scipy import sparse
 
 from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.frames import rotation_matrix
+from liftplan.model.statics.model import hinged_model
 from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.bounds import run_highs
@@ -65,14 +78,27 @@ from liftplan.planner.search.evaluator import (
 from liftplan.planner.search.exact import search_exact
 from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.local import search_local
+from liftplan.planner.search.mip_hooks import (
+    Columns,
+    lug_coefficients,
+    on_one_plane,
+    residuals,
+    widening,
+)
 from liftplan.planner.search.progress import best_bound, progress_bar
-from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
+from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios, pack
 from liftplan.planner.search.screen import REASONS
 
 #: Angles at which the sets' least width is bounded (:func:`least_width`).
 ANGLES = 720
 #: Cutting-plane rounds at most.
 MAX_ROUNDS = 20
+#: With the hook errors' box rows: the first plans whose worst scenarios start the pair rows.
+BOX_FIRST = 3
+#: The box rows' size at most (candidate pairs x columns, each an absolute value and two rows;
+#: the tanker's 16 candidates: 1 920 for equal cranes, 7 680 for four classes); past it the
+#: hook errors come in as cuts (the MIP's many-point cases would otherwise grow as C^3 K).
+BOX_SIZE = 20_000
 
 
 @dataclass(frozen=True)
@@ -81,15 +107,18 @@ class Poses:
 
     Parameters
     ----------
-    scenarios : list of Scenario
+    scenarios : list
     a_mat : numpy.ndarray, shape (m, 3, C)
         Statics rows (1, X, Y) of each candidate at each scenario's pose (world plan)  [-, m].
     b_vec : numpy.ndarray, shape (m, 3)  [t, t m]
         W (1, X_G, Y_G) at each pose.
     rise : numpy.ndarray, shape (m, C)  [m]
-        Each lug's height at the pose minus its height at level.
+        Each lift point's height at the pose minus its height at level.
     level_plan : numpy.ndarray, shape (C, 2)  [m]
         Level world plan positions (the hook plane's coordinates).
+    moment : numpy.ndarray, shape (m, 3, C)  [t m]
+        What a chosen lift point's spreader bar takes off the statics' right-hand side
+        (:func:`~liftplan.model.statics.model.hinged_points`; zero without bars).
     """
 
     scenarios: list
@@ -97,13 +126,18 @@ class Poses:
     b_vec: np.ndarray
     rise: np.ndarray
     level_plan: np.ndarray
+    moment: np.ndarray
 
 
 def poses(problem, scenarios):
-    """:class:`Poses` of ``scenarios`` (body-fixed candidates)."""
+    """:class:`Poses` of ``scenarios``: body-fixed candidates turn with the body; lift points
+    hinged on slings (``problem.hinge_rows``) are posed by the hinged rope model, each alone
+    (where a lift point hangs at a pose depends on its own sling only)."""
     points = problem.points
     cog = np.array(problem.body.cog, dtype=float)
     level = points @ rotation_matrix(0.0, 0.0, problem.yaw).T
+    if problem.hinge_rows is not None:
+        return _hinged_poses(problem, list(scenarios), level)
     a_mat, b_vec, rise = [], [], []
     for s in scenarios:
         rot = rotation_matrix(s.heel, s.trim, problem.yaw)
@@ -112,16 +146,54 @@ def poses(problem, scenarios):
         a_mat.append(np.vstack([np.ones(len(points)), world[:, 0], world[:, 1]]))
         b_vec.append(problem.body.weight * np.array([1.0, g[0], g[1]]))
         rise.append(world[:, 2] - level[:, 2])
-    return Poses(list(scenarios), np.array(a_mat), np.array(b_vec), np.array(rise), level[:, :2].copy())
+    a_mat = np.array(a_mat)
+    return Poses(
+        list(scenarios), a_mat, np.array(b_vec), np.array(rise), level[:, :2].copy(), np.zeros_like(a_mat)
+    )
+
+
+def _hinged_poses(problem, scenarios, level):
+    """:class:`Poses` of lift points hinged on slings, from the hinged model's statics of
+    each lift point alone (its row of A, its hook's height and its bar's moment)."""
+    count = len(problem.points)
+    model = hinged_model(1)
+    crane = problem.fleet[0]
+    cog = np.array(problem.body.cog, dtype=float)
+    weight = problem.body.weight
+    m = len(scenarios)
+    a_mat, b_vec = np.zeros((m, 3, count)), np.zeros((m, 3))
+    height, moment = np.zeros((m + 1, count)), np.zeros((m, 3, count))
+    for k, s in enumerate([Scenario(0.0, 0.0)] + scenarios):
+        x = np.array([problem.lift_height, math.radians(s.heel), math.radians(s.trim)])
+        for i in range(count):
+            p = pack(
+                problem,
+                problem.points[i : i + 1],
+                cog + np.asarray(s.cog_offset, dtype=float),
+                problem.lift_height + problem.points[i, 2] + crane.rope_length,  # one rope: scalars
+                rope_length=crane.rope_length,
+                EA=crane.EA,
+                hinges=problem.hinge_rows[i : i + 1],
+            )
+            a_flat, b, hooks, cog_w = model.statics_fast(x, p)
+            height[k, i] = hooks[2]
+            if k:
+                full = weight * np.array([1.0, cog_w[0], cog_w[1]])
+                a_mat[k - 1, :, i], b_vec[k - 1] = a_flat, full
+                moment[k - 1, :, i] = full - b
+    return Poses(scenarios, a_mat, b_vec, height[1:] - height[0], level[:, :2].copy(), moment)
 
 
 @dataclass(frozen=True)
 class Cut:
     """A scenario with hook-height errors: ``errors`` ((column, metres), ...) over the MIP's
-    (candidate, crane class) columns, candidate-major; a column not named has none."""
+    (candidate, crane class) columns, candidate-major; a column not named has none. ``box``:
+    the spread's pair rows with the hook errors' worst over their whole box at this scenario
+    (:meth:`LugMip._box_rows`; then ``errors`` is empty)."""
 
     scenario: Scenario
     errors: tuple = ()
+    box: bool = False
 
 
 def worst_errors(lugset, preload, scenario, kind):
@@ -334,7 +406,8 @@ class LugMip:
     Parameters
     ----------
     problem : PlanProblem
-        Body-fixed candidates.
+        Body-fixed candidates, or sling hooks hinged about their lug pairs (``hinge_rows``)
+        without a spreader bar's weight.
     cutoff : float
         An incumbent's worst value (the objective's unit): sets that cannot beat it are cut off.
     dense : list of Scenario, optional
@@ -342,10 +415,12 @@ class LugMip:
     """
 
     def __init__(self, problem, cutoff, dense=None):
-        if problem.hinge_rows is not None:
+        hinged = problem.hinge_rows is not None
+        if hinged and np.any(problem.hinge_rows[:, 7] != 0.0):
             raise PlanInfeasible(
-                'search = "mip" takes body-fixed lugs; expected search = '
-                '"exact" or "local" for lift points hinged on slings'
+                'search = "mip" takes lift points hinged on slings without a spreader bar\'s weight '
+                "(a bar's moment moves with the set, and the MIP's bound on the sets' plan width "
+                'does not hold it); expected search = "exact" or "local"'
             )
         self.problem = problem
         self.cutoff = float(cutoff)
@@ -371,7 +446,21 @@ class LugMip:
         self.usable = ~np.isnan(self.swl) & (self.preload_low <= self.preload_high)
         self.scale = problem.goal.scale(reach_swl)
         self.reach_swl = reach_swl
-        self.mirror = mirror_map(problem)
+        #: each class's hook-height tolerance [m]
+        self.hook = np.array(
+            [
+                problem.hook_tolerance if fleet[j].hook_tolerance is None else fleet[j].hook_tolerance
+                for j in first
+            ]
+        )
+        #: the hook errors' worst case as rows over the whole box (:mod:`mip_hooks`), else cuts
+        # (hinged lift points do not turn with the body: their rows are no linear map of the
+        # level ones, and their hook errors come in as cuts)
+        pairs = count * (count - 1) // 2 * count * len(first)  # pair rows' absolute values
+        self.box = (
+            bool(np.any(self.hook > 0.0)) and not hinged and pairs <= BOX_SIZE and on_one_plane(problem)
+        )
+        self.mirror = None if hinged else mirror_map(problem)
         self.count = count
         # candidates on two lines: each count of lugs per line has a bound of its own
         self.lines = two_lines(problem)
@@ -395,6 +484,75 @@ class LugMip:
         i, c, i2, c2 = np.nonzero(~clear(sub, self.problem.crane_clearance))
         keep = (i * kinds + c) < (i2 * kinds + c2)
         return np.column_stack([i[keep] * kinds + c[keep], i2[keep] * kinds + c2[keep]])
+
+    def _box_rows(self, cp, chosen, values, bands, layout):
+        """The limits' and the objective's rows with the hook errors' exact worst over their
+        box (:mod:`~liftplan.planner.search.mip_hooks`).
+
+        Each rope's own worst change enters its band and limit rows (and, for ``reserve``, the
+        objective) at every scenario of the list; the spread's pair rows, whose widening is of
+        a pair, at the scenarios marked ``box`` only (:class:`Cut`).
+
+        ``chosen`` (y, Y per candidate, z); ``values`` (tensions, scaled tensions) per scenario
+        and candidate; ``bands`` (band low, band high, floor, ceiling); ``layout`` (each
+        column's candidate, its stiffness, the sets' least width, the column-to-candidate sum,
+        the indices of the box scenarios).
+        """
+        problem = self.problem
+        y, per_set, z = chosen
+        load, scaled = values
+        band_low, band_high, floor, ceiling = bands
+        col_cand, kappa, width, per_candidate, boxed = layout
+        count = self.count
+        columns = Columns(
+            col_cand,
+            kappa,
+            self.hook[np.tile(np.arange(len(self.classes.members)), count)],
+            (problem.points @ rotation_matrix(0.0, 0.0, problem.yaw).T)[:, :2],
+            problem.cranes,
+        )
+        off = 1 - per_set
+        across = np.ones((load.shape[0], 1))
+
+        def spread_out(v):  # a per-candidate row to every scenario
+            return across @ cp.reshape(v, (1, v.shape[0]), order="C")
+
+        # each rope's own change: its low side above the band's low (and min_tension), its high
+        # side below the limit and the band's high
+        ones = np.ones(len(col_cand))
+        own, cons = residuals(cp, y, columns, lug_coefficients(ones, col_cand, count), width)
+        rise, more = widening(cp, own, columns)
+        # the residuals' diagonal is the trace of I - H over the chosen lugs: n - 3 at every set
+        diagonal = np.zeros((count, len(col_cand)))
+        diagonal[col_cand, np.arange(len(col_cand))] = 1.0
+        more.append(cp.sum(cp.multiply(diagonal, own)) == problem.cranes - 3)
+        low = per_candidate.T @ cp.multiply(band_low.ravel(), y)
+        high = per_candidate.T @ cp.multiply(np.minimum(self.limit, band_high).ravel(), y)
+        cons += more + [
+            load - spread_out(rise) >= spread_out(low),
+            load + spread_out(rise) <= spread_out(high),
+        ]
+        scale = self.scale.ravel()
+        if np.all(scale == 1.0):
+            scaled_own = own
+        else:
+            scaled_own, more = residuals(cp, y, columns, lug_coefficients(scale, col_cand, count), width)
+            cons += more
+        if problem.goal.peak:  # reserve: each rope's largest scaled tension
+            rise, more = widening(cp, scaled_own, columns)
+            return cons + more + [scaled + spread_out(floor * off + rise) <= z]
+        if not boxed:
+            return cons
+        # the pair (a, b)'s residual is a's less b's (the fit is linear in c)
+        a, b = np.triu_indices(count, k=1)
+        wide, more = widening(cp, scaled_own[a, :] - scaled_own[b, :], columns)
+        first = np.concatenate([a, b])
+        second = np.concatenate([b, a])
+        twice = np.concatenate([np.arange(len(a))] * 2)
+        row = floor * off[first] - ceiling * off[second] + wide[twice]
+        pick = scaled[boxed, :]
+        rows = np.ones((len(boxed), 1)) @ cp.reshape(row, (1, len(first)), order="C")
+        return cons + more + [pick[:, first] - pick[:, second] + rows <= z]
 
     def solve(self, scenarios, gap=0.0, time_limit=None, forbidden=()):
         """Solve over ``scenarios``; a :class:`MipSolution`.
@@ -423,6 +581,7 @@ class LugMip:
         centre, off = hook_bounds(
             problem, data, float(change.max()), classes.stiffness, float(np.abs(errors).max(initial=0.0))
         )
+        width = least_width(problem, data, float(change.max())) if self.box else None
         col_cand = np.repeat(np.arange(count), kinds)  # columns (i, c), candidate-major
         col_class = np.tile(np.arange(kinds), count)
         usable = self.usable.ravel()
@@ -463,10 +622,16 @@ class LugMip:
         per_candidate = np.zeros((count * kinds, count))
         per_candidate[np.arange(count * kinds), col_cand] = 1.0
         level_a = poses(problem, [Scenario(0.0, 0.0)])
-        cons.append(level_a.a_mat[0] @ (per_candidate.T @ preload) == level_a.b_vec[0])
+        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
+        cons.append(
+            level_a.a_mat[0] @ (per_candidate.T @ preload) + level_a.moment[0] @ per_set == level_a.b_vec[0]
+        )
         load = tension @ per_candidate  # (m, C)
         for row in range(3):
-            cons.append(cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) == data.b_vec[:, row])
+            cons.append(
+                cp.sum(cp.multiply(data.a_mat[:, row, :], load), axis=1) + data.moment[:, row, :] @ per_set
+                == data.b_vec[:, row]
+            )
         z = cp.Variable()
         scaled = cp.multiply(scale, tension)
         # the largest scaled tension is at least the mean W / n (spread) or W / (n max SWL),
@@ -474,6 +639,14 @@ class LugMip:
         # (the perspective of max / min over the chosen; tighter than a plain big M)
         floor = weight / problem.cranes * float(np.min(scale[:, usable]))
         ceiling = weight / problem.cranes * float(np.max(scale[:, usable]))
+        if self.box:  # the hook errors' worst over the whole box, for every set at once
+            cons += self._box_rows(
+                cp,
+                (y, per_set, z),
+                (tension @ per_candidate, scaled @ per_candidate),
+                (band_low, band_high, floor, ceiling),
+                (col_cand, kappa, width, per_candidate, [k for k, c in enumerate(cuts) if c.box]),
+            )
         if problem.goal.peak:
             cons.append(scaled + floor * (1 - chosen) <= z)
         else:
@@ -484,7 +657,6 @@ class LugMip:
                 low[:, None] @ across <= scaled + ceiling * (1 - chosen),
                 z >= high - low,
             ]
-        per_set = cp.sum(cp.reshape(y, (count, kinds), order="C"), axis=1)
         if self.line_counts is not None:  # z >= B(n1): n1 lugs on line 0 (planner/search/lines)
             allowed = np.flatnonzero(np.isfinite(self.line_counts))
             pick = cp.Variable(len(allowed), boolean=True)
@@ -573,6 +745,8 @@ def search_mip(problem, started, top=1, progress=None):
     evaluator = SetEvaluator(problem)
     mip = LugMip(problem, ranking[0].worst_value, dense=evaluator.dense)
     scenarios = [Cut(s) for s in first_scenarios(problem)]
+    if mip.box:  # the pair rows over the whole hook box, first at the first plans' worst
+        scenarios += list(dict.fromkeys(Cut(r.worst, box=True) for r in ranking[:BOX_FIRST]))
     forbidden, reasons = [], Counter()
     lower, rounds, stopped = first.lower_bound, 0, "proved"
     deadline = math.inf if problem.time_limit is None else started + problem.time_limit
@@ -598,7 +772,8 @@ def search_mip(problem, started, top=1, progress=None):
     try:
         while True:
             best = ranking[0].worst_value
-            if best - lower <= problem.gap * best:  # the first plan's bound already suffices
+            # the first plan's bound already suffices (to rounding: 1e-12 of the value)
+            if best - lower <= max(problem.gap * best, 1e-12 * abs(best)):
                 stopped = "gap" if best > lower else "proved"
                 break
             if problem.work_limit is not None and rounds >= problem.work_limit:
@@ -667,6 +842,8 @@ def _cut(mip, solution, lugset, scenario, kind):
     within the tolerance are a scenario of the box, so the MIP stays a relaxation): a set that
     moves a lug to a neighbour meets nearly the same twist, where errors on the chosen lugs
     alone would leave it none, and the next round would only pick that neighbour."""
+    if mip.box:  # the box rows hold every hook error
+        return Cut(scenario, box=True)
     if not lugset.hook_uncertain:
         return Cut(scenario)
     errors = worst_errors(lugset, solution.preload, scenario, kind)

@@ -165,6 +165,12 @@ def plan_apex_slings(problem, top=None):
         raise PlanInfeasible(
             f"every feasible set of apexes shares a lug between two slings ({len(ranking)} sets ranked)"
         )
+    if derived.search == "mip" and not _disjoint(rigs, ranking[0].indices):
+        # the MIP's ranking is not exact to its length: its next disjoint set is not proved best
+        raise PlanInfeasible(
+            'search = "mip" proved a set of apexes whose slings share a lug, and its ranking does not '
+            'prove the best set without one; expected search = "exact"'
+        )
     inner = Plan(problem=derived, ranking=keep[:top], stats=stats)
     ruled_out = {**rigs.ruled_out, "sets sharing a lug (dropped from the ranking)": shared}
     return ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out)
