@@ -263,6 +263,23 @@ class _Sling(Table):
     )
 
 
+class _VesselBox(Table):
+    """A crane vessel's hull as a box, in her own axes (not the body's: :class:`_Box`)."""
+
+    min: Point = Key(
+        doc="one corner (min < max on every axis)",
+        unit="m",
+        frame="the vessel's own axes, file frame",
+        example="min = [-50.0, -15.0, 0.0]",
+    )
+    max: Point = Key(
+        doc="the opposite corner",
+        unit="m",
+        frame="the vessel's own axes, file frame",
+        example="max = [50.0, 15.0, 8.0]",
+    )
+
+
 class VesselTable(Table):
     mesh: Text | None = Key(
         None,
@@ -280,7 +297,7 @@ class VesselTable(Table):
         frame="the vessel's own axes, file frame",
         example='mesh = "barge.stl"',
     )
-    box: _Box | None = Key(
+    box: _VesselBox | None = Key(
         None,
         doc="the vessel's hull as an axis-aligned box in her own axes (as `mesh`; corners in m)",
         values="table { min = [x, y, z], max = [x, y, z] }",

@@ -238,3 +238,40 @@ def test_the_walk_sees_nested_tables_and_arrays():
     plan = schema_keys(_PlanFile)
     assert {"plan.tolerance.heel", "candidates[].at", "crane.boom_height.min"} <= set(plan)
     assert {"study.problem", "sweep", "sample.count"} <= set(schema_keys(_StudyFile))
+
+
+def test_every_file_table_is_complete_when_imported():
+    """A table that names a later table (a forward reference) is only resolved by pydantic on
+    its first validation, so the file reference would differ with what ran before it in the
+    same process (it did: a crane vessel's `box`). Checked in a fresh interpreter."""
+    import subprocess
+    import sys
+
+    script = """
+import typing
+from pydantic import BaseModel
+from liftplan.model.scene.file import _SceneFile
+from liftplan.model.sequence.file import _SequenceFile
+from liftplan.planner.batch.study import _StudyFile
+from liftplan.planner.problem.file import _PlanFile
+
+seen, todo, bad = set(), [_SceneFile, _PlanFile, _StudyFile, _SequenceFile], []
+while todo:
+    model = todo.pop()
+    if model in seen:
+        continue
+    seen.add(model)
+    if not model.__pydantic_complete__:
+        bad.append(model.__name__)
+        continue
+    for field in model.model_fields.values():
+        stack = [field.annotation]
+        while stack:
+            a = stack.pop()
+            if isinstance(a, type) and issubclass(a, BaseModel):
+                todo.append(a)
+            stack.extend(typing.get_args(a))
+print(" ".join(sorted(bad)))
+"""
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "", f"tables with unresolved annotations at import: {out.stdout.strip()}"
