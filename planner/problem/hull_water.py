@@ -86,6 +86,11 @@ def check_hull_water(problem):
                     f"candidates[{c.name}].at: x {c.at[0]:g} m lies outside the hull girder "
                     f"(body.weight_curve spans {span[0]:g} to {span[1]:g} m); expected every candidate on it"
                 )
+    if water is not None and problem.weight_basis == "water":
+        raise InvalidScene(
+            'body.weight_basis = "water" with [water]: the plan subtracts the hull\'s buoyancy at '
+            'the start in water itself; expected the weight in air (weight_basis = "air")'
+        )
     if any(c.sling is not None for c in fleet):
         raise InvalidScene(
             f"{what}: planned for single ropes (the legs of a sling pull the lugs along their lines, "

@@ -215,6 +215,10 @@ def test_outputs_name_the_state_in_water(planned):
             barge().replace("rope_length = 20.0", "rope_length = { min = 15.0, max = 25.0 }"),
             r"\[water\]: planned at fixed rope lengths",
         ),
+        (
+            barge().replace("weight = 600.0", 'weight = 600.0\nweight_basis = "water"', 1),
+            r'body.weight_basis = "water" with \[water\]: the plan subtracts',
+        ),
     ],
 )
 def test_refused_in_one_line(text, message):
