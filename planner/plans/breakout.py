@@ -278,6 +278,18 @@ def breakout_case(problem, lugset, preload):
     )
 
 
+def _case_json(plan, case, names):
+    """The breakout scene's case (its point in the file's frame) and each tension, without and
+    with the hook errors at worst, keyed by ``names``."""
+    out = case.load.to_json()
+    out["point"] = list(plan.in_file_frame(case.load.point))
+    out["frame"] = plan.frame
+    out["scene"] = plan.problem.breakout_scene.name
+    out["tensions"] = dict(zip(names, case.tensions.tolist()))
+    out["tensions_with_hook_errors"] = dict(zip(names, case.worst.tolist()))
+    return out
+
+
 def breakout_json(plan):
     """``{"breakout": {...}}`` for the plan JSON, or ``{}`` without a breakout case.
 
@@ -290,12 +302,7 @@ def breakout_json(plan):
     case = design.breakout
     if case is None:
         return {}
-    out = case.load.to_json()
-    out["point"] = list(plan.in_file_frame(case.load.point))
-    out["frame"] = plan.frame
-    out["scene"] = plan.problem.breakout_scene.name
-    out["tensions"] = dict(zip(plan.labels, case.tensions.tolist()))
-    out["tensions_with_hook_errors"] = dict(zip(plan.labels, case.worst.tolist()))
+    out = _case_json(plan, case, plan.labels)
     out["cranes"] = [
         {
             "lug": c.label,
@@ -346,12 +353,7 @@ def hooks_breakout_json(plan):
     case = plan.breakout
     if case is None:
         return {}
-    out = case.load.to_json()
-    out["point"] = list(plan.in_file_frame(case.load.point))
-    out["frame"] = plan.frame
-    out["scene"] = plan.problem.breakout_scene.name
-    out["tensions"] = dict(zip(case.cranes, case.tensions.tolist()))
-    out["tensions_with_hook_errors"] = dict(zip(case.cranes, case.worst.tolist()))
+    out = _case_json(plan, case, case.cranes)
     labels = iter(plan.labels)
     cranes = []
     for c, name in enumerate(case.cranes):

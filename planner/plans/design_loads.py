@@ -394,20 +394,7 @@ class DesignBuilder:
             )
         chain = None
         if missing is None:
-            try:
-                chain = PlanChain(
-                    cranes=tuple(self._loads(c) for c in cranes),
-                    weight=problem.body.weight,
-                    rules=problem.rules,
-                    cog_searched=self.searched,
-                    tilt_note=tilt_note,
-                    inputs=tuple((c.crane, c) for c in cranes),
-                )
-                results = chain.results
-            except InvalidScene as err:
-                chain, missing = None, str(err)
-            else:
-                cranes = [replace(c, design=r) for c, r in zip(cranes, results)]
+            cranes, chain, missing = self.chained(cranes, tilt_note)
         return DesignLoads(
             cranes=tuple(cranes),
             tilt=tilt,
@@ -417,6 +404,25 @@ class DesignBuilder:
             breakout=breakout,
             in_water=water,
         )
+
+    def chained(self, cranes, tilt_note):
+        """The rules' chain over ``cranes`` (each a :class:`CraneDesign`): (the cranes with
+        their design results, the :class:`PlanChain`, None), or (the cranes as given, None, why
+        the chain could not be built)."""
+        problem = self.problem
+        try:
+            chain = PlanChain(
+                cranes=tuple(self._loads(c) for c in cranes),
+                weight=problem.body.weight,
+                rules=problem.rules,
+                cog_searched=self.searched,
+                tilt_note=tilt_note,
+                inputs=tuple((c.crane, c) for c in cranes),
+            )
+            results = chain.results
+        except InvalidScene as err:
+            return list(cranes), None, str(err)
+        return [replace(c, design=r) for c, r in zip(cranes, results)], chain, None
 
     def _tilt(self, lugset, preload):
         """(tilt [deg], note, {crane: TiltCase}, missing reason or None)."""

@@ -387,17 +387,7 @@ class Plan(InFileFrame):
         """
         out = list(self.design_loads.checks) + [w.check() for w in self.girder]
         out += [check for vessel in self.vessels for check in vessel.checks()]
-        for crane, distance, nearest in self.clearances.values():
-            out.append(
-                Check.lower(
-                    "crane_clearance",
-                    crane,
-                    distance,
-                    self.problem.crane_clearance,
-                    "m",
-                    note=f"boom and hoist line to {nearest}'s, in plan",
-                )
-            )
+        out += clearance_checks(self.clearances, self.problem.crane_clearance)
         out.append(
             Check.lower(
                 "min_tension",
@@ -863,3 +853,19 @@ def girder_stats(stats, ranking, ranked):
     best = float(ranked[0].worst_value)
     lower = best if stats.stopped == "proved" else min(stats.lower_bound, best)
     return dataclasses.replace(stats, best=best, lower_bound=lower)
+
+
+def clearance_checks(clearances, limit):
+    """``crane_clearance`` checks of a plan's :attr:`Plan.clearances` against
+    ``plan.crane_clearance`` ``limit`` [m]."""
+    return [
+        Check.lower(
+            "crane_clearance",
+            crane,
+            distance,
+            limit,
+            "m",
+            note=f"boom and hoist line to {nearest}'s, in plan",
+        )
+        for crane, distance, nearest in clearances.values()
+    ]

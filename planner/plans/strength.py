@@ -34,7 +34,6 @@ rules' design loads per crane (with ``breakout_scene``, the breakout case) as ch
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
 import time
@@ -44,7 +43,7 @@ from functools import cached_property
 import numpy as np
 
 from liftplan.model.checks import Check
-from liftplan.model.errors import InvalidScene, PlanInfeasible, SolverFailed
+from liftplan.model.errors import PlanInfeasible, SolverFailed
 from liftplan.model.scene.objects import Analysis, Attitude, Crane, Lug, Redundant, Scene
 from liftplan.model.strength.girder import attitude_matrix
 from liftplan.planner.plans.breakout import breakout_json
@@ -53,10 +52,10 @@ from liftplan.planner.plans.design_loads import (
     CraneDesign,
     DesignBuilder,
     DesignLoads,
-    PlanChain,
     TiltCase,
 )
 from liftplan.planner.plans.held import Plan as HeldPlan
+from liftplan.planner.plans.held import clearance_checks
 from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
 from liftplan.planner.search.evaluator import GapMixin, Interrupted
@@ -930,17 +929,7 @@ class StrengthPlan(InFileFrame):
             )
         )
         out += list(self.design_loads.checks)
-        for crane, distance, nearest in self.clearances.values():
-            out.append(
-                Check.lower(
-                    "crane_clearance",
-                    crane,
-                    distance,
-                    p.crane_clearance,
-                    "m",
-                    note=f"boom and hoist line to {nearest}'s, in plan",
-                )
-            )
+        out += clearance_checks(self.clearances, p.crane_clearance)
         return out
 
     @property
@@ -1072,21 +1061,7 @@ def force_design(problem, builder, chosen, labels):
                 skewed=force,
             )
         )
-    chain, missing = None, None
-    try:
-        chain = PlanChain(
-            cranes=tuple(builder._loads(c) for c in cranes),
-            weight=problem.body.weight,
-            rules=problem.rules,
-            cog_searched=builder.searched,
-            tilt_note=note,
-            inputs=tuple((c.crane, c) for c in cranes),
-        )
-        results = chain.results
-    except InvalidScene as err:
-        chain, missing = None, str(err)
-    else:
-        cranes = [dataclasses.replace(c, design=r) for c, r in zip(cranes, results)]
+    cranes, chain, missing = builder.chained(cranes, note)
     return DesignLoads(cranes=tuple(cranes), tilt=tilt, tilt_note=note, chain=chain, missing=missing)
 
 
