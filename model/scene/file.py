@@ -1413,7 +1413,8 @@ def _expected(loc, root):
 
 
 #: The scene's ``[hull]`` and ``[water]`` tables: a planning file reads the same keys.
-HullTable, WaterTable = _Hull, _Water
+HullTable = _Hull
+WaterTable = _Water
 
 
 def to_hull(data, base):
