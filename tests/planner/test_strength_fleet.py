@@ -159,6 +159,20 @@ def test_plan_json_names_each_crane_and_its_scene_solves_to_the_plan():
     eq = solve(result.scene)
     assert eq.tensions == pytest.approx(dict(zip(chosen.names, chosen.preload.tolist())), abs=1e-6)
     assert abs(eq.pose.heel) < 1e-6 and abs(eq.pose.trim) < 1e-6
+    # the report's page 1 table: each lug's own crane and its chart SWL, as the JSON (it took
+    # the first crane's chart: another crane's SWL, or nan where that crane does not reach)
+    from liftplan.planner.output.report.strength import render_html
+    from liftplan.planner.plan import plan
+
+    planned = plan(problem)
+    mine = planned.to_json()
+    page = render_html(planned)
+    start = page.index("Recommended lifting points")
+    table = page[page.rfind("<table", 0, start) : page.index("</table>", start)]
+    assert "nan" not in table
+    for label in planned.labels:
+        assert f">{mine['cranes'][label]}</td>" in table
+        assert f"<td>{mine['swl'][label]:.1f}</td>" in table
 
 
 @pytest.mark.parametrize(

@@ -392,13 +392,14 @@ def render_html(plan, today=None):
     name = p.name or "Lift plan"
     force = plan.control == "force"
     candidates = dict(zip(p.names, p.candidates))
-    swl = p.reach[1][list(c.indices), 0]
+    swl = p.reach[1][list(c.indices), list(c.cranes)]  # each lug's own crane's chart
     unit = "force" if force else "tension"
     heights = plan.boom_heights
     lugs = _table(
         [
             "lug",
             "candidate (bulkhead)",
+            "crane",
             "position x, y, z [m]",
             f"level {unit} [t]",
             *([] if force else ["boom height H [m]"]),
@@ -409,6 +410,7 @@ def render_html(plan, today=None):
             (
                 label,
                 f"{n} ({candidates[n].bulkhead})" if candidates[n].bulkhead else n,
+                c.crane_names[k],
                 _xyz(plan, candidates[n].at),
                 f"{c.preload[k]:.2f}",
                 *([] if force else [f"{heights[label]:.3f}"]),
@@ -419,7 +421,7 @@ def render_html(plan, today=None):
         ],
         "Recommended lifting points and "
         + ("forces (each jack holds its force)" if force else "tensions, held by the boom heights"),
-        text_columns=(1,),
+        text_columns=(1, 2),
     )
     heel_m, cog_m = _state_text(plan, c, c.bending)
     heel_q, cog_q = _state_text(plan, c, c.shear)
