@@ -117,7 +117,7 @@ def test_report_has_every_section_and_both_plans(force_report):
     assert page.images == 4  # forces, girder of both plans, the solved scene's girder, the 3D stills
     lugs = table(page, "Recommended lifting points")
     assert [row[0] for row in lugs[1:]] == list(data["lugs"])
-    assert [float(row[3]) for row in lugs[1:]] == pytest.approx(list(data["tensions"].values()), abs=0.005)
+    assert [float(row[4]) for row in lugs[1:]] == pytest.approx(list(data["tensions"].values()), abs=0.005)
     rows = {row[0]: row[1:] for row in table(page, "The strength-optimal plan beside")}
     s, o = data["strength"], data["spread_optimal"]
     assert float(rows["peak |M|"][0]) == pytest.approx(s["max_bending_moment"]["value"], abs=0.5)
@@ -185,7 +185,7 @@ def test_hoist_scene_solves_to_the_preload_at_level(tmp_path):
     assert eq.tensions == pytest.approx(dict(zip(p.chosen.names, p.chosen.preload.tolist())), abs=1e-6)
     assert abs(eq.pose.heel) < 1e-6 and abs(eq.pose.trim) < 1e-6
     page = parsed(files.html)
-    heights = {row[0]: float(row[4]) for row in table(page, "Recommended lifting points")[1:]}
+    heights = {row[0]: float(row[5]) for row in table(page, "Recommended lifting points")[1:]}
     assert heights == pytest.approx(p.boom_heights, abs=5e-4)
 
 
