@@ -50,6 +50,17 @@ def start_tip(sequence, crane):
     return np.array([at[0], at[1], crane.boom_height], dtype=float)
 
 
+def load_keys(stage, lugs, legs):
+    """Every load's key of a stage's states: each crane's hook (``hook:NAME``), the ground
+    where a pivot is, each lug's load and its in-plane and out-of-plane parts, each sling leg."""
+    out = [f"hook:{k}" for k in stage.cranes]
+    if stage.pivot is not None:
+        out.append("ground")
+    for lug in lugs:
+        out += [f"lug:{lug}", f"lug_in:{lug}", f"lug_out:{lug}"]
+    return out + [f"leg:{leg}" for leg in legs]
+
+
 @dataclass(frozen=True)
 class ChainStart:
     """Where the stage before a move stage left the body and the boom tips.
@@ -236,12 +247,7 @@ class MoveModel:
 
     def names(self):
         """Every load's key."""
-        out = [f"hook:{k}" for k in self.stage.cranes]
-        if self.stage.pivot is not None:
-            out.append("ground")
-        for lug in self.lugs:
-            out += [f"lug:{lug}", f"lug_in:{lug}", f"lug_out:{lug}"]
-        return out + [f"leg:{leg}" for leg in self.legs]
+        return load_keys(self.stage, self.lugs, self.legs)
 
     def tips(self, s):
         """Each crane's boom tip at parameter ``s``  [m]."""

@@ -19,7 +19,7 @@ import numpy as np
 from liftplan.model.checks import Check
 from liftplan.model.rules import CraneLoads, DesignLoadChain, LugLoads
 from liftplan.model.sequence.maxima import Peak, Sampler, adaptive_samples, continuous_maxima
-from liftplan.model.sequence.move import MoveModel, turned_end
+from liftplan.model.sequence.move import MoveModel, load_keys, turned_end
 from liftplan.model.sequence.states import LugLoad, SequenceState
 from liftplan.model.sequence.statics import HeldAngle, Support
 
@@ -248,12 +248,7 @@ class StageModel:
 
     def names(self):
         """Every load's key."""
-        out = [f"hook:{k}" for k in self.stage.cranes]
-        if self.stage.pivot is not None:
-            out.append("ground")
-        for lug in self.lugs:
-            out += [f"lug:{lug}", f"lug_in:{lug}", f"lug_out:{lug}"]
-        return out + [f"leg:{leg}" for leg in self.legs]
+        return load_keys(self.stage, self.lugs, self.legs)
 
     def __call__(self, angle):
         """``(SequenceState, {load key: value})`` at ``angle``  [deg]."""
