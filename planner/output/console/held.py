@@ -17,6 +17,13 @@ from liftplan.planner.plans.vessel_loads import vessel_lines, wind_lines
 from liftplan.planner.search.scenarios import Scenario
 
 
+def coordinates_line(plan):
+    """The console's line naming the frame of every coordinate it prints (the file's)."""
+    return (
+        f"coordinates: the file's frame, {FRAME_TEXT[plan.frame]}; heel > 0 starboard down, trim > 0 bow down"
+    )
+
+
 def plan_table(plan):
     """A readable summary of a plan.
 
@@ -41,8 +48,7 @@ def plan_table(plan):
     design = plan.design_loads
     lines = [
         problem.name or "lift plan",
-        f"coordinates: the file's frame, {FRAME_TEXT[plan.frame]}; "
-        "heel > 0 starboard down, trim > 0 bow down",
+        coordinates_line(plan),
         f"{stats.sets} lug sets of {problem.cranes} among {len(problem.candidates)} candidates"
         f"{fleet}: {stats.screened_out} ruled out by screening, {stats.evaluated} evaluated, "
         f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)"

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from liftplan.planner.output.console.held import girder_lines
+from liftplan.planner.output.console.held import coordinates_line, girder_lines
 from liftplan.planner.output.console.text import fold, grouped
 from liftplan.planner.plans.slings.two_crane import SHARED
 
@@ -46,8 +46,9 @@ def _search_lines(plan):
         f"two cranes on slings: rigs of one crane ruled out: {rigs or 'none'}; the others paired "
         f"(both assignments), {shared} pairs sharing a lug dropped, {plan.options} considered: "
         f"ruled out {pairs or 'none'}; {plan.options - sum(out.values())} feasible",
-        "tilt along the hook line within the tolerance, CG envelope; objective: "
-        + OBJECTIVES.get(plan.objective, plan.objective),
+        f"tilt along the hook line within +-{plan.tolerances[0]:g} deg and the hook errors' tilt, "
+        "CG envelope; objective: " + OBJECTIVES.get(plan.objective, plan.objective),
+        plan.hook_tilt_text,
     ]
 
 
@@ -63,6 +64,7 @@ def sling_table(plan):
     design = plan.design_hook_loads
     lines = [
         problem.name or "lift plan",
+        coordinates_line(plan),
         problem.weight_text,
         *_search_lines(plan),
         "",
@@ -123,7 +125,7 @@ def sling_table(plan):
     ]
     if hasattr(plan, "chosen"):
         chosen = plan.chosen
-        dx, dy, dz = chosen.worst_cog_offset
+        dx, dy, dz = plan.in_file_frame(chosen.worst_cog_offset)  # the file's frame
         lines += [
             f"roll about the hook line (CG under it): up to {chosen.roll:.2f} deg over the CG envelope",
             f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "

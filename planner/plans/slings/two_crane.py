@@ -36,7 +36,7 @@ from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import TiltGeometry, governing_tilt
 from liftplan.planner.plans.breakout import BreakoutCase
 from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
-from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
+from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, hook_tolerances, rules_with_bars
 from liftplan.planner.plans.slings.rigs import Rigs, crane_rigs, turned_hooks
 from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.fleet import rule_limits
@@ -77,6 +77,9 @@ class SlingOption:
     top_legs : tuple of (numpy.ndarray or None)  [t]
         A spreader's two top legs at level (None without a bar).
     top_angles : tuple of (numpy.ndarray or None)  [deg]
+    hook_tilt : float  [deg]
+        The largest tilt along the hook line the crew's hook errors add on top of the tolerance
+        (:func:`hook_error_tilt`); the tilts above are taken within the tolerance plus it.
     """
 
     pairs: tuple
@@ -95,6 +98,7 @@ class SlingOption:
     hook_worst_at: tuple = ()
     top_legs: tuple = (None, None)
     top_angles: tuple = (None, None)
+    hook_tilt: float = 0.0
 
 
 #: The cause of a pair of rigs dropped before the pairs are considered (a lug in both slings).
@@ -145,6 +149,22 @@ def rig_legs(crane, hook, lugs, load):
         mat = np.column_stack([along / np.linalg.norm(along), down / np.linalg.norm(down)])
         legs.append(np.linalg.lstsq(mat, -force, rcond=None)[0][1])
     return np.array(legs), top
+
+
+def hook_error_tilt(tolerance, span):
+    """The largest tilt along the hook line the crew's hook errors give  [rad].
+
+    One hook high by its tolerance and the other low by its own: atan((delta_1 + delta_2) / span).
+
+    Parameters
+    ----------
+    tolerance : (2,)  [m]
+        Each hook's height tolerance.
+    span : float or numpy.ndarray  [m]
+        Horizontal distance between the two hooks.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.arctan((tolerance[0] + tolerance[1]) / np.asarray(span, dtype=float))
 
 
 def uses_slings(problem):
@@ -223,8 +243,10 @@ def plan_two_slings(problem, top=None):
         e = axis_h / length[:, None]
     span = np.ptp(problem.points, axis=0).max()
     longitudinal = np.abs(e[:, 0]) >= np.abs(e[:, 1])
-    tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance)
     roll_tol = np.where(longitudinal, problem.heel_tolerance, problem.trim_tolerance)
+    # the crew's hook errors tilt the body along the hook line on top of the tolerance
+    hook_tilt = np.nan_to_num(np.degrees(hook_error_tilt(hook_tolerances(problem), length)))
+    tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance) + hook_tilt
     tilts = np.stack([-tilt_tol, 0 * tilt_tol, tilt_tol], axis=1)  # (N, 3) deg
     # The operators tilt the body about the horizontal axis square to the hook line; each
     # hook then sits where its rig puts it over the turned lugs (a 2-leg sling or a spreader
@@ -323,6 +345,7 @@ def plan_two_slings(problem, top=None):
                 hook_worst_at=tuple(_where(hook_loads[k][..., c], tilts[k], offsets) for c in range(2)),
                 top_legs=tuple(s[0][1] for s in split),
                 top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
+                hook_tilt=float(hook_tilt[k]),
             )
         )
     return SlingPlan(
@@ -418,10 +441,8 @@ def hooks_breakout(problem, option):
         second = total * (g - along[0]) / (along[1] - along[0])
         return np.array([total - second, second])
 
-    tolerance = np.array(
-        [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in fleet]
-    )
-    tilt = float(np.arctan((tolerance[0] + tolerance[1]) / span))
+    tolerance = hook_tolerances(problem)
+    tilt = float(hook_error_tilt(tolerance, span))
     level = shares(0.0)
     every = np.stack([level, shares(-tilt), shares(tilt)])
     step = 1e-6  # rad: the slope at level by central difference
@@ -577,9 +598,10 @@ class SlingPlan(SlingLift):
     @property
     def held_poses(self):
         """(CG offset [m], boom shifts [m]) of every state the plan holds: the CG at each vertex
-        of the CG envelope, the hooks set for the tilt along the hook line at -tol, 0 and +tol
-        (hook 1 raised and hook 2 lowered by half the span x tan(tilt))."""
-        tilt = self.tolerances[0]
+        of the CG envelope, the hooks set for the tilt along the hook line at -tol, 0 and +tol,
+        tol the tolerance and the hook errors' tilt (:attr:`SlingOption.hook_tilt`; hook 1 raised
+        and hook 2 lowered by half the span x tan(tilt))."""
+        tilt = self.tolerances[0] + self.chosen.hook_tilt
         for offset in self.problem.cog_envelope.offsets():
             for angle in (-tilt, 0.0, tilt):
                 drop = 0.5 * self._span * np.tan(np.radians(angle))
@@ -591,6 +613,27 @@ class SlingPlan(SlingLift):
         return float(np.linalg.norm(self.chosen.apex[1, :2] - self.chosen.apex[0, :2]))
 
     girder_over = "over the CG envelope and the tilt along the hook line (rigging model)"
+
+    @property
+    def hook_tilt_text(self):
+        """What the crew's hook errors do to the plan, one sentence (console and report)."""
+        tolerance = hook_tolerances(self.problem)
+        tilt, total = self.chosen.hook_tilt, self.tolerances[0] + self.chosen.hook_tilt
+        if not np.any(tolerance > 0):
+            return "hook errors: none (hook tolerance 0 m), no tilt added to the tolerance"
+        each = ", ".join(f"{n} +-{d:g} m" for n, d in zip(self.crane_names, tolerance))
+        return (
+            f"hook errors ({each}) over the {self._span:.2f} m hook line tilt the body up to "
+            f"{tilt:.2f} deg more along it: every state is taken within +-{total:.2f} deg"
+        )
+
+    def hook_tilt_json(self):
+        """The hook errors' tilt along the hook line, for the plan JSON's ``hooks``  [deg, m]."""
+        return {
+            "tilt_along_hook_line": self.chosen.hook_tilt,
+            "span": self._span,
+            "tilt_taken": self.tolerances[0] + self.chosen.hook_tilt,
+        }
 
     @property
     def top_legs(self):
