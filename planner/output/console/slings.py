@@ -45,7 +45,7 @@ def _search_lines(plan):
     return [
         f"two cranes on slings: rigs of one crane ruled out: {rigs or 'none'}; the others paired "
         f"(both assignments), {shared} pairs sharing a lug dropped, {plan.options} considered: "
-        f"ruled out {pairs or 'none'}; {plan.options - sum(out.values())} feasible",
+        f"ruled out {pairs or 'none'}; {plan.options - sum(out.values())} feasible; {plan.time_text}",
         f"tilt along the hook line within +-{plan.tolerances[0]:g} deg and the hook errors' tilt, "
         "CG envelope; objective: " + OBJECTIVES.get(plan.objective, plan.objective),
         plan.hook_tilt_text,

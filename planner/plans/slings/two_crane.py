@@ -25,6 +25,7 @@ The search is exhaustive over rigs x rigs x the two assignments, vectorised, so 
 from __future__ import annotations
 
 import dataclasses
+import time
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -40,6 +41,7 @@ from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, hook_toler
 from liftplan.planner.plans.slings.rigs import Rigs, crane_rigs, turned_hooks
 from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.budget import Budget
 
 
 @dataclass(frozen=True)
@@ -187,11 +189,21 @@ def plan_two_slings(problem, top=None):
 
     Raises
     ------
+    InvalidScene
+        ``plan.search`` asks for a search this plan has not (``mip``, ``local``).
     PlanInfeasible
-        No pair of rigs meets the sling angle, reach, the rules' limits and the roll; the
-        message counts what ruled them out.
+        No pair of rigs meets the sling angle, reach, the rules' limits and the roll (the
+        message counts what ruled them out); or ``plan.time_limit`` ran out before the
+        enumeration ended (it stops only whole).
     """
 
+    if problem.search in ("mip", "local"):
+        raise InvalidScene(
+            f'plan.search = "{problem.search}": a two-crane sling plan enumerates every pair of rigs '
+            'and proves its best, with no MIP or local search; expected search = "auto" or "exact"'
+        )
+    started = time.perf_counter()
+    budget = Budget.of(problem.time_limit, started=started)
     top = top or problem.top
     fleet = problem.fleet
     weight = problem.body.weight
@@ -224,6 +236,7 @@ def plan_two_slings(problem, top=None):
         reach = ~np.isnan(swl)
         counts["beyond the crane's reach"] += int(np.sum(~reach))
         per_crane.append((rigs.take(reach), radius[reach], swl[reach]))
+        _on_time(problem, budget, started)
     (g1, r1, s1), (g2, r2, s2) = per_crane
     if len(g1) == 0 or len(g2) == 0:
         raise PlanInfeasible(_no_plan(problem, counts))
@@ -274,6 +287,7 @@ def plan_two_slings(problem, top=None):
             with np.errstate(divide="ignore", invalid="ignore"):
                 share2 = weight * (g - hooks[0]) / (hooks[1] - hooks[0])
             loads[:, m, k] = np.stack([weight - share2, share2], axis=-1)  # the body's shares
+        _on_time(problem, budget, started)
     nominal = loads[:, 0, 1]  # nominal CG, level
     # roll to bring the CG under the hook line: its offset square to the line, over its depth
     rolls = []
@@ -348,13 +362,26 @@ def plan_two_slings(problem, top=None):
                 hook_tilt=float(hook_tilt[k]),
             )
         )
+    _on_time(problem, budget, started)
     return SlingPlan(
         problem=problem,
         ranking=ranking,
         options=int(len(i1)),
         ruled_out={t: n for t, n in counts.items() if n},
         rig_causes=tuple(t for t in counts if counts[t] and t in rig_causes),
+        seconds=time.perf_counter() - started,
     )
+
+
+def _on_time(problem, budget, started):
+    """Raise PlanInfeasible when ``plan.time_limit`` has run out: the enumeration proves its best
+    only once every pair of rigs is in, so a part of it is no plan."""
+    if budget.out() == "time_limit":
+        raise PlanInfeasible(
+            f"plan.time_limit = {problem.time_limit:g} s ran out after {time.perf_counter() - started:.3g} s, "
+            "before the enumeration of every pair of rigs ended (it gives a plan only whole); "
+            "expected a longer time_limit or none"
+        )
 
 
 def _booms_clear(problem, hook1, hook2, yaw):
@@ -495,8 +522,16 @@ class SlingPlan(SlingLift):
     ruled_out: dict
     rig_causes: tuple = ()
     lengths: object = None
+    seconds: float = 0.0
 
     lift_text = "two-crane slings"
+
+    @property
+    def time_text(self):
+        """How long the enumeration took, against ``plan.time_limit`` when given."""
+        limit = self.problem.time_limit
+        within = "" if limit is None else f", within plan.time_limit = {limit:g} s"
+        return f"enumeration of every pair of rigs ended in {self.seconds:.2f} s{within}"
 
     # -- the breakout case and the rope lengths ------------------------------------------------
     @cached_property
@@ -734,6 +769,7 @@ class SlingPlan(SlingLift):
                 for r in self.ranking
             ],
             "options": self.options,
+            "seconds": self.seconds,
             "ruled_out": self.ruled_out,
             "checks": [c.to_json() for c in self.checks],
         }
