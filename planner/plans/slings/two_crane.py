@@ -377,8 +377,9 @@ def _on_time(problem, budget, started):
     """Raise PlanInfeasible when ``plan.time_limit`` has run out: the enumeration proves its best
     only once every pair of rigs is in, so a part of it is no plan."""
     if budget.out() == "time_limit":
+        spent = time.perf_counter() - started
         raise PlanInfeasible(
-            f"plan.time_limit = {problem.time_limit:g} s ran out after {time.perf_counter() - started:.3g} s, "
+            f"plan.time_limit = {problem.time_limit:g} s ran out after {spent:.3g} s, "
             "before the enumeration of every pair of rigs ended (it gives a plan only whole); "
             "expected a longer time_limit or none"
         )
