@@ -37,6 +37,7 @@ def _search_lines(plan):
             f"tolerance box heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g} "
             f"deg, CG envelope; hooks held at the level preload; objective: "
             + OBJECTIVES.get(plan.objective, plan.objective),
+            plan.hook_tilt_text,
         ]
     shared = plan.ruled_out.get(SHARED, 0)
     rigs = ", ".join(f"{n} {text}" for text, n in plan.ruled_out.items() if text in plan.rig_causes)
