@@ -9,6 +9,7 @@ turned lugs) and against the rigging model hung at the tilted state.
 from __future__ import annotations
 
 import dataclasses
+import html
 
 import numpy as np
 import pytest
@@ -18,6 +19,7 @@ from scipy.spatial.transform import Rotation
 from liftplan.model.statics.rigging import solve_rigging
 from liftplan.planner import load_problem, plan
 from liftplan.planner.output.console.slings import sling_table
+from liftplan.planner.output.report.slings import render_html
 
 DELTA = 0.4  # m, every hook
 
@@ -94,3 +96,10 @@ def test_a_crane_s_own_hook_tolerance_counts_and_the_outputs_say_so(tmp_path, ti
     assert hooks["tilt_taken"] == pytest.approx(tilted.tolerances[0] + tilted.chosen.hook_tilt)
     text = sling_table(tilted)
     assert f"{tilted.chosen.hook_tilt:.2f} deg more along it" in " ".join(text.split())
+
+
+def test_the_report_gives_the_hook_tolerances_and_what_they_do(tilted):
+    page = html.unescape(render_html(tilted))
+    assert "hook-height tolerance per crane" in page
+    assert f"Crawler FWD +-{DELTA:g}, Crawler AFT +-{DELTA:g}" in page
+    assert tilted.hook_tilt_text in page

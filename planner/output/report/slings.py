@@ -17,6 +17,7 @@ from liftplan.planner.output.console.slings import _ranking
 from liftplan.planner.output.figures.plan import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 from liftplan.planner.output.report import page as report_page
 from liftplan.planner.output.report.view import view_section
+from liftplan.planner.plans.slings.lift import hook_tolerances
 from liftplan.planner.plans.slings.two_crane import SHARED
 
 
@@ -271,6 +272,12 @@ def render_html(plan, today=None):
             "m",
         ),
         ("lowest sling angle allowed", f"{problem.min_sling_angle:g}", "deg"),
+        (
+            "hook-height tolerance per crane",
+            ", ".join(f"{n} +-{d:g}" for n, d in zip(plan.crane_names, hook_tolerances(problem))),
+            "m",
+        ),
+        ("what the hook errors do", plan.hook_tilt_text, "-"),
     ]
     if hasattr(plan, "tolerances"):
         rows[3:3] = [
