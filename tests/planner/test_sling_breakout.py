@@ -196,13 +196,18 @@ def three():
 def test_three_cranes_hinged_plan_is_the_brute_force_best(three):
     """Every disjoint triple of 2-leg rigs x every assignment: the hooks of the turned lugs
     (the sling's own geometry), the statics of three vertical hoist lines on a 21 x 21
-    heel-trim grid; the plan's choice is the best, its worst value the brute force's within
-    1e-3 (the search refines the grid about the worst point, so it can only find more)."""
+    heel-trim grid over the box widened by the chosen hooks' hook-error tilt (one box for every
+    set); the plan's choice is the best, its worst value the brute force's within 1e-3 (the
+    search refines the grid about the worst point, so it can only find more)."""
     assert isinstance(three, ApexSlingPlan) and three.hinged
     problem = three.problem
     points, weight, length = problem.points, problem.body.weight, 12.0
     swl = np.array([500.0, 450.0, 400.0])
-    rots = [rotation_matrix(h, t, 0.0) for h in np.linspace(-2, 2, 21) for t in np.linspace(-2, 2, 21)]
+    heel, trim = 2.0 + np.asarray(three.hook_tilt)
+    assert np.all(np.asarray(three.hook_tilt) >= three.hook_need - 1e-9) and heel > 2.0 and trim > 2.0
+    rots = [
+        rotation_matrix(h, t, 0.0) for h in np.linspace(-heel, heel, 21) for t in np.linspace(-trim, trim, 21)
+    ]
     cog = np.asarray(problem.body.cog)
     rigs = [
         (i, j)
