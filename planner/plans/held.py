@@ -203,7 +203,11 @@ class Plan(InFileFrame):
 
     @property
     def worst_spread(self):
-        """Largest max - min tension over the tolerance box and CG envelope  [t]."""
+        """Largest max - min tension over the tolerance box and CG envelope  [t]: with the
+        spread objective and ``[hull] EI`` or ``[water]``, the governing value the set is ranked
+        on (the flexible hull's where it governs, the start in water's where it is larger)."""
+        if self.hull_search is not None and self.problem.objective == "spread":
+            return float(self.hull_search.values[0])
         return self.chosen.worst_spread
 
     @property

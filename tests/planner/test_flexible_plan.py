@@ -112,6 +112,11 @@ def test_plan_is_the_brute_force_optimum_on_the_flexible_hull(planned, brute):
     order = sorted(brute, key=lambda row: row[1].value)[: len(planned.ranking)]
     assert [r.lugs for r in planned.ranking] == [row[0].lugs for row in order]
     assert planned.hull_search.certified
+    # every set evaluated on the governing hull: the plan's value, bound and gap are that hull's
+    # (the rigid search's bound, 10.37 t, is not a bound on the flexible values)
+    assert planned.worst_spread == pytest.approx(best_model.value, rel=1e-9)
+    assert planned.stats.best == planned.stats.lower_bound == planned.worst_spread
+    assert planned.stats.gap == 0.0
 
 
 def test_each_set_keeps_solves_one_percent_rule(brute):

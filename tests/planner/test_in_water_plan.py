@@ -115,6 +115,10 @@ def test_plan_is_the_brute_force_optimum_with_the_start_in_water(planned, brute)
     assert value > planned.chosen.worst_value  # ranked on the value in water, larger than the box's
     order = sorted(held)[: len(planned.ranking)]
     assert [r.lugs for r in planned.ranking] == [lugs for _, lugs in order]
+    # the plan's worst spread, bound and gap are on the governing value (in water), not in air
+    assert planned.worst_spread == pytest.approx(value, rel=1e-9)
+    assert planned.stats.best == planned.stats.lower_bound == planned.worst_spread
+    assert planned.stats.gap == 0.0
 
 
 def test_written_scene_reproduces_the_plan_clear_of_and_in_the_water(planned, tmp_path):
