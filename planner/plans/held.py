@@ -499,7 +499,8 @@ class Plan(InFileFrame):
     def hook_accuracy_needed(self):
         """The largest hook-height error (the same on every hook) the plan holds with every
         rope within its limits and above zero, its preload held, over the box and, with a
-        breakout case, at breakout  [m]; inf when no hook error can break it (to 10 m)."""
+        breakout case, at breakout, with ``[water]`` at the start in water  [m]; inf when no
+        hook error can break it (to 10 m)."""
         problem = self.problem
         tensions, gain = self._dense_held
         limit = self.lugset.limit
@@ -508,7 +509,12 @@ class Plan(InFileFrame):
         if breakout is not None:  # the breakout state too: its tensions and dT/dH there, >= 0
             reach = np.abs(breakout.gain).sum(axis=1)
             value = min(value, _largest_error(breakout.tensions, reach, limit, 0.0))
-        return value if value < 10.0 else float("inf")
+        water = self.design_loads.in_water
+        if water is not None:  # the start in water too, at each CG vertex, >= min_tension
+            reach = np.abs(water.gain).sum(axis=2)
+            value = min(value, _largest_error(water.tensions, reach, limit, water.min_tension))
+        # 0 where a state breaks a limit with the hooks exact (a failed check says which)
+        return max(value, 0.0) if value < 10.0 else float("inf")
 
     @cached_property
     def diagonals(self):
