@@ -290,7 +290,8 @@ class VesselTable(Table):
             "hydrostatics at any angle, solved with the body (the `elastic` model, in air); with it give "
             "`displacement`, `cog` and `origin`, and no waterplane_area, gm_t, gm_l, flotation, ballast "
             "or freeboard. The water surface is at world height 0 (the tips' height over it sets the "
-            "arm their loads gain as she heels)"
+            "arm their loads gain as she heels). Read by `liftplan solve` only: `plan`, `lift` and "
+            "the other commands refuse a hull vessel (with `mesh` or `box`) in one line"
         ),
         values="string (path)",
         absent="the small-angle vessel (waterplane_area, gm_t, gm_l, flotation)",

@@ -219,6 +219,7 @@ def test_outputs_name_the_state_in_water(planned):
     json.dumps(out, allow_nan=False)
     assert "start in water (lift height -0.6 m): W + trapped - B = 157.20 t" in summary(planned)
     assert "start in water" in render_html(planned)
+    assert "<h3>The start in water</h3>" in render_html(planned)
 
 
 @pytest.mark.parametrize(
