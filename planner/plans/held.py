@@ -506,9 +506,9 @@ class Plan(InFileFrame):
         limit = self.lugset.limit
         value = _largest_error(tensions, np.abs(gain).sum(axis=2), limit, max(problem.min_tension, 0.0))
         breakout = self.design_loads.breakout
-        if breakout is not None:  # the breakout state too: its tensions and dT/dH there, >= 0
+        if breakout is not None:  # the breakout state too: its tensions and dT/dH there
             reach = np.abs(breakout.gain).sum(axis=1)
-            value = min(value, _largest_error(breakout.tensions, reach, limit, 0.0))
+            value = min(value, _largest_error(breakout.tensions, reach, limit, breakout.min_tension))
         water = self.design_loads.in_water
         if water is not None:  # the start in water too, at each CG vertex, >= min_tension
             reach = np.abs(water.gain).sum(axis=2)
