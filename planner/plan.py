@@ -19,6 +19,7 @@ from liftplan.planner.plans.lengths import plan_lengths
 from liftplan.planner.plans.protocol import LiftPlan
 from liftplan.planner.plans.slings import plan_slings, uses_slings
 from liftplan.planner.plans.strength import plan_strength, uses_strength
+from liftplan.planner.plans.strength_slings import plan_strength_slings, uses_strength_slings
 from liftplan.planner.problem.definition import PlanProblem
 from liftplan.planner.search.evaluator import Interrupted
 
@@ -52,6 +53,7 @@ def _slings(problem, top):
 
 #: The kinds of plan, tried in order: the first that applies plans the problem.
 KINDS = (
+    PlanKind("strength", uses_strength_slings, plan_strength_slings),  # the girder's objectives on slings
     PlanKind("slings", uses_slings, _slings),  # cranes on sling sets or spreader bars
     PlanKind("strength", uses_strength, plan_strength),  # the hull girder's objectives
     PlanKind("lengths", lambda problem: problem.chooses_rope_lengths, plan_lengths),  # payout ranges
