@@ -210,20 +210,36 @@ def plan_strength_slings(problem, top=None):
     """
     derived, rigs = apex_problem(problem)
     context = StrengthContext(derived, SlingLoads(problem, derived, rigs))
+    return plan_strength(
+        derived, top, context=context, wrap=lambda search: sling_plan(problem, rigs, context, search)
+    )
+
+
+def sling_plan(problem, rigs, context, search):
+    """The :class:`StrengthSlingPlan` of a strength plan on the hooks.
+
+    Parameters
+    ----------
+    problem : PlanProblem   as written (candidates are lugs)
+    rigs : Rigs   the derived problem's candidates
+    context : StrengthContext   the hooks' (``context.problem`` the derived problem)
+    search : StrengthPlan   on the derived problem
+
+    Returns
+    -------
+    StrengthSlingPlan
+    """
+    derived = context.problem
     rows = (
         math.comb(len(rigs), problem.cranes)
         * math.factorial(problem.cranes)
         // math.prod(math.factorial(len(group)) for group in derived.crane_classes)
     )
-
-    def wrap(search):
-        stats = SlingSearchStats(**dataclasses.asdict(search.stats), rows=rows)
-        inner = Plan(problem=derived, ranking=[_row(derived, context, search.chosen)], stats=stats)
-        return StrengthSlingPlan(
-            problem=problem, inner=inner, rigs=rigs, ruled_out=dict(rigs.ruled_out), search=search
-        )
-
-    return plan_strength(derived, top, context=context, wrap=wrap)
+    stats = SlingSearchStats(**dataclasses.asdict(search.stats), rows=rows)
+    inner = Plan(problem=derived, ranking=[_row(derived, context, search.chosen)], stats=stats)
+    return StrengthSlingPlan(
+        problem=problem, inner=inner, rigs=rigs, ruled_out=dict(rigs.ruled_out), search=search
+    )
 
 
 @dataclass(frozen=True)
@@ -253,9 +269,13 @@ class StrengthSlingPlan(ApexSlingPlan):
     def control(self):
         return self.problem.control
 
-    def hook_names(self, s):
-        """Each chosen hook's lugs, ``A+B``, in the set's order."""
-        return list(s.names)
+    @cached_property
+    def _loads(self):
+        return SlingLoads(self.problem, self.search.problem, self.rigs)
+
+    def girder_points(self, indices, scenarios):
+        """The girder's loads of hooks ``indices`` in each scenario (:class:`SlingLoads`)."""
+        return self._loads.point_loads(indices, scenarios)
 
     @cached_property
     def checks(self):
