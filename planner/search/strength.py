@@ -18,6 +18,12 @@ state both are **linear in the tensions**; and the tensions are linear in the de
 * force control (strand jacks): T_k = T* at every state; the attitude follows from equilibrium
   (see :func:`force_attitude`).
 
+With slings the lift points are the hooks and the loads on the girder are the legs': a hook's
+tension T splits into leg forces at its lugs, each T times a vector fixed by the sling's statics
+at that state, so the rows stay linear in the hooks' tensions (:class:`PointLoads`: one load
+per leg, its vertical part and its axial part's couple (z_i - z_G) f_x as above; the ropes'
+case is one vertical load per lug).
+
 So choosing T* to minimise the worst |M| / allowable (and |Q| / allowable, and the spread) over
 finitely many scenarios and sections is a linear program, :class:`StrengthLP`, built once per
 size from ``cp.Parameter`` objects (DPP, checked at build) and re-solved. The candidates'
