@@ -69,3 +69,28 @@ def sling_text(
 def sling_problem(**options):
     """:func:`sling_text` as a PlanProblem."""
     return loads_problem(sling_text(**options))
+
+
+#: Nine lugs for 3-leg slings: pairs off the centreline at x = 4, 24, 44 m and single lugs at
+#: x = 14, 34, 54 m (groups by x, so a sling takes a pair and the next single lug)
+TRIPOD_LUGS = (
+    ("A0", 4, 6),
+    ("B0", 4, -4),
+    ("C1", 14, -2),
+    ("A2", 24, 4),
+    ("B2", 24, -6),
+    ("C3", 34, 2),
+    ("A4", 44, 6),
+    ("B4", 44, -4),
+    ("C5", 54, -2),
+)
+
+
+def tripod_text(objective="bending"):
+    """The pontoon on three cranes with 3-leg slings of 10 m (legs of EA 1e6 t) over
+    :data:`TRIPOD_LUGS`, 6 m above the keel, sling angles down to 30 deg."""
+    text = sling_text(objective=objective, cranes=3, leg_ea=1e6, stations=())
+    text = text.replace("legs = 2", "legs = 3").replace("min_sling_angle = 45.0", "min_sling_angle = 30.0")
+    return text + "\n".join(
+        f'[[candidates]]\nname = "{n}"\nat = [{x}, {y}, 6.0]\n' for n, x, y in TRIPOD_LUGS
+    )
