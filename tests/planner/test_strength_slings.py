@@ -33,10 +33,10 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.file import loads_scene
 from liftplan.model.strength import hull_girder, strength_checks
 from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.plan import plan
 from liftplan.planner.plans.girder import moved_body
 from liftplan.planner.plans.slings.apex import apex_problem
 from liftplan.planner.plans.strength import StrengthContext, StrengthPlan, search_strength
-from liftplan.planner.plan import plan
 from liftplan.planner.plans.strength_slings import SlingLoads, StrengthSlingPlan, sling_plan
 from liftplan.planner.problem.file import loads_problem
 from liftplan.planner.search.scenarios import LugSet, Scenario
