@@ -169,7 +169,8 @@ def girder_rows(problem, rigs, chosen, xs):
 def test_sling_strength_search_is_the_brute_forces(weights):
     """Level (no tilt box, the CG along x: three states), four cranes among 13 hooks: the
     search's optimum lies between the brute force's least lower and least upper bound, which
-    are 1e-4 apart at most (measured: ...)."""
+    are 1e-4 apart at most (measured, 39 sets solved: 0.6808658 <= 0.6808752 <= 0.6808782 with
+    weights (1, 1); 0.2214217 for |M| alone)."""
     problem = sling_problem(objective="strength", tilt=0.0)
     derived, rigs = apex_problem(problem)
     lower, upper, solved = brute_best(problem, derived, rigs, weights)
@@ -347,11 +348,14 @@ def test_plan_outputs_show_the_legs_and_the_girder(planned):
     [
         ('control = "force"', 'cranes.control = "force"'),
         ("spreader", "sling.spreader"),
+        ("two cranes", "plan.cranes = 2"),
     ],
 )
 def test_refused_in_one_line(extra, message):
-    text = sling_text(objective="bending")
-    if extra == "spreader":
+    text = sling_text(objective="bending", cranes=2 if extra == "two cranes" else 4)
+    if extra == "two cranes":
+        pass
+    elif extra == "spreader":
         text = text.replace(
             "sling = { legs = 2, length = 10.0, EA = 20000.0 }",
             "sling = { legs = 2, length = 10.0, EA = 20000.0, spreader = { length = 10.0, weight = 2.0 } }",

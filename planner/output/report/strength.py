@@ -147,9 +147,13 @@ def girder_figure(plan, girder_points=None):
 
     p = plan.problem
     x0, x1 = p.body.weight_curve[0][0], p.body.weight_curve[-1][0]
-    plans = (
-        ("strength-optimal (the plan)", plan.chosen, "tab:blue"),
-        ("spread-optimal", plan.spread_plan, "tab:orange"),
+    plans = tuple(
+        entry
+        for entry in (
+            ("strength-optimal (the plan)", plan.chosen, "tab:blue"),
+            ("spread-optimal", plan.spread_plan, "tab:orange"),
+        )
+        if entry[1] is not None  # a plan Ctrl-C stopped may have no spread-optimal partner
     )
     at = [_load_x(plan, s, girder_points) for _, s, _ in plans]
     stations = np.union1d(np.linspace(x0, x1, SAMPLES), np.concatenate(at))
@@ -691,15 +695,25 @@ def sling_strength_section(plan):
     peaks beside the spread-optimal hooks', and the girder along the body (each hook's legs
     loading their lugs)."""
     search = plan.search
-    rows, cost = _comparison(search)
     stats = search.stats
-    comparison = _table(
-        ["quantity", "strength-optimal (the plan)", "spread-optimal", "ratio strength / spread", "unit"],
-        [(r[0].replace("tension", "hook load"), *r[1:]) for r in rows],
-        "The strength-optimal hooks beside the spread-optimal hooks (same limits, same states; "
-        "the planner's model: legs of their lengths, hooks where their pairs hang them)",
-        text_columns=(0,),
-    )
+    if search.spread_plan is None:  # Ctrl-C came before the partner's search found a set
+        c = search.chosen
+        comparison = (
+            f"<p>Peak |M| {c.bending.value:.0f} t m ({c.bending.ratio:.3f} of the allowable) at x = "
+            f"{c.bending.x:.2f} m, peak |Q| {c.shear.value:.0f} t ({c.shear.ratio:.3f}) at x = "
+            f"{c.shear.x:.2f} m (the planner's model); no spread-optimal hooks to compare (the "
+            "search was stopped before).</p>"
+        )
+        cost = ""
+    else:
+        rows, cost = _comparison(search)
+        comparison = _table(
+            ["quantity", "strength-optimal (the plan)", "spread-optimal", "ratio strength / spread", "unit"],
+            [(r[0].replace("tension", "hook load"), *r[1:]) for r in rows],
+            "The strength-optimal hooks beside the spread-optimal hooks (same limits, same states; "
+            "the planner's model: legs of their lengths, hooks where their pairs hang them)",
+            text_columns=(0,),
+        )
     weights = objective_weights(search.problem)
     what = {
         "bending": "the worst |M| / allowable",
