@@ -732,8 +732,9 @@ def sling_strength_section(plan):
         "for M and Q). The search is a MIP over the hooks with each set's exact LP "
         f"({html.escape(stats.method)}): {stats.rounds} MIP solve(s), {stats.evaluated} set(s) "
         f"evaluated, lower bound {stats.lower_bound:.6g}, gap {stats.gap:.3g}, "
-        f"{html.escape(stats.stopped)}. The checks above (bending_moment, shear_force) are the "
-        "rigging model's at the states the plan holds, as liftplan solve gives them.</p>",
+        f"{html.escape(stats.stopped)}. The plan's girder checks (bending_moment, shear_force in "
+        "section 3) are the rigging model's at the states the plan holds, as liftplan solve "
+        "gives them from plan_scene.toml.</p>",
         comparison,
         cost.replace("tension", "hook load"),
         report_page.figure(
