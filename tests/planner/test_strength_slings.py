@@ -84,70 +84,78 @@ def sections(problem, step):
     return xs, allow_m, allow_q
 
 
-def brute_best(problem, derived, rigs, weights):
-    """Every set of hooks sharing no lug, each set's LP built here on sections every 0.25 m (a
-    lower bound on its value: fewer sections) and its solution's value on sections every 5 mm
-    (an upper bound: a feasible tension): the least of each over the sets, and the sets solved.
-    """
-    body, points = problem.body, problem.points
-    xs, allow_m, allow_q = sections(problem, SECTION)
-    fine = sections(problem, FINE)
-    offsets = problem.cog_envelope.offsets()
-    aft = [weight_aft(body, float(o[0])) for o in offsets]
+def brute_best(problem, derived, rigs, weights, assignments=False):
+    """Every set of hooks sharing no lug (``assignments``: and every assignment of the cranes to
+    its hooks), each one's LP built here on sections every 0.25 m (a lower bound on its value:
+    fewer sections) and its solution's value on sections every 5 mm (an upper bound: a feasible
+    tension): the least of each, and how many were solved."""
+    coarse, fine = sections(problem, SECTION), sections(problem, FINE)
+    aft = [weight_aft(problem.body, float(o[0])) for o in problem.cog_envelope.offsets()]
     lower, upper, solved = np.inf, np.inf, 0
     for chosen in itertools.combinations(range(len(rigs)), problem.cranes):
         lugs = np.concatenate([rigs.lugs[j] for j in chosen])
         if len(np.unique(lugs)) < len(lugs):
             continue
-        n = len(chosen)
-        lugset = LugSet(derived, chosen)
-        hooks = np.array([level_legs(points[rigs.lugs[j]])[1] for j in chosen])
-        if np.linalg.matrix_rank(np.column_stack([np.ones(n), hooks[:, :2] - hooks[:, :2].mean(0)])) < 3:
+        hooks = np.array([level_legs(problem.points[rigs.lugs[j]])[1] for j in chosen])
+        basis = np.column_stack([np.ones(len(chosen)), hooks[:, :2] - hooks[:, :2].mean(0)])
+        if np.linalg.matrix_rank(basis) < 3:
             continue  # hooks on one line in plan: they cannot hold the body
-        gains, tension_offsets = lugset.affine([Scenario(0.0, 0.0, tuple(o)) for o in offsets])
-        gm, gq = girder_rows(problem, rigs, chosen, xs)
-        # variables: T* (n), r_M, r_Q
-        rows, rhs = [], []
-        for (w_aft, m_aft), gain, q in zip(aft, gains, tension_offsets):
-            for g, h, allow, col in ((gm, -m_aft(xs), allow_m, n), (gq, -w_aft(xs), allow_q, n + 1)):
-                for sign in (1.0, -1.0):
-                    block = np.zeros((len(xs), n + 2))
-                    block[:, :n] = sign * (g @ gain) / allow[:, None]
-                    block[:, col] = -1.0
-                    rows.append(block)
-                    rhs.append(-sign * (g @ q + h) / allow)
-            for sign, limit in ((-1.0, -problem.min_tension), (1.0, None)):
-                block = np.zeros((n, n + 2))
-                block[:, :n] = sign * gain
-                rows.append(block)
-                rhs.append(limit - sign * q if limit is not None else lugset.limit - q)
-        a_eq = np.zeros((3, n + 2))
-        a_eq[:, :n] = np.vstack([np.ones(n), hooks[:, 0], hooks[:, 1]])
-        b_eq = body.weight * np.array([1.0, body.cog[0], body.cog[1]])
-        low, high = lugset.preload_range()
-        bounds = [(lo, hi) for lo, hi in zip(low, high)] + [(0, None), (0, None)]
-        out = linprog(
-            [0.0] * n + list(weights),
-            A_ub=np.vstack(rows),
-            b_ub=np.concatenate(rhs),
-            A_eq=a_eq,
-            b_eq=b_eq,
-            bounds=bounds,
-            method="highs",
-        )
-        if out.status != 0:
-            continue
-        solved += 1
-        lower = min(lower, out.fun)
-        # the LP's tensions on the fine sections: M and Q there, worst ratio of each
-        fm, fq = girder_rows(problem, rigs, chosen, fine[0])
-        ratios = np.zeros(2)
-        for (w_aft, m_aft), gain, q in zip(aft, gains, tension_offsets):
-            t = gain @ out.x[:n] + q
-            ratios[0] = max(ratios[0], np.max(np.abs(fm @ t - m_aft(fine[0])) / fine[1]))
-            ratios[1] = max(ratios[1], np.max(np.abs(fq @ t - w_aft(fine[0])) / fine[2]))
-        upper = min(upper, float(np.dot(weights, ratios)))
+        orders = itertools.permutations(range(len(chosen))) if assignments else [None]
+        for cranes in orders:
+            bounds = set_bounds(
+                problem, LugSet(derived, chosen, cranes), rigs, hooks, weights, (coarse, fine), aft
+            )
+            if bounds is not None:
+                solved += 1
+                lower, upper = min(lower, bounds[0]), min(upper, bounds[1])
     return lower, upper, solved
+
+
+def set_bounds(problem, lugset, rigs, hooks, weights, grids, aft):
+    """(lower, upper) bound on one (set, assignment)'s value, or None when its LP is infeasible."""
+    body, chosen, n = problem.body, lugset.indices, lugset.n
+    (xs, allow_m, allow_q), fine = grids
+    gains, tension_offsets = lugset.affine(
+        [Scenario(0.0, 0.0, tuple(o)) for o in problem.cog_envelope.offsets()]
+    )
+    gm, gq = girder_rows(problem, rigs, chosen, xs)
+    # variables: T* (n), r_M, r_Q
+    rows, rhs = [], []
+    for (w_aft, m_aft), gain, q in zip(aft, gains, tension_offsets):
+        for g, h, allow, col in ((gm, -m_aft(xs), allow_m, n), (gq, -w_aft(xs), allow_q, n + 1)):
+            for sign in (1.0, -1.0):
+                block = np.zeros((len(xs), n + 2))
+                block[:, :n] = sign * (g @ gain) / allow[:, None]
+                block[:, col] = -1.0
+                rows.append(block)
+                rhs.append(-sign * (g @ q + h) / allow)
+        block = np.zeros((2 * n, n + 2))
+        block[:, :n] = np.vstack([-gain, gain])
+        rows.append(block)
+        rhs.append(np.concatenate([q - problem.min_tension, lugset.limit - q]))
+    a_eq = np.zeros((3, n + 2))
+    a_eq[:, :n] = np.vstack([np.ones(n), hooks[:, 0], hooks[:, 1]])
+    b_eq = body.weight * np.array([1.0, body.cog[0], body.cog[1]])
+    low, high = lugset.preload_range()
+    out = linprog(
+        [0.0] * n + list(weights),
+        A_ub=np.vstack(rows),
+        b_ub=np.concatenate(rhs),
+        A_eq=a_eq,
+        b_eq=b_eq,
+        bounds=[(lo, hi) for lo, hi in zip(low, high)] + [(0, None), (0, None)],
+        method="highs",
+    )
+    if out.status != 0:
+        return None
+    # the LP's tensions on the fine sections: M and Q there, worst ratio of each
+    fm, fq = girder_rows(problem, rigs, chosen, fine[0])
+    ratios = np.zeros(2)
+    for (w_aft, m_aft), gain, q in zip(aft, gains, tension_offsets):
+        t = gain @ out.x[:n] + q
+        ratios[0] = max(ratios[0], np.max(np.abs(fm @ t - m_aft(fine[0])) / fine[1]))
+        ratios[1] = max(ratios[1], np.max(np.abs(fq @ t - w_aft(fine[0])) / fine[2]))
+    return out.fun, float(np.dot(weights, ratios))
 
 
 def girder_rows(problem, rigs, chosen, xs):
@@ -183,6 +191,22 @@ def test_sling_strength_search_is_the_brute_forces(weights):
     assert stats.lower_bound <= found.value * (1 + 1e-9)
     lugs = np.concatenate([rigs.lugs[j] for j in found.indices])
     assert len(np.unique(lugs)) == len(lugs)  # no lug shared
+
+
+@pytest.mark.slow  # 24 (set, assignment) LPs per set: ~1000 LPs
+def test_sling_strength_search_with_unequal_cranes_is_the_brute_forces():
+    """Four unequal cranes (SWL 1500, 1500, 500, 450 t; rope stiffness 2400, 1200, 3600, 800
+    t/m): the MIP's (hook, crane class) columns and each (set, assignment) LP against every set
+    and every assignment of the brute force."""
+    specs = [(1500.0, 2400.0), (1500.0, 1200.0), (500.0, 3600.0), (450.0, 800.0)]
+    problem = sling_problem(objective="strength", tilt=0.0, specs=specs)
+    derived, rigs = apex_problem(problem)
+    lower, upper, solved = brute_best(problem, derived, rigs, (1.0, 1.0), assignments=True)
+    assert solved > 100
+    context = StrengthContext(derived, SlingLoads(problem, derived, rigs))
+    found, stats = search_strength(derived, (1.0, 1.0, 0.0), context)
+    assert stats.stopped == "proved" and upper - lower < 1e-4 * upper
+    assert lower * (1 - 1e-7) <= found.value <= upper * (1 + 1e-7)
 
 
 def test_legs_at_a_tilt_are_the_rigging_models():

@@ -30,7 +30,7 @@ date = "2026-05-01"
 
 CRANE = """[[cranes]]
 name = "C{k}"
-swl = 1500.0
+swl = {swl}
 EA = {rope_ea}
 rope_length = {rope}
 sling = {{ legs = 2, length = 10.0, EA = {leg_ea} }}
@@ -45,10 +45,13 @@ def sling_text(
     leg_ea=20000.0,
     rope=25.0,
     stations=(4, 16, 28, 40, 52),
+    specs=None,
 ):
     """The pontoon's planning file: ``cranes`` equal cranes on 2-leg slings of 10 m (legs' EA
     ``leg_ea`` t), hoist ropes of ``rope`` m at 2400 t/m, candidates 5 m either side of the
-    centreline at ``stations`` (x, m), 6 m above the keel."""
+    centreline at ``stations`` (x, m), 6 m above the keel. ``specs``: each crane's (SWL t,
+    rope stiffness t/m) instead of 1500 t and 2400 t/m (a fleet of unequal cranes)."""
+    specs = specs or [(1500.0, 2400.0)] * cranes
     rows = []
     for k, x in enumerate(stations):
         for side, y in (("P", 5.0), ("S", -5.0)):
@@ -60,7 +63,8 @@ def sling_text(
         tilt=tilt,
         hook=hook,
         cranes_tables="\n".join(
-            CRANE.format(k=k + 1, leg_ea=leg_ea, rope=rope, rope_ea=2400.0 * rope) for k in range(cranes)
+            CRANE.format(k=k + 1, leg_ea=leg_ea, rope=rope, rope_ea=stiff * rope, swl=swl)
+            for k, (swl, stiff) in enumerate(specs)
         ),
         candidates="\n".join(rows),
     )
