@@ -26,6 +26,8 @@ import pytest
 from scipy.integrate import cumulative_trapezoid
 from scipy.optimize import linprog
 from support.cli import run
+from support.planning import EXAMPLES
+from support.sling_block import BLOCK, EIGHT, candidate_rows, crane_tables
 from support.strength_slings import sling_problem, sling_text, tripod_text
 
 from liftplan.model import solve
@@ -365,6 +367,31 @@ def test_plan_outputs_show_the_legs_and_the_girder(planned):
     page = (report / "report.html").read_text(encoding="utf-8")
     for words in ("Sling legs", "Hull girder: the strength search", "bending_moment", "strength-optimal"):
         assert words in page
+
+
+@pytest.mark.slow  # 17 s
+def test_breakout_case_enters_the_sling_strength_plan():
+    """The sunken block of tests/support/sling_block.py on three cranes with 2-leg slings, a
+    uniform weight curve and allowables, objective bending: its breakout case is the sling
+    plan's (each crane's held hook load at breakout, its checks; the JSON's breakout)."""
+    text = BLOCK.format(
+        candidates=candidate_rows(EIGHT, False),
+        plan='objective = "bending"\ncranes = 3',
+        extra="",
+        cranes=crane_tables((700.0, 600.0, 600.0), 2, 12.0, "30.0"),
+    )
+    text = text.replace(
+        "cog = [30.0, 0.3, 2.5]", "cog = [30.0, 0.3, 2.5]\nweight_curve = [[0.0, 10.0], [60.0, 10.0]]"
+    )
+    text += (
+        "\n[strength]\nbending_moment = [[0.0, 3000.0], [60.0, 3000.0]]\n"
+        "shear_force = [[0.0, 400.0], [60.0, 400.0]]\n"
+    )
+    result = plan(loads_problem(text, base=EXAMPLES))
+    assert isinstance(result, StrengthSlingPlan) and result.breakout is not None
+    names = [c.name for c in result.checks]
+    assert names.count("breakout_hook_load") == 3 and "breakout_min_tension" in names
+    assert result.to_json()["breakout"] is not None
 
 
 @pytest.mark.parametrize(
