@@ -25,7 +25,6 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid
 from scipy.optimize import linprog
-from support.cli import run
 from support.planning import EXAMPLES
 from support.sling_block import BLOCK, EIGHT, candidate_rows, crane_tables
 from support.strength_slings import sling_problem, sling_text, tripod_text
@@ -35,6 +34,8 @@ from liftplan.model.errors import InvalidScene
 from liftplan.model.scene.file import loads_scene
 from liftplan.model.strength import hull_girder, strength_checks
 from liftplan.model.strength.girder import attitude_matrix
+from liftplan.planner.output.console.summary import summary
+from liftplan.planner.output.report.write import PAGES
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.girder import moved_body
 from liftplan.planner.plans.slings.apex import apex_problem
@@ -307,22 +308,24 @@ def test_tripod_plan_girder_is_the_rigging_models():
 
 @pytest.fixture(scope="module")
 def planned(tmp_path_factory):
-    """``liftplan plan --report`` of the pontoon on slings (bending, 1 deg box): its run, the
-    report folder and its plan.json. Legs of EA 1e6 t: with 20 000 t legs the four hooks' loads
-    on the rigging model differ from the plan's by more than 1 % of W (``model_agreement``
-    fails: the held model on the hooks has no leg stretch in series with the ropes)."""
+    """The pontoon on slings planned (bending, 1 deg box) and written as ``liftplan plan
+    --report`` writes it, without the PDF (planner/output/report/write.py: the page and the
+    scene file from the plan's kind, plan.json from its JSON): its console text, the folder
+    and the JSON. Legs of EA 1e6 t: with 20 000 t legs the four hooks' loads on the rigging
+    model differ from the plan's by more than 1 % of W (``model_agreement`` fails: the held
+    model on the hooks has no leg stretch in series with the ropes)."""
     folder = tmp_path_factory.mktemp("sling_strength")
-    path = folder / "pontoon_slings_plan.toml"
-    path.write_text(sling_text(objective="bending", tilt=1.0, leg_ea=1e6), encoding="utf-8")
-    out = run("plan", str(path), "--report", str(folder / "report"))
-    data = json.loads((folder / "report" / "plan.json").read_text(encoding="utf-8"))
-    return out, folder / "report", data
+    result = plan(loads_problem(sling_text(objective="bending", tilt=1.0, leg_ea=1e6)))
+    page, scene = PAGES[result.kind](result)
+    (folder / "report.html").write_text(page, encoding="utf-8")
+    (folder / "plan_scene.toml").write_text(scene, encoding="utf-8")
+    return summary(result), folder, json.loads(json.dumps(result.to_json())), result
 
 
 def test_plan_girder_checks_are_solves_of_its_written_scene(planned):
     """Each girder check of the plan (the rigging model at the states it holds) is ``solve`` of
     plan_scene.toml posed at its state (the CG moved, the boom tips raised), to 1e-7."""
-    _, report, data = planned
+    _, report, data, _ = planned
     checks = {c["name"]: c for c in data["checks"] if c["name"] in ("bending_moment", "shear_force")}
     assert set(checks) == {"bending_moment", "shear_force"}
     scene = loads_scene((report / "plan_scene.toml").read_text(encoding="utf-8"))
@@ -346,8 +349,8 @@ def test_plan_girder_checks_are_solves_of_its_written_scene(planned):
 
 
 def test_plan_outputs_show_the_legs_and_the_girder(planned):
-    out, report, data = planned
-    assert out.returncode == 0, out.stderr
+    text, report, data, result = planned
+    assert all(c.ok for c in result.checks)
     assert data["objective"] == "bending" and data["lift"] == "2-leg slings hinged about their lug pairs"
     assert len(data["sling_angles"]) == 8 and len(data["worst_leg_tensions"]) == 8
     hooks = data["strength"]["hooks"]
@@ -363,7 +366,7 @@ def test_plan_outputs_show_the_legs_and_the_girder(planned):
         "strength-optimal hooks",
         "peak |M| [t m]",
     ):
-        assert words in out.stdout
+        assert words in text
     page = (report / "report.html").read_text(encoding="utf-8")
     for words in ("Sling legs", "Hull girder: the strength search", "bending_moment", "strength-optimal"):
         assert words in page
