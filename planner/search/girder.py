@@ -157,9 +157,24 @@ def set_girder(problem, result, scenarios):
     Returns
     -------
     tuple of GirderWorst
-        As :func:`girder_worst`.
+        As :func:`girder_worst`. The last :data:`MEMO` results are kept: the local search
+        checks its set's girder before the plan does (:mod:`.local_girder`), on the same
+        :class:`SetResult`, and the dense grid's girder costs as much as the set's evaluation.
     """
+    key = id(result)
+    known = _MEMO.get(key)
+    if known is not None and known[0] is result and known[1] is problem and known[2] == scenarios:
+        return known[3]
     lugset = set_lugset(problem, result.indices, result.cranes)
     tensions, gain = lugset.tensions_and_gain(np.asarray(result.preload, dtype=float), scenarios)
     hook = (gain, lugset.hook_tolerance) if lugset.hook_uncertain else None
-    return girder_worst(problem, lugset.points, scenarios, tensions, hook)
+    worst = girder_worst(problem, lugset.points, scenarios, tensions, hook)
+    _MEMO[key] = (result, problem, list(scenarios), worst)
+    while len(_MEMO) > MEMO:
+        del _MEMO[next(iter(_MEMO))]
+    return worst
+
+
+#: Sets whose girder :func:`set_girder` keeps (with the result, the problem and the states).
+MEMO = 16
+_MEMO = {}

@@ -28,6 +28,14 @@ corners they span; in order of the screening bound, a lower bound of it, so the 
 found without solving the rest), and candidates on
 two lines add a first start: lugs at both ends of each line (:func:`line_starts`), the layout
 that resists the CG's moves along the lines best; the perturbations are then of it.
+
+With a weight curve and ``[strength]`` the hull girder is in the moves
+(:mod:`~liftplan.planner.search.local_girder`): rows rank as the exact search's ranking does,
+those that keep the girder first, then the objective. A necessary screen keeps the swaps that
+overload it whatever their preload out of the moves; each descent's end is checked exactly
+(the plan's own check), best first, and one that overloads the girder is left for its best
+swap that keeps it (else the one that overloads it least), the descent going on from there
+(:func:`_keep_girder`).
 """
 
 from __future__ import annotations
@@ -337,7 +345,10 @@ def local_search(
             if bar is not None:
                 bar.update(1)
         if girder is not None and ends:  # the ends checked exactly, best first (local_girder)
-            best, taken, _ = _keep_girder(problem, ends, budget, max_moves, plane, seen, girder)
+            try:
+                best, taken, _ = _keep_girder(problem, ends, budget, max_moves, plane, seen, girder)
+            except SwapsInterrupted as stop:  # during a descent from an end: the best end so far
+                raise SwapsInterrupted(best[0], best[1], moves + stop.moves) from None
             moves += taken
     except KeyboardInterrupt as err:
         if isinstance(err, SwapsInterrupted):
