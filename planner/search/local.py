@@ -56,6 +56,7 @@ from liftplan.planner.search.evaluator import (
     SetEvaluator,
     SetInfeasible,
 )
+from liftplan.planner.search.girder import applies as girder_applies
 from liftplan.planner.search.line_cells import applies, cell_bound
 from liftplan.planner.search.lines import count_bounds, line_bound, two_lines
 from liftplan.planner.search.local_girder import LocalGirder
@@ -306,8 +307,8 @@ def local_search(
         kept = rng.choice(first, n - max(1, n // 3), replace=False)
         others = np.setdiff1d(np.arange(count), kept)
         starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)].tolist())))
-    if girder is None:
-        girder = LocalGirder.of(problem, SetEvaluator(problem))
+    if girder is None and girder_applies(problem):
+        girder = LocalGirder(problem, SetEvaluator(problem))
     girder = girder or None
     best, moves, reason, ends = (None, math.inf), 0, None, []
     starts = list(dict.fromkeys(starts))  # a repeated start is run once

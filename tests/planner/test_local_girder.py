@@ -24,7 +24,7 @@ import pytest
 import tomli_w
 from helpers import EXAMPLES
 from support.cli import run
-from support.planning import solved_checks
+from support.planning import fleet_with_girder, solved_checks
 
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.design_loads import DesignBuilder
@@ -140,3 +140,21 @@ def test_the_local_plan_of_the_tanker_keeps_the_girder_and_agrees_with_solve(tmp
         # no CG offset here: the moments' reference heights coincide, equal to rounding
         assert solved.value == pytest.approx(worst.value, rel=1e-9)
         assert solved.limit == pytest.approx(worst.allowable, rel=1e-12)
+
+
+def test_a_fleet_local_plan_keeps_the_girder():
+    """The tanker fleet (unequal cranes with charts, its CG box and hook tolerance) with
+    3000 t m allowed all along: the search on the objective alone ends on the best row by
+    utilisation, BH1-S BH4-P BH5-S BH8-S (|M| 116 % of it); with the girder in its moves the
+    local plan is a row that keeps it (a local optimum: the exact search's is 0.3324)."""
+    problem = dataclasses.replace(
+        loads_problem(fleet_with_girder(bending="[[0.0, 3000.0], [82.05, 3000.0]]")), search="local"
+    )
+    indices, _, _, cranes = local_search(problem, girder=False)
+    alone = LocalGirder(problem, SetEvaluator(problem)).verdict((indices, cranes))
+    assert [problem.names[i] for i in indices] == ["BH1-S", "BH4-P", "BH5-S", "BH8-S"]
+    assert alone.feasible and alone.ratio == pytest.approx(1.16, abs=0.01)
+    result = plan(problem)
+    assert result.stats.method == "local"
+    assert all(w.ratio <= 1.0 for w in result.girder) and all(c.ok for c in result.checks)
+    assert result.ranking[0].worst_value >= 0.3324 - 1e-4  # not below the exact search's plan
