@@ -158,3 +158,30 @@ def test_a_fleet_local_plan_keeps_the_girder():
     assert result.stats.method == "local"
     assert all(w.ratio <= 1.0 for w in result.girder) and all(c.ok for c in result.checks)
     assert result.ranking[0].worst_value >= 0.3324 - 1e-4  # not below the exact search's plan
+
+
+@pytest.mark.slow  # about 60 s: every feasible set of the example, each evaluated with its girder
+def test_the_screen_holds_with_the_cg_box_and_the_hook_tolerance():
+    """examples/tanker_plan.toml as it is (CG box, hook tolerance 0.02 m) with the girder: the
+    screen's bound is at most every feasible set's girder ratio through the plan's check."""
+    doc = tomllib.loads((EXAMPLES / "tanker_plan.toml").read_text(encoding="utf-8"))
+    strength = tomllib.loads((EXAMPLES / "tanker_strength.toml").read_text(encoding="utf-8"))
+    doc.pop("report", None)
+    doc["body"]["weight_curve"] = strength["body"]["weight_curve"]
+    doc["strength"] = strength["strength"]
+    problem = loads_problem(tomli_w.dumps(doc))
+    evaluator, dense = SetEvaluator(problem), DesignBuilder(problem).dense
+    sets = np.array(list(combinations(range(len(problem.candidates)), problem.cranes)))
+    reason = screen(problem, sets, np.broadcast_to(np.arange(problem.cranes), sets.shape)).reason
+    bound = LocalGirder(problem, evaluator).screen(sets)
+    checked = 0
+    for indices, why, low in zip(map(tuple, sets.tolist()), reason, bound):
+        if why != FEASIBLE:
+            continue
+        try:
+            result = evaluator.evaluate(indices)
+        except SetInfeasible:
+            continue
+        assert low <= max(w.ratio for w in set_girder(problem, result, dense)) + 1e-9
+        checked += 1
+    assert checked > 50
