@@ -503,8 +503,9 @@ def _keep_girder(problem, ends, budget, max_moves, plane, seen, girder):
     Returns
     -------
     best : (row, value)
-        The best row checked that keeps the girder; else the best feasible row checked (it
-        overloads the girder), else the best end.
+        The best end checked that keeps the girder, else the best row that keeps it among all
+        those checked (by its worst value); else the best feasible end checked (it overloads
+        the girder), else the best end.
     moves : int
         Swaps taken from overloaded ends.
     kept : bool
@@ -529,6 +530,12 @@ def _keep_girder(problem, ends, budget, max_moves, plane, seen, girder):
         if taken:
             heapq.heappush(heap, (end_value, count, end))
             count += 1
+    # a set that keeps the girder passed on the way (a descent from it ended on one that does
+    # not): the best of them by its worst value
+    kept = [(v.result.worst_value, key) for key, v in girder.verdicts.items() if v.keeps]
+    if kept:
+        value, row = min(kept)
+        return (row, value), moves, True
     return fallback or min(ends, key=lambda e: e[1]), moves, False
 
 

@@ -26,6 +26,7 @@ from helpers import EXAMPLES
 from support.cli import run
 from support.planning import fleet_with_girder, solved_checks
 
+from liftplan.planner.output.console.held import plan_table
 from liftplan.planner.plan import plan
 from liftplan.planner.plans.design_loads import DesignBuilder
 from liftplan.planner.plans.held import set_girder
@@ -185,3 +186,21 @@ def test_the_screen_holds_with_the_cg_box_and_the_hook_tolerance():
         assert low <= max(w.ratio for w in set_girder(problem, result, dense)) + 1e-9
         checked += 1
     assert checked > 50
+
+
+def test_when_no_set_keeps_the_girder_the_local_plan_says_so():
+    """Stations BH1, BH5, BH6, BH7 and BH8: no set of four keeps the girder (the exact search's
+    ranking of every feasible set); the local plan's girder checks fail and the console says
+    the local search reached no set that keeps it."""
+    problem = loads_problem(tanker_girder_text())
+    kept = tuple(c for c in problem.candidates if c.name.split("-")[0] in ("BH1", "BH5", "BH6", "BH7", "BH8"))
+    problem = dataclasses.replace(problem, candidates=kept)
+    every = plan(dataclasses.replace(problem, search="exact", top=problem.set_count))
+    assert len(every.ranking) > 1 and all(
+        any(w.ratio > 1.0 for w in girder) for girder in every.ranked_girder
+    )
+    result = plan(problem)
+    failed = {c.name for c in result.checks if not c.ok}
+    assert {"bending_moment", "shear_force"} <= failed
+    assert "the local search reached no set that keeps it" in plan_table(result)
+    assert "the local search reached no set" not in plan_table(every)
