@@ -515,6 +515,8 @@ def _keep_girder(problem, ends, budget, max_moves, plane, seen, girder):
     heapq.heapify(heap)
     fallback, moves, repairs, count = None, 0, 0, len(heap)
     while heap:
+        if fallback is not None and budget.out():  # out of time or work: no more ends checked
+            break
         value, _, row = heapq.heappop(heap)
         verdict = girder.verdict(row)
         if verdict.keeps:
@@ -522,7 +524,7 @@ def _keep_girder(problem, ends, budget, max_moves, plane, seen, girder):
         if not verdict.feasible:
             continue
         fallback = fallback or (row, value)
-        if repairs >= MAX_REPAIRS or budget.out():
+        if repairs >= MAX_REPAIRS:
             continue
         repairs += 1
         end, end_value, taken, _ = _descend(problem, row, budget, max_moves, plane, seen, girder, repair=True)
