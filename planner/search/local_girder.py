@@ -25,8 +25,9 @@ times a swap's screening, so the search takes it in two steps:
 
 The search (:func:`~liftplan.planner.search.local.local_search`) moves on the objective among
 the swaps the screen leaves, then checks its end sets exactly, best first; one that overloads
-the girder is left for its best neighbour that keeps it (any value: feasibility first), from
-which the descent goes on among the swaps that keep it. The plan is the best row found that
+the girder is left for its best neighbour that keeps it (any value: feasibility first; else
+for the neighbour that overloads it least), from which the descent goes on among the swaps not
+found to overload it. The plan is the best row found that
 keeps the girder, or, when no row reached keeps it, the best row found (its girder check then
 fails, exit 4, and the plan says the local search reached no set that keeps the girder).
 """
