@@ -24,7 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.flexible import flexible_hull_json
 from liftplan.planner.plans.girder import applies as girder_applies
-from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.girder import girder_json, set_girder
 from liftplan.planner.plans.in_water import in_water_json
 from liftplan.planner.plans.vessel_loads import vessel_plans, wind_json
 from liftplan.planner.plans.watch_basis import watch_basis
@@ -762,14 +762,6 @@ class Plan(InFileFrame):
             "twist_stiffness": _twist_stiffness(self.problem, result),
             "converged": result.converged,
         }
-
-
-def set_girder(problem, result, scenarios):
-    """A ranked set's hull girder worst over the scenarios, its hook errors at their worst."""
-    lugset = set_lugset(problem, result.indices, result.cranes)
-    tensions, gain = lugset.tensions_and_gain(np.asarray(result.preload, dtype=float), scenarios)
-    hook = (gain, lugset.hook_tolerance) if lugset.hook_uncertain else None
-    return girder_worst(problem, lugset.points, scenarios, tensions, hook)
 
 
 def _largest_error(tensions, reach, limit, low):

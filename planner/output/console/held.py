@@ -349,6 +349,9 @@ def girder_lines(plan, worst, over):
             f"  {what} {w.value:>9.1f} {unit:<3} at x = {w.x:.1f} m, allowable {w.allowable:.1f} {unit} "
             f"({100 * w.ratio:.0f} %) {'ok' if w.ratio <= 1.0 else 'FAIL'}, at {_where(plan, w.scenario)}"
         )
+    local = getattr(getattr(plan, "stats", None), "method", None) == "local"
+    if local and any(w.ratio > 1.0 for w in worst):  # docs/planning.md, the girder in the local search
+        lines.append('  the local search reached no set that keeps it (search = "exact" shows if one does)')
     return lines
 
 
