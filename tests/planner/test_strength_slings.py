@@ -364,7 +364,7 @@ def test_plan_outputs_show_the_legs_and_the_girder(planned):
         "leg, worst [t]",
         "bending moment |M|",
         "strength-optimal hooks",
-        "peak |M| [t m]",
+        "peak |M| / allowable",
     ):
         assert words in text
     page = (report / "report.html").read_text(encoding="utf-8")

@@ -83,10 +83,10 @@ def _comparison(plan, search, tension="tension"):
         if s is None:
             return (None,) * 8
         return (
-            s.bending.value,
             s.bending.ratio,
-            s.shear.value,
+            s.bending.value,
             s.shear.ratio,
+            s.shear.value,
             s.spread,
             s.worst_spread,
             s.tension_range[0],
@@ -94,10 +94,10 @@ def _comparison(plan, search, tension="tension"):
         )
 
     names = (
-        ("peak |M| [t m]", ".0f"),
         ("peak |M| / allowable", ".3f"),
-        ("peak |Q| [t]", ".0f"),
+        ("|M| there [t m]", ".0f"),
         ("peak |Q| / allowable", ".3f"),
+        ("|Q| there [t]", ".0f"),
         ("level spread [t]", ".1f"),
         ("worst spread [t]", ".1f"),
         (f"lowest {tension} [t]", ".1f"),
@@ -107,8 +107,11 @@ def _comparison(plan, search, tension="tension"):
         other = "-" if b is None else format(b, fmt)
         lines.append(f"{name:28s}{a:>20{fmt}}{other:>20s}")
     lines.append("")
-    lines.append(f"peak |M| at x = {c.bending.x:.2f} m, {_state(plan, c, c.bending)}")
-    lines.append(f"peak |Q| at x = {c.shear.x:.2f} m, {_state(plan, c, c.shear)}")
+    lines.append(f"peak |M| / allowable at x = {c.bending.x:.2f} m, {_state(plan, c, c.bending)}")
+    lines.append(f"peak |Q| / allowable at x = {c.shear.x:.2f} m, {_state(plan, c, c.shear)}")
+    lines.append(
+        "(|M|, |Q| there: at the section where the ratio peaks, not necessarily where |M| or |Q| is largest)"
+    )
     s = search.stats
     lines.append(
         f"search: {s.method}; {s.rounds} MIP solve(s), {s.evaluated} set(s) evaluated, "

@@ -358,12 +358,12 @@ def _comparison(plan):
         ratio = "" if not (b and np.isfinite(b)) else f"{a / b:.3f}"
         rows.append((name, format(a, fmt), format(b, fmt), ratio, unit))
 
-    row("peak |M|", c.bending.value, o.bending.value, ".0f", "t m")
+    row("peak |M| / allowable", c.bending.ratio, o.bending.ratio, ".3f", "-")
     rows.append(("... at x", f"{c.bending.x:.2f}", f"{o.bending.x:.2f}", "", "m"))
-    row("peak |M| / allowable there", c.bending.ratio, o.bending.ratio, ".3f", "-")
-    row("peak |Q|", c.shear.value, o.shear.value, ".0f", "t")
+    row("... |M| there", c.bending.value, o.bending.value, ".0f", "t m")
+    row("peak |Q| / allowable", c.shear.ratio, o.shear.ratio, ".3f", "-")
     rows.append(("... at x", f"{c.shear.x:.2f}", f"{o.shear.x:.2f}", "", "m"))
-    row("peak |Q| / allowable there", c.shear.ratio, o.shear.ratio, ".3f", "-")
+    row("... |Q| there", c.shear.value, o.shear.value, ".0f", "t")
     row("tension spread, level (max - min)", c.spread, o.spread, ".1f", "t")
     row("worst tension spread over the states", c.worst_spread, o.worst_spread, ".1f", "t")
     row("lowest tension over the states", c.tension_range[0], o.tension_range[0], ".1f", "t")
@@ -373,10 +373,11 @@ def _comparison(plan):
     row("objective value (the plan's objective)", c.value, value_o, ".4f", "-")
     rows.append(("lifting points", " ".join(c.names), " ".join(o.names), "", "-"))
     text = (
-        f"<p>The strength-optimal plan takes the peak |M| to {c.bending.value:.0f} t m against "
-        f"{o.bending.value:.0f} t m ({_percent(c.bending.value, o.bending.value)}) and the peak "
-        f"|Q| to {c.shear.value:.0f} t against {o.shear.value:.0f} t "
-        f"({_percent(c.shear.value, o.shear.value)}); it costs a worst tension spread of "
+        f"<p>The strength-optimal plan takes the peak of |M| / allowable to {c.bending.ratio:.3f} "
+        f"against {o.bending.ratio:.3f} ({_percent(c.bending.ratio, o.bending.ratio)}) and the "
+        f"peak of |Q| / allowable to {c.shear.ratio:.3f} against {o.shear.ratio:.3f} "
+        f"({_percent(c.shear.ratio, o.shear.ratio)}), each at the section where the ratio peaks (not "
+        f"necessarily where |M| or |Q| is largest); it costs a worst tension spread of "
         f"{c.worst_spread:.1f} t against {o.worst_spread:.1f} t and a highest tension of "
         f"{c.tension_range[1]:.1f} t against {o.tension_range[1]:.1f} t.</p>"
     )
@@ -454,14 +455,14 @@ def render_html(plan, today=None):
     summary = _table(
         ["quantity", "value", "unit"],
         [
-            ("peak |M| over the states, exactly along the body", f"{c.bending.value:.1f}", "t m"),
+            ("peak |M| / allowable over the states, exactly along the body", f"{c.bending.ratio:.3f}", "-"),
             ("... at x", f"{c.bending.x:.2f}", "m"),
-            ("... its ratio to the allowable there", f"{c.bending.ratio:.3f}", "-"),
+            ("... |M| there", f"{c.bending.value:.1f}", "t m"),
             ("... in the state heel, trim", heel_m, "deg"),
             ("... with the CG offset (x, y, z)", cog_m, "m"),
-            ("peak |Q| over the states", f"{c.shear.value:.1f}", "t"),
+            ("peak |Q| / allowable over the states", f"{c.shear.ratio:.3f}", "-"),
             ("... at x", f"{c.shear.x:.2f}", "m"),
-            ("... its ratio to the allowable there", f"{c.shear.ratio:.3f}", "-"),
+            ("... |Q| there", f"{c.shear.value:.1f}", "t"),
             ("... in the state heel, trim", heel_q, "deg"),
             ("... with the CG offset (x, y, z)", cog_q, "m"),
             (f"{unit} spread, level (max - min)", f"{c.spread:.2f}", "t"),
@@ -699,8 +700,9 @@ def sling_strength_section(plan):
     if search.spread_plan is None:  # Ctrl-C came before the partner's search found a set
         c = search.chosen
         comparison = (
-            f"<p>Peak |M| {c.bending.value:.0f} t m ({c.bending.ratio:.3f} of the allowable) at x = "
-            f"{c.bending.x:.2f} m, peak |Q| {c.shear.value:.0f} t ({c.shear.ratio:.3f}) at x = "
+            f"<p>Peak |M| / allowable {c.bending.ratio:.3f} (|M| {c.bending.value:.0f} t m) at x = "
+            f"{c.bending.x:.2f} m, peak |Q| / allowable {c.shear.ratio:.3f} "
+            f"(|Q| {c.shear.value:.0f} t) at x = "
             f"{c.shear.x:.2f} m (the planner's model); no spread-optimal hooks to compare (the "
             "search was stopped before).</p>"
         )
