@@ -21,7 +21,7 @@ from liftplan.model.strength import hull_girder
 from liftplan.planner.output.figures.strength import strength_figure
 from liftplan.planner.output.report import page as report_page
 from liftplan.planner.output.report import slings as slings_report
-from liftplan.planner.output.report.page import FONT_PT, figure_size
+from liftplan.planner.output.report.page import FONT_PT, figure_size, range_text
 from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.strength import StrengthContext, objective_weights
 from liftplan.planner.search.scenarios import LugSet, Scenario
@@ -758,7 +758,7 @@ def _crane_rows(problem):
         crane = fleet[0]
         return [
             ("rope EA, length l0", f"{crane.EA:.0f} t, {crane.rope_length:g} m", "-"),
-            ("boom height range", f"{crane.boom_min:g} to {crane.boom_max:g}", "m"),
+            ("boom height range", range_text(crane.boom_min, crane.boom_max), "m"),
         ]
     rows = []
     for crane in fleet:
@@ -770,8 +770,8 @@ def _crane_rows(problem):
         rows.append(
             (
                 f"crane {crane.name}",
-                f"EA {crane.EA:.0f} t, l0 {crane.rope_length:g} m, boom {crane.boom_min:g} to "
-                f"{crane.boom_max:g} m, {capacity}",
+                f"EA {crane.EA:.0f} t, l0 {crane.rope_length:g} m, boom "
+                f"{range_text(crane.boom_min, crane.boom_max)} m, {capacity}",
                 "-",
             )
         )
