@@ -607,6 +607,26 @@ class LugMip:
             tables.sets[keep], tables.own[keep], tables.scaled_own[keep], tables.pair[keep]
         ), bound[keep]
 
+    def set_bounds(self, scenarios):
+        """The sets the set-wise rows keep and each one's bound (the objective's unit) over
+        ``scenarios`` and the dense check's, at the present cutoff: (sets (S, n), bound (S,)),
+        or None where the fit's rows are used (:meth:`_set_tables`)."""
+        problem = self.problem
+        data = poses(problem, list(scenarios))
+        band_low, band_high = tension_band(problem, self.swl, self.cutoff)
+        band_low, band_high = (np.nan_to_num(v, nan=0.0) for v in (band_low, band_high))
+        count, kinds = self.count, len(self.classes.members)
+        columns = Columns(
+            np.repeat(np.arange(count), kinds),
+            self.classes.stiffness[np.tile(np.arange(kinds), count)],
+            self.hook[np.tile(np.arange(kinds), count)],
+            data.level_plan,
+            problem.cranes,
+        )
+        width = least_width(problem, data, float((band_high - band_low).max()))
+        found = self._set_tables(columns, width, data, (band_low, band_high))
+        return None if found is None else (found[0].sets, found[1])
+
     def _set_rows(self, cp, found, chosen, values, bands, boxed, spread_out):
         """The box rows with each widening a weighted sum over the sets (module docstring):
         x_S >= 0 with sum_{S ni i} x_S = Y_i, so at an integer Y the weight is on the chosen
