@@ -1,10 +1,6 @@
 """The MIP's set-wise hook rows (planner/search/mip_hooks.py, set_tables and set_bounds):
-each set's bound is its own linear program from the held model, no set the rows drop or
-bound can beat the true optimum (brute force over every set), and the MIP's plan with a hook
-tolerance is the exact search's."""
-
-import dataclasses
-import itertools
+each set's bound is its own linear program from the held model (brute force over every set
+against the evaluator and the MIP's plan: tests/planner/test_mip_hook_box.py)."""
 
 import numpy as np
 import pytest
@@ -12,8 +8,6 @@ from scipy.optimize import linprog
 from support.planning import small_problem
 
 import liftplan.planner.search.mip as lug_mip
-from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
-from liftplan.planner.search.methods import search
 from liftplan.planner.search.mip_hooks import scenario_vectors, set_bounds, set_tables
 from liftplan.planner.search.scenarios import LugSet, Scenario, first_scenarios
 
@@ -109,72 +103,3 @@ def test_set_bound_is_the_sets_own_lp(cranes):
         feasible += 1
         assert value == pytest.approx(lp, rel=1e-7)
     assert feasible >= 3
-
-
-def _brute_force(problem):
-    evaluator = SetEvaluator(problem)
-    values = {}
-    for indices in itertools.combinations(range(len(problem.candidates)), problem.cranes):
-        try:
-            values[indices] = evaluator.evaluate(indices).worst_value
-        except SetInfeasible:
-            continue
-    return evaluator, values
-
-
-@pytest.mark.parametrize(
-    "problem",
-    [
-        pytest.param(small_problem(4, hook_tolerance=0.02), id="4 spread"),
-        pytest.param(small_problem(5, hook_tolerance=0.03), id="5 spread", marks=pytest.mark.slow),
-        pytest.param(
-            small_problem(4, hook_tolerance=0.02, objective="reserve"), id="4 reserve", marks=pytest.mark.slow
-        ),
-        pytest.param(small_problem(3, hook_tolerance=0.02), id="3 spread", marks=pytest.mark.slow),
-    ],
-)
-def test_no_set_row_cuts_off_a_better_set(problem):
-    """Brute force over every set of seven candidates with its hook errors: at a cutoff just
-    above the optimum, and at one above every set's worst, every set that beats the cutoff is
-    kept by the set-wise rows and its bound is at most its worst value (the bound is of the
-    whole box, the dense check a part of it)."""
-    evaluator, values = _brute_force(problem)
-    best = min(values.values())
-    for cutoff in (best * (1 + 1e-6), 2.0 * max(values.values())):
-        mip = lug_mip.LugMip(problem, cutoff, dense=evaluator.dense)
-        sets, bound = mip.set_bounds(first_scenarios(problem))
-        kept = {tuple(int(i) for i in s): float(v) for s, v in zip(sets, bound)}
-        better = [s for s, v in values.items() if v < cutoff]
-        assert better
-        for indices in better:
-            assert indices in kept
-            assert kept[indices] <= values[indices] * (1 + 1e-9)
-    assert len(better) == len(values)
-
-
-@pytest.mark.parametrize(
-    "problem",
-    [
-        pytest.param(small_problem(4, hook_tolerance=0.02), id="4 spread"),
-        pytest.param(
-            small_problem(4, hook_tolerance=0.02, objective="reserve"), id="4 reserve", marks=pytest.mark.slow
-        ),
-    ],
-)
-def test_mip_plan_is_the_brute_forces(monkeypatch, problem):
-    """The MIP with the set-wise rows, its first plan's bound set aside: it proves the brute
-    force's least worst value, and its set is that set (or its mirror image)."""
-    first = lug_mip._incumbent
-
-    def unproved(problem, started):
-        ranking, stats = first(problem, started)
-        return ranking, dataclasses.replace(stats, lower_bound=0.0)
-
-    monkeypatch.setattr(lug_mip, "_incumbent", unproved)
-    _, values = _brute_force(problem)
-    best = min(values.values())
-    ranking, stats = search(dataclasses.replace(problem, search="mip"), 1)
-    assert stats.stopped == "proved"
-    assert ranking[0].worst_value == pytest.approx(best, rel=1e-6)
-    assert values[ranking[0].indices] == pytest.approx(best, rel=1e-6)
-    assert best * (1 - 1e-6) <= stats.lower_bound <= best * (1 + 1e-9)
