@@ -36,7 +36,11 @@ worst over their whole box is instead written exactly for every set at once
 (:mod:`~liftplan.planner.search.mip_hooks`): each rope's own worst change in its band and
 limit rows at every scenario, and the spread's pair widening at the scenarios marked ``box``
 (the first plans' worst, then each round's), so a round adds one scenario, never one error
-pattern.
+pattern. With one crane class and at most :data:`SET_CAP` sets these rows are set-wise: one
+weight x_S per lug set carries each set's closed-form widenings and its own lower bound over
+the list's and the dense check's scenarios, which keeps the hook errors in the relaxation
+with the lugs fractional (the proof is then combinatorial, every set bounded by its own
+closed form inside the MIP; :mod:`~liftplan.planner.search.mip_hooks` proves each row).
 
 Sling hooks hinged about their lug pairs (``PlanProblem.hinges``, 2-leg slings) fit too: where
 a hook hangs at a pose depends on its own sling only, so each candidate's statics row, rise and
