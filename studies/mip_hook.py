@@ -88,6 +88,11 @@ def measure(case):
     return out
 
 
+def _gap(gap):
+    """A relative gap as a percentage, or in full where the percentage would read 0.0 %."""
+    return f"{100 * gap:.1f} %" if gap == 0.0 or gap >= 5e-4 else f"{gap:.1e}"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="exact and today's MIP only")
@@ -118,7 +123,7 @@ def main():
         form = r["form"] if r["method"] == "mip" and r["hook_tolerance"] > 0 else ""
         lines.append(
             f"| {r['method']} | {r['hook_tolerance']:g} | {form} | {r['seconds']:.1f} | {r['stopped']} "
-            f"| {r['rounds']} | {r['worst']:.6g} | {r['lower_bound']:.6g} | {100 * r['relative_gap']:.1f} % "
+            f"| {r['rounds']} | {r['worst']:.6g} | {r['lower_bound']:.6g} | {_gap(r['relative_gap'])} "
             f"| {' '.join(r['lugs'])} | {r['load']:.1f} |"
         )
     (OUT / "mip_hook.md").write_text("\n".join(lines) + "\n")

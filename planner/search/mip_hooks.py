@@ -274,7 +274,9 @@ def set_tables(plan, stiffness, tolerance, scale, cranes, usable, width):
     s = scale[sets]
     scaled = resid * s[:, None, :]  # column a: the residual of s_a e_a
     scaled_own = np.einsum("si,sia->sa", kd, np.abs(scaled))
-    pair = np.einsum("si,siab->sab", kd, np.abs(scaled[:, :, :, None] - scaled[:, :, None, :]))
+    pair = np.stack(
+        [np.einsum("si,sib->sb", kd, np.abs(scaled[:, :, a : a + 1] - scaled)) for a in range(n)], axis=1
+    )
     return SetTables(sets, own, scaled_own, pair)
 
 
