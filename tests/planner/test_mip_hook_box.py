@@ -150,6 +150,11 @@ def test_fleet_mip_with_hook_tolerance_is_the_brute_forces(monkeypatch):
             small_problem(4, hook_tolerance=0.02, objective="reserve"), id="4 reserve", marks=pytest.mark.slow
         ),
         pytest.param(small_problem(3, hook_tolerance=0.02), id="3 spread", marks=pytest.mark.slow),
+        pytest.param(
+            small_problem(4, hook_tolerance=0.02, objective="utilisation"),
+            id="4 utilisation",
+            marks=pytest.mark.slow,
+        ),
     ],
 )
 def test_no_set_row_cuts_off_a_better_set(problem):
