@@ -89,6 +89,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import ConvexHull, QhullError
 
 #: Slack [t] on a set's preload interval in :func:`set_bounds` (rounding never cuts off a set).
 SLACK = 1e-6
@@ -283,8 +284,6 @@ def set_tables(plan, stiffness, tolerance, scale, cranes, usable, width):
 def hull_points(beta):
     """The rows of ``beta`` (m, 3) that can be a linear function's largest or least: the
     vertices of their convex hull (all rows when the hull is degenerate)."""
-    from scipy.spatial import ConvexHull, QhullError  # scipy's spatial: loaded only here
-
     flat = beta[:, 1:] if np.ptp(beta[:, 0]) <= 1e-12 * max(1.0, float(np.abs(beta[:, 0]).max())) else beta
     try:
         return beta[np.unique(ConvexHull(flat).vertices)]
