@@ -53,13 +53,13 @@ def cut():
 
 def test_a_trial_cut_short_claims_no_bound_and_the_plan_says_the_limit_stopped_it(cut):
     stats, search = cut.stats, cut.lengths
-    # the cut trial is listed as cut short, not as proved infeasible
-    (trial,) = [t for t in search.trials if t.lengths == (CUT,)]
-    assert trial.cut_short and trial.value is None and trial.lower_bound == 0.0
-    assert stats.stopped == "time_limit"
     # the untimed search finds 117.1 t at 51.25 m: a bound above that would be false
     assert stats.lower_bound <= 117.0
     assert stats.gap > 0.0 and cut.to_json()["gap"] > 0.0
+    assert stats.stopped == "time_limit"
+    # the cut trial is listed as cut short, not as proved infeasible
+    (trial,) = [t for t in search.trials if t.lengths == (CUT,)]
+    assert trial.cut_short and trial.value is None and trial.lower_bound == 0.0
     assert stats.lower_bound == 0.0  # lengths left untried: no bound claimed over them
     assert search.not_tried >= 1
 

@@ -1,4 +1,5 @@
-"""The one line that says a search limit ended an exact search (``liftplan plan``'s console).
+"""The one line that says a search limit ended an exact search (``liftplan plan``'s console:
+held, sling and strength plans), and the lines of a rope-length search (:func:`length_lines`).
 
 A plan whose search ran out of time (``[plan] time_limit``) or work (``[plan] work_limit``)
 is the best found, not proved the best: the console says so next to the search counts, with
@@ -13,6 +14,9 @@ LIMITS = {
     "time_limit": ("the time limit", "[plan] time_limit"),
     "work_limit": ("the work limit", "[plan] work_limit"),
 }
+
+#: Length sets the console lists by value (more: the count only; the report lists them all).
+MAX_LISTED = 9
 
 
 def limit_lines(stats, problem, lengths=None):
@@ -85,9 +89,13 @@ def length_lines(search, rope="rope length", where=""):
         f"{rope} {length:.3f} m{where} chosen within {lo:g} to {hi:g} m for {', '.join(names)}"
         for names, (lo, hi), length in zip(search.classes, search.ranges, search.chosen)
     ]
-    tried = ", ".join("/".join(f"{v:g}" for v in t.lengths) for t in search.trials)
+    tried = (
+        ", ".join("/".join(f"{v:g}" for v in t.lengths) for t in search.trials) + " m; "
+        if len(search.trials) <= MAX_LISTED
+        else ""
+    )
     lines.append(
-        f"{len(search.trials)} lengths tried ({tried} m; each an exact plan, {search.evaluated} sets "
+        f"{len(search.trials)} lengths tried ({tried}each an exact plan, {search.evaluated} sets "
         "evaluated over them); the search counts are the chosen length's, and its bound "
         "holds over the lengths tried"
     )
