@@ -178,7 +178,10 @@ def _recommendation(plan):
         full=False,
         text_columns=(0,),
     )
-    return ["<h2>1 Recommendation</h2>", lugs, _governing(plan), summary]
+    stopped = [
+        f"<p><b>{html.escape(line)}</b></p>" for line in limit_lines(plan.stats, problem, plan.lengths)
+    ]
+    return ["<h2>1 Recommendation</h2>", *stopped, lugs, _governing(plan), summary]
 
 
 def _governing(plan):
@@ -686,13 +689,11 @@ def _appendix(plan):
         full=False,
         text_columns=(0,),
     )
-    stopped = [f"<p><b>{html.escape(line)}</b></p>" for line in limit_lines(stats, plan.problem, lengths)]
     return [
         '<h2 class="appendix">Engineering appendix</h2>',
         "<p>For the engineer checking the plan: how close the recommendation is proved to be "
         "to the best possible plan, the statically admissible tensions of the recommended "
         "lugs, and what the search did.</p>",
-        *stopped,
         optimality,
         admissible,
         search,

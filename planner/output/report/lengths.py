@@ -75,11 +75,16 @@ def lengths_section(plan, ropes="single"):
         if search.not_tried
         else ""
     )
+    timed = (
+        "; a trial cut short by the time limit that found no plan claims no bound"
+        if any(t.time_limit is not None for t in search.trials)
+        else ""
+    )
     text = (
         f"<p>The planner chose the rope length within each range: {len(search.trials)} lengths "
         "tried, the first pass evenly spaced over the range, then halved steps about the best. "
-        "The lower bound and a 'proved' optimum hold over the lengths tried, not between them; "
-        f"a trial cut short by the time limit that found no plan claims no bound.{untried} "
+        f"The lower bound and a 'proved' optimum hold over the lengths tried, not between them"
+        f"{timed}.{untried} "
         f"The appendix's search counts are the chosen length's; {search.evaluated} sets were "
         "evaluated over every length tried.</p>"
     )
