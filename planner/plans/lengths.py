@@ -22,7 +22,7 @@ choice is the longest payout the boom range allows, which the halvings place to 
 certified over the lengths tried, not over the continuous range between them.
 
 A time limit (``[plan] time_limit``) is the whole search's: each trial gets what is left of it
-(its share, :attr:`LengthTrial.time_limit`), and trials not started when it has run out are
+(its share, :attr:`LengthTrial.time_share`), and trials not started when it has run out are
 not tried. A trial cut short by its share keeps its own lower bound when it found a plan; one
 that found none claims no bound (0, the least any objective can be), nor does the search when
 lengths it meant to try were left untried, so the plan's bound and gap stay honest over the
@@ -80,7 +80,7 @@ class LengthTrial:
         Why the trial's search ended (:class:`~liftplan.planner.search.evaluator.SearchStats`
         ``stopped``; ``"time_limit"`` also for a trial that found no plan within its share of
         the time limit: its ``lower_bound`` is then 0, no bound claimed).
-    time_limit : float or None  [s]
+    time_share : float or None  [s]
         The trial's share of ``[plan] time_limit`` (what was left of it); None without one.
     evaluated : int or None
         Sets (rows) the trial's search evaluated; None where it found no plan.
@@ -92,7 +92,7 @@ class LengthTrial:
     lugs: tuple[str, ...] = ()
     reason: str = ""
     stopped: str = "proved"
-    time_limit: float | None = None
+    time_share: float | None = None
     evaluated: int | None = None
 
     @property
@@ -155,7 +155,7 @@ class LengthSearch:
                     "lugs": list(t.lugs),
                     "reason": t.reason,
                     "stopped": t.stopped,
-                    "time_limit": t.time_limit,
+                    "time_share": t.time_share,
                     "evaluated": t.evaluated,
                 }
                 for t in self.trials
@@ -276,12 +276,12 @@ def plan_lengths(problem, top=None, inner=None):
             reason = str(err).replace("\n", " ")
             if left is not None and _clock() - began >= left:  # its share ran out: not proved infeasible
                 trials.append(
-                    LengthTrial(key, None, 0.0, reason=reason, stopped="time_limit", time_limit=left)
+                    LengthTrial(key, None, 0.0, reason=reason, stopped="time_limit", time_share=left)
                 )
             else:
-                trials.append(LengthTrial(key, None, math.inf, reason=reason, time_limit=left))
+                trials.append(LengthTrial(key, None, math.inf, reason=reason, time_share=left))
         else:
-            trials.append(dataclasses.replace(_trial(key, result), time_limit=left))
+            trials.append(dataclasses.replace(_trial(key, result), time_share=left))
         results[key] = result
         if bar is not None:
             bar.update(1)

@@ -69,7 +69,7 @@ def test_the_users_time_limit_is_echoed_and_each_share_named_apart(cut):
     assert data["search"]["limits"]["time_limit"] == LIMIT
     assert data["search"]["stopped"] == "time_limit"
     assert cut.problem.time_limit == LIMIT
-    shares = [t["time_limit"] for t in data["rope_length_search"]["trials"]]
+    shares = [t["time_share"] for t in data["rope_length_search"]["trials"]]
     assert shares[0] == LIMIT and all(0.0 < s <= LIMIT for s in shares)
     cut_trial = [t for t in data["rope_length_search"]["trials"] if t["lengths"] == [CUT]][0]
     assert cut_trial["stopped"] == "time_limit" and cut_trial["lower_bound"] == 0.0

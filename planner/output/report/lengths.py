@@ -77,7 +77,7 @@ def lengths_section(plan, ropes="single"):
     )
     timed = (
         "; a trial cut short by the time limit that found no plan claims no bound"
-        if any(t.time_limit is not None for t in search.trials)
+        if any(t.time_share is not None for t in search.trials)
         else ""
     )
     text = (
@@ -94,4 +94,4 @@ def lengths_section(plan, ropes="single"):
 def _ended(trial):
     """Why a trial's search ended, with its share of the time limit."""
     ended = "infeasible (proved)" if trial.value is None and not trial.cut_short else trial.stopped
-    return ended if trial.time_limit is None else f"{ended} (share {trial.time_limit:.3g} s)"
+    return ended if trial.time_share is None else f"{ended} (share {trial.time_share:.3g} s)"
