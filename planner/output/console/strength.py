@@ -4,6 +4,7 @@ spread-optimal one."""
 
 from __future__ import annotations
 
+from liftplan.planner.output.console.limits import limit_lines
 from liftplan.planner.output.console.slings import sling_table
 from liftplan.planner.plans.strength import objective_weights
 
@@ -119,6 +120,7 @@ def _comparison(plan, search, tension="tension"):
         f"({100 * s.relative_gap:.4f} %), {s.stopped}"
         + ("" if s.certified else " (not certified: candidates at different heights)")
     )
+    lines += limit_lines(s, p)
     t = search.spread_stats
     if t is None:
         lines.append("spread-optimal plan: none (Ctrl-C came before its search found one)")
