@@ -658,8 +658,8 @@ def _appendix(plan):
                     ("lengths not tried: the time limit had run out", lengths.not_tried, "-"),
                 )
             ),
-            ("lug sets" + at, stats.sets, "-"),
-            ("(set, crane assignment) pairs in reach", stats.rows, "-"),
+            ("lug sets" + at, report_page.count_text(stats.sets), "-"),
+            ("(set, crane assignment) pairs in reach", report_page.count_text(stats.rows), "-"),
             ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
             (
                 f"pairs with two booms crossing or within {plan.problem.crane_clearance:g} m in plan",

@@ -137,6 +137,16 @@ def cell_text(value):
     return NEGATIVE_ZERO.sub(r"\1", str(value))
 
 
+def count_text(count):
+    """A count for a table: the integer up to 10^9, beyond it three digits and the power of ten
+    (``7.69 x 10^20``: a 21-digit integer reads as noise)."""
+    count = int(count)
+    if abs(count) < 10**9:
+        return str(count)
+    mantissa, exponent = f"{count:.2e}".split("e")
+    return f"{mantissa} x 10^{int(exponent)}"
+
+
 def range_text(low, high):
     """A range for a table, e.g. a boom height range [m]: ``"30 to 60"``, ``"at least 30"``,
     ``"at most 60"`` or ``"not limited"`` (not ``"-inf to inf"``)."""
