@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from liftplan.planner.output.console.held import coordinates_line, girder_lines
+from liftplan.planner.output.console.limits import length_lines, limit_lines
 from liftplan.planner.output.console.text import fold, grouped
 from liftplan.planner.plans.slings.two_crane import SHARED
 
@@ -34,6 +35,7 @@ def _search_lines(plan):
             f"among {len(problem.candidates)} candidates; {stats.rows} (set, crane "
             f"assignment) rows, {stats.evaluated} evaluated, search {stats.stopped}, lower bound "
             f"{stats.lower_bound:.4g}; ruled out: {causes}",
+            *limit_lines(stats, problem, plan.lengths),
             f"tolerance box heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g} "
             f"deg, CG envelope; hooks held at the level preload; objective: "
             + OBJECTIVES.get(plan.objective, plan.objective),
@@ -146,14 +148,9 @@ def sling_table(plan):
 
 def _length_lines(plan):
     """The hoist rope lengths the planner chose (cranes with a ``rope_length`` range)."""
-    search = plan.lengths
-    if search is None:
+    if plan.lengths is None:
         return []
-    return [
-        f"hoist rope length {length:.3f} m (tip to hook) chosen within {lo:g} to {hi:g} m for "
-        f"{', '.join(names)} ({len(search.trials)} lengths tried)"
-        for names, (lo, hi), length in zip(search.classes, search.ranges, search.chosen)
-    ]
+    return length_lines(plan.lengths, "hoist rope length", " (tip to hook)")
 
 
 def _breakout_lines(plan):
