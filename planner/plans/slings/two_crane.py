@@ -490,6 +490,7 @@ def hooks_breakout(problem, option):
         swl=np.asarray(option.swl, dtype=float),
         rigging=np.array([rules.rigging_for(c.name) for c in fleet], dtype=float),
         extremes=(every.min(axis=0), every.max(axis=0)),
+        min_tension=max(float(problem.min_tension), 0.0),
     )
 
 
