@@ -38,11 +38,13 @@ def limit_lines(stats, problem, lengths=None):
     if stats is None or stats.stopped not in LIMITS:
         return []
     what, key = LIMITS[stats.stopped]
-    given = (
-        f" of {problem.time_limit:g} s"
-        if stats.stopped == "time_limit"
-        else f" of {problem.work_limit} sets evaluated"
-    )
+    limit = problem.time_limit if stats.stopped == "time_limit" else problem.work_limit
+    if limit is None:  # a planner's own cap (e.g. the strength plan's spread-optimal partner)
+        given = ""
+    elif stats.stopped == "time_limit":
+        given = f" of {limit:g} s"
+    else:
+        given = f" of {limit} sets evaluated"
     unit = problem.goal.unit
     fmt = (lambda v: f"{v:.4f}") if unit == "-" else (lambda v: f"{v:.2f} t")
     trials = ""
