@@ -32,7 +32,7 @@ import numpy as np
 from liftplan.planner.plans.design_loads import DesignBuilder
 from liftplan.planner.plans.flexible import change_bound, deflection_bounds, evaluate_flexible
 from liftplan.planner.plans.floating import plan_single_ropes
-from liftplan.planner.plans.held import Plan
+from liftplan.planner.plans.held import Plan, design_first
 from liftplan.planner.plans.in_water import in_water_case
 from liftplan.planner.search.scenarios import LugSet
 
@@ -94,7 +94,7 @@ def plan_hull_water(problem, top=None):
         With ``hull_models`` (``[hull] EI``) and ``hull_search``.
     """
     if not uses_hull_water(problem):
-        return plan_single_ropes(problem, top)
+        return design_first(plan_single_ropes(problem, top))
     wanted = top or problem.top
     flexible = problem.hull_stiffness is not None
     bounds = deflection_bounds(problem) if flexible else None
@@ -133,7 +133,7 @@ def plan_hull_water(problem, top=None):
     stats = first.stats
     if ranking[0] is not first.ranking[0]:  # another set governs: its value is the plan's best
         stats = dataclasses.replace(stats, best=search.values[0])
-    return Plan(
+    plan = Plan(
         problem=first.problem,
         ranking=ranking,
         stats=stats,
@@ -141,6 +141,7 @@ def plan_hull_water(problem, top=None):
         hull_models=[rows[k][1] for k in keep] if flexible else None,
         hull_search=search,
     )
+    return design_first(plan)  # the sets that fail a design-load check after those that meet them
 
 
 def ceiling(problem):

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
-from liftplan.planner.plans.held import Plan, girder_first, plan_held
+from liftplan.planner.plans.held import Plan, design_first, girder_first, plan_held
 from liftplan.planner.search.evaluator import Interrupted
 from liftplan.planner.search.progress import best_bound, progress_bar
 
@@ -324,7 +324,8 @@ def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
     if not isinstance(chosen, Plan):  # a sling plan: its own outputs carry the search
         return chosen.with_lengths(search, stats)
     ranking, girders = girder_first(chosen.problem, chosen.ranking)
-    return dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
+    plan = dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
+    return design_first(plan)  # the sets that fail a design-load check after those that meet them
 
 
 def _product(grids):
