@@ -372,7 +372,7 @@ class Plan(InFileFrame):
         if not meets_checks(self.design_loads, self.girder):
             return (
                 f"none of the {len(self.ranking)} ranked sets meets {what}: the plan is the best "
-                "ranked set, its failing checks flagged"
+                "ranked set, its failing checks flagged (a larger top ranks more sets)"
             )
         if self.passed_over:
             return (

@@ -9,7 +9,8 @@ Then each ranked set is evaluated on what the planning file adds:
   is the larger of the box's and the value there.
 
 The sets are ranked again on that governing value, those whose hull girder or in-water state
-fails (a rope slack in water) after those that hold. The plan is the best of them, and it is
+fails (a rope slack in water) after those that hold, and then those that fail a design-load
+check after those that meet them (:func:`~.held.design_first`). The plan is the best of them, and it is
 the best of every set: a set the search did not rank is, on the rigid hull in air, no better
 than the last one ranked (the search proves its ranking), in water no better than in air, and
 on the flexible hull no better by more than :func:`~.flexible.change_bound` (the bound of the

@@ -332,7 +332,7 @@ def _checks(plan):
             [
                 (
                     f"{c.factor:g} x as planned",
-                    plan.tolerance_text(c.factor, unit=""),
+                    plan.tolerance_text(c.factor, unit="", short=True),
                     f"{c.worst_spread:.1f}",
                     *(f"{v:.1f}" for v in c.rope_max),
                     f"{c.lowest:.1f}",
@@ -344,7 +344,7 @@ def _checks(plan):
             "Hook accuracy: the plan held, the hooks as planned and worse, "
             + ("in the box and at breakout " if plan.design_loads.breakout is not None else "")
             + "(limits: chart SWL / DAF, less rigging, over contingency)",
-            text_columns=(0, 4 + len(plan.labels)),
+            text_columns=(0, 1, 4 + len(plan.labels)),
             ropes=(3, len(plan.labels)),
         )
         if crew
@@ -519,6 +519,10 @@ def _assumptions(plan):
     items = [FLEXIBLE.get(k, a) if flexible else a for k, a in enumerate(ASSUMPTIONS)]
     if any(c.vessel is not None for c in plan.problem.fleet):
         items[2] = FLOATING
+    if plan.problem.wind is not None and plan.problem.wind.booms:
+        items[4] = items[4].replace(
+            "else the plan's)", "else the plan's; a floating crane's widened by its boom's wind tip error)"
+        )
     items += _wind_assumption(plan)
     return [
         "<h2>6 Assumptions</h2>",
