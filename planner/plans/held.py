@@ -944,7 +944,17 @@ def design_first(plan):
         ranking had before it, its ``stats`` give the new plan's value (:func:`girder_stats`),
         and with floating cranes its ``problem`` is the new plan's series problem.
     """
-    designs, girders = plan.ranked_design, plan.ranked_girder
+    try:
+        with phase("design loads of the ranked sets", None):
+            designs, girders = plan.ranked_design, plan.ranked_girder
+    except KeyboardInterrupt:  # the search had finished: its plan (the design loads computed when shown)
+        raise Interrupted(
+            plan.ranking,
+            plan.stats,
+            plan=plan,
+            phase="design loads, report and output",
+            finished=True,
+        ) from None
     order = sorted(range(len(plan.ranking)), key=lambda k: not meets_checks(designs[k], girders[k]))
 
     def pick(items):

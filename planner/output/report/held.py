@@ -215,10 +215,10 @@ def _governing(plan):
         text_columns=(0, 4),
     )
     needed = plan.hook_accuracy_needed
-    within = f"+-{needed:.3f} m (the same error on every hook)" if np.isfinite(needed) else "any error"
+    within = f"+-{needed:.3f} m" if np.isfinite(needed) else "any error"
     crew = (
-        f"The crew must hold every hook within {within} of its planned height (planned for "
-        f"{plan.tolerance_text()}) for every rope to stay within its limits."
+        f"The crew must hold every hook within {within} of its planned height (the same error on "
+        f"every hook; planned for {plan.tolerance_text()}) for every rope to stay within its limits."
     )
     problem = plan.problem
     basis = (  # what the design loads stand on, where the signer reads them (section 2 has all)
@@ -353,10 +353,11 @@ def _checks(plan):
     needed = plan.hook_accuracy_needed
     hooks += (
         "<p>The crew must hold every hook within "
-        + (f"+-{needed:.3f} m, the same error on every hook," if np.isfinite(needed) else "any error")
-        + " of its planned height for every rope to stay within its limits (the plan's "
-        "preload held; the table above multiplies each hook's own tolerance instead, so a hook "
-        "whose own tolerance is larger may go beyond it there and stay within the limits); the "
+        + (f"+-{needed:.3f} m" if np.isfinite(needed) else "any error")
+        + " of its planned height, the same error on every hook, for every rope to stay within "
+        "its limits (the plan's preload held; the table above multiplies each hook's own "
+        "tolerance instead, so a hook whose own tolerance is larger may go beyond it there and "
+        "stay within the limits); the "
         f"worst combination of 1 cm errors moves a rope by {plan.twist_stiffness:.2f} t.</p>"
     )
     hooks += _monte_carlo_table(plan)
