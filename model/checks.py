@@ -97,12 +97,26 @@ class Check:
                 out[key] = None
         return out
 
+    @property
+    def computed(self):
+        """Value and limit are numbers (a check that could not be computed has NaN)."""
+        return math.isfinite(self.value) and math.isfinite(self.limit)
+
+    def shown(self, key):
+        """``value`` or ``limit`` for a table: 4 significant digits, ``-`` where not computed."""
+        number = getattr(self, key)
+        return f"{number:.4g}" if math.isfinite(number) else "-"
+
     def line(self):
-        """One console line, ``FAIL swl L2: 452.1 t > 400 t (note)`` or ``ok ...``."""
-        upper = self.kind == "max"
-        sign = ("<=" if upper else ">=") if self.ok else (">" if upper else "<")
+        """One console line, ``FAIL swl L2: 452.1 t > 400 t (note)`` or ``ok ...``; a check
+        whose value or limit could not be computed reads ``FAIL name subject: not computed``."""
         word = "ok  " if self.ok else "FAIL"
         note = f" ({self.note})" if self.note else ""
+        if not self.computed:
+            said = self.note.startswith("not computed")  # the note already says so and why
+            return f"{word} {self.name} {self.subject}: " + (self.note if said else f"not computed{note}")
+        upper = self.kind == "max"
+        sign = ("<=" if upper else ">=") if self.ok else (">" if upper else "<")
         return (
             f"{word} {self.name} {self.subject}: {self.value:.4g} {self.unit} {sign} "
             f"{self.limit:.4g} {self.unit}{note}"

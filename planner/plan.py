@@ -19,6 +19,7 @@ from liftplan.planner.plans.lengths import plan_lengths
 from liftplan.planner.plans.protocol import LiftPlan
 from liftplan.planner.plans.slings import plan_slings, uses_slings
 from liftplan.planner.plans.strength import plan_strength, uses_strength
+from liftplan.planner.plans.strength_slings import plan_strength_slings, uses_strength_slings
 from liftplan.planner.problem.definition import PlanProblem
 from liftplan.planner.search.evaluator import Interrupted
 
@@ -50,10 +51,18 @@ def _slings(problem, top):
     return plan_slings(problem, top)
 
 
+def _strength(problem, top):
+    """A plan for the hull girder: on single ropes, or on the slings' hooks
+    (:mod:`~liftplan.planner.plans.strength_slings`)."""
+    if uses_strength_slings(problem):
+        return plan_strength_slings(problem, top)
+    return plan_strength(problem, top)
+
+
 #: The kinds of plan, tried in order: the first that applies plans the problem.
 KINDS = (
+    PlanKind("strength", uses_strength, _strength),  # the hull girder's objectives (also on slings)
     PlanKind("slings", uses_slings, _slings),  # cranes on sling sets or spreader bars
-    PlanKind("strength", uses_strength, plan_strength),  # the hull girder's objectives
     PlanKind("lengths", lambda problem: problem.chooses_rope_lengths, plan_lengths),  # payout ranges
     PlanKind("held", lambda problem: True, plan_hull_water),  # single ropes, a held level preload
     # (with floating cranes: the vessels in series with the ropes, planner/plans/floating.py;

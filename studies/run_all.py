@@ -35,6 +35,7 @@ STUDIES = [
     "ferry_strength",
     "combinations",
     "planner_scale",
+    "local_girder",
     "many_ropes_timing",
     "benchmarks",
     "jit_cache",

@@ -290,7 +290,8 @@ class VesselTable(Table):
             "hydrostatics at any angle, solved with the body (the `elastic` model, in air); with it give "
             "`displacement`, `cog` and `origin`, and no waterplane_area, gm_t, gm_l, flotation, ballast "
             "or freeboard. The water surface is at world height 0 (the tips' height over it sets the "
-            "arm their loads gain as she heels)"
+            "arm their loads gain as she heels). Read by `liftplan solve` only: `plan`, `lift` and "
+            "the other commands refuse a hull vessel (with `mesh` or `box`) in one line"
         ),
         values="string (path)",
         absent="the small-angle vessel (waterplane_area, gm_t, gm_l, flotation)",
@@ -1038,6 +1039,20 @@ class _SceneFile(Table):
 
 # Tables of a planning scene (read by liftplan.planner.problem.file; [rules] by model.rules.table).
 PLAN_TABLES = ("candidates", "plan", "crane", "rules")
+# Tables of a lift sequence file (read by liftplan.model.sequence.file).
+SEQUENCE_TABLES = ("stages", "sequence")
+
+
+def refuse_sequence(raw, command):
+    """Refuse a lift sequence file (``[[stages]]`` or ``[sequence]``) given to another
+    command, in one line that names the command it is for."""
+    for key in SEQUENCE_TABLES:
+        if key in raw:
+            brackets = f"[[{key}]]" if key == "stages" else f"[{key}]"
+            raise InvalidScene(
+                f"{brackets}: this is a lift sequence file, not {command}; expected "
+                "`liftplan sequence FILE` for it"
+            )
 
 
 def load_scene(path: str | os.PathLike[str]) -> Scene:
@@ -1131,6 +1146,7 @@ def loads_scene(text: str, base: str | os.PathLike[str] | None = None) -> Scene:
     working directory).
     """
     raw = parse_toml(text)
+    refuse_sequence(raw, "a scene file")
     for key in PLAN_TABLES:
         if key in raw:
             raise InvalidScene(

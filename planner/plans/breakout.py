@@ -79,6 +79,9 @@ class BreakoutCase:
         held model.
     vessels : tuple of BreakoutVessel
         Each floating crane's vessel at breakout (empty: every crane on land).
+    min_tension : float  [t]
+        The plan's ``min_tension`` (0 where it is lower): the lowest tension at breakout must
+        reach it, as every state of the lift must.
     """
 
     load: object
@@ -92,6 +95,7 @@ class BreakoutCase:
     rigging: np.ndarray
     extremes: tuple | None = None
     vessels: tuple = ()
+    min_tension: float = 0.0
 
     @property
     def hook_widening(self):
@@ -157,10 +161,10 @@ class BreakoutCase:
                 "breakout_min_tension",
                 "all ropes",
                 float(self.least.min()),
-                0.0,
+                self.min_tension,
                 "t",
-                note="lowest held tension at breakout, hook errors at worst; below 0 a rope "
-                "goes slack and the held model no longer holds",
+                note="lowest held tension at breakout, hook errors at worst, against the plan's "
+                "min_tension; below 0 a rope goes slack and the held model no longer holds",
             )
         )
         for v in self.vessels:
@@ -275,6 +279,7 @@ def breakout_case(problem, lugset, preload):
         swl=np.asarray(lugset.swl, dtype=float),
         rigging=rigging,
         vessels=vessels,
+        min_tension=max(float(problem.min_tension), 0.0),
     )
 
 

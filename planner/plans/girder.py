@@ -4,158 +4,45 @@ A planning file that gives the body's weight curve (``body.weight_curve``) and t
 envelopes (``[strength]``) has its hull girder checked whatever the plan's objective: every
 plan kind hands the lug forces of the states it must hold (each attitude of the tolerance box
 on the dense grid, at every vertex of the CG envelope, with each hook's height error at its
-worst sign) to :func:`girder_worst`, which finds the largest |M| / allowable and |Q| /
-allowable over those states (section screening, then the exact piecewise curves of the worst
-states, :func:`~liftplan.planner.search.strength.exact_peaks`). The two results become the
-``bending_moment`` and ``shear_force`` checks of the plan (exit code 4 when one fails, like
-every check).
+worst sign) to :func:`~liftplan.planner.search.girder.girder_worst`, which finds the largest
+|M| / allowable and |Q| / allowable over those states (section screening, then the exact
+piecewise curves of the worst states, :func:`~liftplan.planner.search.strength.exact_peaks`).
+The two results become the ``bending_moment`` and ``shear_force`` checks of the plan (exit
+code 4 when one fails, like every check). Those two live in the search layer
+(:mod:`liftplan.planner.search.girder`), because the local search ranks its swaps with them;
+this module re-exports them for the plan kinds.
 
 The loads are those of :mod:`liftplan.model.strength.girder`, which ``liftplan solve`` uses:
 the same numbers come from solving the plan's written scene at the worst state.
 
 Sling plans, whose legs pull the lugs along their lines, solve their rigging scene at each
 state they hold instead (:attr:`~.slings.lift.SlingLift.hung`); each solved state gives
-its :class:`GirderWorst` by :func:`solved_worst` (:func:`~liftplan.model.strength.hull_girder`
-and the exact worst ratio along the body), :func:`worst_of` keeps the largest. A state with
-the CG moved carries its weight curve moved with it (:func:`moved_body`).
+its :class:`~liftplan.planner.search.girder.GirderWorst` by :func:`solved_worst`
+(:func:`~liftplan.model.strength.hull_girder` and the exact worst ratio along the body),
+:func:`worst_of` keeps the largest. A state with the CG moved carries its weight curve moved
+with it (:func:`moved_body`).
 """
 
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 import numpy as np
 
-from liftplan.model.checks import Check
 from liftplan.model.errors import InvalidScene
 from liftplan.model.strength import hull_girder
-from liftplan.model.strength.checks import QUANTITIES as CURVES
 from liftplan.model.strength.checks import worst_ratios
-from liftplan.model.strength.girder import attitude_matrix
-from liftplan.planner.search.scenarios import Scenario
-from liftplan.planner.search.strength import (
-    GirderLoads,
-    Sections,
-    State,
-    allowable,
-    exact_peaks,
-    section_ratios,
+
+# girder_worst and its result are the search's (the local search ranks its swaps with them);
+# every plan kind takes them from here
+from liftplan.planner.search.girder import (  # noqa: F401 (re-exported)
+    EXACT_STATES,
+    QUANTITIES,
+    GirderWorst,
+    applies,
+    girder_worst,
+    set_girder,
 )
-
-#: The states whose exact curves are taken, per quantity: the worst ones at the sections.
-EXACT_STATES = 3
-
-#: (check name, what the value is, unit) of the two quantities, bending first.
-QUANTITIES = tuple(q[:3] for q in CURVES)
-
-
-@dataclass(frozen=True)
-class GirderWorst:
-    """The largest bending moment or shear force of a plan over the states it must hold.
-
-    Parameters
-    ----------
-    name : {"bending_moment", "shear_force"}
-    value : float  [t m or t]
-        |M| or |Q| there, the hook errors' worst effect included.
-    allowable : float  [t m or t]
-        The envelope's value at ``x``.
-    x : float  [m]
-        The section, body frame (the file's x: the same axis in both frames).
-    scenario : Scenario
-        The state: heel, trim [deg] and CG offset [m] (body frame, z up); a sling plan's
-        :class:`~.slings.lift.HungState` also says how its hooks were set.
-    """
-
-    name: str
-    value: float
-    allowable: float
-    x: float
-    scenario: Scenario
-
-    @property
-    def ratio(self):
-        """value / allowable  [-]."""
-        return self.value / self.allowable
-
-    def check(self, what="over the plan's states"):
-        """The plan's check of this quantity (:class:`~liftplan.model.checks.Check`)."""
-        symbol, unit = next((s, u) for n, s, u in QUANTITIES if n == self.name)
-        s = self.scenario
-        return Check.upper(
-            self.name,
-            f"x = {self.x:.1f} m",
-            self.value,
-            self.allowable,
-            unit,
-            note=(
-                f"{symbol} / allowable = {self.ratio:.0%}, the worst {what}, at heel {s.heel:+.2f} "
-                f"deg, trim {s.trim:+.2f} deg"
-            ),
-        )
-
-
-def applies(problem):
-    """True when a plan's hull girder is checked: a weight curve and an allowable envelope."""
-    strength = problem.strength
-    return (
-        problem.body.weight_curve is not None
-        and strength is not None
-        and (strength.bending_moment is not None or strength.shear_force is not None)
-    )
-
-
-def girder_worst(problem, points, scenarios, tensions, hook=None):
-    """The worst bending moment and shear force of lug forces over many states.
-
-    Parameters
-    ----------
-    problem : PlanProblem
-        Its body (weight, CG, weight curve), yaw and ``strength`` envelopes.
-    points : (n, 3)  [m]
-        The lugs, body frame (z up).
-    scenarios : list of Scenario
-        The states: attitude and CG offset.
-    tensions : (k, n)  [t]
-        Vertical lug force of each lug in each state.
-    hook : (gain (k, n, n) [t/m], tolerance (n,) [m]), optional
-        dT/dH at each state and each hook's height tolerance: its worst effect is added.
-
-    Returns
-    -------
-    tuple of GirderWorst
-        One per envelope given: bending first, then shear.
-    """
-    if not applies(problem):
-        return ()
-    loads = GirderLoads(problem.body)
-    envelopes = (problem.strength.bending_moment, problem.strength.shear_force)
-    points = np.asarray(points, dtype=float)
-    tensions = np.asarray(tensions, dtype=float)
-    states = [
-        State(tuple(attitude_matrix(s.heel, s.trim, problem.yaw)[2]), tuple(s.cog_offset)) for s in scenarios
-    ]
-    sections = Sections.initial(loads, points[:, 0], envelopes)
-    ratios = section_ratios(loads, envelopes, points, sections, states, tensions, hook)
-    out = []
-    for which, (name, _, _) in enumerate(QUANTITIES):
-        if envelopes[which] is None:
-            continue
-        top = np.argsort(-ratios[which])[:EXACT_STATES]
-        sub_hook = None if hook is None else (hook[0][top], hook[1])
-        peaks, _ = exact_peaks(loads, envelopes, points, tensions[top], [states[k] for k in top], sub_hook)
-        peak = peaks[which]
-        out.append(
-            GirderWorst(
-                name=name,
-                value=float(peak.value),
-                allowable=float(allowable(envelopes[which], [peak.x])[0]),
-                x=float(peak.x),
-                scenario=scenarios[int(top[peak.state])],
-            )
-        )
-    return tuple(out)
 
 
 def girder_json(worst, scenario_json):

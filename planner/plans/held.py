@@ -24,7 +24,7 @@ from liftplan.planner.plans.common import InFileFrame, contract_json, weight_jso
 from liftplan.planner.plans.design_loads import CraneDesign, DesignBuilder, rope_skew
 from liftplan.planner.plans.flexible import flexible_hull_json
 from liftplan.planner.plans.girder import applies as girder_applies
-from liftplan.planner.plans.girder import girder_json, girder_worst
+from liftplan.planner.plans.girder import girder_json, set_girder
 from liftplan.planner.plans.in_water import in_water_json
 from liftplan.planner.plans.vessel_loads import vessel_plans, wind_json
 from liftplan.planner.plans.watch_basis import watch_basis
@@ -212,7 +212,11 @@ class Plan(InFileFrame):
 
     @property
     def worst_spread(self):
-        """Largest max - min tension over the tolerance box and CG envelope  [t]."""
+        """Largest max - min tension over the tolerance box and CG envelope  [t]: with the
+        spread objective and ``[hull] EI`` or ``[water]``, the governing value the set is ranked
+        on (the flexible hull's where it governs, the start in water's where it is larger)."""
+        if self.hull_search is not None and self.problem.objective == "spread":
+            return float(self.hull_search.values[0])
         return self.chosen.worst_spread
 
     @property
@@ -551,16 +555,22 @@ class Plan(InFileFrame):
     def hook_accuracy_needed(self):
         """The largest hook-height error (the same on every hook) the plan holds with every
         rope within its limits and above zero, its preload held, over the box and, with a
-        breakout case, at breakout  [m]; inf when no hook error can break it (to 10 m)."""
+        breakout case, at breakout, with ``[water]`` at the start in water  [m]; inf when no
+        hook error can break it (to 10 m)."""
         problem = self.problem
         tensions, gain = self._dense_held
         limit = self.lugset.limit
         value = _largest_error(tensions, np.abs(gain).sum(axis=2), limit, max(problem.min_tension, 0.0))
         breakout = self.design_loads.breakout
-        if breakout is not None:  # the breakout state too: its tensions and dT/dH there, >= 0
+        if breakout is not None:  # the breakout state too: its tensions and dT/dH there
             reach = np.abs(breakout.gain).sum(axis=1)
-            value = min(value, _largest_error(breakout.tensions, reach, limit, 0.0))
-        return value if value < 10.0 else float("inf")
+            value = min(value, _largest_error(breakout.tensions, reach, limit, breakout.min_tension))
+        water = self.design_loads.in_water
+        if water is not None:  # the start in water too, at each CG vertex, >= min_tension
+            reach = np.abs(water.gain).sum(axis=2)
+            value = min(value, _largest_error(water.tensions, reach, limit, water.min_tension))
+        # 0 where a state breaks a limit with the hooks exact (a failed check says which)
+        return max(value, 0.0) if value < 10.0 else float("inf")
 
     @cached_property
     def diagonals(self):
@@ -813,14 +823,6 @@ class Plan(InFileFrame):
             "twist_stiffness": _twist_stiffness(self.problem, result),
             "converged": result.converged,
         }
-
-
-def set_girder(problem, result, scenarios):
-    """A ranked set's hull girder worst over the scenarios, its hook errors at their worst."""
-    lugset = set_lugset(problem, result.indices, result.cranes)
-    tensions, gain = lugset.tensions_and_gain(np.asarray(result.preload, dtype=float), scenarios)
-    hook = (gain, lugset.hook_tolerance) if lugset.hook_uncertain else None
-    return girder_worst(problem, lugset.points, scenarios, tensions, hook)
 
 
 def _largest_error(tensions, reach, limit, low):

@@ -131,9 +131,7 @@ def plan_hull_water(problem, top=None):
         certified=certified,
         note=note,
     )
-    stats = first.stats
-    if ranking[0] is not first.ranking[0]:  # another set governs: its value is the plan's best
-        stats = dataclasses.replace(stats, best=search.values[0])
+    stats = governing_stats(first.stats, search.values[0], good, last, margin, certified, proved)
     plan = Plan(
         problem=first.problem,
         ranking=ranking,
@@ -143,6 +141,23 @@ def plan_hull_water(problem, top=None):
         hull_search=search,
     )
     return design_first(plan)  # the sets that fail a design-load check after those that meet them
+
+
+def governing_stats(stats, best, good, last, margin, certified, proved):
+    """The search's stats restated on the governing model: the plan's ``best`` is its governing
+    value, and the lower bound is one on the governing values of every set (the rigid search's
+    bound is one on the rigid hull in air, which the governing value may exceed).
+
+    A set the search ranked is bounded by its own governing value; one it did not rank is, with
+    the ranking proved, no better than ``last - margin`` (module docstring), and without the
+    proof no better than the search's lower bound less ``margin``. Certified, the bound is the
+    plan's own value (gap 0)."""
+    if certified:
+        lower = best
+    else:
+        outside = (last if proved else stats.lower_bound) - margin
+        lower = min([outside, *good[:1]])
+    return dataclasses.replace(stats, best=best, lower_bound=min(lower, best))
 
 
 def ceiling(problem):

@@ -17,8 +17,8 @@ The state enters the plan as one more of its worst states: the objective's value
 (:func:`in_water_value`), the larger of it and the box's ranks the sets again
 (:mod:`liftplan.planner.plans.hull_water`), each crane's static input to the design-load chain
 is the larger of its worst in the box and in water (:mod:`liftplan.planner.plans.design_loads`),
-and the lowest tension in water must stay above 0 (a slack rope leaves the held model: such sets
-rank after those that hold).
+and the lowest tension in water must reach the plan's ``min_tension`` (and stay above 0: a slack
+rope leaves the held model); sets that break it rank after those that hold.
 """
 
 from __future__ import annotations
@@ -73,6 +73,9 @@ class InWaterCase:
         start height) that holds the body level there: a rigid motion of the level pattern.
     hook_tolerance : numpy.ndarray, shape (n,)  [m]
     value : float  [t or -]   the objective's worst in water (hook errors at worst)
+    min_tension : float  [t]
+        The plan's ``min_tension`` (0 where it is lower): the lowest tension in water must
+        reach it, as every state of the lift in air must.
     """
 
     loads: tuple
@@ -83,6 +86,7 @@ class InWaterCase:
     hook_shift: np.ndarray
     hook_tolerance: np.ndarray
     value: float
+    min_tension: float = 0.0
 
     @property
     def worst(self):
@@ -96,21 +100,25 @@ class InWaterCase:
 
     @property
     def holds(self):
-        """Every rope taut in water (hook errors at worst)."""
-        return bool(self.least.min() > 0.0)
+        """Every rope taut in water and at or above the plan's ``min_tension`` (hook errors at
+        worst)."""
+        least = float(self.least.min())
+        return least > 0.0 and least >= self.min_tension
 
     @property
     def checks(self):
-        """The lowest tension in water > 0 (the held model's range)."""
+        """The lowest tension in water >= the plan's ``min_tension`` (and > 0, the held
+        model's range)."""
         return [
             Check.lower(
                 "in_water_min_tension",
                 "all ropes",
                 float(self.least.min()),
-                0.0,
+                self.min_tension,
                 "t",
-                note="lowest held tension at the start in water, hook errors at worst; below 0 a rope "
-                "goes slack and the held model no longer holds",
+                note="lowest held tension at the start in water, over the CG envelope and the hook "
+                "errors at worst, against the plan's min_tension; below 0 a rope goes slack and the "
+                "held model no longer holds",
             )
         ]
 
@@ -192,6 +200,7 @@ def in_water_case(problem, lugset, preload):
         hook_shift=np.array(shifts),
         hook_tolerance=np.asarray(lugset.hook_tolerance, dtype=float),
         value=value,
+        min_tension=max(float(problem.min_tension), 0.0),
     )
 
 

@@ -21,6 +21,16 @@ choice is the longest payout the boom range allows, which the halvings place to 
 1/16 of the range. The plan's certified lower bound is the least of the trials' bounds:
 certified over the lengths tried, not over the continuous range between them.
 
+A time limit (``[plan] time_limit``) is the whole search's: each trial gets what is left of it
+(its share, :attr:`LengthTrial.time_share`), and trials not started when it has run out are
+not tried. A trial cut short by its share keeps its own lower bound when it found a plan; one
+that found none claims no bound (0, the least any objective can be), nor does the search when
+lengths it meant to try were left untried, so the plan's bound and gap stay honest over the
+lengths an untimed search tries, and the search's ``stopped`` is ``"time_limit"``. The
+plan's problem keeps the user's ``time_limit``, not the last trial's share. The plan's search
+counts (sets ruled out, evaluated, pruned) are the chosen lengths' own, which add up to its
+rows; :attr:`LengthSearch.evaluated` sums the sets evaluated over every length tried.
+
 Cranes on slings (issue 24 item 3): the range is the hoist rope's, tip to hook, and each trial
 is an exact sling plan (``inner``, passed by :func:`liftplan.planner.plan.plan`, which imports
 both kinds of plan; they do not import each other). Two or three cranes on slings are
@@ -66,6 +76,14 @@ class LengthTrial:
         The lugs chosen at these lengths (empty when infeasible).
     reason : str
         Why no plan exists at these lengths ("" when one does).
+    stopped : str
+        Why the trial's search ended (:class:`~liftplan.planner.search.evaluator.SearchStats`
+        ``stopped``; ``"time_limit"`` also for a trial that found no plan within its share of
+        the time limit: its ``lower_bound`` is then 0, no bound claimed).
+    time_share : float or None  [s]
+        The trial's share of ``[plan] time_limit`` (what was left of it); None without one.
+    evaluated : int or None
+        Sets (rows) the trial's search evaluated; None where it found no plan.
     """
 
     lengths: tuple[float, ...]
@@ -73,6 +91,14 @@ class LengthTrial:
     lower_bound: float
     lugs: tuple[str, ...] = ()
     reason: str = ""
+    stopped: str = "proved"
+    time_share: float | None = None
+    evaluated: int | None = None
+
+    @property
+    def cut_short(self):
+        """True: the trial's search ended on its share of the time limit."""
+        return self.stopped == "time_limit"
 
 
 @dataclass(frozen=True)
@@ -96,10 +122,24 @@ class LengthSearch:
     trials: tuple[LengthTrial, ...]
     chosen: tuple[float, ...]
 
+    #: Lengths the search meant to try but did not: the time limit had run out.
+    not_tried: int = 0
+
     @property
     def lower_bound(self):
-        """Least certified bound over the lengths tried  [t or -]."""
-        return min(t.lower_bound for t in self.trials)
+        """Least certified bound over the lengths tried  [t or -]; 0 (no bound claimed) when
+        the time limit left lengths the search meant to try untried."""
+        return 0.0 if self.not_tried else min(t.lower_bound for t in self.trials)
+
+    @property
+    def cut_short(self):
+        """Trials cut short by the time limit."""
+        return tuple(t for t in self.trials if t.cut_short)
+
+    @property
+    def evaluated(self):
+        """Sets evaluated over every length tried (each trial's own search counted)."""
+        return sum(t.evaluated or 0 for t in self.trials)
 
     def to_json(self):
         return {
@@ -108,9 +148,20 @@ class LengthSearch:
                 for names, (lo, hi), length in zip(self.classes, self.ranges, self.chosen)
             ],
             "trials": [
-                {"lengths": list(t.lengths), "worst": t.value, "lugs": list(t.lugs), "reason": t.reason}
+                {
+                    "lengths": list(t.lengths),
+                    "worst": t.value,
+                    "lower_bound": t.lower_bound if math.isfinite(t.lower_bound) else None,
+                    "lugs": list(t.lugs),
+                    "reason": t.reason,
+                    "stopped": t.stopped,
+                    "time_share": t.time_share,
+                    "evaluated": t.evaluated,
+                }
                 for t in self.trials
             ],
+            "evaluated": self.evaluated,
+            "not_tried": self.not_tried,
         }
 
 
@@ -191,7 +242,7 @@ def plan_lengths(problem, top=None, inner=None):
         trial's best plan among them), ``stats.stopped = "interrupted"``.
     """
 
-    start = time.perf_counter()
+    start = _clock()
     planner = inner
     classes = varying_classes(problem)
     ranges = tuple(problem.fleet[g[0]].rope_length_range for g in classes)
@@ -200,29 +251,37 @@ def plan_lengths(problem, top=None, inner=None):
     grids = first_pass(ranges)
     most = len(_product(grids)) + 2 * REFINE_ROUNDS * len(ranges)  # trials at most
     bar = progress_bar(most, None, desc="rope lengths: trials", unit="trials", ticker=True)
-    timed_out = False
+    skipped = set()  # lengths not tried: the time limit had run out
     trying = None  # the lengths being tried
 
     def run(lengths):
-        nonlocal timed_out, trying
+        nonlocal trying
         key = tuple(round(float(v), 9) for v in lengths)
         if key in results:
             return results[key]
         trying = key
         inner = with_lengths(problem, classes, key)
+        left = None
         if problem.time_limit is not None:  # the limit is the whole search's: each trial gets what is left
-            left = problem.time_limit - (time.perf_counter() - start)
+            left = problem.time_limit - (_clock() - start)
             if left <= 0.0:
-                timed_out = True
+                skipped.add(key)
                 return None
             inner = dataclasses.replace(inner, time_limit=left)
+        began = _clock()
         try:
             result = plan_held(inner, top, girder_order=False) if planner is None else planner(inner, top)
         except PlanInfeasible as err:
             result = None
-            trials.append(LengthTrial(key, None, math.inf, reason=str(err).replace("\n", " ")))
+            reason = str(err).replace("\n", " ")
+            if left is not None and _clock() - began >= left:  # its share ran out: not proved infeasible
+                trials.append(
+                    LengthTrial(key, None, 0.0, reason=reason, stopped="time_limit", time_share=left)
+                )
+            else:
+                trials.append(LengthTrial(key, None, math.inf, reason=reason, time_share=left))
         else:
-            trials.append(_trial(key, result))
+            trials.append(dataclasses.replace(_trial(key, result), time_share=left))
         results[key] = result
         if bar is not None:
             bar.update(1)
@@ -279,8 +338,14 @@ def plan_lengths(problem, top=None, inner=None):
             f"{_ranges_text(problem, classes, ranges)}; at the longest ({_lengths_text(longest.lengths)}): "
             f"{longest.reason}"
         )
-    stopped = "time_limit" if timed_out else None
-    return _chosen(problem, classes, ranges, trials, results, best, start, stopped)
+    stopped = "time_limit" if skipped or any(t.cut_short for t in trials) else None
+    return _chosen(problem, classes, ranges, trials, results, best, start, stopped, len(skipped))
+
+
+def _clock():
+    """Seconds on the clock that measures the time limit (a function, so that a test can
+    stand in for the machine's speed)."""
+    return time.perf_counter()
 
 
 def _summary(result):
@@ -294,21 +359,24 @@ def _summary(result):
 
 def _trial(key, result, reason=""):
     """The :class:`LengthTrial` of a plan at lengths ``key``."""
-    value, bound, lugs, _ = _summary(result)
-    return LengthTrial(key, value, bound, lugs, reason)
+    value, bound, lugs, evaluated = _summary(result)
+    own = getattr(result, "stats", None)
+    stopped = "proved" if own is None else own.stopped
+    return LengthTrial(key, value, bound, lugs, reason, stopped=stopped, evaluated=evaluated)
 
 
-def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
+def _chosen(problem, classes, ranges, trials, results, best, start, stopped, not_tried=0):
     """The plan at the best lengths, with the length search and the stats over every trial
-    (``stopped`` None: the chosen trial's own)."""
-    chosen = results[best]
+    (``stopped`` None: the chosen trial's own; the counts are the chosen trial's own, so they
+    add up to its rows), its problem keeping the user's ``time_limit``."""
+    chosen = _user_limit(results[best], problem.time_limit)
     search = LengthSearch(
         classes=tuple(tuple(problem.fleet[j].name for j in g) for g in classes),
         ranges=ranges,
         trials=tuple(trials),
         chosen=best,
+        not_tried=not_tried,
     )
-    finished = [r for r in results.values() if r is not None]
     own = getattr(chosen, "stats", None)  # a two-crane sling plan's search has none: exhaustive
     stats = (
         None
@@ -316,8 +384,7 @@ def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
         else dataclasses.replace(
             own,
             lower_bound=min(search.lower_bound, own.lower_bound),
-            evaluated=sum(_summary(r)[3] for r in finished),
-            seconds=time.perf_counter() - start,
+            seconds=_clock() - start,
             stopped=stopped or own.stopped,
         )
     )
@@ -326,6 +393,15 @@ def _chosen(problem, classes, ranges, trials, results, best, start, stopped):
     ranking, girders = girder_first(chosen.problem, chosen.ranking)
     plan = dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
     return design_first(plan)  # the sets that fail a design-load check after those that meet them
+
+
+def _user_limit(result, time_limit):
+    """A trial's plan with its problem's ``time_limit`` the user's (the trial ran on its
+    share of it)."""
+    problem = getattr(result, "problem", None)
+    if problem is None or not dataclasses.is_dataclass(result) or problem.time_limit == time_limit:
+        return result
+    return dataclasses.replace(result, problem=dataclasses.replace(problem, time_limit=time_limit))
 
 
 def _product(grids):

@@ -66,6 +66,7 @@ from liftplan.planner.search.strength import (
     CandidateMIP,
     GirderLoads,
     Peak,
+    PointLoads,
     Sections,
     State,
     allowable,
@@ -180,13 +181,21 @@ class StrengthContext:
     chart SWL at its radius to the candidate through the rules' chain (NaN where it cannot
     reach), for the lug choice's columns (:class:`CandidateMIP`).
 
+    With slings (:mod:`liftplan.planner.plans.strength_slings`) the candidates are the slings'
+    hooks: their girder loads are their legs' (``slings``), two hooks sharing a lug are a
+    clash, and a hinged hook's place in plan moves with the attitude.
+
     Parameters
     ----------
     problem : PlanProblem
+        With slings: the derived problem whose candidates are the hooks.
+    slings : SlingLoads, optional
+        The hooks' legs (None: single ropes at the candidates).
     """
 
-    def __init__(self, problem):
+    def __init__(self, problem, slings=None):
         self.problem = problem
+        self.slings = slings
         body = problem.body
         self.loads = GirderLoads(body)
         strength = problem.strength
@@ -197,7 +206,8 @@ class StrengthContext:
         self.control = problem.control
         self.points = problem.points
         self.offsets = problem.cog_envelope.offsets()
-        self.sections = Sections.initial(self.loads, self.points[:, 0], self.envelopes)
+        stations = self.points[:, 0] if slings is None else slings.stations
+        self.sections = Sections.initial(self.loads, stations, self.envelopes)
         self.classes = problem.crane_classes
         self.counts = tuple(len(group) for group in self.classes)
         first = [group[0] for group in self.classes]
@@ -218,6 +228,24 @@ class StrengthContext:
         self.boom_min = np.array([c.boom_min for c in fleet])
         self.boom_max = np.array([c.boom_max for c in fleet])
         self.clashes = clash_columns(problem, self.classes)
+        if slings is not None:  # two slings never share a lug
+            self.clashes = np.concatenate([self.clashes, slings.shared_columns(len(self.classes))])
+
+    def girder_points(self, indices, scenarios):
+        """The girder's point loads of the lift points ``indices`` (None: every candidate) in
+        each scenario (:class:`~liftplan.planner.search.strength.PointLoads`): single ropes
+        along the vertical, or each sling's legs."""
+        if self.slings is not None:
+            return self.slings.point_loads(indices, scenarios)
+        points = self.points if indices is None else self.points[list(indices)]
+        return PointLoads.ropes(points, [State(tuple(self.up(s.heel, s.trim))) for s in scenarios])
+
+    def plan_positions(self, rot):
+        """Every lift point's plan position (x, y) with the body turned by ``rot``  [m]: a
+        body-fixed point turns with it, a hinged sling hook hangs where its pair puts it."""
+        if self.slings is not None:
+            return self.slings.plan_positions(rot)
+        return (self.points @ rot.T)[:, :2]
 
     def cranes_of(self, result):
         """Fleet indices of the cranes on a :class:`MIPResult`'s lugs: each class's members
@@ -355,7 +383,7 @@ class StrengthEvaluator:
         allow_q = ctx.allowable(1, sections.x)
         rows = {"m": ([], [], []), "q": ([], [], [])}
         for k, state in enumerate(states):
-            gm, hm, gq, hq = section_rows(ctx.loads, points, sections, state)
+            gm, hm, gq, hq = section_rows(ctx.loads, points, sections, state, k)
             for key, g, h, allow in (("m", gm, hm, allow_m), ("q", gq, hq, allow_q)):
                 gp = g @ gains[k]
                 rows[key][0].append(gp / allow[:, None])
@@ -454,10 +482,11 @@ class StrengthEvaluator:
     def _hoist(self, indices, cranes, weights):
         ctx, p = self.context, self.context.problem
         lugset = LugSet(p, indices, cranes)
-        points, n = lugset.points, lugset.n
+        n = lugset.n
         hook = lugset.hook_uncertain
         scenarios = ctx.hoist_states()
         dense = ctx.hoist_states(dense=True)
+        points = ctx.girder_points(indices, dense)  # the girder's loads in every dense state
         d_gain, d_offset = lugset.affine(dense)
         d_hook = d_gain * lugset.stiffness[None, None, :]
         d_states = [State(tuple(ctx.up(s.heel, s.trim)), s.cog_offset) for s in dense]
@@ -468,7 +497,9 @@ class StrengthEvaluator:
             gains, offsets = lugset.affine(scenarios)
             states = [State(tuple(ctx.up(s.heel, s.trim)), s.cog_offset) for s in scenarios]
             hk = (gains * lugset.stiffness[None, None, :], lugset.hook_tolerance) if hook else None
-            rows_m, rows_q = self._rows(points, sections, states, gains, offsets, hk)
+            rows_m, rows_q = self._rows(
+                ctx.girder_points(indices, scenarios), sections, states, gains, offsets, hk
+            )
             margin = np.zeros((len(scenarios), n)) if hk is None else np.abs(hk[0]) @ hk[1]
             tension_rows = (
                 gains,
@@ -488,7 +519,7 @@ class StrengthEvaluator:
             spread, trange = self._dense_spread(tensions, hook_terms)
             top = np.unique(np.argsort(-ratios[0])[:3].tolist() + np.argsort(-ratios[1])[:3].tolist())
             peaks, xs = self._peaks(
-                points,
+                points.take(top),
                 tensions[top],
                 [d_states[k] for k in top],
                 (d_hook[top], lugset.hook_tolerance) if hook else None,
@@ -602,11 +633,14 @@ def search_strength(problem, weights, context=None, time_limit=None):
     return _search_hoist(ctx, evaluator, weights, started, limit)
 
 
-def _mip_rows(ctx, states, sections):
+def _mip_rows(ctx, states, sections, scenarios=None):
+    """Each state's ratio rows over every candidate; ``scenarios`` (hoist control) the states'
+    attitudes, for a sling's legs."""
     allow_m, allow_q = ctx.allowable(0, sections.x), ctx.allowable(1, sections.x)
+    points = ctx.points if scenarios is None else ctx.girder_points(None, scenarios)
     out = []
-    for state in states:
-        gm, hm, gq, hq = section_rows(ctx.loads, ctx.points, sections, state)
+    for k, state in enumerate(states):
+        gm, hm, gq, hq = section_rows(ctx.loads, points, sections, state, k)
         out.append(((gm / allow_m[:, None], hm / allow_m), (gq / allow_q[:, None], hq / allow_q)))
     return out
 
@@ -614,7 +648,7 @@ def _mip_rows(ctx, states, sections):
 def _statics(ctx, heel, trim, offset):
     p = ctx.problem
     rot = attitude_matrix(heel, trim, p.yaw)
-    plan = (ctx.points @ rot.T)[:, :2]
+    plan = ctx.plan_positions(rot)
     cog = rot @ (np.asarray(p.body.cog) + np.asarray(offset))
     return np.vstack([np.ones(len(plan)), plan.T]), p.body.weight * np.array([1.0, cog[0], cog[1]])
 
@@ -705,7 +739,7 @@ def _search_hoist(ctx, evaluator, weights, started, limit):
     )
     level_low = ctx.stiffness[None, :] * (ctx.boom_min[None, :] - ctx.boom_zero)  # the boom range
     limits = (np.full(count, p.min_tension), ctx.limit, level_high, level_low)
-    rows = _mip_rows(ctx, states, sections)
+    rows = _mip_rows(ctx, states, sections, scen)
     mip = CandidateMIP(
         count, n, len(rows[0][0][1]), len(rows[0][1][1]), len(scen), shared=False, counts=ctx.counts
     )
@@ -1087,17 +1121,21 @@ def free_three(points):
     return best
 
 
-def plan_strength(problem, top=None):
+def plan_strength(problem, top=None, context=None, wrap=None):
     """Plan for the hull girder (``objective`` bending / shear / strength).
 
     Parameters
     ----------
     problem : PlanProblem
     top : int, optional   not used: the search gives the best set, not a ranking
+    context : StrengthContext, optional   the problem's (default: single ropes); with slings
+        the hooks' (:mod:`liftplan.planner.plans.strength_slings`)
+    wrap : callable, optional   ``wrap(StrengthPlan) -> plan``: the plan returned (and kept
+        on Ctrl-C) made from the strength plan (default: the StrengthPlan itself)
 
     Returns
     -------
-    StrengthPlan
+    StrengthPlan, or what ``wrap`` makes of it
 
     Raises
     ------
@@ -1107,7 +1145,8 @@ def plan_strength(problem, top=None):
     """
     del top
     started = time.perf_counter()
-    context = StrengthContext(problem)
+    context = context or StrengthContext(problem)
+    wrap = wrap or (lambda plan: plan)
     # a time limit covers both searches: the plan's gets 80 % of it, the spread-optimal
     # partner what is left (at least the other 20 %)
     total = problem.time_limit
@@ -1117,18 +1156,20 @@ def plan_strength(problem, top=None):
     except StrengthInterrupted as stop:  # the best set so far; no spread-optimal partner searched
         plan = None
         if stop.best is not None:
-            plan = StrengthPlan(problem, stop.best, stop.stats, spread_plan=None, spread_stats=None)
+            plan = wrap(StrengthPlan(problem, stop.best, stop.stats, spread_plan=None, spread_stats=None))
         raise Interrupted([], stop.stats, plan=plan, phase="strength search") from None
     limit = PARTNER_TIME if total is None else min(PARTNER_TIME, total - (time.perf_counter() - started))
     try:
         partner, partner_stats = search_strength(problem, SPREAD_WEIGHTS, context, time_limit=limit)
     except StrengthInterrupted as stop:  # the plan is complete; its partner as far as it got
         partial = None if stop.best is None else stop.stats
-        plan = StrengthPlan(problem, chosen, stats, spread_plan=stop.best, spread_stats=partial)
+        plan = wrap(StrengthPlan(problem, chosen, stats, spread_plan=stop.best, spread_stats=partial))
         phase = "spread-optimal partner search"  # the plan's own search had finished
         raise Interrupted([], stats, plan=plan, phase=phase, finished=True) from None
     # the spread plan's own peaks are reported in the same terms: evaluate it on the
     # strength weights with its tensions as found (its value under the strength objective)
-    return StrengthPlan(
-        problem=problem, chosen=chosen, stats=stats, spread_plan=partner, spread_stats=partner_stats
+    return wrap(
+        StrengthPlan(
+            problem=problem, chosen=chosen, stats=stats, spread_plan=partner, spread_stats=partner_stats
+        )
     )

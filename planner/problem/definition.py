@@ -572,11 +572,7 @@ class PlanProblem:
                     f"strength.{key}: missing for plan.objective = {self.objective!r}; "
                     "expected the allowable envelope [[x m, value], ...]"
                 )
-        if any(c.sling is not None for c in fleet):
-            raise InvalidScene(
-                f"plan.objective = {self.objective!r}: planned for cranes on single ropes (the "
-                "strength search has no sling legs in its girder loads); expected no sling on the cranes"
-            )
+        self._check_strength_slings(fleet, controls)
         if any(c.vessel is not None for c in fleet):
             raise InvalidScene(
                 f"plan.objective = {self.objective!r}: planned for cranes on land (the strength "
@@ -604,6 +600,31 @@ class PlanProblem:
                 f'plan.hook_tolerance = {self.hook_tolerance:g} m with control = "force": jacks hold '
                 "their forces, so hook heights do not change them; expected hook_tolerance = 0, or "
                 'control = "hoist"'
+            )
+
+    def _check_strength_slings(self, fleet, controls):
+        """A strength objective with slings: hoist control on 3 cranes or more, no spreader bars."""
+        slung = next((c for c in fleet if c.sling is not None), None)
+        if slung is None:
+            return
+        goal = f"plan.objective = {self.objective!r} with cranes on slings"
+        if controls[0] == "force":
+            raise InvalidScene(
+                f'cranes.control = "force": {goal} is planned for hoists; a strand jack holds its '
+                "force on a sling hook whose place in the body moves with the legs, which the force "
+                'plan (forces at body-fixed lugs) does not pose; expected control = "hoist"'
+            )
+        if self.cranes < 3:
+            raise InvalidScene(
+                f"plan.cranes = {self.cranes}: {goal} is planned for 3 cranes or more; two hooks' "
+                "loads follow from the lever rule alone, with no tensions to choose for the girder; "
+                "expected 3 cranes or more"
+            )
+        if slung.sling.spreader is not None:
+            raise InvalidScene(
+                f"cranes[{slung.name}].sling.spreader: {goal} is planned for 2- to 4-leg slings; a "
+                "bar's weight adds a load on its lugs that is not in proportion to the hook's "
+                "tension, which the strength search's girder rows do not carry; expected no spreader"
             )
 
     def _check_breakout(self, fleet):

@@ -35,6 +35,7 @@ from liftplan.model.scene.file import (
     load_with,
     one_line,
     parse_toml,
+    refuse_sequence,
     to_girder,
     to_hull,
     to_vessel,
@@ -770,6 +771,7 @@ NOT_PLANNED = {
 def problem_from_dict(raw, base=None):
     """Validate a planning scene given as the dict its TOML file parses to (``base``: see
     :func:`loads_problem`)."""
+    refuse_sequence(raw, "a planning file")
     if "candidates" not in raw and "lugs" in raw:
         raise InvalidScene(
             "[[lugs]]: a scene with fixed lugs; expected [[candidates]] and [plan] for "

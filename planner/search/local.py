@@ -28,10 +28,19 @@ corners they span; in order of the screening bound, a lower bound of it, so the 
 found without solving the rest), and candidates on
 two lines add a first start: lugs at both ends of each line (:func:`line_starts`), the layout
 that resists the CG's moves along the lines best; the perturbations are then of it.
+
+With a weight curve and ``[strength]`` the hull girder is in the moves
+(:mod:`~liftplan.planner.search.local_girder`): rows rank as the exact search's ranking does,
+those that keep the girder first, then the objective. A necessary screen keeps the swaps that
+overload it whatever their preload out of the moves; each descent's end is checked exactly
+(the plan's own check), best first, and one that overloads the girder is left for its best
+swap that keeps it (else the one that overloads it least), the descent going on from there
+(:func:`_keep_girder`).
 """
 
 from __future__ import annotations
 
+import heapq
 import math
 import time
 
@@ -47,8 +56,10 @@ from liftplan.planner.search.evaluator import (
     SetEvaluator,
     SetInfeasible,
 )
+from liftplan.planner.search.girder import applies as girder_applies
 from liftplan.planner.search.line_cells import applies, cell_bound
 from liftplan.planner.search.lines import count_bounds, line_bound, two_lines
+from liftplan.planner.search.local_girder import LocalGirder
 from liftplan.planner.search.progress import BAR_FORMAT, best_bound, phase, progress_bar
 from liftplan.planner.search.scenarios import Scenario, box_attitudes, first_scenarios
 from liftplan.planner.search.screen import FEASIBLE, REASONS, screen
@@ -60,6 +71,10 @@ RESTARTS = 3
 #: The same for a fleet of unequal cranes, whose (set, assignment) landscape has more local
 #: optima (tanker_fleet.toml: 3 perturbed starts end 13 % above the optimum, 10 find it).
 FLEET_RESTARTS = 12
+#: Descents from an end set that overloads the hull girder, over all starts (each one asks
+#: the exact girder check of up to REPAIR_TRIES swaps, best value first, until one keeps it).
+MAX_REPAIRS = 8
+REPAIR_TRIES = 32
 
 
 def spread_start(problem, count=None):
@@ -223,6 +238,7 @@ def local_search(
     seed=0,
     work_limit=None,
     progress=False,
+    girder=None,
 ):
     """The best set one swap at a time (module docstring), from several starts.
 
@@ -246,6 +262,11 @@ def local_search(
     progress : bool, optional
         A progress line on stderr (:mod:`~liftplan.planner.search.progress`; None: when
         stderr is a terminal): starts done, best value, swaps.
+    girder : LocalGirder or False, optional
+        The hull girder in the moves (:mod:`~liftplan.planner.search.local_girder`): with a
+        weight curve and ``[strength]`` (default: one on a new evaluator), the swaps that
+        overload it are not taken over those that keep it, and the set returned is the best
+        reached that keeps it. False: the objective alone (for comparison).
 
     Returns
     -------
@@ -286,7 +307,10 @@ def local_search(
         kept = rng.choice(first, n - max(1, n // 3), replace=False)
         others = np.setdiff1d(np.arange(count), kept)
         starts.append(tuple(sorted(np.r_[kept, rng.choice(others, n - len(kept), replace=False)].tolist())))
-    best, moves, reason = (None, math.inf), 0, None
+    if girder is None and girder_applies(problem):
+        girder = LocalGirder(problem, SetEvaluator(problem))
+    girder = girder or None
+    best, moves, reason, ends = (None, math.inf), 0, None, []
     starts = list(dict.fromkeys(starts))  # a repeated start is run once
     bar = progress_bar(len(starts), progress, desc="local search: swaps", unit="starts", ticker=True)
 
@@ -307,7 +331,7 @@ def local_search(
                 continue
             try:
                 current, value, taken, why = _descend(
-                    problem, (begin, cranes), budget, max_moves, plane, seen
+                    problem, (begin, cranes), budget, max_moves, plane, seen, girder
                 )
             except SwapsInterrupted as stop:  # the descent's set so far against the best
                 if stop.row is not None and stop.value < best[1]:
@@ -317,8 +341,16 @@ def local_search(
             reason = reason or why
             if value < best[1]:
                 best = (current, value)
+            if math.isfinite(value):
+                ends.append((current, value))
             if bar is not None:
                 bar.update(1)
+        if girder is not None and ends:  # the ends checked exactly, best first (local_girder)
+            try:
+                best, taken, _ = _keep_girder(problem, ends, budget, max_moves, plane, seen, girder)
+            except SwapsInterrupted as stop:  # during a descent from an end: the best end so far
+                raise SwapsInterrupted(best[0], best[1], moves + stop.moves) from None
+            moves += taken
     except KeyboardInterrupt as err:
         if isinstance(err, SwapsInterrupted):
             raise
@@ -356,13 +388,17 @@ def _plane_lp(problem):
     )
 
 
-def _descend(problem, current, budget, max_moves, plane=None, seen=None):
+def _descend(problem, current, budget, max_moves, plane=None, seen=None, girder=None, repair=False):
     """Moves from one start row (set, cranes) while they lower the value: (row, value,
     moves, why not).
 
     The value is the screening bound, or with ``plane`` its exact LP over the same scenarios.
-    ``seen(row, value, moves)`` is called after each move. Ctrl-C raises
-    :class:`SwapsInterrupted` with the row reached (None before the start was screened).
+    ``seen(row, value, moves)`` is called after each move. With ``girder``
+    (:class:`~liftplan.planner.search.local_girder.LocalGirder`) the swaps its screen rules out
+    or its exact check found to overload are never taken; ``repair``: the start overloads the
+    girder, so the first move is to the best swap that keeps it (its exact check, whatever its
+    value), and none is taken when no swap keeps it. Ctrl-C raises :class:`SwapsInterrupted`
+    with the row reached (None before the start was screened).
     """
     value, moves = math.inf, 0
     try:
@@ -384,24 +420,22 @@ def _descend(problem, current, budget, max_moves, plane=None, seen=None):
             near, near_cranes = neighbours(problem, *current)
             if not len(near):
                 break
-            target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) else math.inf
+            # an overloaded start: any swap that keeps the girder is better, whatever its value
+            target = value * (1.0 - IMPROVEMENT) if math.isfinite(value) and not repair else math.inf
             found = screen(problem, near, near_cranes, dual=True, target=target)
             ok = np.flatnonzero((found.reason == FEASIBLE) & (found.bound < target))
+            if girder is not None and len(ok):
+                ok = ok[girder.allowed(near[ok], near_cranes[ok])]
             if not len(ok):
                 break
-            if plane is None:
-                k = int(ok[np.argmin(found.bound[ok])])
-                best = float(found.bound[k])
-            else:  # exact values in order of the bound, until the bound passes the best found
-                k, best = None, target
-                for j in ok[np.argsort(found.bound[ok], kind="stable")]:
-                    if found.bound[j] >= best or budget.out() == "time_limit":
-                        break
-                    exact = plane.value(near[j])
-                    if exact < best:
-                        k, best = int(j), exact
-                if k is None:
-                    break
+            order = ok[np.argsort(found.bound[ok], kind="stable")]
+            rows = (near, near_cranes, found.bound)
+            if repair:  # exact girder checks: the best swap that keeps it, else the least overload
+                k, best, repair = _repair_swap(rows, order, plane, girder, girder.verdict(current).ratio)
+            else:  # the bound is the value, or (plane) exact values in order of the bound
+                k, best = _best_swap(rows, order, plane, budget, target)
+            if k is None:
+                break
             current, value = (tuple(int(i) for i in near[k]), tuple(int(j) for j in near_cranes[k])), best
             moves += 1
             budget.spend()
@@ -410,6 +444,101 @@ def _descend(problem, current, budget, max_moves, plane=None, seen=None):
     except KeyboardInterrupt:
         raise SwapsInterrupted(current if math.isfinite(value) else None, value, moves) from None
     return current, value, moves, why
+
+
+def _best_swap(rows, order, plane, budget, best):
+    """The swap with the least value below ``best``: (index or None, its value).
+
+    ``rows`` is (sets, cranes, screening bound) of the swaps, ``order`` the ones to ask in
+    ascending bound. The value is the bound, or with ``plane`` its exact LP (asked in order of
+    the bound, a lower bound of it, until the bound passes the best found).
+    """
+    sets, _, bound = rows
+    k = None
+    for j in order:
+        if bound[j] >= best or (k is not None and budget.out() == "time_limit"):
+            break
+        exact = float(bound[j]) if plane is None else plane.value(sets[j])
+        if exact < best:
+            k, best = int(j), exact
+    return k, best
+
+
+def _repair_swap(rows, order, plane, girder, ratio):
+    """The swap out of a row that overloads the hull girder (its largest ratio ``ratio``):
+    (index or None, its value, still overloaded).
+
+    Up to :data:`REPAIR_TRIES` swaps in ascending bound (``rows``, ``order`` and ``plane`` as
+    :func:`_best_swap`) are checked exactly: the one of least value that keeps the girder
+    (asking stops once the bound passes its value), else the one of least girder ratio when
+    below ``ratio`` (the overload shrinks: a step towards a set that keeps the girder).
+    """
+    sets, cranes, bound = rows
+    keeper, least = (None, math.inf), (None, math.inf, ratio)
+    for j in order[:REPAIR_TRIES]:
+        if bound[j] >= keeper[1]:
+            break
+        value = float(bound[j]) if plane is None else plane.value(sets[j])
+        verdict = girder.verdict((sets[j], cranes[j]))
+        if verdict.keeps and value < keeper[1]:
+            keeper = (int(j), value)
+        elif verdict.feasible and verdict.ratio < least[2]:
+            least = (int(j), value, verdict.ratio)
+    if keeper[0] is not None:
+        return keeper[0], keeper[1], False
+    return least[0], least[1], True
+
+
+def _keep_girder(problem, ends, budget, max_moves, plane, seen, girder):
+    """The best end row that keeps the hull girder (:mod:`.local_girder`): each descent's end,
+    best value first, checked exactly; one that overloads the girder is left for its best
+    swap that keeps it and the descent goes on from there (its end checked in turn), at most
+    :data:`MAX_REPAIRS` times.
+
+    Parameters
+    ----------
+    ends : list of (row, value)
+        The descents' ends.
+
+    Returns
+    -------
+    best : (row, value)
+        The best end checked that keeps the girder, else the best row that keeps it among all
+        those checked (by its worst value); else the best feasible end checked (it overloads
+        the girder), else the best end.
+    moves : int
+        Swaps taken from overloaded ends.
+    kept : bool
+        The girder holds on ``best``.
+    """
+    heap = [(value, k, row) for k, (row, value) in enumerate(dict(ends).items())]
+    heapq.heapify(heap)
+    fallback, moves, repairs, count = None, 0, 0, len(heap)
+    while heap:
+        if fallback is not None and budget.out():  # out of time or work: no more ends checked
+            break
+        value, _, row = heapq.heappop(heap)
+        verdict = girder.verdict(row)
+        if verdict.keeps:
+            return (row, value), moves, True
+        if not verdict.feasible:
+            continue
+        fallback = fallback or (row, value)
+        if repairs >= MAX_REPAIRS:
+            continue
+        repairs += 1
+        end, end_value, taken, _ = _descend(problem, row, budget, max_moves, plane, seen, girder, repair=True)
+        moves += taken
+        if taken:
+            heapq.heappush(heap, (end_value, count, end))
+            count += 1
+    # a set that keeps the girder passed on the way (a descent from it ended on one that does
+    # not): the best of them by its worst value
+    kept = [(v.result.worst_value, key) for key, v in girder.verdicts.items() if v.keeps]
+    if kept:
+        value, row = min(kept)
+        return (row, value), moves, True
+    return fallback or min(ends, key=lambda e: e[1]), moves, False
 
 
 def search_local(problem, started, top=1, progress=None):
@@ -424,23 +553,25 @@ def search_local(problem, started, top=1, progress=None):
     limit, work = problem.time_limit, problem.work_limit
     swap_work = None if work is None else max(1, work // 2)  # half for the swaps, half for the cells
     interrupted = None  # the phase Ctrl-C ended: the plan is then the best set so far, checked
+    evaluator = SetEvaluator(problem)
+    girder = LocalGirder.of(problem, evaluator) or False  # its checked sets are the plan's
     try:
         indices, moves, _, cranes = local_search(
             problem,
             time_limit=None if limit is None else 0.5 * limit,
             work_limit=swap_work,
             progress=progress,
+            girder=girder,
         )
     except SwapsInterrupted as stop:
         if stop.row is None:  # no feasible set reached yet
             raise Interrupted([], None, phase="local search: swaps") from None
         (indices, cranes), moves, interrupted = stop.row, stop.moves, "local search: swaps"
     stopped = "work_limit" if swap_work is not None and moves >= swap_work else "local"
-    evaluator = SetEvaluator(problem)
     what = "local search: checking its set over the box"
     try:
         with phase(what, progress):
-            result = _checked_set(problem, evaluator, indices, cranes, moves)
+            result = _checked_set(problem, evaluator, indices, cranes, moves, girder)
     except KeyboardInterrupt:
         if interrupted is not None:  # a second Ctrl-C: stop at once
             raise
@@ -497,8 +628,12 @@ def search_local(problem, started, top=1, progress=None):
     return [result], _local_stats(problem, started, moves, bound, result, stopped)
 
 
-def _checked_set(problem, evaluator, indices, cranes, moves):
-    """The local search's set evaluated exactly (:class:`SetResult`)."""
+def _checked_set(problem, evaluator, indices, cranes, moves, girder=False):
+    """The local search's set evaluated exactly (:class:`SetResult`): the girder's exact
+    check's evaluation when it took one."""
+    known = girder.result((indices, cranes)) if girder else None
+    if known is not None:
+        return known
     try:
         return evaluator.evaluate(indices, cranes)
     except SetInfeasible as err:

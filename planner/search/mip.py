@@ -36,7 +36,11 @@ worst over their whole box is instead written exactly for every set at once
 (:mod:`~liftplan.planner.search.mip_hooks`): each rope's own worst change in its band and
 limit rows at every scenario, and the spread's pair widening at the scenarios marked ``box``
 (the first plans' worst, then each round's), so a round adds one scenario, never one error
-pattern.
+pattern. With one crane class and at most :data:`SET_CAP` sets these rows are set-wise: one
+weight x_S per lug set carries each set's closed-form widenings and its own lower bound over
+the list's and the dense check's scenarios, which keeps the hook errors in the relaxation
+with the lugs fractional (the proof is then combinatorial, every set bounded by its own
+closed form inside the MIP; :mod:`~liftplan.planner.search.mip_hooks` proves each row).
 
 Sling hooks hinged about their lug pairs (``PlanProblem.hinges``, 2-leg slings) fit too: where
 a hook hangs at a pose depends on its own sling only, so each candidate's statics row, rise and
@@ -80,9 +84,14 @@ from liftplan.planner.search.lines import count_bounds, two_lines
 from liftplan.planner.search.local import search_local
 from liftplan.planner.search.mip_hooks import (
     Columns,
+    SetTables,
+    hull_points,
     lug_coefficients,
     on_one_plane,
     residuals,
+    scenario_vectors,
+    set_bounds,
+    set_tables,
     widening,
 )
 from liftplan.planner.search.progress import best_bound, progress_bar
@@ -99,6 +108,10 @@ BOX_FIRST = 3
 #: the tanker's 16 candidates: 1 920 for equal cranes, 7 680 for four classes); past it the
 #: hook errors come in as cuts (the MIP's many-point cases would otherwise grow as C^3 K).
 BOX_SIZE = 20_000
+#: One crane class with at most this many lug sets: the hook widenings set-wise
+#: (:meth:`LugMip._set_rows`). Measured: the tanker's 8 of 16 (12 870 sets) built and solved
+#: one round in 276 s against a 30 s limit; 5 of 16 (4 368) kept its limit.
+SET_CAP = 5_000
 
 
 @dataclass(frozen=True)
@@ -462,6 +475,9 @@ class LugMip:
         )
         self.mirror = None if hinged else mirror_map(problem)
         self.count = count
+        self._tables = None
+        self._dense_beta = None
+        self.dense = dense
         # candidates on two lines: each count of lugs per line has a bound of its own
         self.lines = two_lines(problem)
         if self.lines is not None and (
@@ -502,7 +518,7 @@ class LugMip:
         y, per_set, z = chosen
         load, scaled = values
         band_low, band_high, floor, ceiling = bands
-        col_cand, kappa, width, per_candidate, boxed = layout
+        col_cand, kappa, width, per_candidate, boxed, data = layout
         count = self.count
         columns = Columns(
             col_cand,
@@ -516,6 +532,10 @@ class LugMip:
 
         def spread_out(v):  # a per-candidate row to every scenario
             return across @ cp.reshape(v, (1, v.shape[0]), order="C")
+
+        tables = self._set_tables(columns, width, data, (band_low, band_high))
+        if tables is not None:
+            return self._set_rows(cp, tables, (y, per_set, z), values, bands, boxed, spread_out)
 
         # each rope's own change: its low side above the band's low (and min_tension), its high
         # side below the limit and the band's high
@@ -546,13 +566,131 @@ class LugMip:
         # the pair (a, b)'s residual is a's less b's (the fit is linear in c)
         a, b = np.triu_indices(count, k=1)
         wide, more = widening(cp, scaled_own[a, :] - scaled_own[b, :], columns)
-        first = np.concatenate([a, b])
-        second = np.concatenate([b, a])
-        twice = np.concatenate([np.arange(len(a))] * 2)
-        row = floor * off[first] - ceiling * off[second] + wide[twice]
-        pick = scaled[boxed, :]
-        rows = np.ones((len(boxed), 1)) @ cp.reshape(row, (1, len(first)), order="C")
-        return cons + more + [pick[:, first] - pick[:, second] + rows <= z]
+        return cons + more + [_pair_rows(cp, (a, b), wide, (scaled, off, z), (floor, ceiling), boxed)]
+
+    def _set_tables(self, columns, width, data, bands):
+        """The set-wise widening tables (:func:`~liftplan.planner.search.mip_hooks.set_tables`)
+        and each set's bound (:func:`~liftplan.planner.search.mip_hooks.set_bounds`) over the
+        list's scenarios and the dense check's, for one crane class with at most
+        :data:`SET_CAP` sets; else None (the fit's rows)."""
+        problem = self.problem
+        if len(self.classes.members) != 1 or math.comb(self.count, problem.cranes) > SET_CAP:
+            return None
+        key = (float(width), self.cutoff)
+        if self._tables is None or self._tables[0] != key:
+            tables = set_tables(
+                columns.level_plan,
+                columns.stiffness,
+                columns.tolerance,
+                self.scale[:, 0],
+                problem.cranes,
+                self.usable[:, 0],
+                width,
+            )
+            self._tables = (key, tables)
+        tables = self._tables[1]
+        level = poses(problem, [Scenario(0.0, 0.0)])
+        if self._dense_beta is None:
+            dense = poses(problem, self.dense) if self.dense else None
+            self._dense_beta = (
+                np.empty((0, 3))
+                if dense is None
+                else hull_points(scenario_vectors(dense.a_mat, dense.b_vec, dense.level_plan))
+            )
+        beta = np.vstack([scenario_vectors(data.a_mat, data.b_vec, data.level_plan), self._dense_beta])
+        band_low, band_high = bands
+        bound = set_bounds(
+            tables,
+            columns.stiffness,
+            self.scale[:, 0],
+            (level.a_mat[0], level.b_vec[0], hull_points(beta)),
+            (np.maximum(self.preload_low, band_low)[:, 0], np.minimum(self.preload_high, band_high)[:, 0]),
+            (band_low[:, 0], np.minimum(self.limit, band_high)[:, 0]),
+            problem.goal.peak,
+        )
+        keep = np.isfinite(bound) | (bound < 0)
+        return SetTables(
+            tables.sets[keep], tables.own[keep], tables.scaled_own[keep], tables.pair[keep]
+        ), bound[keep]
+
+    def set_bounds(self, scenarios):
+        """The sets the set-wise rows keep and each one's bound (the objective's unit) over
+        ``scenarios`` and the dense check's, at the present cutoff: (sets (S, n), bound (S,)),
+        or None where the fit's rows are used (:meth:`_set_tables`)."""
+        problem = self.problem
+        data = poses(problem, list(scenarios))
+        band_low, band_high = tension_band(problem, self.swl, self.cutoff)
+        band_low, band_high = (np.nan_to_num(v, nan=0.0) for v in (band_low, band_high))
+        count, kinds = self.count, len(self.classes.members)
+        columns = Columns(
+            np.repeat(np.arange(count), kinds),
+            self.classes.stiffness[np.tile(np.arange(kinds), count)],
+            self.hook[np.tile(np.arange(kinds), count)],
+            data.level_plan,
+            problem.cranes,
+        )
+        width = least_width(problem, data, float((band_high - band_low).max()))
+        found = self._set_tables(columns, width, data, (band_low, band_high))
+        return None if found is None else (found[0].sets, found[1])
+
+    def _set_rows(self, cp, found, chosen, values, bands, boxed, spread_out):
+        """The box rows with each widening a weighted sum over the sets (module docstring):
+        x_S >= 0 with sum_{S ni i} x_S = Y_i, so at an integer Y the weight is on the chosen
+        set alone, and with Y fractional each widening is a mixture of whole sets' own."""
+        problem, count = self.problem, self.count
+        tables, bound = found
+        y, per_set, z = chosen
+        load, scaled = values
+        band_low, band_high, floor, ceiling = bands
+        sets = tables.sets
+        n_sets, n = sets.shape
+        x = cp.Variable(n_sets, nonneg=True)
+        cols = np.repeat(np.arange(n_sets), n)
+        members = sets.ravel()
+
+        def over_sets(table, rows, count_rows, where=None):  # sum_S x_S table[S, m] into row rows[S, m]
+            if where is None:
+                where = np.repeat(np.arange(n_sets), table.shape[1])
+            matrix = sparse.csr_matrix((table.ravel(), (rows.ravel(), where)), shape=(count_rows, n_sets))
+            total = cp.Variable(count_rows)  # one variable per row: the rows below stay sparse
+            cons.append(total == matrix @ x)
+            return total
+
+        incidence = sparse.csr_matrix((np.ones(len(members)), (members, cols)), shape=(count, n_sets))
+        cons = [incidence @ x == per_set]
+        if np.all(np.isfinite(bound)):  # each set's own bound (set_bounds)
+            cons.append(z >= bound @ x)
+        rise = over_sets(tables.own, sets, count)
+        low = cp.multiply(band_low[:, 0], y)
+        high = cp.multiply(np.minimum(self.limit, band_high)[:, 0], y)
+        cons += [load - spread_out(rise) >= spread_out(low), load + spread_out(rise) <= spread_out(high)]
+        off = 1 - per_set
+        if problem.goal.peak:  # reserve: each rope's largest scaled tension
+            lift = over_sets(tables.scaled_own, sets, count)
+            return cons + [scaled + spread_out(floor * off + lift) <= z]
+        if not boxed:
+            return cons
+        a, b = np.triu_indices(count, k=1)
+        index = np.full((count, count), -1)
+        index[a, b] = np.arange(len(a))
+        index[b, a] = np.arange(len(a))
+        # a pair of two members: its own widening; one member and one other lug: the member's
+        # own (the other's residual is zero); neither: none
+        rows, vals, where = [], [], []
+        for m in range(n):
+            for m2 in range(m + 1, n):
+                rows.append(index[sets[:, m], sets[:, m2]])
+                vals.append(tables.pair[:, m, m2])
+                where.append(np.arange(n_sets))
+        inside = np.zeros((n_sets, count), dtype=bool)
+        inside[np.arange(n_sets)[:, None], sets] = True
+        for m in range(n):
+            other = np.nonzero(~inside)  # (set, candidate) not in the set
+            rows.append(index[sets[other[0], m], other[1]])
+            vals.append(tables.scaled_own[other[0], m])
+            where.append(other[0])
+        wide = over_sets(np.concatenate(vals), np.concatenate(rows), len(a), np.concatenate(where))
+        return cons + [_pair_rows(cp, (a, b), wide, (scaled, off, z), (floor, ceiling), boxed)]
 
     def solve(self, scenarios, gap=0.0, time_limit=None, forbidden=()):
         """Solve over ``scenarios``; a :class:`MipSolution`.
@@ -645,7 +783,7 @@ class LugMip:
                 (y, per_set, z),
                 (tension @ per_candidate, scaled @ per_candidate),
                 (band_low, band_high, floor, ceiling),
-                (col_cand, kappa, width, per_candidate, [k for k, c in enumerate(cuts) if c.box]),
+                (col_cand, kappa, width, per_candidate, [k for k, c in enumerate(cuts) if c.box], data),
             )
         if problem.goal.peak:
             cons.append(scaled + floor * (1 - chosen) <= z)
@@ -719,6 +857,26 @@ class LugMip:
             status,
             seconds,
         )
+
+
+def _pair_rows(cp, pairs, wide, values, bands, boxed):
+    """The spread's pair rows with the hook errors at the ``boxed`` scenarios: for each pair
+    (a, b) of candidates, in both orders, s_a T_a - s_b T_b + W_ab <= z, an unchosen
+    candidate standing at the floor (its high side) or the ceiling (its low side).
+
+    ``pairs`` (a, b) the candidate pairs a < b; ``wide`` each pair's widening; ``values``
+    (scaled tensions per scenario and candidate, 1 - Y per candidate, z); ``bands`` (floor,
+    ceiling)."""
+    a, b = pairs
+    scaled, off, z = values
+    floor, ceiling = bands
+    first = np.concatenate([a, b])
+    second = np.concatenate([b, a])
+    twice = np.concatenate([np.arange(len(a))] * 2)
+    row = floor * off[first] - ceiling * off[second] + wide[twice]
+    pick = scaled[boxed, :]
+    rows = np.ones((len(boxed), 1)) @ cp.reshape(row, (1, len(first)), order="C")
+    return pick[:, first] - pick[:, second] + rows <= z
 
 
 def search_mip(problem, started, top=1, progress=None):

@@ -18,6 +18,12 @@ state both are **linear in the tensions**; and the tensions are linear in the de
 * force control (strand jacks): T_k = T* at every state; the attitude follows from equilibrium
   (see :func:`force_attitude`).
 
+With slings the lift points are the hooks and the loads on the girder are the legs': a hook's
+tension T splits into leg forces at its lugs, each T times a vector fixed by the sling's statics
+at that state, so the rows stay linear in the hooks' tensions (:class:`PointLoads`: one load
+per leg, its vertical part and its axial part's couple (z_i - z_G) f_x as above; the ropes'
+case is one vertical load per lug).
+
 So choosing T* to minimise the worst |M| / allowable (and |Q| / allowable, and the spread) over
 finitely many scenarios and sections is a linear program, :class:`StrengthLP`, built once per
 size from ``cp.Parameter`` objects (DPP, checked at build) and re-solved. The candidates'
@@ -162,15 +168,84 @@ class State:
     cog_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
-def section_rows(loads, points, sections, state):
-    """M and Q at sections as affine functions of the tensions at the lug points.
+@dataclass(frozen=True)
+class PointLoads:
+    """Where the lift points' tensions load the girder: one point load per lug, per state.
+
+    A single rope pulls its lug along the world vertical: its force is T times the body's
+    up-vector. A sling's hook tension T splits into leg forces at its lugs, each along its leg,
+    by the sling's statics at that state (:mod:`liftplan.planner.plans.strength_slings`): for a
+    given state each leg's force is T times a fixed vector, so the girder stays linear in the
+    hooks' tensions. Each point load enters the girder as :mod:`liftplan.model.strength.girder`
+    takes it: its body-z component f_z at its x, and its body-x (axial) component as the couple
+    (z - z_G) f_x (the axial force itself is not a bending moment or shear force).
+
+    Parameters
+    ----------
+    x, z : (L,)  [m]
+        Each load's point (its lug), body frame.
+    owner : (L,) int
+        The lift point (tension column, 0..count-1) whose tension it carries.
+    normal, axial : (k, L)  [-]
+        Its force's body-z and body-x components per unit tension of its owner, in each of
+        k states.
+    count : int
+        Lift points (tension columns).
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+    owner: np.ndarray
+    normal: np.ndarray
+    axial: np.ndarray
+    count: int
+
+    @staticmethod
+    def ropes(points, states):
+        """Single ropes at ``points`` (n, 3) [m]: each along the world vertical in every state."""
+        points = np.asarray(points, dtype=float)
+        up = np.array([state.up for state in states], dtype=float).reshape(-1, 3)
+        n = len(points)
+        return PointLoads(
+            x=points[:, 0],
+            z=points[:, 2],
+            owner=np.arange(n),
+            normal=np.repeat(up[:, 2:3], n, axis=1),
+            axial=np.repeat(up[:, 0:1], n, axis=1),
+            count=n,
+        )
+
+    def take(self, rows):
+        """The same loads in the states ``rows`` only."""
+        rows = np.asarray(rows, dtype=int)
+        return PointLoads(self.x, self.z, self.owner, self.normal[rows], self.axial[rows], self.count)
+
+    @property
+    def gather(self):
+        """(L, count) 0/1: which lift point each load hangs from (rows of loads -> columns)."""
+        out = np.zeros((len(self.x), self.count))
+        out[np.arange(len(self.x)), self.owner] = 1.0
+        return out
+
+
+def point_loads(points, states):
+    """``points`` as :class:`PointLoads`: given so, or single ropes at (n, 3) positions [m]."""
+    return points if isinstance(points, PointLoads) else PointLoads.ropes(points, states)
+
+
+def section_rows(loads, points, sections, state, index=0):
+    """M and Q at sections as affine functions of the tensions at the lift points.
 
     Parameters
     ----------
     loads : GirderLoads
-    points : (n, 3)  [m]   lug positions, body frame
+    points : (n, 3) [m] or PointLoads
+        Lug positions, body frame (single ropes), or the lift points' point loads (state
+        ``index`` of them is this state's).
     sections : Sections
     state : State
+    index : int
+        Which state of ``points`` (a :class:`PointLoads`) this is.
 
     Returns
     -------
@@ -179,32 +254,47 @@ def section_rows(loads, points, sections, state):
     gain_q : (S, n)  [-]    dQ / dT
     offset_q : (S,)  [t]
     """
+    if not isinstance(points, PointLoads):
+        points, index = PointLoads.ropes(points, [state]), 0
     u = np.asarray(state.up, dtype=float)
     dx, _, dz = state.cog_offset
-    s, xc = sections.x[:, None], points[None, :, 0]
+    s, xc = sections.x[:, None], points.x[None, :]
     aft = (xc < s) | ((xc == s) & sections.right[:, None])
     weight_aft, moment_aft = loads.aft(sections.x, dx)
-    gain_m = aft * (u[2] * (s - xc) + u[0] * (points[None, :, 2] - loads.cog[2]))
+    normal, axial = points.normal[index], points.axial[index]
+    per_m = aft * (normal * (s - xc) + axial * (points.z - loads.cog[2]))
+    gather = points.gather
     offset_m = -u[2] * moment_aft - u[0] * dz * weight_aft
-    return gain_m, offset_m, u[2] * aft, -u[2] * weight_aft
+    return per_m @ gather, offset_m, (aft * normal) @ gather, -u[2] * weight_aft
 
 
-def exact_curves(loads, points, tensions, state):
+def exact_curves(loads, points, tensions, state, index=0):
     """Shear force and bending moment of a state as exact piecewise polynomials.
+
+    Parameters
+    ----------
+    loads : GirderLoads
+    points : (n, 3) [m] or PointLoads   as :func:`section_rows`
+    tensions : (n,)  [t]
+    state : State
+    index : int   which state of ``points`` (a PointLoads)
 
     Returns
     -------
     shear, moment : Piecewise  [t, t m]
     """
+    if not isinstance(points, PointLoads):
+        points, index = PointLoads.ropes(points, [state]), 0
     u = np.asarray(state.up, dtype=float)
     dx, _, dz = state.cog_offset
     weight = loads.curve(dx)
-    breaks = np.union1d(weight.breaks, points[:, 0])
+    breaks = np.union1d(weight.breaks, points.x)
     w = on_breaks(breaks, weight.breaks, weight.coef)
-    index = np.searchsorted(breaks, points[:, 0])
+    index_x = np.searchsorted(breaks, points.x)
+    carried = np.asarray(tensions, dtype=float)[points.owner]
     forces, couples = np.zeros(len(breaks)), np.zeros(len(breaks))
-    np.add.at(forces, index, u[2] * tensions)
-    np.add.at(couples, index, u[0] * (points[:, 2] - loads.cog[2]) * tensions)
+    np.add.at(forces, index_x, points.normal[index] * carried)
+    np.add.at(couples, index_x, points.axial[index] * (points.z - loads.cog[2]) * carried)
     shear = Piecewise(breaks, -u[2] * w).integral(jumps=forces)
     moment = shear.integral(jumps=couples, density=Piecewise(breaks, -u[0] * dz * w))
     return shear, moment
@@ -252,34 +342,42 @@ def section_ratios(loads, envelopes, points, sections, states, tensions, hook=No
     ----------
     loads : GirderLoads
     envelopes : (bending, shear) allowable envelopes, each [(x m, value)] or None
-    points : (n, 3)  [m]
+    points : (n, 3) [m] or PointLoads
+        Single ropes at lug positions, or the lift points' point loads in these k states.
     sections : Sections
     states : list of State
     tensions : (k, n)  [t]
     hook : (gain (k, n, n) [t/m], tolerance (n,) [m]), optional
         The hook errors' worst effect is added at every section.
     """
+    points = point_loads(points, states)
     allow = (allowable(envelopes[0], sections.x), allowable(envelopes[1], sections.x))
     up = np.array([state.up for state in states], dtype=float)  # (k, 3)
     offsets = np.array([state.cog_offset for state in states], dtype=float)
-    # the rows of section_rows, for every state at once: M = u_z (A_s T - M_aft) + u_x (A_z T -
-    # dz W_aft), Q = u_z (aft T - W_aft); W_aft and M_aft are affine in the CG's x offset
-    s, xc = sections.x[:, None], points[None, :, 0]
+    # the rows of section_rows, for every state at once: M = sum_l f_z,l (s - x_l) + f_x,l (z_l -
+    # z_G) over the loads aft - u_z M_aft - u_x dz W_aft, Q = sum_l f_z,l - u_z W_aft; W_aft and
+    # M_aft are affine in the CG's x offset
+    s, xc = sections.x[:, None], points.x[None, :]
     aft = ((xc < s) | ((xc == s) & sections.right[:, None])).astype(float)
-    arm_x, arm_z = aft * (s - xc), aft * (points[None, :, 2] - loads.cog[2])
+    arm_x, arm_z = aft * (s - xc), aft * (points.z[None, :] - loads.cog[2])
     w0, m0 = loads.aft(sections.x, 0.0)
     w1, m1 = loads.aft(sections.x, 1.0)
     dx, dz = offsets[:, :1], offsets[:, 2:]
     weight_aft, moment_aft = w0 + dx * (w1 - w0), m0 + dx * (m1 - m0)  # (k, S)
     uz, ux = up[:, 2:], up[:, :1]
-    moment = uz * (tensions @ arm_x.T - moment_aft) + ux * (tensions @ arm_z.T - dz * weight_aft)
-    shear = uz * (tensions @ aft.T - weight_aft)
+    carried = np.asarray(tensions, dtype=float)[:, points.owner]  # (k, L)
+    normal, axial = points.normal * carried, points.axial * carried
+    moment = normal @ arm_x.T + axial @ arm_z.T - uz * moment_aft - ux * dz * weight_aft
+    shear = normal @ aft.T - uz * weight_aft
     moment, shear = np.abs(moment), np.abs(shear)
     if hook is not None:
         gain, tolerance = hook
-        by_x, by_z, by_aft = (np.einsum("sn,knm->ksm", a, gain) for a in (arm_x, arm_z, aft))
-        moment = moment + np.abs(uz[:, :, None] * by_x + ux[:, :, None] * by_z) @ tolerance
-        shear = shear + np.abs(uz[:, :, None] * by_aft) @ tolerance
+        per_load = np.asarray(gain, dtype=float)[:, points.owner, :]  # (k, L, n)
+        by_normal = points.normal[:, :, None] * per_load
+        by_axial = points.axial[:, :, None] * per_load
+        by_m = np.einsum("sl,klm->ksm", arm_x, by_normal) + np.einsum("sl,klm->ksm", arm_z, by_axial)
+        moment = moment + np.abs(by_m) @ tolerance
+        shear = shear + np.abs(np.einsum("sl,klm->ksm", aft, by_normal)) @ tolerance
     return np.stack([(moment / allow[0]).max(axis=1), (shear / allow[1]).max(axis=1)])
 
 
@@ -289,8 +387,8 @@ def exact_peaks(loads, envelopes, points, tensions, states, hook=None):
     Parameters
     ----------
     loads, envelopes, points, states, hook
-        As :func:`section_ratios`; the hook errors' worst effect is added at each curve's
-        worst point.
+        As :func:`section_ratios` (``points`` as PointLoads: in these states); the hook
+        errors' worst effect is added at each curve's worst point.
     tensions : (k, n)  [t]
 
     Returns
@@ -300,15 +398,16 @@ def exact_peaks(loads, envelopes, points, tensions, states, hook=None):
     worst_x : list of float  [m]
         Each state's worst sections (for cutting planes).
     """
+    points = point_loads(points, states)
     best = [None, None]
     worst_x = []
     for k, state in enumerate(states):
-        shear, moment = exact_curves(loads, points, tensions[k], state)
+        shear, moment = exact_curves(loads, points, tensions[k], state, k)
         for which, curve in ((0, moment), (1, shear)):
             ratio, value, x = curve_peak(curve, envelopes[which])
             if hook is not None:  # the hook errors' largest effect at that section
                 sec = Sections(np.array([x]), np.array([True]))
-                g = section_rows(loads, points, sec, state)[2 * which]
+                g = section_rows(loads, points, sec, state, k)[2 * which]
                 extra = float((np.abs(g @ hook[0][k]) @ hook[1])[0])
                 value, ratio = value + extra, ratio + extra / allowable(envelopes[which], [x])[0]
             worst_x.append(x)

@@ -116,3 +116,22 @@ def test_dask_is_quiet_while_a_cluster_closes():
         quiet(client)
         assert all(logging.getLogger(name).level == logging.CRITICAL for name in DASK_LOGGERS)
     assert {name: logging.getLogger(name).level for name in DASK_LOGGERS} == before
+
+
+@pytest.mark.parametrize(
+    "command, name, kind",
+    [
+        ("solve", "block_turnover.toml", "a scene file"),
+        ("view", "block_turnover.toml", "a scene file"),
+        ("plan", "block_turnover.toml", "a planning file"),
+        ("plan", "block_turnover_plan.toml", "a planning file"),
+    ],
+)
+def test_a_sequence_file_is_sent_to_liftplan_sequence(capsys, command, name, kind):
+    # was: "this is a planning scene (candidates, not fixed lugs)" for solve / view, and
+    # "candidates[0].normal: unknown key" for plan on a sequence with lug planning
+    assert main([command, str(EXAMPLES / name)]) == 2
+    err = capsys.readouterr().err
+    assert one_error_line(err)
+    assert f"[[stages]]: this is a lift sequence file, not {kind}" in err
+    assert "expected `liftplan sequence FILE`" in err

@@ -192,6 +192,13 @@ def test_zero_breakout_is_todays_plan_exactly(tmp_path):
         checks = b.pop("checks")
         assert [c for c in checks if not c["name"].startswith("breakout")] == a.pop("checks")
         assert all(c["ok"] for c in checks)
+        low = next(c for c in checks if c["name"] == "breakout_min_tension")
+        assert low["limit"] == zero.problem.min_tension == 20.0  # the plan's, not 0
+        # a ranked set whose lowest rope at breakout (the submerged weight alone) is below the
+        # plan's min_tension fails its design checks there; every other is as without the case
+        for ra, rb, design in zip(a["ranking"], b["ranking"], zero.ranked_design):
+            low = design.breakout.least.min() < zero.problem.min_tension
+            assert rb.pop("design_ok") == (ra.pop("design_ok") and not low)
         assert b == a
 
 

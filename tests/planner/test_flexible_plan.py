@@ -112,6 +112,11 @@ def test_plan_is_the_brute_force_optimum_on_the_flexible_hull(planned, brute):
     order = sorted(brute, key=lambda row: row[1].value)[: len(planned.ranking)]
     assert [r.lugs for r in planned.ranking] == [row[0].lugs for row in order]
     assert planned.hull_search.certified
+    # every set evaluated on the governing hull: the plan's value, bound and gap are that hull's
+    # (the rigid search's bound, 10.37 t, is not a bound on the flexible values)
+    assert planned.worst_spread == pytest.approx(best_model.value, rel=1e-9)
+    assert planned.stats.best == planned.stats.lower_bound == planned.worst_spread
+    assert planned.stats.gap == 0.0
 
 
 def test_each_set_keeps_solves_one_percent_rule(brute):
@@ -216,6 +221,8 @@ def test_json_console_and_report_say_which_hull_governed(planned, tmp_path):
     )
     page = render_html(planned)
     assert "flexible hull governs" in page
+    # its section is named for what the file gave (it read "... and the start in water")
+    assert "<h3>Flexible hull</h3>" in page and "start in water" not in page
     # the assumptions say the hull is flexible, not "the body is rigid"
     assert "The hull is flexible ([hull] EI, GJ)" in page and "the body is rigid" not in page
     assert "left out of it" in page and "hull flexibility, which lowers skew loads, is ignored" not in page

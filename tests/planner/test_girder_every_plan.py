@@ -16,12 +16,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 from support.cli import run
-from support.planning import fleet_with_girder, larger_fleet
+from support.planning import fleet_with_girder, larger_fleet, solved_checks
 
-from liftplan.model import solve
-from liftplan.model.strength import strength_checks
 from liftplan.planner import plan
-from liftplan.planner.plans.girder import girder_worst, moved_body
+from liftplan.planner.plans.girder import girder_worst
 from liftplan.planner.problem.file import loads_problem
 
 
@@ -31,31 +29,13 @@ def fleet_plan():
     return plan(dataclasses.replace(problem, hook_tolerance=0.0))
 
 
-def _solved_checks(result, worst):
-    """solve's girder checks of the plan's scene at a GirderWorst's state: the CG moved and
-    each hook moved by the plan's hook shift that brings the body to that attitude (the held
-    preload: the crews hold the level tensions' pattern as the body heels and trims)."""
-    scene, s = result.scene, worst.scenario
-    shift = result.lugset.hook_shifts(result.chosen.preload, [s])[0]
-    scene = dataclasses.replace(
-        scene,
-        body=moved_body(scene.body, s.cog_offset),
-        cranes=tuple(
-            dataclasses.replace(c, boom_height=c.boom_height + float(d)) for c, d in zip(scene.cranes, shift)
-        ),
-    )
-    eq = solve(scene)
-    assert eq.pose.heel == pytest.approx(s.heel, abs=1e-9) and eq.pose.trim == pytest.approx(s.trim, abs=1e-9)
-    return {c.name: c for c in strength_checks(scene, eq)}
-
-
 def test_fleet_plan_checks_the_girder_as_solve_does(fleet_plan):
     names = [c.name for c in fleet_plan.checks]
     assert "bending_moment" in names and "shear_force" in names
     assert len(fleet_plan.girder) == 2
     weight = fleet_plan.problem.body.weight
     for worst in fleet_plan.girder:
-        solved = _solved_checks(fleet_plan, worst)[worst.name]
+        solved = solved_checks(fleet_plan, worst)[worst.name]
         s = worst.scenario
         if worst.name == "shear_force":  # same loads, one exact integration each: equal to rounding
             assert solved.value == pytest.approx(worst.value, rel=1e-9)
@@ -81,7 +61,7 @@ def test_at_level_nominal_cg_the_moment_equals_solve(fleet_plan):
     lugset = result.lugset
     tensions = lugset.tensions(result.chosen.preload, [scenario])
     mine = girder_worst(result.problem, lugset.points, [scenario], tensions)[0]
-    solved = _solved_checks(result, mine)["bending_moment"]
+    solved = solved_checks(result, mine)["bending_moment"]
     assert solved.value == pytest.approx(mine.value, rel=1e-9)
 
 
@@ -92,7 +72,7 @@ def test_the_worst_is_the_largest_over_the_states(fleet_plan):
     builder_states = fleet_plan._design_builder.dense
     for k in rng.choice(len(builder_states), 12, replace=False):
         probe = dataclasses.replace(worst, scenario=builder_states[k])
-        assert _solved_checks(fleet_plan, probe)["bending_moment"].value <= worst.value * (1 + 1e-9)
+        assert solved_checks(fleet_plan, probe)["bending_moment"].value <= worst.value * (1 + 1e-9)
 
 
 def test_girder_failure_is_a_failed_check_and_the_ranking_puts_it_last(tmp_path):

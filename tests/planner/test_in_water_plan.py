@@ -114,7 +114,11 @@ def test_plan_is_the_brute_force_optimum_with_the_start_in_water(planned, brute)
     assert not next(case for r, case in brute if r.lugs == in_air.lugs).holds  # slack in water
     assert value > planned.chosen.worst_value  # ranked on the value in water, larger than the box's
     order = sorted(held)[: len(planned.ranking)]
-    assert [r.lugs for r in planned.ranking] == [lugs for _, lugs in order]
+    assert [r.lugs for r in planned.ranking][: len(order)] == [lugs for _, lugs in order]
+    # the plan's worst spread, bound and gap are on the governing value (in water), not in air
+    assert planned.worst_spread == pytest.approx(value, rel=1e-9)
+    assert planned.stats.best == planned.stats.lower_bound == planned.worst_spread
+    assert planned.stats.gap == 0.0
 
 
 def test_written_scene_reproduces_the_plan_clear_of_and_in_the_water(planned, tmp_path):
@@ -167,6 +171,29 @@ def test_stiffness_and_geometry_share_one_hull_table():
     assert written.index("box = ") < written.index("[attitude]") < written.index("[water]")
 
 
+def test_min_tension_holds_in_water_as_in_air(planned, brute):
+    """The plan's min_tension (10 t) is a limit at the start in water too (it was 0 there: the
+    plan A1 B2 D1 D2 held 2.38 t in water and passed). A set below it there ranks after those
+    that reach it, the check's limit is min_tension, and the hook accuracy asked of the crew
+    keeps every rope at min_tension in water."""
+    least = {r.lugs: float(case.least.min()) for r, case in brute}
+    assert 0.0 < least[("A1", "B2", "D1", "D2")] < 10.0
+    assert not next(case for r, case in brute if r.lugs == ("A1", "B2", "D1", "D2")).holds
+    assert all((value >= 10.0) == case.holds for (r, case), value in zip(brute, least.values()))
+    check = planned.design_loads.in_water.checks[0]
+    assert check.limit == 10.0 and check.ok and check.value == pytest.approx(least[planned.chosen.lugs])
+    water = planned.design_loads.in_water
+    e = planned.hook_accuracy_needed
+    assert (water.tensions - np.abs(water.gain).sum(axis=2) * e).min() >= 10.0 - 1e-9
+    assert (water.tensions - np.abs(water.gain).sum(axis=2) * 1.01 * e).min() < 10.0 or e == 0.0
+
+
+def test_min_tension_zero_keeps_only_the_slack_rule():
+    planned = plan(loads_problem(barge().replace("min_tension = 10.0", "min_tension = 0.0")))
+    assert planned.chosen.lugs == ("A1", "B2", "D1", "D2")  # 2.38 t in water: taut, so it holds
+    assert planned.design_loads.in_water.checks[0].limit == 0.0
+
+
 def test_design_loads_take_the_larger(planned):
     for crane, worst in zip(planned.capacity, planned.design_loads.in_water.worst):
         assert crane.in_water == pytest.approx(worst, rel=1e-12)
@@ -192,6 +219,7 @@ def test_outputs_name_the_state_in_water(planned):
     json.dumps(out, allow_nan=False)
     assert "start in water (lift height -0.6 m): W + trapped - B = 157.20 t" in summary(planned)
     assert "start in water" in render_html(planned)
+    assert "<h3>The start in water</h3>" in render_html(planned)
 
 
 @pytest.mark.parametrize(

@@ -189,12 +189,14 @@ def test_mirror_symmetry_is_found_only_where_it_holds():
 
 
 def test_hook_tolerance_fits_the_same_formulation(monkeypatch):
-    """Hook-height errors as cuts (the chosen set's worst errors at its worst scenario): the
-    MIP's plan equals the exact search's with the same tolerance, for equal cranes and for
-    four unequal cranes with charts (set, crane on each lug), and the MIP proves it (its
-    first plan's own bound is set aside, so the proof is the MIP's)."""
+    """Hook-height errors as cuts (the chosen set's worst errors at its worst scenario; the
+    box rows set aside by taking the candidates as off one plane): the MIP's plan equals the
+    exact search's with the same tolerance, for equal cranes and for four unequal cranes with
+    charts (set, crane on each lug), and the MIP proves it (its first plan's own bound is set
+    aside, so the proof is the MIP's)."""
     import liftplan.planner.search.mip as lug_mip
 
+    monkeypatch.setattr(lug_mip, "on_one_plane", lambda problem: False)
     first = lug_mip._incumbent
 
     def unproved(problem, started):
@@ -215,10 +217,12 @@ def test_hook_tolerance_fits_the_same_formulation(monkeypatch):
 
 
 def test_rounds_run_out_with_an_honest_gap(monkeypatch):
-    """With one cutting-plane round where the proof needs more, the MIP says its rounds ran
-    out (not a time limit it was never given) and its bound is still below the optimum."""
+    """With one cutting-plane round where the proof needs more (the hook errors as cuts), the
+    MIP says its rounds ran out (not a time limit it was never given) and its bound is still
+    below the optimum."""
     import liftplan.planner.search.mip as lug_mip
 
+    monkeypatch.setattr(lug_mip, "on_one_plane", lambda problem: False)
     first = lug_mip._incumbent
 
     def unproved(problem, started):

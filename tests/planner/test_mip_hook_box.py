@@ -1,5 +1,6 @@
 """The MIP's hook-error rows over the whole hook box (planner/search/mip_hooks.py): exact at
-every set, and the MIP's plan with a hook tolerance is the brute force's."""
+every set, no set-wise row drops or over-bounds a set that beats the cutoff (brute force), and
+the MIP's plan with a hook tolerance is the brute force's."""
 
 import dataclasses
 import itertools
@@ -14,6 +15,7 @@ import liftplan.planner.search.mip as lug_mip
 from liftplan.planner.search.evaluator import SetEvaluator, SetInfeasible
 from liftplan.planner.search.methods import search
 from liftplan.planner.search.mip_hooks import Columns, lug_coefficients, on_one_plane, residuals, widening
+from liftplan.planner.search.scenarios import first_scenarios
 
 
 def _fit_widening(plan, kappa, delta, chosen, c):
@@ -91,7 +93,7 @@ def _brute_force(problem):
             values[indices] = evaluator.evaluate(indices).worst_value
         except SetInfeasible:
             continue
-    return values
+    return evaluator, values
 
 
 def _unproved(monkeypatch):
@@ -116,7 +118,7 @@ def test_mip_with_hook_tolerance_is_the_brute_forces(monkeypatch, problem):
     """Seven candidates, every set evaluated exactly with its hook errors: the MIP (box rows)
     proves the least worst value, and its set is that set."""
     _unproved(monkeypatch)
-    values = _brute_force(problem)
+    _, values = _brute_force(problem)
     best = min(values, key=values.get)
     ranking, stats = search(dataclasses.replace(problem, search="mip"), 1)
     assert stats.stopped == "proved"
@@ -137,3 +139,54 @@ def test_fleet_mip_with_hook_tolerance_is_the_brute_forces(monkeypatch):
     assert stats.stopped == "proved"
     assert (ranking[0].indices, ranking[0].cranes) == (exact[0].indices, exact[0].cranes)
     assert ranking[0].worst_value == pytest.approx(exact[0].worst_value, rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    "problem",
+    [
+        pytest.param(small_problem(4, hook_tolerance=0.02), id="4 spread"),
+        pytest.param(small_problem(5, hook_tolerance=0.03), id="5 spread", marks=pytest.mark.slow),
+        pytest.param(
+            small_problem(4, hook_tolerance=0.02, objective="reserve"), id="4 reserve", marks=pytest.mark.slow
+        ),
+        pytest.param(small_problem(3, hook_tolerance=0.02), id="3 spread", marks=pytest.mark.slow),
+        pytest.param(
+            small_problem(4, hook_tolerance=0.02, objective="utilisation"),
+            id="4 utilisation",
+            marks=pytest.mark.slow,
+        ),
+    ],
+)
+def test_no_set_row_cuts_off_a_better_set(problem):
+    """Brute force over every set of seven candidates with its hook errors: at a cutoff just
+    above the optimum, and at one above every set's worst, every set that beats the cutoff is
+    kept by the set-wise rows and its bound is at most its worst value (the bound is of the
+    whole box, the dense check a part of it)."""
+    evaluator, values = _brute_force(problem)
+    best = min(values.values())
+    for cutoff in (best * (1 + 1e-6), 2.0 * max(values.values())):
+        mip = lug_mip.LugMip(problem, cutoff, dense=evaluator.dense)
+        sets, bound = mip.set_bounds(first_scenarios(problem))
+        kept = {tuple(int(i) for i in s): float(v) for s, v in zip(sets, bound)}
+        better = [s for s, v in values.items() if v < cutoff]
+        assert better
+        for indices in better:
+            assert indices in kept
+            assert kept[indices] <= values[indices] * (1 + 1e-9)
+    assert len(better) == len(values)
+
+
+def test_reserve_plan_is_the_brute_forces(monkeypatch):
+    """The ``reserve`` objective (each rope's own largest T / SWL with its hook errors, the
+    set-wise rows' peak form), its first plan's bound set aside: the MIP proves the brute
+    force's least worst value, and its set has that value (the spread's cases:
+    :func:`test_mip_with_hook_tolerance_is_the_brute_forces`)."""
+    problem = small_problem(4, hook_tolerance=0.02, objective="reserve")
+    _unproved(monkeypatch)
+    _, values = _brute_force(problem)
+    best = min(values.values())
+    ranking, stats = search(dataclasses.replace(problem, search="mip"), 1)
+    assert stats.stopped == "proved"
+    assert ranking[0].worst_value == pytest.approx(best, rel=1e-6)
+    assert values[ranking[0].indices] == pytest.approx(best, rel=1e-6)
+    assert best * (1 - 1e-6) <= stats.lower_bound <= best * (1 + 1e-9)

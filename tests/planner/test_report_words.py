@@ -10,7 +10,7 @@ from helpers import EXAMPLES
 from liftplan.model.checks import TITLES, Check
 from liftplan.planner import load_problem, plan
 from liftplan.planner.output.report.held import render_html
-from liftplan.planner.output.report.page import cell_text, table
+from liftplan.planner.output.report.page import cell_text, count_text, range_text, table
 
 
 def test_a_rounded_negative_zero_reads_as_zero():
@@ -42,3 +42,17 @@ def test_a_sling_report_names_its_factors_in_words():
     text = re.sub(r"<[^>]+>", "|", sling_html(plan(load_problem(EXAMPLES / "block_sling_plan.toml"))))
     assert "weight contingency [-]" in text and "DAF [-]" in text
     assert "weight_contingency" not in text and "design_hook_load" not in text
+
+
+def test_a_range_without_limits_reads_in_words():
+    # was "boom height range -inf to inf" on the barge reports
+    inf = float("inf")
+    assert range_text(30.0, 60.0) == "30 to 60"
+    assert range_text(30.0, inf) == "at least 30" and range_text(-inf, 60.0) == "at most 60"
+    assert range_text(-inf, inf) == "not limited"
+
+
+def test_a_huge_count_reads_as_a_power_of_ten():
+    # was "768759815833950334240 lug sets" (hull154)
+    assert count_text(1820) == "1820" and count_text(999_999_999) == "999999999"
+    assert count_text(768759815833950334240) == "7.69 x 10^20"

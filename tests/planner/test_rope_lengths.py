@@ -119,3 +119,30 @@ def test_bad_ranges_are_one_line_errors(bad):
         loads_problem(BASE.replace("rope_length = 30.0 ", bad))
     text = str(err.value)
     assert "\n" not in text and "rope_length" in text
+
+
+def test_the_search_counts_add_up_and_the_report_says_the_length_was_chosen(chosen):
+    """Review findings 10 and 12: the counts are the chosen length's (one search's sets, each
+    counted once), the sum over every length is named as such; the report lists the range and
+    every length tried with its value, and says the bound holds over the lengths tried."""
+    import re
+
+    from liftplan.planner.output.console.held import plan_table
+    from liftplan.planner.output.report.held import render_html
+
+    stats, search = chosen.stats, chosen.lengths
+    assert stats.screened_out + stats.evaluated + stats.pruned == stats.rows
+    assert search.evaluated == sum(t.evaluated or 0 for t in search.trials) > stats.evaluated
+    console = " ".join(plan_table(chosen).split())
+    assert f"{stats.screened_out} ruled out by screening, {stats.evaluated} evaluated" in console
+    assert f"{len(search.trials)} lengths tried" in console
+    assert f"{search.evaluated} sets evaluated over them" in console
+    report = re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", render_html(chosen)))
+    assert "Rope lengths chosen by the planner" in report and "25 to 55" in report
+    for t in search.trials:
+        value = "-" if t.value is None else f"{t.value:.2f}"
+        assert f"{t.lengths[0]:.3f} {value}" in report
+    assert "does better at any rope length tried" in report
+    assert "proved (over the rope lengths tried)" in report
+    assert f"sets evaluated over every length tried {search.evaluated}" in report
+    assert f"evaluated (linear programme + dense search of the box) {stats.evaluated}" in report

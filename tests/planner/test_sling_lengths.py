@@ -74,11 +74,13 @@ def _brute_force(problem, length_l0):
         boom = problem.lift_height + np.array([h[2] for h in hooks]) + length_l0 + nominal / stiffness
         if max(rolls) > 2.0 + 1e-9 or np.any(boom > 25.0 + 1e-9) or np.any(boom < -1e-9):
             continue
+        # the 2 deg tolerance and the hook errors' atan(2 x 0.02 m / span) along the hook line
+        tilt = 2.0 + math.degrees(math.atan(2 * 0.02 / np.hypot(*(hooks[1] - hooks[0])[:2])))
         loads = np.array(
             [
                 lever_shares(points, pair1, pair2, length, weight, cog + off, math.radians(t))[0]
                 for off in offsets
-                for t in (-2.0, 0.0, 2.0)
+                for t in (-tilt, 0.0, tilt)
             ]
         )
         if loads.min() <= 0.0 or np.any(loads > in_box) or np.any(nominal > level):

@@ -180,7 +180,7 @@ def test_plan_json_names_each_crane_and_its_scene_solves_to_the_plan():
     [
         (
             {"fleet": fleet(sling=SlingSpec(length=20.0, legs=2, EA=20000.0))},
-            "planned for cranes on single ropes",
+            "with cranes on slings is planned for hoists",
         ),
         ({"fleet": fleet(hook_tolerance=0.02)}, 'hook_tolerance = 0.02 m with control = "force"'),
         (

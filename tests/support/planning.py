@@ -7,10 +7,14 @@ import itertools
 from pathlib import Path
 
 import numpy as np
+import pytest
 from scipy.optimize import linprog
 
+from liftplan.model import solve
 from liftplan.model.frames import choi_to_zup
 from liftplan.model.scene.objects import Body
+from liftplan.model.strength import strength_checks
+from liftplan.planner.plans.girder import moved_body
 from liftplan.planner.problem.definition import Candidate, CogEnvelope, CraneSpec, PlanProblem
 from liftplan.planner.search.scenarios import LugSet, Scenario, box_attitudes
 
@@ -154,3 +158,21 @@ def larger_fleet(count, text=None):
     blocks = EXTRA_CRANES.split("\n[[cranes]]")[1:]
     added = "".join("\n[[cranes]]" + b for b in blocks[: count - 4])
     return text.replace("\n[attitude]", added + "\n[attitude]", 1)
+
+
+def solved_checks(result, worst):
+    """solve's girder checks of the plan's scene at a GirderWorst's state: the CG moved and
+    each hook moved by the plan's hook shift that brings the body to that attitude (the held
+    preload: the crews hold the level tensions' pattern as the body heels and trims)."""
+    scene, s = result.scene, worst.scenario
+    shift = result.lugset.hook_shifts(result.chosen.preload, [s])[0]
+    scene = dataclasses.replace(
+        scene,
+        body=moved_body(scene.body, s.cog_offset),
+        cranes=tuple(
+            dataclasses.replace(c, boom_height=c.boom_height + float(d)) for c, d in zip(scene.cranes, shift)
+        ),
+    )
+    eq = solve(scene)
+    assert eq.pose.heel == pytest.approx(s.heel, abs=1e-9) and eq.pose.trim == pytest.approx(s.trim, abs=1e-9)
+    return {c.name: c for c in strength_checks(scene, eq)}

@@ -11,10 +11,18 @@ import numpy as np
 
 from liftplan.model.frames import FRAME_TEXT
 from liftplan.planner.output.console.hull_water import hull_water_lines
+from liftplan.planner.output.console.limits import length_lines, limit_lines
 from liftplan.planner.output.console.text import GROUP, WIDTH, fold, grouped
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
 from liftplan.planner.plans.vessel_loads import vessel_lines, wind_lines
 from liftplan.planner.search.scenarios import Scenario
+
+
+def coordinates_line(plan):
+    """The console's line naming the frame of every coordinate it prints (the file's)."""
+    return (
+        f"coordinates: the file's frame, {FRAME_TEXT[plan.frame]}; heel > 0 starboard down, trim > 0 bow down"
+    )
 
 
 def plan_table(plan):
@@ -41,13 +49,13 @@ def plan_table(plan):
     design = plan.design_loads
     lines = [
         problem.name or "lift plan",
-        f"coordinates: the file's frame, {FRAME_TEXT[plan.frame]}; "
-        "heel > 0 starboard down, trim > 0 bow down",
+        coordinates_line(plan),
         f"{stats.sets} lug sets of {problem.cranes} among {len(problem.candidates)} candidates"
         f"{fleet}: {stats.screened_out} ruled out by screening, {stats.evaluated} evaluated, "
         f"{stats.pruned} pruned by the bound ({stats.seconds:.2f} s)"
         if stats.summary is None
         else stats.summary,
+        *limit_lines(stats, problem, plan.lengths),
         problem.weight_text,
         f"tolerance box: heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g}"
         f" deg; tensions {problem.min_tension:g} t to {swl_text}",
@@ -73,11 +81,7 @@ def plan_table(plan):
         "the rules' tilt; design: the rules' design hook load; util. = design / chart SWL)"
     )
     if plan.lengths is not None:  # the planner chose the rope lengths
-        for names, (lo, hi), length in zip(plan.lengths.classes, plan.lengths.ranges, plan.lengths.chosen):
-            lines.append(
-                f"rope length {length:.3f} m chosen within {lo:g} to {hi:g} m for "
-                f"{', '.join(names)} ({len(plan.lengths.trials)} lengths tried)"
-            )
+        lines += length_lines(plan.lengths)
     lines += _chain_lines(plan, design)
     lines += _breakout_lines(plan, design)
     lines += hull_water_lines(plan)
@@ -357,6 +361,9 @@ def girder_lines(plan, worst, over):
             f"  {what} {w.value:>9.1f} {unit:<3} at x = {w.x:.1f} m, allowable {w.allowable:.1f} {unit} "
             f"({100 * w.ratio:.0f} %) {'ok' if w.ratio <= 1.0 else 'FAIL'}, at {_where(plan, w.scenario)}"
         )
+    local = getattr(getattr(plan, "stats", None), "method", None) == "local"
+    if local and any(w.ratio > 1.0 for w in worst):  # docs/planning.md, the girder in the local search
+        lines.append('  the local search reached no set that keeps it (search = "exact" shows if one does)')
     return lines
 
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from liftplan.planner.output.console.held import girder_lines
+from liftplan.planner.output.console.held import coordinates_line, girder_lines
+from liftplan.planner.output.console.limits import length_lines, limit_lines
 from liftplan.planner.output.console.text import fold, grouped
 from liftplan.planner.plans.slings.two_crane import SHARED
 
@@ -34,9 +35,11 @@ def _search_lines(plan):
             f"among {len(problem.candidates)} candidates; {stats.rows} (set, crane "
             f"assignment) rows, {stats.evaluated} evaluated, search {stats.stopped}, lower bound "
             f"{stats.lower_bound:.4g}; ruled out: {causes}",
+            *limit_lines(stats, problem, plan.lengths),
             f"tolerance box heel +-{problem.heel_tolerance:g} deg, trim +-{problem.trim_tolerance:g} "
             f"deg, CG envelope; hooks held at the level preload; objective: "
             + OBJECTIVES.get(plan.objective, plan.objective),
+            plan.hook_tilt_text,
         ]
     shared = plan.ruled_out.get(SHARED, 0)
     rigs = ", ".join(f"{n} {text}" for text, n in plan.ruled_out.items() if text in plan.rig_causes)
@@ -45,9 +48,10 @@ def _search_lines(plan):
     return [
         f"two cranes on slings: rigs of one crane ruled out: {rigs or 'none'}; the others paired "
         f"(both assignments), {shared} pairs sharing a lug dropped, {plan.options} considered: "
-        f"ruled out {pairs or 'none'}; {plan.options - sum(out.values())} feasible",
-        "tilt along the hook line within the tolerance, CG envelope; objective: "
-        + OBJECTIVES.get(plan.objective, plan.objective),
+        f"ruled out {pairs or 'none'}; {plan.options - sum(out.values())} feasible; {plan.time_text}",
+        f"tilt along the hook line within +-{plan.tolerances[0]:g} deg and the hook errors' tilt, "
+        "CG envelope; objective: " + OBJECTIVES.get(plan.objective, plan.objective),
+        plan.hook_tilt_text,
     ]
 
 
@@ -63,6 +67,7 @@ def sling_table(plan):
     design = plan.design_hook_loads
     lines = [
         problem.name or "lift plan",
+        coordinates_line(plan),
         problem.weight_text,
         *_search_lines(plan),
         "",
@@ -123,7 +128,7 @@ def sling_table(plan):
     ]
     if hasattr(plan, "chosen"):
         chosen = plan.chosen
-        dx, dy, dz = chosen.worst_cog_offset
+        dx, dy, dz = plan.in_file_frame(chosen.worst_cog_offset)  # the file's frame
         lines += [
             f"roll about the hook line (CG under it): up to {chosen.roll:.2f} deg over the CG envelope",
             f"worst at a tilt of {chosen.worst_tilt:+.2f} deg along the hook line with CG offset "
@@ -143,14 +148,9 @@ def sling_table(plan):
 
 def _length_lines(plan):
     """The hoist rope lengths the planner chose (cranes with a ``rope_length`` range)."""
-    search = plan.lengths
-    if search is None:
+    if plan.lengths is None:
         return []
-    return [
-        f"hoist rope length {length:.3f} m (tip to hook) chosen within {lo:g} to {hi:g} m for "
-        f"{', '.join(names)} ({len(search.trials)} lengths tried)"
-        for names, (lo, hi), length in zip(search.classes, search.ranges, search.chosen)
-    ]
+    return length_lines(plan.lengths, "hoist rope length", " (tip to hook)")
 
 
 def _breakout_lines(plan):

@@ -4,6 +4,8 @@ spread-optimal one."""
 
 from __future__ import annotations
 
+from liftplan.planner.output.console.limits import limit_lines
+from liftplan.planner.output.console.slings import sling_table
 from liftplan.planner.plans.strength import objective_weights
 
 WHAT = {
@@ -23,65 +25,17 @@ def _state(plan, s, peak):
 
 
 def strength_table(plan):
-    """The plan as text: both plans' peaks and spreads, then the chosen plan's lugs."""
+    """The plan as text: both plans' peaks and spreads, then the chosen plan's lugs (with
+    slings: the sling plan's table, then the strength search's)."""
+    if hasattr(plan, "search"):  # cranes on slings: planner/plans/strength_slings.py
+        return sling_strength_table(plan)
     p, c, o = plan.problem, plan.chosen, plan.spread_plan
-    weights = objective_weights(p)
     lines = [
         f"{p.name or 'plan'}: {p.cranes} lifting points of {len(p.candidates)} candidates, "
         f"{plan.control} control",
         p.weight_text,
-        f"objective: {p.objective} ({WHAT[p.objective]}"
-        + (f"; w_M = {weights[0]:g}, w_Q = {weights[1]:g})" if p.objective == "strength" else ")"),
-        "",
-        f"{'':28s}{'strength-optimal':>20s}{'spread-optimal':>20s}",
+        *_comparison(plan, plan),
     ]
-
-    def values(s):  # a plan Ctrl-C stopped may have no spread-optimal partner
-        if s is None:
-            return (None,) * 8
-        return (
-            s.bending.value,
-            s.bending.ratio,
-            s.shear.value,
-            s.shear.ratio,
-            s.spread,
-            s.worst_spread,
-            s.tension_range[0],
-            s.tension_range[1],
-        )
-
-    names = (
-        ("peak |M| [t m]", ".0f"),
-        ("peak |M| / allowable", ".3f"),
-        ("peak |Q| [t]", ".0f"),
-        ("peak |Q| / allowable", ".3f"),
-        ("level spread [t]", ".1f"),
-        ("worst spread [t]", ".1f"),
-        ("lowest tension [t]", ".1f"),
-        ("highest tension [t]", ".1f"),
-    )
-    for (name, fmt), a, b in zip(names, values(c), values(o)):
-        other = "-" if b is None else format(b, fmt)
-        lines.append(f"{name:28s}{a:>20{fmt}}{other:>20s}")
-    lines.append("")
-    lines.append(f"peak |M| at x = {c.bending.x:.2f} m, {_state(plan, c, c.bending)}")
-    lines.append(f"peak |Q| at x = {c.shear.x:.2f} m, {_state(plan, c, c.shear)}")
-    s = plan.stats
-    lines.append(
-        f"search: {s.method}; {s.rounds} MIP solve(s), {s.evaluated} set(s) evaluated, "
-        f"{s.seconds:.1f} s; lower bound {s.lower_bound:.6g}, gap {s.gap:.3g} "
-        f"({100 * s.relative_gap:.4f} %), {s.stopped}"
-        + ("" if s.certified else " (not certified: candidates at different heights)")
-    )
-    t = plan.spread_stats
-    if t is None:
-        lines.append("spread-optimal plan: none (Ctrl-C came before its search found one)")
-    else:
-        lines.append(
-            f"spread-optimal plan: {t.seconds:.1f} s, lower bound {t.lower_bound:.4g} t, gap "
-            f"{t.gap:.3g} t, {t.stopped}"
-        )
-    lines.append("")
     heights = plan.boom_heights
     fleet = not p.equal_cranes  # which crane takes each lug
     design = plan.design_loads  # the rules' design hook load per crane over its chart SWL
@@ -96,3 +50,84 @@ def strength_table(plan):
         lines.append(row + (f"  {c.crane_names[k]}" if fleet else ""))
     lines.append(f"spread-optimal lugs: {'-' if o is None else ' '.join(o.names)}")
     return "\n".join(lines)
+
+
+def sling_strength_table(plan):
+    """A strength plan on slings: the sling plan's table (cranes, hooks, legs, the rules' chain,
+    the girder on the rigging model), then the strength search's peaks beside the
+    spread-optimal hooks'."""
+    search = plan.search
+    lines = [
+        sling_table(plan),
+        "",
+        f"strength search on the sling hooks ({len(plan.rigs)} hooks, each hook's girder loads its "
+        "legs' at their lugs, the legs' axial pull as its moment about the CG height):",
+        *_comparison(plan, search, tension="hook load"),
+        f"strength-optimal hooks: {' '.join(search.chosen.names)}",
+        f"spread-optimal hooks: {'-' if search.spread_plan is None else ' '.join(search.spread_plan.names)}",
+    ]
+    return "\n".join(lines)
+
+
+def _comparison(plan, search, tension="tension"):
+    """The objective, both plans' peaks and spreads, where the peaks are, how the search went."""
+    p, c, o = search.problem, search.chosen, search.spread_plan
+    weights = objective_weights(p)
+    lines = [
+        f"objective: {p.objective} ({WHAT[p.objective]}"
+        + (f"; w_M = {weights[0]:g}, w_Q = {weights[1]:g})" if p.objective == "strength" else ")"),
+        "",
+        f"{'':28s}{'strength-optimal':>20s}{'spread-optimal':>20s}",
+    ]
+
+    def values(s):  # a plan Ctrl-C stopped may have no spread-optimal partner
+        if s is None:
+            return (None,) * 8
+        return (
+            s.bending.ratio,
+            s.bending.value,
+            s.shear.ratio,
+            s.shear.value,
+            s.spread,
+            s.worst_spread,
+            s.tension_range[0],
+            s.tension_range[1],
+        )
+
+    names = (
+        ("peak |M| / allowable", ".3f"),
+        ("|M| there [t m]", ".0f"),
+        ("peak |Q| / allowable", ".3f"),
+        ("|Q| there [t]", ".0f"),
+        ("level spread [t]", ".1f"),
+        ("worst spread [t]", ".1f"),
+        (f"lowest {tension} [t]", ".1f"),
+        (f"highest {tension} [t]", ".1f"),
+    )
+    for (name, fmt), a, b in zip(names, values(c), values(o)):
+        other = "-" if b is None else format(b, fmt)
+        lines.append(f"{name:28s}{a:>20{fmt}}{other:>20s}")
+    lines.append("")
+    lines.append(f"peak |M| / allowable at x = {c.bending.x:.2f} m, {_state(plan, c, c.bending)}")
+    lines.append(f"peak |Q| / allowable at x = {c.shear.x:.2f} m, {_state(plan, c, c.shear)}")
+    lines.append(
+        "(|M|, |Q| there: at the section where the ratio peaks, not necessarily where |M| or |Q| is largest)"
+    )
+    s = search.stats
+    lines.append(
+        f"search: {s.method}; {s.rounds} MIP solve(s), {s.evaluated} set(s) evaluated, "
+        f"{s.seconds:.1f} s; lower bound {s.lower_bound:.6g}, gap {s.gap:.3g} "
+        f"({100 * s.relative_gap:.4f} %), {s.stopped}"
+        + ("" if s.certified else " (not certified: candidates at different heights)")
+    )
+    lines += limit_lines(s, p)
+    t = search.spread_stats
+    if t is None:
+        lines.append("spread-optimal plan: none (Ctrl-C came before its search found one)")
+    else:
+        lines.append(
+            f"spread-optimal plan: {t.seconds:.1f} s, lower bound {t.lower_bound:.4g} t, gap "
+            f"{t.gap:.3g} t, {t.stopped}"
+        )
+    lines.append("")
+    return lines

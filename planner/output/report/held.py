@@ -17,9 +17,11 @@ from liftplan.model.frames import FRAME_TEXT, zup_to_choi
 from liftplan.model.scene.writer import scene_toml
 from liftplan.model.version import __version__
 from liftplan.planner.batch.montecarlo import hook_monte_carlo
+from liftplan.planner.output.console.limits import limit_lines
 from liftplan.planner.output.figures import plan as figures
 from liftplan.planner.output.report import page as report_page
 from liftplan.planner.output.report.hull_water import hull_water_section, with_water
+from liftplan.planner.output.report.lengths import lengths_section
 from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
 from liftplan.planner.plans.vessel_loads import wind_json
@@ -178,7 +180,10 @@ def _recommendation(plan):
         full=False,
         text_columns=(0,),
     )
-    return ["<h2>1 Recommendation</h2>", lugs, _governing(plan), summary]
+    stopped = [
+        f"<p><b>{html.escape(line)}</b></p>" for line in limit_lines(plan.stats, problem, plan.lengths)
+    ]
+    return ["<h2>1 Recommendation</h2>", *stopped, lugs, _governing(plan), summary]
 
 
 def _governing(plan):
@@ -675,13 +680,18 @@ def _appendix(plan):
         [
             ("worst value of the plan over the box (the objective)", fmt.format(stats.best), unit),
             (
-                "lower bound from the optimisation: no lug set and crane assignment does better",
+                "lower bound from the optimisation: no lug set and crane assignment does better"
+                + ("" if plan.lengths is None else " at any rope length tried"),
                 fmt.format(stats.lower_bound),
                 unit,
             ),
             ("gap between the two", fmt.format(stats.gap), unit),
             ("relative gap", f"{100 * stats.relative_gap:.2f}", "%"),
-            ("why the search ended", stats.stopped, "-"),
+            (
+                "why the search ended",
+                stats.stopped if plan.lengths is None else f"{stats.stopped} (over the rope lengths tried)",
+                "-",
+            ),
             ("how the lug sets were searched (plan.search)", stats.method, "-"),
             (
                 "least worst value for the recommended lugs (linear programme over the preloads)",
@@ -711,11 +721,27 @@ def _appendix(plan):
         "statically admissible set within min_tension and SWL (nominal CG)",
         ropes=(3, len(plan.labels)),
     )
+    lengths = plan.lengths
+    at = "" if lengths is None else " (at the chosen rope length)"
     search = _table(
         ["quantity", "value", "unit"],
         [
-            ("lug sets", stats.sets, "-"),
-            ("(set, crane assignment) pairs in reach", stats.rows, "-"),
+            *(
+                ()
+                if lengths is None
+                else (
+                    (
+                        "rope lengths tried (each an exact search; the counts below are the chosen length's)",
+                        len(lengths.trials),
+                        "-",
+                    ),
+                    ("sets evaluated over every length tried", lengths.evaluated, "-"),
+                    ("rope-length trials cut short by the time limit", len(lengths.cut_short), "-"),
+                    ("lengths not tried: the time limit had run out", lengths.not_tried, "-"),
+                )
+            ),
+            ("lug sets" + at, report_page.count_text(stats.sets), "-"),
+            ("(set, crane assignment) pairs in reach", report_page.count_text(stats.rows), "-"),
             ("pairs with a crane beyond its chart's reach", stats.out_of_reach, "-"),
             (
                 f"pairs with two booms crossing or within {plan.problem.crane_clearance:g} m in plan",
@@ -735,7 +761,11 @@ def _appendix(plan):
                 )
             ),
             *((f"infeasible: {text}", n, "sets") for text, n in stats.infeasible.items()),
-            ("search time", f"{stats.seconds:.2f}", "s"),
+            (
+                "search time" + ("" if lengths is None else " (every length tried)"),
+                f"{stats.seconds:.2f}",
+                "s",
+            ),
         ],
         "Search",
         full=False,
@@ -1072,11 +1102,16 @@ def _reproducing(plan):
     table = _table(
         ["quantity", "value", "unit"], rows, "Reproducing this plan", full=False, text_columns=(0, 1)
     )
+    # a work limit is refused with rope-length ranges (the outer search takes a time limit only)
+    work = (
+        " A work limit ([plan] work_limit) instead of the time limit gives the same plan on any machine."
+        if plan.lengths is None
+        else " Rope-length ranges take no work limit: no time limit gives the same plan on any machine."
+    )
     why = (
         "The search ended at its time limit (or was interrupted): the same file on a faster or "
         "slower machine, or under another load, may end at another point and give another plan "
-        "and gap. A work limit ([plan] work_limit) instead of the time limit gives the same plan "
-        "on any machine."
+        "and gap." + work
         if machine_bound
         else "The search ended on its own terms (the optimum proved, the gap met, the local "
         "search's end, or its work limit): the same planning file with this liftplan version "
@@ -1087,4 +1122,14 @@ def _reproducing(plan):
 
 #: The held plan's report, section by section (after the title block and the status line):
 #: each ``section(plan) -> list of HTML``. A new section is one function and one row here.
-SECTIONS = (_recommendation, _basis, _checks, _figures, _alternatives, _assumptions, _appendix, _reproducing)
+SECTIONS = (
+    _recommendation,
+    _basis,
+    lengths_section,
+    _checks,
+    _figures,
+    _alternatives,
+    _assumptions,
+    _appendix,
+    _reproducing,
+)

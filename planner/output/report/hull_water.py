@@ -15,7 +15,16 @@ def hull_water_section(plan):
     if not lines:
         return []
     body = "<br>".join(html.escape(line.strip()) for line in lines)
-    return ["<h3>Flexible hull and the start in water</h3>", f"<p>{body}</p>"]
+    return [f"<h3>{heading(plan.problem)}</h3>", f"<p>{body}</p>"]
+
+
+def heading(problem):
+    """The section's title: what the planning file gave (the flexible hull, the start in water
+    or both)."""
+    flexible, water = problem.hull_stiffness is not None, problem.in_water is not None
+    if flexible and water:
+        return "Flexible hull and the start in water"
+    return "Flexible hull" if flexible else "The start in water"
 
 
 def with_water(text, in_water):

@@ -12,6 +12,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+import math
 import re
 
 from liftplan.model.version import __version__
@@ -134,6 +135,27 @@ def cell_text(value):
     """A table cell's text: a rounded negative zero is shown as zero (a reader takes "-0.000"
     for a value below zero)."""
     return NEGATIVE_ZERO.sub(r"\1", str(value))
+
+
+def count_text(count):
+    """A count for a table: the integer up to 10^9, beyond it three digits and the power of ten
+    (``7.69 x 10^20``: a 21-digit integer reads as noise)."""
+    count = int(count)
+    if abs(count) < 10**9:
+        return str(count)
+    mantissa, exponent = f"{count:.2e}".split("e")
+    return f"{mantissa} x 10^{int(exponent)}"
+
+
+def range_text(low, high):
+    """A range for a table, e.g. a boom height range [m]: ``"30 to 60"``, ``"at least 30"``,
+    ``"at most 60"`` or ``"not limited"`` (not ``"-inf to inf"``)."""
+    low_given, high_given = math.isfinite(low), math.isfinite(high)
+    if low_given and high_given:
+        return f"{low:g} to {high:g}"
+    if low_given or high_given:
+        return f"at least {low:g}" if low_given else f"at most {high:g}"
+    return "not limited"
 
 
 def table(headers, rows, caption, *, full=True, keep=None, text_columns=(), ropes=None):

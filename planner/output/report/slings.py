@@ -16,7 +16,9 @@ from liftplan.model.scene.writer import scene_toml
 from liftplan.planner.output.console.slings import _ranking
 from liftplan.planner.output.figures.plan import _FONT, _SMALL, _cog_envelope, _style, plan_figure
 from liftplan.planner.output.report import page as report_page
+from liftplan.planner.output.report.lengths import lengths_section
 from liftplan.planner.output.report.view import view_section
+from liftplan.planner.plans.slings.lift import hook_tolerances
 from liftplan.planner.plans.slings.two_crane import SHARED
 
 
@@ -271,6 +273,12 @@ def render_html(plan, today=None):
             "m",
         ),
         ("lowest sling angle allowed", f"{problem.min_sling_angle:g}", "deg"),
+        (
+            "hook-height tolerance per crane",
+            ", ".join(f"{n} +-{d:g}" for n, d in zip(plan.crane_names, hook_tolerances(problem))),
+            "m",
+        ),
+        ("what the hook errors do", plan.hook_tilt_text, "-"),
     ]
     if hasattr(plan, "tolerances"):
         rows[3:3] = [
@@ -368,7 +376,7 @@ def render_html(plan, today=None):
             legs,
             spreaders,
             result,
-            *_lengths_section(plan),
+            *lengths_section(plan, "hoist"),
             *_breakout_section(plan),
             "<h2>2 Basis of the plan</h2>",
             inputs,
@@ -391,38 +399,6 @@ def render_html(plan, today=None):
     return report_page.document(
         name, body, report_page.running_header(info, name), report_page.running_footer(info)
     )
-
-
-def _lengths_section(plan):
-    """The hoist rope lengths the planner chose in each crane's range, and every length tried."""
-    search = plan.lengths
-    if search is None:
-        return []
-    chosen = _table(
-        ["cranes", "range [m]", "chosen hoist rope length, tip to hook [m]"],
-        [
-            (", ".join(names), f"{lo:g} to {hi:g}", f"{length:.3f}")
-            for names, (lo, hi), length in zip(search.classes, search.ranges, search.chosen)
-        ],
-        "Hoist rope lengths chosen by the planner",
-        full=False,
-        text_columns=(0,),
-    )
-    unit, scale = ("t", 1.0) if plan.objective == "spread" else ("%", 100.0)
-    trials = _table(
-        ["lengths [m]", f"worst [{unit}]", "lugs, or why no plan"],
-        [
-            (
-                ", ".join(f"{v:.3f}" for v in t.lengths),
-                "-" if t.value is None else f"{scale * t.value:.2f}",
-                " ".join(t.lugs) if t.value is not None else t.reason,
-            )
-            for t in search.trials
-        ],
-        "Every length tried (each an exact plan at those lengths), in the order tried",
-        text_columns=(2,),
-    )
-    return ["<h3>Hoist rope lengths</h3>", chosen, trials]
 
 
 def _breakout_section(plan):

@@ -20,7 +20,8 @@ from liftplan.model.scene.writer import scene_toml
 from liftplan.model.strength import hull_girder
 from liftplan.planner.output.figures.strength import strength_figure
 from liftplan.planner.output.report import page as report_page
-from liftplan.planner.output.report.page import FONT_PT, figure_size
+from liftplan.planner.output.report import slings as slings_report
+from liftplan.planner.output.report.page import FONT_PT, figure_size, range_text
 from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.strength import StrengthContext, objective_weights
 from liftplan.planner.search.scenarios import LugSet, Scenario
@@ -76,13 +77,16 @@ def _state_text(plan, s, peak):
 
 
 # -- the girder along the body ---------------------------------------------------------------
-def set_curves(plan, s):
+def set_curves(plan, s, girder_points=None):
     """M and Q of a lug set in every state it was checked in.
 
     Parameters
     ----------
     plan : StrengthPlan
     s : StrengthSet
+    girder_points : callable, optional
+        ``girder_points(indices, scenarios) -> PointLoads``: the lift points' loads on the
+        girder (slings: each hook's legs); default single ropes at the candidates.
 
     Returns
     -------
@@ -101,22 +105,39 @@ def set_curves(plan, s):
     else:
         ctx = StrengthContext(p)
         scenarios = [Scenario(st["heel"], st["trim"], tuple(st["cog_offset"])) for st in s.states]
-        tensions = LugSet(p, s.indices).tensions(s.preload, scenarios)
+        tensions = LugSet(p, s.indices, s.cranes).tensions(s.preload, scenarios)
         states = [State(tuple(ctx.up(sc.heel, sc.trim)), sc.cog_offset) for sc in scenarios]
+        if girder_points is not None:
+            points = girder_points(s.indices, scenarios)
     loads = GirderLoads(p.body)
-    return states, tensions, [exact_curves(loads, points, t, st) for t, st in zip(tensions, states)]
+    return (
+        states,
+        tensions,
+        [exact_curves(loads, points, t, st, k) for k, (t, st) in enumerate(zip(tensions, states))],
+    )
 
 
-def _level_curves(plan, s):
-
+def _level_curves(plan, s, girder_points=None):
     p = plan.problem
-    return exact_curves(GirderLoads(p.body), p.points[list(s.indices)], s.preload, State((0.0, 0.0, 1.0)))
+    level = State(tuple(StrengthContext(p).up(0.0, 0.0)))
+    points = p.points[list(s.indices)]
+    if girder_points is not None:
+        points = girder_points(s.indices, [Scenario(0.0, 0.0)])
+    return exact_curves(GirderLoads(p.body), points, s.preload, level)
 
 
-def girder_figure(plan):
+def _load_x(plan, s, girder_points=None):
+    """Where a set's loads act along the body  [m]: its lugs (slings: its legs' lugs)."""
+    if girder_points is None:
+        return plan.problem.points[list(s.indices), 0]
+    return girder_points(s.indices, [Scenario(0.0, 0.0)]).x
+
+
+def girder_figure(plan, girder_points=None):
     """Shear force and bending moment along the body of the strength-optimal plan (its range
     over every state, level with the nominal CG, its worst state) beside the spread-optimal
     plan, each panel with the allowable envelope shaded; drawn at the report's print width.
+    ``girder_points`` as :func:`set_curves` (slings: the hooks' legs).
 
     Returns
     -------
@@ -126,18 +147,23 @@ def girder_figure(plan):
 
     p = plan.problem
     x0, x1 = p.body.weight_curve[0][0], p.body.weight_curve[-1][0]
-    stations = np.union1d(np.linspace(x0, x1, SAMPLES), p.points[:, 0])
+    plans = tuple(
+        entry
+        for entry in (
+            ("strength-optimal (the plan)", plan.chosen, "tab:blue"),
+            ("spread-optimal", plan.spread_plan, "tab:orange"),
+        )
+        if entry[1] is not None  # a plan Ctrl-C stopped may have no spread-optimal partner
+    )
+    at = [_load_x(plan, s, girder_points) for _, s, _ in plans]
+    stations = np.union1d(np.linspace(x0, x1, SAMPLES), np.concatenate(at))
     xs = np.sort(np.concatenate([stations - 1e-9, stations + 1e-9]))  # jumps drawn vertical
     fig = Figure(figsize=figure_size(190.0), layout="constrained")
     shear_ax, moment_ax = fig.subplots(2, 1, sharex=True)
     envelopes = {0: p.strength.bending_moment, 1: p.strength.shear_force}
-    plans = (
-        ("strength-optimal (the plan)", plan.chosen, "tab:blue"),
-        ("spread-optimal", plan.spread_plan, "tab:orange"),
-    )
     for name, s, color in plans:
-        _, _, curves = set_curves(plan, s)
-        level = _level_curves(plan, s)
+        _, _, curves = set_curves(plan, s, girder_points)
+        level = _level_curves(plan, s, girder_points)
         for ax, which, scale in ((moment_ax, 0, 1e3), (shear_ax, 1, 1.0)):
             values = np.array([c[1 - which](xs) for c in curves])
             peak = s.bending if which == 0 else s.shear
@@ -198,8 +224,8 @@ def girder_figure(plan):
             frameon=False,
         )
     # lifting points of the plan along the bottom axis
-    for _, s, color in plans:
-        for x in p.points[list(s.indices), 0]:
+    for (_, _, color), xs_loads in zip(plans, at):
+        for x in xs_loads:
             moment_ax.axvline(x, color=color, lw=0.4, alpha=0.5, ymax=0.04 if color == "tab:blue" else 0.08)
     moment_ax.set_xlabel("body x [m] (forward); ticks at the bottom: lifting points", fontsize=FONT_PT)
     fig.suptitle(
@@ -332,12 +358,12 @@ def _comparison(plan):
         ratio = "" if not (b and np.isfinite(b)) else f"{a / b:.3f}"
         rows.append((name, format(a, fmt), format(b, fmt), ratio, unit))
 
-    row("peak |M|", c.bending.value, o.bending.value, ".0f", "t m")
+    row("peak |M| / allowable", c.bending.ratio, o.bending.ratio, ".3f", "-")
     rows.append(("... at x", f"{c.bending.x:.2f}", f"{o.bending.x:.2f}", "", "m"))
-    row("peak |M| / allowable there", c.bending.ratio, o.bending.ratio, ".3f", "-")
-    row("peak |Q|", c.shear.value, o.shear.value, ".0f", "t")
+    row("... |M| there", c.bending.value, o.bending.value, ".0f", "t m")
+    row("peak |Q| / allowable", c.shear.ratio, o.shear.ratio, ".3f", "-")
     rows.append(("... at x", f"{c.shear.x:.2f}", f"{o.shear.x:.2f}", "", "m"))
-    row("peak |Q| / allowable there", c.shear.ratio, o.shear.ratio, ".3f", "-")
+    row("... |Q| there", c.shear.value, o.shear.value, ".0f", "t")
     row("tension spread, level (max - min)", c.spread, o.spread, ".1f", "t")
     row("worst tension spread over the states", c.worst_spread, o.worst_spread, ".1f", "t")
     row("lowest tension over the states", c.tension_range[0], o.tension_range[0], ".1f", "t")
@@ -347,10 +373,11 @@ def _comparison(plan):
     row("objective value (the plan's objective)", c.value, value_o, ".4f", "-")
     rows.append(("lifting points", " ".join(c.names), " ".join(o.names), "", "-"))
     text = (
-        f"<p>The strength-optimal plan takes the peak |M| to {c.bending.value:.0f} t m against "
-        f"{o.bending.value:.0f} t m ({_percent(c.bending.value, o.bending.value)}) and the peak "
-        f"|Q| to {c.shear.value:.0f} t against {o.shear.value:.0f} t "
-        f"({_percent(c.shear.value, o.shear.value)}); it costs a worst tension spread of "
+        f"<p>The strength-optimal plan takes the peak of |M| / allowable to {c.bending.ratio:.3f} "
+        f"against {o.bending.ratio:.3f} ({_percent(c.bending.ratio, o.bending.ratio)}) and the "
+        f"peak of |Q| / allowable to {c.shear.ratio:.3f} against {o.shear.ratio:.3f} "
+        f"({_percent(c.shear.ratio, o.shear.ratio)}), each at the section where the ratio peaks (not "
+        f"necessarily where |M| or |Q| is largest); it costs a worst tension spread of "
         f"{c.worst_spread:.1f} t against {o.worst_spread:.1f} t and a highest tension of "
         f"{c.tension_range[1]:.1f} t against {o.tension_range[1]:.1f} t.</p>"
     )
@@ -428,14 +455,14 @@ def render_html(plan, today=None):
     summary = _table(
         ["quantity", "value", "unit"],
         [
-            ("peak |M| over the states, exactly along the body", f"{c.bending.value:.1f}", "t m"),
+            ("peak |M| / allowable over the states, exactly along the body", f"{c.bending.ratio:.3f}", "-"),
             ("... at x", f"{c.bending.x:.2f}", "m"),
-            ("... its ratio to the allowable there", f"{c.bending.ratio:.3f}", "-"),
+            ("... |M| there", f"{c.bending.value:.1f}", "t m"),
             ("... in the state heel, trim", heel_m, "deg"),
             ("... with the CG offset (x, y, z)", cog_m, "m"),
-            ("peak |Q| over the states", f"{c.shear.value:.1f}", "t"),
+            ("peak |Q| / allowable over the states", f"{c.shear.ratio:.3f}", "-"),
             ("... at x", f"{c.shear.x:.2f}", "m"),
-            ("... its ratio to the allowable there", f"{c.shear.ratio:.3f}", "-"),
+            ("... |Q| there", f"{c.shear.value:.1f}", "t"),
             ("... in the state heel, trim", heel_q, "deg"),
             ("... with the CG offset (x, y, z)", cog_q, "m"),
             (f"{unit} spread, level (max - min)", f"{c.spread:.2f}", "t"),
@@ -652,8 +679,75 @@ def _appendix(plan):
 
 def render(plan):
     """The report page and the scene file of a strength plan: (HTML, TOML) text; the page
-    shows the plan's scene (the one the file holds) solved."""
+    shows the plan's scene (the one the file holds) solved. On slings
+    (:class:`~liftplan.planner.plans.strength_slings.StrengthSlingPlan`): the sling plan's page
+    and rigging scene, with the strength search's section after the recommendation."""
+    if hasattr(plan, "search"):
+        page = slings_report.render_html(plan)
+        marker = "<h2>2 Basis of the plan</h2>"
+        assert page.count(marker) == 1  # the sling page's sections, as slings_report writes them
+        page = page.replace(marker, "\n".join(sling_strength_section(plan)) + "\n" + marker)
+        return page, slings_report.plan_scene_toml(plan)
     return render_html(plan), plan_scene_toml(plan)
+
+
+def sling_strength_section(plan):
+    """The strength search of a plan on slings, as HTML: what it chose among, the chosen hooks'
+    peaks beside the spread-optimal hooks', and the girder along the body (each hook's legs
+    loading their lugs)."""
+    search = plan.search
+    stats = search.stats
+    if search.spread_plan is None:  # Ctrl-C came before the partner's search found a set
+        c = search.chosen
+        comparison = (
+            f"<p>Peak |M| / allowable {c.bending.ratio:.3f} (|M| {c.bending.value:.0f} t m) at x = "
+            f"{c.bending.x:.2f} m, peak |Q| / allowable {c.shear.ratio:.3f} "
+            f"(|Q| {c.shear.value:.0f} t) at x = "
+            f"{c.shear.x:.2f} m (the planner's model); no spread-optimal hooks to compare (the "
+            "search was stopped before).</p>"
+        )
+        cost = ""
+    else:
+        rows, cost = _comparison(search)
+        comparison = _table(
+            ["quantity", "strength-optimal (the plan)", "spread-optimal", "ratio strength / spread", "unit"],
+            [(r[0].replace("tension", "hook load"), *r[1:]) for r in rows],
+            "The strength-optimal hooks beside the spread-optimal hooks (same limits, same states; "
+            "the planner's model: legs of their lengths, hooks where their pairs hang them)",
+            text_columns=(0,),
+        )
+    weights = objective_weights(search.problem)
+    what = {
+        "bending": "the worst |M| / allowable",
+        "shear": "the worst |Q| / allowable",
+        "strength": (
+            f"{weights[0]:g} x the worst |M| / allowable + {weights[1]:g} x the worst |Q| / allowable"
+        ),
+    }[plan.objective]
+    return [
+        "<h2>Hull girder: the strength search</h2>",
+        f"<p>The hooks were chosen for the hull girder: objective {html.escape(plan.objective)} "
+        f"({html.escape(what)}), over {len(plan.rigs)} sling hooks. Each hook's tension loads "
+        "the girder through its legs: at each state the sling's statics split it into leg forces "
+        "at the lugs, whose vertical parts load the beam and whose axial parts act as their "
+        "moment about the CG height (the axial force itself is not checked: the allowables are "
+        "for M and Q). The search is a MIP over the hooks with each set's exact LP "
+        f"({html.escape(stats.method)}): {stats.rounds} MIP solve(s), {stats.evaluated} set(s) "
+        f"evaluated, lower bound {stats.lower_bound:.6g}, gap {stats.gap:.3g}, "
+        f"{html.escape(stats.stopped)}. The plan's girder checks (bending_moment, shear_force in "
+        "section 3) are the rigging model's at the states the plan holds, as liftplan solve "
+        "gives them from plan_scene.toml.</p>",
+        comparison,
+        cost.replace("tension", "hook load"),
+        report_page.figure(
+            girder_figure(search, plan.girder_points),
+            "shear force and bending moment",
+            "Shear force (top) and bending moment (bottom) along the body, the planner's model: "
+            "solid, level with the nominal CG; band, the range over every state the plan was "
+            "checked in; dashed, the state of the peak; the allowable envelope shaded green. "
+            "Hook errors are not drawn (they are in the peaks' values).",
+        ),
+    ]
 
 
 def _crane_rows(problem):
@@ -664,7 +758,7 @@ def _crane_rows(problem):
         crane = fleet[0]
         return [
             ("rope EA, length l0", f"{crane.EA:.0f} t, {crane.rope_length:g} m", "-"),
-            ("boom height range", f"{crane.boom_min:g} to {crane.boom_max:g}", "m"),
+            ("boom height range", range_text(crane.boom_min, crane.boom_max), "m"),
         ]
     rows = []
     for crane in fleet:
@@ -676,8 +770,8 @@ def _crane_rows(problem):
         rows.append(
             (
                 f"crane {crane.name}",
-                f"EA {crane.EA:.0f} t, l0 {crane.rope_length:g} m, boom {crane.boom_min:g} to "
-                f"{crane.boom_max:g} m, {capacity}",
+                f"EA {crane.EA:.0f} t, l0 {crane.rope_length:g} m, boom "
+                f"{range_text(crane.boom_min, crane.boom_max)} m, {capacity}",
                 "-",
             )
         )

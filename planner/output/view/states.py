@@ -315,8 +315,21 @@ def _sling_states(plan):
     worst = max(solved, key=lambda h: max(h.eq.rigging.legs.values()))
     s = worst.state
     offset = ", ".join(f"{v:+.2f}" for v in plan.in_file_frame(s.cog_offset))
-    name = (
-        f"worst case (largest leg tension {max(worst.eq.rigging.legs.values()):.1f} t): heel "
-        f"{s.heel:+.2f} deg, trim {s.trim:+.2f} deg, CG offset ({offset}) m"
+    return (level, solved_state(worst.scene, worst.eq, sling_worst_caption(plan, worst.eq, s, offset)))
+
+
+def sling_worst_caption(plan, eq, state, offset):
+    """The caption of a sling plan's worst state on the rigging model: the largest leg tension in
+    that state, and the leg table's worst (over every state the plan holds, by the plan's own
+    statics, hook errors included) when it differs, so the two numbers are never read as one."""
+    here = max(eq.rigging.legs.values())
+    table = float(max(np.max(legs) for legs in plan.legs_worst))
+    of_table = (
+        "the leg table's worst"
+        if round(here, 2) == round(table, 2)
+        else f"leg table: {table:.2f} t, the plan's own statics over every state it holds"
     )
-    return (level, solved_state(worst.scene, worst.eq, name))
+    return (
+        f"worst state on the rigging model: largest leg tension {here:.2f} t in this state ({of_table}); "
+        f"heel {state.heel:+.2f} deg, trim {state.trim:+.2f} deg, CG offset ({offset}) m"
+    )

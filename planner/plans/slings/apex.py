@@ -40,6 +40,7 @@ model does not pose; those pairs are counted as ruled out (two cranes plan any p
 from __future__ import annotations
 
 import dataclasses
+import time
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -51,7 +52,7 @@ from liftplan.model.frames import rotation_matrix
 from liftplan.planner.plans.breakout import breakout_case
 from liftplan.planner.plans.held import Plan
 from liftplan.planner.plans.slings.geometry import hinge_rows, hinged_hooks, leg_split, parallel_spreader_legs
-from liftplan.planner.plans.slings.lift import SlingLift, rules_with_bars
+from liftplan.planner.plans.slings.lift import SlingLift, hook_tolerances, rules_with_bars
 from liftplan.planner.plans.slings.rigs import crane_rigs
 from liftplan.planner.problem.definition import Candidate
 from liftplan.planner.search.evaluator import Interrupted
@@ -144,6 +145,80 @@ def plan_apex_slings(problem, top=None):
 
     top = top or problem.top
     derived, rigs = apex_problem(problem)
+    started = time.perf_counter()
+    tilt = np.zeros(2)  # heel, trim the hook errors add to the box [deg]
+    for _ in range(HOOK_ROUNDS):
+        widened = _widened(problem, derived, tilt, started)
+        plan = _ranked(problem, widened, rigs, top, tuple(tilt))
+        need = np.asarray(plan.hook_need)
+        if np.all(need <= tilt + 1e-9):
+            return plan
+        tilt = np.maximum(tilt, need)
+    raise PlanInfeasible(
+        f"the box widened by the hook errors' tilt did not settle in {HOOK_ROUNDS} searches (heel "
+        f"+{tilt[0]:.2f} deg, trim +{tilt[1]:.2f} deg): each best set's hooks tilt the body more; "
+        "expected a smaller hook_tolerance"
+    )
+
+
+#: Searches at most, each on the box widened by the previous best set's hook-error tilt.
+HOOK_ROUNDS = 4
+
+
+def hook_error_tilts(hooks, tolerance):
+    """The largest heel and trim the crew's hook errors add when three hooks hold the body  [deg].
+
+    Three hooks fix the body: hook errors e_i (|e_i| <= delta_i) tilt it by the plane through
+    them, e_i = a + s_x x_i + s_y y_i, so the largest |s_y| (heel) and |s_x| (trim) are the rows
+    of that 3 x 3 system's inverse, in absolute value, times the tolerances. More hooks share the
+    body's weight by their ropes' stretch: their errors are the held search's hook gains.
+
+    Parameters
+    ----------
+    hooks : (n, 3)  [m]
+        The hooks at level, body frame.
+    tolerance : (n,)  [m]
+        Each hook's height tolerance.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2,)  [deg]
+        (heel, trim); zeros for other than three hooks or no tolerance; 90 where the hooks
+        are (nearly) in one line.
+    """
+    tolerance = np.asarray(tolerance, dtype=float)
+    if len(hooks) != 3 or not np.any(tolerance > 0):
+        return np.zeros(2)
+    rows = np.column_stack([np.ones(3), np.asarray(hooks, dtype=float)[:, :2]])
+    try:
+        inverse = np.linalg.inv(rows)
+    except np.linalg.LinAlgError:
+        return np.full(2, 90.0)
+    slope_x, slope_y = np.abs(inverse[1:]) @ tolerance
+    return np.degrees(np.arctan([slope_y, slope_x]))
+
+
+def _widened(problem, derived, tilt, started):
+    """The derived problem with its box widened by ``tilt`` (heel, trim) [deg] and what is left
+    of ``plan.time_limit`` (each search of :func:`plan_apex_slings` shares it)."""
+    if not np.any(tilt):
+        return derived
+    heel, trim = problem.heel_tolerance + tilt[0], problem.trim_tolerance + tilt[1]
+    if max(heel, trim) > 90.0:
+        raise PlanInfeasible(
+            f"the hook errors tilt the body beyond 90 deg (heel +-{heel:.1f}, trim +-{trim:.1f} deg): "
+            "the best set's hooks (nearly) in one line; expected a smaller hook_tolerance"
+        )
+    left = (
+        None
+        if problem.time_limit is None
+        else max(problem.time_limit - (time.perf_counter() - started), 1e-3)
+    )
+    return dataclasses.replace(derived, heel_tolerance=heel, trim_tolerance=trim, time_limit=left)
+
+
+def _ranked(problem, derived, rigs, top, tilt):
+    """The held search on ``derived``, sets sharing a lug dropped (the module docstring, step 3)."""
     ask, shared = max(top, 10), 0
     while True:
         try:
@@ -153,7 +228,9 @@ def plan_apex_slings(problem, top=None):
             if keep:
                 inner = Plan(problem=derived, ranking=keep[:top], stats=stop.stats)
                 ruled_out = {**rigs.ruled_out, "sets sharing a lug (dropped from the ranking)": shared}
-                stop.plan = ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out)
+                stop.plan = ApexSlingPlan(
+                    problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out, hook_tilt=tilt
+                )
             stop.phase = f"sling plan: {stop.phase}"
             raise
         keep = [r for r in ranking if _disjoint(rigs, r.indices)]
@@ -173,7 +250,7 @@ def plan_apex_slings(problem, top=None):
         )
     inner = Plan(problem=derived, ranking=keep[:top], stats=stats)
     ruled_out = {**rigs.ruled_out, "sets sharing a lug (dropped from the ranking)": shared}
-    return ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out)
+    return ApexSlingPlan(problem=problem, inner=inner, rigs=rigs, ruled_out=ruled_out, hook_tilt=tilt)
 
 
 def _disjoint(rigs, indices):
@@ -198,6 +275,9 @@ class ApexSlingPlan(SlingLift):
     lengths : LengthSearch or None
         How the hoist ropes' lengths were chosen (:mod:`liftplan.planner.plans.lengths`); None
         when every length was given. With it, ``problem`` is the problem at the chosen lengths.
+    hook_tilt : tuple of 2 float  [deg]
+        The heel and trim the search's box (``inner.problem``) was widened by for the hook
+        errors (:func:`hook_error_tilts`; at least :attr:`hook_need`).
     """
 
     problem: object
@@ -205,6 +285,41 @@ class ApexSlingPlan(SlingLift):
     rigs: object
     ruled_out: dict
     lengths: object = None
+    hook_tilt: tuple = (0.0, 0.0)
+
+    @property
+    def hook_need(self):
+        """(heel, trim) the chosen hooks' errors tilt the body by  [deg] (:func:`hook_error_tilts`)."""
+        return hook_error_tilts(self.hooks, hook_tolerances(self.problem))
+
+    @property
+    def hook_tilt_text(self):
+        """What the crew's hook errors do to the plan, one sentence (console and report)."""
+        tolerance = hook_tolerances(self.problem)
+        if not np.any(tolerance > 0):
+            return "hook errors: none (hook tolerance 0 m), no tilt added to the box"
+        each = ", ".join(f"{n} +-{d:g} m" for n, d in zip(self.crane_names, tolerance))
+        if len(self.problem.fleet) != 3:
+            return (
+                f"hook errors ({each}): the held search's hook gains (the ropes' stretch shares "
+                "them); their tilt is not added to the box"
+            )
+        heel, trim = self.hook_need
+        box = self.inner.problem
+        return (
+            f"hook errors ({each}) tilt the body up to heel {heel:.2f}, trim {trim:.2f} deg more "
+            f"(the plane through the three hooks' errors): every set was searched, and every state "
+            f"taken, within heel +-{box.heel_tolerance:.2f}, trim +-{box.trim_tolerance:.2f} deg"
+        )
+
+    def hook_tilt_json(self):
+        """The hook errors' tilt and the box taken, for the plan JSON's ``hooks``  [deg]."""
+        heel, trim = self.hook_need
+        box = self.inner.problem
+        return {
+            "tilt": {"heel": float(heel), "trim": float(trim)},
+            "box_taken": {"heel": box.heel_tolerance, "trim": box.trim_tolerance},
+        }
 
     # -- the breakout case and the rope lengths ------------------------------------------------
     @cached_property
@@ -407,9 +522,9 @@ class ApexSlingPlan(SlingLift):
     def _box_grid(self):
         """Heel and trim [deg] of the :data:`LEG_GRID` x :data:`LEG_GRID` grid over the
         tolerance box, flattened (heel major)."""
-        problem = self.problem
-        heel = np.linspace(-problem.heel_tolerance, problem.heel_tolerance, LEG_GRID)
-        trim = np.linspace(-problem.trim_tolerance, problem.trim_tolerance, LEG_GRID)
+        box = self.inner.problem  # widened by the hook errors' tilt (three cranes)
+        heel = np.linspace(-box.heel_tolerance, box.heel_tolerance, LEG_GRID)
+        trim = np.linspace(-box.trim_tolerance, box.trim_tolerance, LEG_GRID)
         return tuple(v.ravel() for v in np.meshgrid(heel, trim, indexing="ij"))
 
     @property

@@ -43,6 +43,13 @@ def bar_weight(crane):
     return 0.0 if sling is None or sling.spreader is None else sling.spreader.weight
 
 
+def hook_tolerances(problem):
+    """Each crane's hook-height tolerance, fleet order  [m]: its own, else ``plan.hook_tolerance``."""
+    return np.array(
+        [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in problem.fleet]
+    )
+
+
 def rules_with_bars(problem):
     """The problem's rules with each spreader bar's weight added to its crane's rigging weight."""
     rules = problem.rules
@@ -160,6 +167,15 @@ class SlingLift(InFileFrame):
         (:mod:`liftplan.planner.plans.lengths`); ``stats`` over every trial where the plan
         has a search's stats."""
         return dataclasses.replace(self, lengths=search)
+
+    @property
+    def hook_tilt_text(self):
+        """What the crew's hook errors do to the plan, one sentence (None: said elsewhere)."""
+        return None
+
+    def hook_tilt_json(self):
+        """The hook errors' tilt for the plan JSON's ``hooks`` (empty: none computed)."""
+        return {}
 
     @property
     def hook_skews(self):
@@ -536,10 +552,8 @@ class SlingLift(InFileFrame):
             "girder": girder_json(self.girder, self.scenario_json),
             # the inputs that shape the plan, echoed so a reader sees them honoured
             "hooks": {
-                "tolerance": {
-                    c.name: problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance
-                    for c in problem.fleet
-                }
+                "tolerance": dict(zip(names, hook_tolerances(problem).tolist())),
+                **self.hook_tilt_json(),
             },
             "limits": {
                 "search": problem.search,

@@ -25,6 +25,7 @@ The search is exhaustive over rigs x rigs x the two assignments, vectorised, so 
 from __future__ import annotations
 
 import dataclasses
+import time
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -36,10 +37,11 @@ from liftplan.model.frames import rotation_matrix
 from liftplan.model.rules import TiltGeometry, governing_tilt
 from liftplan.planner.plans.breakout import BreakoutCase
 from liftplan.planner.plans.slings.geometry import leg_split, spreader_hook
-from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, rules_with_bars
+from liftplan.planner.plans.slings.lift import SlingLift, bar_weight, hook_tolerances, rules_with_bars
 from liftplan.planner.plans.slings.rigs import Rigs, crane_rigs, turned_hooks
 from liftplan.planner.problem.clearance import clear, segment_distance
 from liftplan.planner.problem.fleet import rule_limits
+from liftplan.planner.search.budget import Budget
 
 
 @dataclass(frozen=True)
@@ -77,6 +79,9 @@ class SlingOption:
     top_legs : tuple of (numpy.ndarray or None)  [t]
         A spreader's two top legs at level (None without a bar).
     top_angles : tuple of (numpy.ndarray or None)  [deg]
+    hook_tilt : float  [deg]
+        The largest tilt along the hook line the crew's hook errors add on top of the tolerance
+        (:func:`hook_error_tilt`); the tilts above are taken within the tolerance plus it.
     """
 
     pairs: tuple
@@ -95,6 +100,7 @@ class SlingOption:
     hook_worst_at: tuple = ()
     top_legs: tuple = (None, None)
     top_angles: tuple = (None, None)
+    hook_tilt: float = 0.0
 
 
 #: The cause of a pair of rigs dropped before the pairs are considered (a lug in both slings).
@@ -147,6 +153,22 @@ def rig_legs(crane, hook, lugs, load):
     return np.array(legs), top
 
 
+def hook_error_tilt(tolerance, span):
+    """The largest tilt along the hook line the crew's hook errors give  [rad].
+
+    One hook high by its tolerance and the other low by its own: atan((delta_1 + delta_2) / span).
+
+    Parameters
+    ----------
+    tolerance : (2,)  [m]
+        Each hook's height tolerance.
+    span : float or numpy.ndarray  [m]
+        Horizontal distance between the two hooks.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.arctan((tolerance[0] + tolerance[1]) / np.asarray(span, dtype=float))
+
+
 def uses_slings(problem):
     """Whether ``problem`` is planned by the sling-lift planner (its cranes carry slings)."""
     return any(c.sling is not None for c in problem.fleet)
@@ -167,11 +189,21 @@ def plan_two_slings(problem, top=None):
 
     Raises
     ------
+    InvalidScene
+        ``plan.search`` asks for a search this plan has not (``mip``, ``local``).
     PlanInfeasible
-        No pair of rigs meets the sling angle, reach, the rules' limits and the roll; the
-        message counts what ruled them out.
+        No pair of rigs meets the sling angle, reach, the rules' limits and the roll (the
+        message counts what ruled them out); or ``plan.time_limit`` ran out before the
+        enumeration ended (it stops only whole).
     """
 
+    if problem.search in ("mip", "local"):
+        raise InvalidScene(
+            f'plan.search = "{problem.search}": a two-crane sling plan enumerates every pair of rigs '
+            'and proves its best, with no MIP or local search; expected search = "auto" or "exact"'
+        )
+    started = time.perf_counter()
+    budget = Budget.of(problem.time_limit, started=started)
     top = top or problem.top
     fleet = problem.fleet
     weight = problem.body.weight
@@ -204,6 +236,7 @@ def plan_two_slings(problem, top=None):
         reach = ~np.isnan(swl)
         counts["beyond the crane's reach"] += int(np.sum(~reach))
         per_crane.append((rigs.take(reach), radius[reach], swl[reach]))
+        _on_time(problem, budget, started)
     (g1, r1, s1), (g2, r2, s2) = per_crane
     if len(g1) == 0 or len(g2) == 0:
         raise PlanInfeasible(_no_plan(problem, counts))
@@ -223,8 +256,10 @@ def plan_two_slings(problem, top=None):
         e = axis_h / length[:, None]
     span = np.ptp(problem.points, axis=0).max()
     longitudinal = np.abs(e[:, 0]) >= np.abs(e[:, 1])
-    tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance)
     roll_tol = np.where(longitudinal, problem.heel_tolerance, problem.trim_tolerance)
+    # the crew's hook errors tilt the body along the hook line on top of the tolerance
+    hook_tilt = np.nan_to_num(np.degrees(hook_error_tilt(hook_tolerances(problem), length)))
+    tilt_tol = np.where(longitudinal, problem.trim_tolerance, problem.heel_tolerance) + hook_tilt
     tilts = np.stack([-tilt_tol, 0 * tilt_tol, tilt_tol], axis=1)  # (N, 3) deg
     # The operators tilt the body about the horizontal axis square to the hook line; each
     # hook then sits where its rig puts it over the turned lugs (a 2-leg sling or a spreader
@@ -252,6 +287,7 @@ def plan_two_slings(problem, top=None):
             with np.errstate(divide="ignore", invalid="ignore"):
                 share2 = weight * (g - hooks[0]) / (hooks[1] - hooks[0])
             loads[:, m, k] = np.stack([weight - share2, share2], axis=-1)  # the body's shares
+        _on_time(problem, budget, started)
     nominal = loads[:, 0, 1]  # nominal CG, level
     # roll to bring the CG under the hook line: its offset square to the line, over its depth
     rolls = []
@@ -323,15 +359,30 @@ def plan_two_slings(problem, top=None):
                 hook_worst_at=tuple(_where(hook_loads[k][..., c], tilts[k], offsets) for c in range(2)),
                 top_legs=tuple(s[0][1] for s in split),
                 top_angles=tuple(None if rig.top_angles is None else rig.top_angles[0] for rig in rigs),
+                hook_tilt=float(hook_tilt[k]),
             )
         )
+    _on_time(problem, budget, started)
     return SlingPlan(
         problem=problem,
         ranking=ranking,
         options=int(len(i1)),
         ruled_out={t: n for t, n in counts.items() if n},
         rig_causes=tuple(t for t in counts if counts[t] and t in rig_causes),
+        seconds=time.perf_counter() - started,
     )
+
+
+def _on_time(problem, budget, started):
+    """Raise PlanInfeasible when ``plan.time_limit`` has run out: the enumeration proves its best
+    only once every pair of rigs is in, so a part of it is no plan."""
+    if budget.out() == "time_limit":
+        spent = time.perf_counter() - started
+        raise PlanInfeasible(
+            f"plan.time_limit = {problem.time_limit:g} s ran out after {spent:.3g} s, "
+            "before the enumeration of every pair of rigs ended (it gives a plan only whole); "
+            "expected a longer time_limit or none"
+        )
 
 
 def _booms_clear(problem, hook1, hook2, yaw):
@@ -418,10 +469,8 @@ def hooks_breakout(problem, option):
         second = total * (g - along[0]) / (along[1] - along[0])
         return np.array([total - second, second])
 
-    tolerance = np.array(
-        [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in fleet]
-    )
-    tilt = float(np.arctan((tolerance[0] + tolerance[1]) / span))
+    tolerance = hook_tolerances(problem)
+    tilt = float(hook_error_tilt(tolerance, span))
     level = shares(0.0)
     every = np.stack([level, shares(-tilt), shares(tilt)])
     step = 1e-6  # rad: the slope at level by central difference
@@ -441,6 +490,7 @@ def hooks_breakout(problem, option):
         swl=np.asarray(option.swl, dtype=float),
         rigging=np.array([rules.rigging_for(c.name) for c in fleet], dtype=float),
         extremes=(every.min(axis=0), every.max(axis=0)),
+        min_tension=max(float(problem.min_tension), 0.0),
     )
 
 
@@ -474,8 +524,16 @@ class SlingPlan(SlingLift):
     ruled_out: dict
     rig_causes: tuple = ()
     lengths: object = None
+    seconds: float = 0.0
 
     lift_text = "two-crane slings"
+
+    @property
+    def time_text(self):
+        """How long the enumeration took, against ``plan.time_limit`` when given."""
+        limit = self.problem.time_limit
+        within = "" if limit is None else f", within plan.time_limit = {limit:g} s"
+        return f"enumeration of every pair of rigs ended in {self.seconds:.2f} s{within}"
 
     # -- the breakout case and the rope lengths ------------------------------------------------
     @cached_property
@@ -577,9 +635,10 @@ class SlingPlan(SlingLift):
     @property
     def held_poses(self):
         """(CG offset [m], boom shifts [m]) of every state the plan holds: the CG at each vertex
-        of the CG envelope, the hooks set for the tilt along the hook line at -tol, 0 and +tol
-        (hook 1 raised and hook 2 lowered by half the span x tan(tilt))."""
-        tilt = self.tolerances[0]
+        of the CG envelope, the hooks set for the tilt along the hook line at -tol, 0 and +tol,
+        tol the tolerance and the hook errors' tilt (:attr:`SlingOption.hook_tilt`; hook 1 raised
+        and hook 2 lowered by half the span x tan(tilt))."""
+        tilt = self.tolerances[0] + self.chosen.hook_tilt
         for offset in self.problem.cog_envelope.offsets():
             for angle in (-tilt, 0.0, tilt):
                 drop = 0.5 * self._span * np.tan(np.radians(angle))
@@ -591,6 +650,27 @@ class SlingPlan(SlingLift):
         return float(np.linalg.norm(self.chosen.apex[1, :2] - self.chosen.apex[0, :2]))
 
     girder_over = "over the CG envelope and the tilt along the hook line (rigging model)"
+
+    @property
+    def hook_tilt_text(self):
+        """What the crew's hook errors do to the plan, one sentence (console and report)."""
+        tolerance = hook_tolerances(self.problem)
+        tilt, total = self.chosen.hook_tilt, self.tolerances[0] + self.chosen.hook_tilt
+        if not np.any(tolerance > 0):
+            return "hook errors: none (hook tolerance 0 m), no tilt added to the tolerance"
+        each = ", ".join(f"{n} +-{d:g} m" for n, d in zip(self.crane_names, tolerance))
+        return (
+            f"hook errors ({each}) over the {self._span:.2f} m hook line tilt the body up to "
+            f"{tilt:.2f} deg more along it: every state is taken within +-{total:.2f} deg"
+        )
+
+    def hook_tilt_json(self):
+        """The hook errors' tilt along the hook line, for the plan JSON's ``hooks``  [deg, m]."""
+        return {
+            "tilt_along_hook_line": self.chosen.hook_tilt,
+            "span": self._span,
+            "tilt_taken": self.tolerances[0] + self.chosen.hook_tilt,
+        }
 
     @property
     def top_legs(self):
@@ -691,6 +771,7 @@ class SlingPlan(SlingLift):
                 for r in self.ranking
             ],
             "options": self.options,
+            "seconds": self.seconds,
             "ruled_out": self.ruled_out,
             "checks": [c.to_json() for c in self.checks],
         }
