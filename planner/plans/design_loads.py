@@ -81,22 +81,30 @@ class PlanChain(DesignLoadChain):
         return notes
 
 
-def rope_skew(lugset, preload, delta):
-    """Each rope's load with every hook within +-``delta`` of its planned height, pose held.
+def rope_skew(lugset, preload, delta=None):
+    """Each rope's load with every hook within +-its tolerance of its planned height, pose held.
 
     Parameters
     ----------
     lugset : LugSet
     preload : (n,)  [t]
-    delta : float  [m]
+    delta : float or (n,) array_like, optional  [m]
+        Each hook's tolerance (one value: the same on every hook); default the lug set's own,
+        hook by hook (``lugset.hook_tolerance``: a crane's ``hook_tolerance`` or the plan's,
+        a floating crane's widened by its boom's wind tip error).
 
     Returns
     -------
     numpy.ndarray, shape (n,)  [t]
-        T*_i + delta sum_j |dT_i / dH_j|.
+        T*_i + sum_j |dT_i / dH_j| delta_j.
     """
     gain = lugset.twist_gain(preload)
-    return np.asarray(preload, dtype=float) + delta * np.abs(gain).sum(axis=1)
+    delta = (
+        lugset.hook_tolerance
+        if delta is None
+        else np.broadcast_to(np.asarray(delta, dtype=float), (lugset.n,))
+    )
+    return np.asarray(preload, dtype=float) + np.abs(gain) @ delta
 
 
 @dataclass(frozen=True)

@@ -29,6 +29,7 @@ from liftplan.planner.plans.in_water import in_water_json
 from liftplan.planner.plans.vessel_loads import vessel_plans, wind_json
 from liftplan.planner.plans.watch_basis import watch_basis
 from liftplan.planner.problem.definition import DEFAULT_SKEW_FACTOR, PlanProblem
+from liftplan.planner.problem.vessels import series_problem, uses_vessels
 from liftplan.planner.search.bounds import AdmissibleTensions
 from liftplan.planner.search.evaluator import Interrupted, SearchStats, SetResult, robust
 from liftplan.planner.search.methods import search
@@ -52,7 +53,7 @@ class SkewLoad:
     lugs : tuple of str
         One label (a rope) or two (a diagonal pair).
     nominal : float  [t]
-    skewed : float  [t]   largest load with every hook within +-hook_tolerance
+    skewed : float  [t]   largest load with every hook within +-its own hook tolerance
     """
 
     lugs: tuple[str, ...]
@@ -151,6 +152,12 @@ class Plan(InFileFrame):
         states, and which governs (:mod:`.flexible`); None without.
     hull_search : HullSearch, optional
         With ``[hull] EI`` or ``[water]``: how the ranking was redone (:mod:`.hull_water`).
+    designs : list of DesignLoads, optional
+        The rules' design loads of each ranked set when already computed (by
+        :func:`design_first`); else computed when first asked for.
+    passed_over : int
+        How many sets the ranking had before the plan that fail a design-load check or
+        overload the hull girder (:func:`design_first` ranked them after it).
     """
 
     problem: PlanProblem
@@ -160,6 +167,8 @@ class Plan(InFileFrame):
     girders: list | None = None
     hull_models: list | None = None
     hull_search: object = None
+    designs: list | None = None
+    passed_over: int = 0
 
     # -- the chosen set ------------------------------------------------------------------
     @property
@@ -324,6 +333,8 @@ class Plan(InFileFrame):
     @cached_property
     def design_loads(self):
         """The rules' design loads of the chosen set (:class:`~.design_loads.DesignLoads`)."""
+        if self.designs is not None:
+            return self.designs[0]
         return self._design_builder.build(self.chosen, self.labels, self._governing(0))
 
     def _governing(self, k):
@@ -336,6 +347,8 @@ class Plan(InFileFrame):
     def ranked_design(self):
         """The same design loads for every ranked set, best first (``ranked_design[0]`` is
         :attr:`design_loads`)."""
+        if self.designs is not None:
+            return self.designs
         return [self.design_loads] + [
             self._design_builder.build(r, self.labels, self._governing(k))
             for k, r in enumerate(self.ranking[1:], start=1)
@@ -354,6 +367,25 @@ class Plan(InFileFrame):
         """The chosen set's worst |M| and |Q| over the box, the CG envelope and the hook errors
         (:class:`~.girder.GirderWorst`, bending first; empty when not checked)."""
         return self.ranked_girder[0]
+
+    @property
+    def design_note(self):
+        """What ranking the sets by the design-load checks (:func:`design_first`) did, in one
+        line; "" when the search's best meets them."""
+        what = "every design-load check" + (" and keeps the hull girder" if self.girder else "")
+        if not meets_checks(self.design_loads, self.girder):
+            return (
+                f"none of the {len(self.ranking)} ranked sets meets {what}: the plan is the best "
+                "ranked set, its failing checks flagged (a larger top ranks more sets)"
+            )
+        if self.passed_over:
+            return (
+                f"the plan is the best ranked set that meets {what}: the {self.passed_over} "
+                f"set{'s' if self.passed_over > 1 else ''} ranked better by the objective "
+                f"fail{'' if self.passed_over > 1 else 's'} one and "
+                f"{'are' if self.passed_over > 1 else 'is'} ranked after it"
+            )
+        return ""
 
     @cached_property
     def clearances(self):
@@ -424,20 +456,44 @@ class Plan(InFileFrame):
 
     @cached_property
     def skew(self):
-        """Skew loads: each rope, and for four lugs each diagonal pair (plan order)."""
-        delta = self.problem.hook_tolerance
+        """Skew loads: each rope, and for four lugs each diagonal pair (plan order), every hook
+        within its own tolerance (``lugset.hook_tolerance``)."""
+        delta = self.lugset.hook_tolerance
         gain, preload = self._twist_gain, self.chosen.preload
-        skewed = rope_skew(self.lugset, preload, delta)
+        skewed = rope_skew(self.lugset, preload)
         out = [SkewLoad((label,), float(t), float(ts)) for label, t, ts in zip(self.labels, preload, skewed)]
         for i, j in self.diagonals:
             out.append(
                 SkewLoad(
                     (self.labels[i], self.labels[j]),
                     float(preload[i] + preload[j]),
-                    float(preload[i] + preload[j] + delta * np.abs(gain[i] + gain[j]).sum()),
+                    float(preload[i] + preload[j] + np.abs(gain[i] + gain[j]) @ delta),
                 )
             )
         return out
+
+    @property
+    def hook_tolerances(self):
+        """Planned label -> the hook's own height tolerance  [m]: its crane's ``hook_tolerance``
+        or the plan's, a floating crane's widened by its boom's wind tip error at its lug."""
+        return dict(zip(self.labels, self.lugset.hook_tolerance.tolist()))
+
+    def tolerance_text(self, factor=1.0, unit=" m", short=False):
+        """Each hook's tolerance (times ``factor``) in words: ``+-0.02 m on every hook``, or
+        per hook with its crane, ``L1 (Crane C) +-0.1 m, L2 (Sheerleg A) +-0 m, ...``
+        (``unit`` after each value: ``""`` in a table whose column names it); ``short``: the
+        hooks off the most common value by name, then ``the others +-0 m``."""
+        values = np.round(factor * self.lugset.hook_tolerance, 9)
+        if np.ptp(values) < 5e-7:
+            return f"+-{values[0]:.3g}{unit} on every hook"
+        names = [f"{label} ({crane})" for label, crane in zip(self.labels, self.chosen.crane_names)]
+        common, count = max(((v, int(np.sum(values == v))) for v in values), key=lambda vc: vc[1])
+        if not short or count < 2:
+            return ", ".join(f"{name} +-{v:.3g}{unit}" for name, v in zip(names, values))
+        return ", ".join(
+            [f"{name} +-{v:.3g}{unit}" for name, v in zip(names, values) if v != common]
+            + [f"the others +-{common:.3g}{unit}"]
+        )
 
     @cached_property
     def hook_sensitivity(self):
@@ -652,6 +708,11 @@ class Plan(InFileFrame):
                         for a, row in zip(self.labels, self.hook_sensitivity)
                     },
                 },
+                "design_first": {
+                    "met": meets_checks(self.design_loads, self.girder),
+                    "passed_over": self.passed_over,
+                    "note": self.design_note,
+                },
                 "lower_bound": self.stats.lower_bound,
                 "gap": self.stats.gap,
                 "relative_gap": self.stats.relative_gap,
@@ -855,6 +916,74 @@ def girder_stats(stats, ranking, ranked):
     best = float(ranked[0].worst_value)
     lower = best if stats.stopped == "proved" else min(stats.lower_bound, best)
     return dataclasses.replace(stats, best=best, lower_bound=lower)
+
+
+def meets_checks(design, girder):
+    """A ranked set meets every design-load check of the rules' chain (each crane's design hook
+    load within its chart SWL, its code margin, each lug's design load within its ``capacity``,
+    the breakout and in-water checks) and keeps the hull girder within its allowables."""
+    return design.ok and all(w.ratio <= 1.0 for w in girder)
+
+
+def design_first(plan):
+    """The plan with the ranked sets that meet every design-load check (and keep the hull
+    girder) first, the order kept within each group: the plan is the best ranked set that meets
+    them when one was ranked; else the order stands and the plan's checks fail
+    (:attr:`Plan.design_note`).
+
+    The design chain runs once per ranked set (the outputs show every ranked set's design
+    utilisation anyway; :attr:`Plan.designs` carries them), never per searched set: a set the
+    search did not rank is not looked at.
+
+    Parameters
+    ----------
+    plan : Plan
+
+    Returns
+    -------
+    Plan
+        With ``designs``; when the order changed, ``passed_over`` counts the sets the plan's
+        ranking had before it, its ``stats`` give the new plan's value (:func:`girder_stats`),
+        and with floating cranes its ``problem`` is the new plan's series problem.
+    """
+    try:
+        with phase("design loads of the ranked sets", None):
+            designs, girders = plan.ranked_design, plan.ranked_girder
+    except KeyboardInterrupt:  # the search had finished: its plan (the design loads computed when shown)
+        raise Interrupted(
+            plan.ranking,
+            plan.stats,
+            plan=plan,
+            phase="design loads, report and output",
+            finished=True,
+        ) from None
+    order = sorted(range(len(plan.ranking)), key=lambda k: not meets_checks(designs[k], girders[k]))
+
+    def pick(items):
+        return None if items is None else [items[k] for k in order]
+
+    changes = {"designs": pick(designs), "girders": pick(list(girders))}
+    if order[0] != 0:  # the search's best fails a check: the best that meets them is the plan
+        ranking = pick(plan.ranking)
+        changes |= {
+            "ranking": ranking,
+            "hull_models": pick(plan.hull_models),
+            "passed_over": plan.passed_over + order[0],
+            "stats": girder_stats(plan.stats, plan.ranking, ranking),
+        }
+        if plan.hull_search is not None or plan.lengths is not None:  # ranked on other values
+            values = None if plan.hull_search is None else pick(plan.hull_search.values)
+            best = float(ranking[0].worst_value) if values is None else values[0]
+            changes["stats"] = dataclasses.replace(
+                plan.stats, best=best, lower_bound=min(plan.stats.lower_bound, best)
+            )
+            if values is not None:
+                changes["hull_search"] = dataclasses.replace(plan.hull_search, values=values)
+        if uses_vessels(plan.problem):  # each floating crane in series at the new plan's lugs
+            given = tuple(c.given if c.given is not None else c for c in plan.problem.fleet)
+            base = dataclasses.replace(plan.problem, fleet=given)
+            changes["problem"] = series_problem(base, ranking[0].indices, ranking[0].cranes)
+    return dataclasses.replace(plan, **changes)
 
 
 def clearance_checks(clearances, limit):

@@ -9,7 +9,8 @@ Then each ranked set is evaluated on what the planning file adds:
   is the larger of the box's and the value there.
 
 The sets are ranked again on that governing value, those whose hull girder or in-water state
-fails (a rope slack in water) after those that hold. The plan is the best of them, and it is
+fails (a rope slack in water) after those that hold, and then those that fail a design-load
+check after those that meet them (:func:`~.held.design_first`). The plan is the best of them, and it is
 the best of every set: a set the search did not rank is, on the rigid hull in air, no better
 than the last one ranked (the search proves its ranking), in water no better than in air, and
 on the flexible hull no better by more than :func:`~.flexible.change_bound` (the bound of the
@@ -32,7 +33,7 @@ import numpy as np
 from liftplan.planner.plans.design_loads import DesignBuilder
 from liftplan.planner.plans.flexible import change_bound, deflection_bounds, evaluate_flexible
 from liftplan.planner.plans.floating import plan_single_ropes
-from liftplan.planner.plans.held import Plan
+from liftplan.planner.plans.held import Plan, design_first
 from liftplan.planner.plans.in_water import in_water_case
 from liftplan.planner.search.scenarios import LugSet
 
@@ -94,7 +95,7 @@ def plan_hull_water(problem, top=None):
         With ``hull_models`` (``[hull] EI``) and ``hull_search``.
     """
     if not uses_hull_water(problem):
-        return plan_single_ropes(problem, top)
+        return design_first(plan_single_ropes(problem, top))
     wanted = top or problem.top
     flexible = problem.hull_stiffness is not None
     bounds = deflection_bounds(problem) if flexible else None
@@ -131,7 +132,7 @@ def plan_hull_water(problem, top=None):
         note=note,
     )
     stats = governing_stats(first.stats, search.values[0], good, last, margin, certified, proved)
-    return Plan(
+    plan = Plan(
         problem=first.problem,
         ranking=ranking,
         stats=stats,
@@ -139,6 +140,7 @@ def plan_hull_water(problem, top=None):
         hull_models=[rows[k][1] for k in keep] if flexible else None,
         hull_search=search,
     )
+    return design_first(plan)  # the sets that fail a design-load check after those that meet them
 
 
 def governing_stats(stats, best, good, last, margin, certified, proved):

@@ -49,7 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from liftplan.model.errors import PlanInfeasible
-from liftplan.planner.plans.held import Plan, girder_first, plan_held
+from liftplan.planner.plans.held import Plan, design_first, girder_first, plan_held
 from liftplan.planner.search.evaluator import Interrupted
 from liftplan.planner.search.progress import best_bound, progress_bar
 
@@ -391,7 +391,8 @@ def _chosen(problem, classes, ranges, trials, results, best, start, stopped, not
     if not isinstance(chosen, Plan):  # a sling plan: its own outputs carry the search
         return chosen.with_lengths(search, stats)
     ranking, girders = girder_first(chosen.problem, chosen.ranking)
-    return dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
+    plan = dataclasses.replace(chosen, ranking=ranking, girders=girders, stats=stats, lengths=search)
+    return design_first(plan)  # the sets that fail a design-load check after those that meet them
 
 
 def _user_limit(result, time_limit):

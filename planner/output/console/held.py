@@ -127,23 +127,31 @@ def plan_table(plan):
 
 
 def _hook_line(plan):
-    """What the plan assumed of the hooks' heights."""
-    problem = plan.problem
-    deltas = sorted(
-        {problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in problem.fleet}
-    )
-    if deltas == [0.0]:
+    """What the plan assumed of the hooks' heights: each hook's own tolerance."""
+    if not np.any(plan.lugset.hook_tolerance > 0.0):
         return (
             "hook heights: no hook-height error assumed (hook_tolerance = 0); the worst "
             "case holds every hook at its planned height"
         )
-    text = " / ".join(f"{d:g}" for d in deltas)
+    wind = " (a floating crane's with its boom's wind tip error)" if plan.problem.wind is not None else ""
+    text = plan.tolerance_text()
+    within = (
+        f"every hook within {text.removesuffix(' on every hook')} of its plan{wind}, independently,"
+        if text.endswith("on every hook")
+        else f"each hook within its own tolerance of its plan{wind}, independently: {text};"
+    )
     return (
-        f"hook heights: every hook within +-{text} m of its plan, independently, in the "
-        "worst case and every limit; computed skew factors "
+        f"hook heights: {within} in the worst case and every limit; computed skew factors "
         + ", ".join(f"{'+'.join(s.lugs)} {s.factor:.3f}" for s in plan.skew)
         + f" (Noble Denton's default {plan.default_skew_factor:.2f})"
     )
+
+
+def _times(plan, factor):
+    """Each hook's tolerance times ``factor``, shortly: ``+-0.04 m on every hook`` or ``each
+    its own tolerance x 2: L2 (Crane C) +-0.2 m, the others +-0 m``."""
+    text = plan.tolerance_text(factor, short=True)
+    return text if text.endswith("on every hook") else f"each its own tolerance x {factor:g}: {text}"
 
 
 def _crew_lines(plan):
@@ -166,8 +174,8 @@ def _crew_lines(plan):
         lines.append(worst)
     needed = plan.hook_accuracy_needed
     lines.append(
-        "the plan's limits hold for hook errors up to "
-        + (f"+-{needed:.3f} m on every hook" if np.isfinite(needed) else "any size")
+        "the plan's limits hold for the same hook error on every hook up to "
+        + (f"+-{needed:.3f} m" if np.isfinite(needed) else "any size")
         + " (preload held, worst signs)"
     )
     if not np.any(plan.lugset.hook_tolerance > 0.0):
@@ -176,7 +184,7 @@ def _crew_lines(plan):
         k = int(np.argmax(margin.rope_max / margin.limit))
         verdict = "within the limits" if margin.within_limits else "EXCEEDS the limits"
         lines.append(
-            f"hooks {margin.factor:g}x worse (+-{margin.tolerance.max():g} m): worst spread "
+            f"hooks {margin.factor:g}x worse ({_times(plan, margin.factor)}): worst spread "
             f"{margin.worst_spread:.1f} t, {plan.labels[k]} up to {margin.rope_max[k]:.1f} t "
             f"(limit {margin.limit[k]:.1f} t), lowest {margin.lowest:.1f} t: {verdict}"
         )
@@ -330,13 +338,13 @@ def _ranking_lines(plan):
     lines.append(
         "(nominal / worst: the objective, level and largest in the box; design util.: the highest "
         "design hook load / chart SWL of the set's cranes, FAIL if any design check fails"
-        + (
-            "; girder: the hull girder's largest |M| or |Q| / allowable, the sets that overload "
-            "it ranked last)"
-            if girder
-            else ")"
-        )
+        + ("; girder: the hull girder's largest |M| or |Q| / allowable" if girder else "")
+        + "; the sets that fail a design check"
+        + (" or overload the girder" if girder else "")
+        + " ranked after those that meet them)"
     )
+    if plan.design_note:
+        lines.append(plan.design_note)
     return lines
 
 

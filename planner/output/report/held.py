@@ -24,6 +24,7 @@ from liftplan.planner.output.report.hull_water import hull_water_section, with_w
 from liftplan.planner.output.report.lengths import lengths_section
 from liftplan.planner.output.report.view import view_section
 from liftplan.planner.plans.common import OBJECTIVE_TEXT
+from liftplan.planner.plans.vessel_loads import wind_json
 from liftplan.planner.search.scenarios import Scenario
 
 ASSUMPTIONS = (
@@ -36,7 +37,8 @@ ASSUMPTIONS = (
     "The worst spread is searched on a 21 x 21 heel-trim grid for every CG-envelope vertex, "
     "then on finer grids around the worst point; the CG envelope is exact at its vertices "
     "(the spread is convex in the CG position).",
-    "Hook heights: every hook within +-hook_tolerance of its planned height, independently, "
+    "Hook heights: every hook within its own tolerance of its planned height (its crane's "
+    "hook_tolerance, else the plan's), independently, "
     "is part of the worst case and of every limit (exact: the tensions are affine in the hook "
     "heights at a given attitude while every rope is taut); a rigid body (hull flexibility, "
     "which lowers skew loads, is ignored). With hook_tolerance = 0 no hook error is assumed.",
@@ -217,12 +219,11 @@ def _governing(plan):
         "The loads to sign against: each crane's design hook load by the rules' chain",
         text_columns=(0, 4),
     )
-    tolerance = plan.problem.hook_tolerance
     needed = plan.hook_accuracy_needed
     within = f"+-{needed:.3f} m" if np.isfinite(needed) else "any error"
     crew = (
-        f"The crew must hold every hook within {within} of its planned height (planned for "
-        f"+-{tolerance:g} m) for every rope to stay within its limits."
+        f"The crew must hold every hook within {within} of its planned height (the same error on "
+        f"every hook; planned for {plan.tolerance_text()}) for every rope to stay within its limits."
     )
     problem = plan.problem
     basis = (  # what the design loads stand on, where the signer reads them (section 2 has all)
@@ -266,25 +267,34 @@ def _basis(plan):
             ("heel tolerance", f"+-{problem.heel_tolerance:g}", "deg"),
             ("trim tolerance", f"+-{problem.trim_tolerance:g}", "deg"),
             ("min tension", f"{problem.min_tension:g}", "t"),
-            ("hook-height tolerance", f"+-{problem.hook_tolerance:g}", "m"),
+            ("hook-height tolerance (each hook's own)", plan.tolerance_text(unit=""), "m"),
             ("lift height (body origin above datum)", f"{problem.lift_height:g}", "m"),
             ("candidate lug points", len(problem.candidates), "-"),
+            *_wind_rows(plan),
         ],
         "Inputs",
         full=False,
         text_columns=(0,),
     )
+    floating = any(c.vessel is not None for c in problem.fleet)
     fleet = _table(
         [
             "crane",
             "slew centre x, y, z [m]",
             "load chart (radius m: SWL t)",
             "rope EA [t]",
+            *(["effective EA, rope and vessel in series [t]"] if floating else []),
             "rope length l0 [m]",
             "boom height range [m]",
         ],
         _fleet_rows(problem),
-        "Crane fleet",
+        "Crane fleet"
+        + (
+            " (rope EA: the hoist rope's own, as the file gives it; effective EA: l0 / (l0 / EA + c), "
+            "c the vessel's tip compliance at the lug the crane takes; on land the rope's own)"
+            if floating
+            else ""
+        ),
         text_columns=(0, 2),
     )
     return ["<h2>2 Basis of the plan</h2>", inputs, fleet]
@@ -292,7 +302,6 @@ def _basis(plan):
 
 def _checks(plan):
     """3: every check, the design loads, the breakout, the crew's hook accuracy and guidance."""
-    problem = plan.problem
     skew = _table(
         [
             "rope or diagonal pair",
@@ -311,7 +320,7 @@ def _checks(plan):
             )
             for s in plan.skew
         ],
-        f"Skew loads for hook heights within +-{problem.hook_tolerance:g} m",
+        f"Skew loads for hook heights each within its own tolerance ({plan.tolerance_text()})",
     )
     own = np.diag(plan.hook_sensitivity)
     crew = plan.crew_margin((1.0, 2.0, 5.0)) if np.any(plan.lugset.hook_tolerance > 0) else []
@@ -328,7 +337,7 @@ def _checks(plan):
             [
                 (
                     f"{c.factor:g} x as planned",
-                    f"+-{c.tolerance.max():g}",
+                    plan.tolerance_text(c.factor, unit="", short=True),
                     f"{c.worst_spread:.1f}",
                     *(f"{v:.1f}" for v in c.rope_max),
                     f"{c.lowest:.1f}",
@@ -340,7 +349,7 @@ def _checks(plan):
             "Hook accuracy: the plan held, the hooks as planned and worse, "
             + ("in the box and at breakout " if plan.design_loads.breakout is not None else "")
             + "(limits: chart SWL / DAF, less rigging, over contingency)",
-            text_columns=(0, 4 + len(plan.labels)),
+            text_columns=(0, 1, 4 + len(plan.labels)),
             ropes=(3, len(plan.labels)),
         )
         if crew
@@ -350,9 +359,11 @@ def _checks(plan):
     hooks += (
         "<p>The crew must hold every hook within "
         + (f"+-{needed:.3f} m" if np.isfinite(needed) else "any error")
-        + " of its planned height for every rope to stay within its limits (the plan's "
-        f"preload held); the worst combination of 1 cm errors moves a rope by "
-        f"{plan.twist_stiffness:.2f} t.</p>"
+        + " of its planned height, the same error on every hook, for every rope to stay within "
+        "its limits (the plan's preload held; the table above multiplies each hook's own "
+        "tolerance instead, so a hook whose own tolerance is larger may go beyond it there and "
+        "stay within the limits); the "
+        f"worst combination of 1 cm errors moves a rope by {plan.twist_stiffness:.2f} t.</p>"
     )
     hooks += _monte_carlo_table(plan)
     sensitivity = _table(
@@ -475,8 +486,10 @@ def _alternatives(plan):
             for k, (r, d, g) in enumerate(zip(plan.ranking, plan.ranked_design, plan.ranked_girder))
         ],
         f"Ranking of lug sets (the best {len(plan.ranking)} of {plan.stats.sets}; rank 1 is the "
-        "recommendation"
-        + ("; the sets that overload the hull girder are ranked after those that do not)" if girder else ")"),
+        "recommendation; the sets that fail a design check"
+        + (" or overload the hull girder" if girder else "")
+        + " are ranked after those that meet them)"
+        + (f". {plan.design_note[0].upper()}{plan.design_note[1:]}." if plan.design_note else ""),
         text_columns=(1,),
     )
     return ["<h2>5 Alternatives</h2>", ranking]
@@ -496,27 +509,96 @@ FLEXIBLE = {
 }
 
 
+#: With floating cranes the rope-stiffness assumption reads so.
+FLOATING = (
+    "Rope stiffness is EA / l0 (unstretched length), and a floating crane's vessel is in series "
+    "with its rope: the vessel heels, trims and heaves under the hook load and moves the tip, so "
+    "the crane's effective stiffness is 1 / (l0 / EA + c), c the vessel's tip compliance at the "
+    "lug it takes (the Crane fleet table gives both EAs); a rope never goes slack inside the "
+    "tolerance box (every tension stays above min_tension, checked densely)."
+)
+
+
 def _assumptions(plan):
     """6: what the plan assumes."""
     flexible = plan.problem.hull_stiffness is not None
     items = [FLEXIBLE.get(k, a) if flexible else a for k, a in enumerate(ASSUMPTIONS)]
+    if any(c.vessel is not None for c in plan.problem.fleet):
+        items[2] = FLOATING
+    if plan.problem.wind is not None and plan.problem.wind.booms:
+        items[4] = items[4].replace(
+            "else the plan's)", "else the plan's; a floating crane's widened by its boom's wind tip error)"
+        )
+    items += _wind_assumption(plan)
     return [
         "<h2>6 Assumptions</h2>",
         "<ul>" + "".join(f"<li>{html.escape(a)}</li>" for a in items) + "</ul>",
     ]
 
 
+def _wind_rows(plan):
+    """The basis table's rows for ``[wind]`` (none without): its speed and direction, the body's
+    force and how far its couple widened the CG envelope, each boom's tip error."""
+    data = wind_json(plan).get("wind")
+    if data is None:
+        return []
+    rows = [
+        ("wind speed", f"{data['speed']:g}", "m/s"),
+        ("wind direction", "any (the worst over the operation)", "-"),
+        ("wind force on the body", f"{data['body_force']:.2f}", "t"),
+        ("CG envelope widened in plan by the wind's couple", f"{data['cog_widening']:.3f}", "m"),
+    ]
+    rows += [
+        (
+            f"wind on {crane}'s boom: force, its tip error added to the hook tolerance",
+            f"{v['force']:.2f} t, +-{v['hook_error']:.3f} m",
+            "-",
+        )
+        for crane, v in data["booms"].items()
+    ]
+    return rows
+
+
+def _wind_assumption(plan):
+    """The assumption the wind adds (none without)."""
+    data = wind_json(plan).get("wind")
+    if data is None:
+        return []
+    booms = "; ".join(
+        f"on {crane}'s boom {v['force']:.2f} t, heeling and trimming its vessel: its tip moves up to "
+        f"+-{v['hook_error']:.3f} m, added to its hook tolerance"
+        for crane, v in data["booms"].items()
+    )
+    return [
+        f"Wind {data['speed']:g} m/s from any direction ([wind]): on the body {data['body_force']:.2f} t "
+        "at its centre of pressure; its couple moves the weight's line downwind, so the CG envelope "
+        f"is widened by {data['cog_widening']:.3f} m in plan (x and y) for every direction"
+        + (f"; {booms}" if booms else "")
+        + ". The wind's horizontal force itself is carried by the ropes' small inclinations."
+    ]
+
+
 def _fleet_rows(problem):
     """One row per crane; a run of cranes alike in everything but the name is one row
-    ("crane 1 to crane 64 (64 alike)": a fleet of strand jacks is one line, not two pages)."""
+    ("crane 1 to crane 64 (64 alike)": a fleet of strand jacks is one line, not two pages).
+    With floating cranes: the rope's own EA and, in a column of its own, the effective EA of
+    the rope and the vessel in series at the planned lug (``-`` for a floating crane the plan
+    does not use)."""
     rows = []
+    floating = any(c.vessel is not None for c in problem.fleet)
     for c in problem.fleet:
+        rope = c.rope_EA if c.rope_EA is not None else (c.given.EA if c.given is not None else c.EA)
+        if c.vessel is None:
+            series = (f"{c.EA:.0f} (on land)",)
+        else:
+            series = (f"{c.EA:.0f}" if c.rope_EA is not None else "-",)
         values = (
             "-" if c.position is None else _xyz(problem, (*c.position, 0.0)),
             f"{c.swl:g} t at any radius"
             if c.swl is not None
             else ", ".join(f"{r:g}: {w:g}" for r, w in c.load_chart),
-            f"{c.EA:.0f}",
+            f"{rope:.0f}",
+            *(series if floating else ()),
             f"{c.rope_length:.2f}",
             f"{c.boom_min:g} to {c.boom_max:g}",
         )
