@@ -141,28 +141,35 @@ def staged_lp_bound(
         width = row_max(alpha + each) - row_min(alpha - each)
     else:
         width = _worst_rows(alpha, pair)
-    rows = np.argsort(-width, axis=1)[:, :FIRST_ROWS]
+    widest = np.argsort(-width, axis=1)
 
-    def some(v):
-        if v is None:
-            return None
-        if isinstance(v, PairWidening):
-            return v.at(rows)
-        return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
+    def stage(index, count):
+        """The sets ``index`` bounded over their ``count`` widest scenarios."""
+        rows = widest[index, :count]
 
-    bound = _bound(
-        particular,
-        null,
-        some(alpha),
-        some(beta),
-        low,
-        high,
-        tuple(some(v) for v in limits),
-        reserve,
-        target,
-        some(pair),
-        give_up=True,
-    )
+        def some(v):
+            if v is None:
+                return None
+            if isinstance(v, PairWidening):
+                return v.subset(index).at(rows)
+            v = v[index]
+            return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
+
+        return _bound(
+            particular[index],
+            null[index],
+            some(alpha),
+            some(beta),
+            low[index],
+            high[index],
+            tuple(some(v) for v in limits),
+            reserve,
+            target[index],
+            some(pair),
+            give_up=True,
+        )
+
+    bound = stage(np.arange(len(target)), FIRST_ROWS)
     short_mask = bound < target
     partial = short_mask & np.broadcast_to(np.asarray(defer, dtype=bool), short_mask.shape)
     short = np.flatnonzero(short_mask & ~partial)
@@ -470,8 +477,9 @@ def _pair_soft_max(values, pair, tau, weights=True):
     scenario (in place of one array: the reductions of planner/search/rows.py)."""
     t = tau[:, None, None]
     scaled = values / t
-    rows = scaled[..., :, None] - scaled[..., None, :]
-    rows += pair / t[..., None]
+    rows = pair * (1.0 / t)[..., None]
+    rows += scaled[..., :, None]
+    rows -= scaled[..., None, :]
     top = row_max(row_max(rows))
     rows -= top[..., None, None]
     np.exp(rows, out=rows)

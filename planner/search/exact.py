@@ -51,7 +51,7 @@ DUAL_BOUND = True
 #: once; when it comes up again the k-th best is usually lower and the first stage reaches
 #: it (:func:`~liftplan.planner.search.dual.staged_lp_bound`). A row is deferred again only
 #: against a lower k-th best than the last time (so it cannot come back for ever).
-DEFER = __import__("os").environ.get("HS_DEFER", "1") == "1"
+DEFER = True
 
 
 def search_exact(problem, started, top, progress=None):
@@ -103,8 +103,7 @@ def search_exact(problem, started, top, progress=None):
     # the rows still to refine, in the order they are refined (Screening.priority: where the
     # bound orders the rows poorly, the order that finds good plans early), and the least
     # bound of each tail of that order: what no row still to refine can beat
-    _key = screening.priority if __import__("os").environ.get("HS_PRIO", "1") == "1" else screening.bound
-    pending = finite[np.argsort(_key[finite], kind="stable")] if lazy else finite[:0]
+    pending = finite[np.argsort(screening.priority[finite], kind="stable")] if lazy else finite[:0]
     tail = np.append(np.minimum.accumulate(bound[pending][::-1])[::-1], np.inf)
     cursor = 0  # pending[cursor:] are still to refine
     ranking, evaluated, refine_count = [], 0, 0

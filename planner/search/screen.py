@@ -772,20 +772,18 @@ def _screen_pairs(
     lo = np.where(coplanar, 0.0, lo)
     hi = np.where(coplanar, 0.0, hi)
 
-    if hook is None:
-        up = down = np.zeros_like(g)
-    else:  # the hook errors' widening of each pair, both ways
-        up = down = hook[1].subset(ok).upper_triangle()  # symmetric: (a, b) as (b, a)
-
-    def half_range(u, widen=True):
-        # spread_k >= d_k + c + up_k and >= -(d_k + c) + down_k for the pair's unknown
-        # preload offset c; the least over c of the largest is half their sum
-        values = g + u[:, None, None] * h
-        if not widen:
-            return 0.5 * (values.max(axis=1) - values.min(axis=1)).max(axis=1)
-        return 0.5 * ((values + up).max(axis=1) + (down - values).max(axis=1)).max(axis=1)
-
     if not dual:
+        # the hook errors' widening of each pair, both ways (symmetric: (a, b) as (b, a))
+        up = down = 0.0 if hook is None else hook[1].subset(ok).upper_triangle()
+
+        def half_range(u, widen=True):
+            # spread_k >= d_k + c + up_k and >= -(d_k + c) + down_k for the pair's unknown
+            # preload offset c; the least over c of the largest is half their sum
+            values = g + u[:, None, None] * h
+            if not widen:
+                return 0.5 * (values.max(axis=1) - values.min(axis=1)).max(axis=1)
+            return 0.5 * ((values + up).max(axis=1) + (down - values).max(axis=1)).max(axis=1)
+
         lipschitz = 0.5 * np.ptp(h, axis=1).max(axis=1)
         bound[ok], where = _golden(half_range, lo, hi, lipschitz, where=True)
         bound[ok] = np.maximum(bound[ok], 0.0)
