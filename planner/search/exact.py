@@ -105,6 +105,10 @@ def search_exact(problem, started, top, progress=None):
     # bound of each tail of that order: what no row still to refine can beat
     pending = finite[np.argsort(screening.priority[finite], kind="stable")] if lazy else finite[:0]
     tail = np.append(np.minimum.accumulate(bound[pending][::-1])[::-1], np.inf)
+    # rows refined out of their bound order are evaluated in another order than the bound's:
+    # ties to rounding (mirror-image sets) are then ranked by their lugs, not by that order
+    reordered = lazy and bool(np.any(screening.priority[finite] != bound[finite]))
+    rank = rank_key if reordered else (lambda r: (r.worst_value, r.nominal_value))
     cursor = 0  # pending[cursor:] are still to refine
     ranking, evaluated, refine_count = [], 0, 0
     evaluated_bound = math.inf  # least LP bound of the rows evaluated feasible
@@ -155,7 +159,7 @@ def search_exact(problem, started, top, progress=None):
             return
         evaluated_bound = min(evaluated_bound, result.bound)
         ranking.append(result)
-        ranking.sort(key=rank_key)
+        ranking.sort(key=rank)
         del ranking[top:]
 
     per_row = None  # seconds to refine one row's bound, once measured
@@ -272,15 +276,16 @@ def search_exact(problem, started, top, progress=None):
     return ranking, stats
 
 
-#: Significant digits of the values that rank two plans: rows equal to these (mirror images,
-#: whose LP values differ by solver rounding, ~1e-10 relative) are ranked by their lugs and
-#: cranes, so the plan does not depend on the order the rows were evaluated in.
+#: Significant digits of the values that rank two plans when the rows were refined out of
+#: their bound order: rows equal to these (mirror-image sets, whose values differ by solver
+#: rounding, ~1e-10 relative) are ranked by their lugs and cranes.
 RANK_DIGITS = 7
 
 
 def rank_key(result):
     """Sort key of an evaluated row: worst value, then level value, each to
-    :data:`RANK_DIGITS` significant digits, then the candidate indices and cranes."""
+    :data:`RANK_DIGITS` significant digits, then the candidate indices and cranes (so the
+    plan does not depend on the order the rows were evaluated in)."""
 
     def rounded(value):
         return float(f"{value:.{RANK_DIGITS}g}")
@@ -288,8 +293,8 @@ def rank_key(result):
     return (
         rounded(result.worst_value),
         rounded(result.nominal_value),
-        tuple(result.indices),
-        tuple(result.cranes),
+        tuple(int(i) for i in result.indices),
+        tuple(int(c) for c in result.cranes),
     )
 
 

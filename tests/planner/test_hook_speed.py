@@ -6,7 +6,7 @@ the optimum.
 * a row's dual bound may stop at its first stage and be bounded again later (deferred);
 * the rows are refined in the order of their bound without the widening
   (:attr:`~liftplan.planner.search.screen.Screening.priority`), not of the bound itself;
-* ties to solver rounding are ranked by the lugs (:func:`~liftplan.planner.search.exact.rank_key`).
+* ties to solver rounding are then ranked by the lugs (:func:`~liftplan.planner.search.exact.rank_key`).
 
 Each is checked against its definition or against brute force over every set (C = 7).
 """
