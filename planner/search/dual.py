@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from liftplan.planner.search.rows import row_max, row_spread, row_sum
+from liftplan.planner.search.rows import row_max, row_min, row_spread, row_sum
 
 #: Continuation: tau from TAU_START x the initial worst value, times TAU_FACTOR per stage
 #: (STAGES stages, STEPS Newton steps each).
@@ -67,6 +67,26 @@ def preload_lp_bound(
 ):
     """Lower bounds on the preload LP of many sets (module docstring).
 
+    As :func:`staged_lp_bound` with nothing deferred: the bound alone.
+    """
+    return staged_lp_bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair)[0]
+
+
+def staged_lp_bound(
+    particular,
+    null,
+    alpha,
+    beta,
+    low,
+    high,
+    limits,
+    reserve=False,
+    target=np.inf,
+    pair=None,
+    defer=False,
+):
+    """Lower bounds on the preload LP of many sets (module docstring), in two stages.
+
     Parameters
     ----------
     particular : numpy.ndarray, shape (N, n)  [t]
@@ -85,46 +105,74 @@ def preload_lp_bound(
         The rows are s_i T_k,i (the largest utilisation) instead of the pairs' spread.
     target : float or numpy.ndarray, shape (N,)
         A set whose bound reaches this is left there (the search needs no better).
-    pair : numpy.ndarray, shape (N, m, n, n), optional  [t or -]
+    pair : numpy.ndarray, shape (N, m, n, n), or PairWidening, optional  [t or -]
         Each ordered pair's widening c_ab >= 0 at each scenario (zero diagonal): the rows are
         then V_a - V_b + c_ab (the hook errors' exact worst; module docstring). Not with
         ``reserve``.
+    defer : bool or numpy.ndarray, shape (N,)
+        Sets whose bound over their :data:`FIRST_ROWS` widest scenarios falls short of a finite
+        target keep that bound (valid, weaker) instead of being bounded over every scenario
+        at once: the caller bounds them again later, against what is then its target (lower,
+        as a search finds better plans), and most need no more than the first stage then.
 
     Returns
     -------
-    numpy.ndarray, shape (N,)
+    bound : numpy.ndarray, shape (N,)
         A valid lower bound on each set's LP value over these scenarios.
+    partial : numpy.ndarray, shape (N,), bool
+        The sets deferred: their bound is over their first rows only and below the target.
     """
     if reserve and pair is not None:
         raise ValueError("the reserve objective's rows take no pair widening")
     limits = tuple(np.broadcast_to(v, alpha.shape) for v in limits)
     target = np.broadcast_to(np.asarray(target, dtype=float), alpha.shape[:1])
     m = alpha.shape[1]
+    partial = np.zeros(len(target), dtype=bool)
     if not np.any(np.isfinite(target)) or m <= FIRST_ROWS:
-        return _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair)
-    # a bound over some of the rows is a bound over all of them (a relaxation)
-    width = row_max(alpha) if reserve else _worst_rows(alpha, pair)
-    rows = np.argsort(-width, axis=1)[:, :FIRST_ROWS]
+        pair = pair.full() if isinstance(pair, PairWidening) else pair
+        return _bound(particular, null, alpha, beta, low, high, limits, reserve, target, pair), partial
+    # a bound over some of the rows is a bound over all of them (a relaxation); with the hook
+    # errors' widening the rows are ranked by its upper estimate c_ab <= u_a + u_b, so that
+    # the widening itself is worked out for the rows taken only
+    if reserve:
+        width = row_max(alpha)
+    elif isinstance(pair, PairWidening):
+        each = pair.each()
+        width = row_max(alpha + each) - row_min(alpha - each)
+    else:
+        width = _worst_rows(alpha, pair)
+    widest = np.argsort(-width, axis=1)
 
-    def some(v):
-        if v is None:
-            return None
-        return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
+    def stage(index, count):
+        """The sets ``index`` bounded over their ``count`` widest scenarios."""
+        rows = widest[index, :count]
 
-    bound = _bound(
-        particular,
-        null,
-        some(alpha),
-        some(beta),
-        low,
-        high,
-        tuple(some(v) for v in limits),
-        reserve,
-        target,
-        some(pair),
-        give_up=True,
-    )
-    short = np.flatnonzero(bound < target)
+        def some(v):
+            if v is None:
+                return None
+            if isinstance(v, PairWidening):
+                return v.subset(index).at(rows)
+            v = v[index]
+            return np.take_along_axis(v, rows.reshape(rows.shape + (1,) * (v.ndim - 2)), axis=1)
+
+        return _bound(
+            particular[index],
+            null[index],
+            some(alpha),
+            some(beta),
+            low[index],
+            high[index],
+            tuple(some(v) for v in limits),
+            reserve,
+            target[index],
+            some(pair),
+            give_up=True,
+        )
+
+    bound = stage(np.arange(len(target)), FIRST_ROWS)
+    short_mask = bound < target
+    partial = short_mask & np.broadcast_to(np.asarray(defer, dtype=bool), short_mask.shape)
+    short = np.flatnonzero(short_mask & ~partial)
     if short.size:
         bound[short] = np.maximum(
             bound[short],
@@ -138,10 +186,82 @@ def preload_lp_bound(
                 tuple(v[short] for v in limits),
                 reserve,
                 target[short],
-                _pick(pair, short),
+                pair.subset(short).full() if isinstance(pair, PairWidening) else _pick(pair, short),
             ),
         )
-    return bound
+    return bound, partial
+
+
+class PairWidening:
+    """The hook errors' widening of each ordered rope pair at each scenario of many sets,
+    c_ab = sum_j |s_a G_aj - s_b G_bj| delta_j (N, m, n, n), worked out only for the
+    scenarios asked (the dual bound's first stage takes a few of each set's).
+
+    Parameters
+    ----------
+    scaled : numpy.ndarray, shape (N, m, n, n)  [t/m or 1/m]
+        s_a G_aj: the objective's scale times dT_a/dH_j at each scenario.
+    delta : numpy.ndarray, shape (N, n)  [m]
+        Each hook's height tolerance.
+    """
+
+    def __init__(self, scaled, delta):
+        self.scaled, self.delta = scaled, delta
+        self._full = None
+
+    @property
+    def shape(self):
+        return self.scaled.shape
+
+    def subset(self, index):
+        """The widening of the sets ``index`` (an index or a mask over the N sets)."""
+        return PairWidening(self.scaled[index], self.delta[index])
+
+    def full(self):
+        """Every scenario's widening, (N, m, n, n) (worked out once)."""
+        if self._full is None:
+            self._full = _symmetric(self.upper_triangle())
+        return self._full
+
+    def at(self, rows):
+        """The widening at the scenarios ``rows`` (N, r) of each set, (N, r, n, n)."""
+        scaled = np.take_along_axis(self.scaled, rows[..., None, None], axis=1)
+        return _symmetric(_upper_widening(scaled, self.delta))
+
+    def upper_triangle(self):
+        """c_ab for a < b (numpy.triu_indices order), (N, m, n (n - 1) / 2): c is symmetric."""
+        if self._full is not None:
+            first, second = np.triu_indices(self.scaled.shape[2], 1)
+            return self._full[..., first, second]
+        return _upper_widening(self.scaled, self.delta)
+
+    def each(self):
+        """u_a = sum_j |s_a G_aj| delta_j, (N, m, n): c_ab <= u_a + u_b (the triangle
+        inequality), a cheap upper estimate."""
+        return np.einsum("kmaj,kj->kma", np.abs(self.scaled), self.delta)
+
+
+def _upper_widening(scaled, delta):
+    """sum_j |s_a G_aj - s_b G_bj| delta_j for a < b, (N, m, pairs): one hook at a time (no
+    (N, m, pairs, n) array)."""
+    n = scaled.shape[2]
+    first, second = np.triu_indices(n, 1)
+    upper = np.zeros(scaled.shape[:2] + (len(first),))
+    for j in range(scaled.shape[3]):
+        column = scaled[..., j]
+        upper += np.abs(column[..., first] - column[..., second]) * delta[:, j, None, None]
+    return upper
+
+
+def _symmetric(upper):
+    """The (..., n, n) symmetric array with zero diagonal from its upper triangle."""
+    pairs = upper.shape[-1]
+    n = int(round((1 + np.sqrt(1 + 8 * pairs)) / 2))
+    first, second = np.triu_indices(n, 1)
+    out = np.zeros(upper.shape[:-1] + (n, n))
+    out[..., first, second] = upper
+    out[..., second, first] = upper
+    return out
 
 
 def _pick(value, index):
@@ -357,8 +477,9 @@ def _pair_soft_max(values, pair, tau, weights=True):
     scenario (in place of one array: the reductions of planner/search/rows.py)."""
     t = tau[:, None, None]
     scaled = values / t
-    rows = scaled[..., :, None] - scaled[..., None, :]
-    rows += pair / t[..., None]
+    rows = pair * (1.0 / t)[..., None]
+    rows += scaled[..., :, None]
+    rows -= scaled[..., None, :]
     top = row_max(row_max(rows))
     rows -= top[..., None, None]
     np.exp(rows, out=rows)

@@ -46,6 +46,12 @@ FIRST_REFINE = 8
 #: n >= 5: refine the preload-free pair bound to the LP's dual bound before a row is
 #: evaluated (False: the pair bound alone, as before; studies/planner_scale.py compares).
 DUAL_BOUND = True
+#: A row whose dual bound over its first few scenarios falls short of the k-th best found
+#: goes back to the queue with that bound instead of being bounded over every scenario at
+#: once; when it comes up again the k-th best is usually lower and the first stage reaches
+#: it (:func:`~liftplan.planner.search.dual.staged_lp_bound`). A row is deferred again only
+#: against a lower k-th best than the last time (so it cannot come back for ever).
+DEFER = True
 
 
 def search_exact(problem, started, top, progress=None):
@@ -85,17 +91,36 @@ def search_exact(problem, started, top, progress=None):
     # (n >= 5) from the preload-free pair bound to the LP's dual bound
     dual = problem.cranes >= 5 and DUAL_BOUND
     lazy = _coarse(screening, problem) or dual
-    refined = np.full(len(bound), not lazy)
-    heap = [(float(bound[k]), bool(not refined[k]), int(k)) for k in np.flatnonzero(np.isfinite(bound))]
+    # the target at which each row's dual bound last stopped at its first stage, short of it
+    # (inf: never): bounded again when it comes up, deferred again only against a lower
+    # target (DEFER)
+    deferred = np.full(len(bound), np.inf)
+    finite = np.flatnonzero(np.isfinite(bound))
+    feasible_rows = len(finite)
+    # the heap: rows with a refined bound (False) and rows deferred (True), least bound first
+    heap = [] if lazy else [(float(bound[k]), False, int(k)) for k in finite]
     heapq.heapify(heap)
-    feasible_rows = len(heap)
+    # the rows still to refine, in the order they are refined (Screening.priority: where the
+    # bound orders the rows poorly, the order that finds good plans early), and the least
+    # bound of each tail of that order: what no row still to refine can beat
+    pending = finite[np.argsort(screening.priority[finite], kind="stable")] if lazy else finite[:0]
+    tail = np.append(np.minimum.accumulate(bound[pending][::-1])[::-1], np.inf)
+    # rows refined out of their bound order are evaluated in another order than the bound's:
+    # ties to rounding (mirror-image sets) are then ranked by their lugs, not by that order
+    reordered = lazy and bool(np.any(screening.priority[finite] != bound[finite]))
+    rank = rank_key if reordered else (lambda r: (r.worst_value, r.nominal_value))
+    cursor = 0  # pending[cursor:] are still to refine
     ranking, evaluated, refine_count = [], 0, 0
     evaluated_bound = math.inf  # least LP bound of the rows evaluated feasible
     stopped = "proved"
     bar = progress_bar(feasible_rows, progress, desc="exact search", unit="rows", ticker=True)
 
+    def least():
+        """The least bound of every row not evaluated (the heap's and those to refine)."""
+        return min(heap[0][0] if heap else math.inf, float(tail[cursor]))
+
     def lower_bound():
-        return min(evaluated_bound, heap[0][0] if heap else math.inf)
+        return min(evaluated_bound, least())
 
     def stats_now():
         best = ranking[0].worst_value if ranking else math.inf
@@ -134,7 +159,7 @@ def search_exact(problem, started, top, progress=None):
             return
         evaluated_bound = min(evaluated_bound, result.bound)
         ranking.append(result)
-        ranking.sort(key=lambda r: (r.worst_value, r.nominal_value))
+        ranking.sort(key=rank)
         del ranking[top:]
 
     per_row = None  # seconds to refine one row's bound, once measured
@@ -150,8 +175,8 @@ def search_exact(problem, started, top, progress=None):
         return max(1, min(REFINE, int(left / per_row)))
 
     try:
-        while heap:
-            if len(ranking) >= top and heap[0][0] >= ranking[top - 1].worst_value:
+        while heap or cursor < len(pending):
+            if len(ranking) >= top and least() >= ranking[top - 1].worst_value:
                 break
             if ranking:
                 best, low = ranking[0].worst_value, min(lower_bound(), ranking[0].worst_value)
@@ -164,26 +189,46 @@ def search_exact(problem, started, top, progress=None):
             if problem.time_limit is not None and time.perf_counter() - started > problem.time_limit:
                 stopped = "time_limit"  # with no plan yet: none found in time (said so below)
                 break
-            value, coarse, k = heapq.heappop(heap)
-            if done[k]:
+            if heap and not heap[0][1] and heap[0][0] <= tail[cursor]:
+                value, _, k = heapq.heappop(heap)  # the least bound, refined: evaluated
+                if not done[k]:
+                    evaluate(k, value)
                 continue
-            if coarse:
-                batch = [k] + [
-                    heapq.heappop(heap)[2]
-                    for _ in range(min(batch_size() - 1, len(heap)))
-                    if heap and heap[0][1]
-                ]
-                # a bound past the k-th best found need not be tightened further
-                target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
+            # a bound past the k-th best found need not be tightened further
+            target = ranking[top - 1].worst_value if len(ranking) >= top else np.inf
+            # refine a batch: the deferred rows with the least bounds, then the next rows
+            # still to refine (those whose bound already passes the k-th best are done with)
+            size = batch_size()
+            batch = []
+            while heap and heap[0][1] and len(batch) < size:
+                batch.append(heapq.heappop(heap)[2])
+            while cursor < len(pending) and len(batch) < size:
+                cursor += 1
+                if bound[pending[cursor - 1]] < target:
+                    batch.append(int(pending[cursor - 1]))
+            if batch:
                 clock = time.perf_counter()
-                full = screen(problem, sets[batch], cranes[batch], coarse=False, dual=dual, target=target)
+                full = screen(
+                    problem,
+                    sets[batch],
+                    cranes[batch],
+                    coarse=False,
+                    dual=dual,
+                    target=target,
+                    defer=target < deferred[batch] if dual and DEFER else None,
+                )
                 per_row = (time.perf_counter() - clock) / len(batch)
-                refine_count += len(batch)
+                refine_count += int(np.sum(np.isinf(deferred[batch])))  # each row counted once
+                partial = np.zeros(len(batch), dtype=bool) if full.partial is None else full.partial
                 pushed = []
-                for j, new_bound, reason in zip(batch, full.bound, full.reason):
-                    refined[j] = True
+                for j, new_bound, reason, again in zip(batch, full.bound, full.reason, partial):
                     if reason != FEASIBLE:
                         reasons[int(reason)] += 1
+                        continue
+                    if again:  # a valid bound, refined further when it comes up
+                        deferred[j] = target
+                        bound[j] = max(float(new_bound), float(bound[j]))
+                        heapq.heappush(heap, (float(bound[j]), True, int(j)))
                         continue
                     entry = (max(float(new_bound), float(bound[j])), False, int(j))
                     heapq.heappush(heap, entry)
@@ -206,8 +251,6 @@ def search_exact(problem, started, top, progress=None):
                         break
                     done[j] = True
                     evaluate(j, entry[0])
-                continue
-            evaluate(k, value)
     except KeyboardInterrupt:
         stopped = "interrupted"
         raise Interrupted(ranking, stats_now()) from None
@@ -231,6 +274,28 @@ def search_exact(problem, started, top, progress=None):
             f"each crane's SWL ({causes})"
         )
     return ranking, stats
+
+
+#: Significant digits of the values that rank two plans when the rows were refined out of
+#: their bound order: rows equal to these (mirror-image sets, whose values differ by solver
+#: rounding, ~1e-10 relative) are ranked by their lugs and cranes.
+RANK_DIGITS = 7
+
+
+def rank_key(result):
+    """Sort key of an evaluated row: worst value, then level value, each to
+    :data:`RANK_DIGITS` significant digits, then the candidate indices and cranes (so the
+    plan does not depend on the order the rows were evaluated in)."""
+
+    def rounded(value):
+        return float(f"{value:.{RANK_DIGITS}g}")
+
+    return (
+        rounded(result.worst_value),
+        rounded(result.nominal_value),
+        tuple(int(i) for i in result.indices),
+        tuple(int(c) for c in result.cranes),
+    )
 
 
 def _coarse(screening, problem):

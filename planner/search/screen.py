@@ -30,7 +30,7 @@ import numpy as np
 from liftplan.model.errors import PlanInfeasible
 from liftplan.planner.problem.clearance import clear
 from liftplan.planner.problem.fleet import rule_limits
-from liftplan.planner.search.dual import preload_lp_bound
+from liftplan.planner.search.dual import PairWidening, staged_lp_bound
 from liftplan.planner.search.rows import row_max, row_min, row_spread
 from liftplan.planner.search.scenarios import (
     box_attitudes,
@@ -99,6 +99,16 @@ class Screening:
         :data:`FEASIBLE` or a key of :data:`REASONS`.
     exact : bool
         True when ``bound`` is the exact minimax over the screening scenarios (n <= 4).
+    priority : numpy.ndarray, shape (N,), optional
+        The order in which a search best refines the rows' bounds (least first; not a bound):
+        the bound itself, but with hook-height errors the pair bound without their widening
+        (the widening makes the bound order the sets nearly backwards: on the tanker's 8 of 16
+        the sets best with the errors have some of the highest bounds, and the best without
+        them are among the best with them). Default: ``bound``.
+    partial : numpy.ndarray, shape (N,), bool, optional
+        With ``defer``: the rows whose dual bound is over their first scenarios only and
+        below the target (:func:`~liftplan.planner.search.dual.staged_lp_bound`); to be
+        bounded again. None otherwise.
     """
 
     sets: np.ndarray
@@ -106,6 +116,12 @@ class Screening:
     bound: np.ndarray
     reason: np.ndarray
     exact: bool
+    partial: np.ndarray | None = None
+    priority: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.priority is None:  # the bound itself orders the rows
+            object.__setattr__(self, "priority", self.bound)
 
 
 def all_sets(problem):
@@ -268,7 +284,7 @@ MAX_ROWS = 5_000_000
 FULL_COLUMNS = 400_000
 
 
-def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.inf):
+def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.inf, defer=None):
     """Screen lug sets with their crane assignments (every feasible row by default).
 
     Parameters
@@ -286,6 +302,10 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
         otherwise the preload-free pair bound only.
     target : float
         With ``dual``: a bound that reaches this need not be made tighter.
+    defer : numpy.ndarray, shape (N,), bool, optional
+        With ``dual`` and a target: these rows, when their first-stage dual bound falls short
+        of the target, keep it and are flagged in ``Screening.partial`` (bounded again later
+        by the caller) instead of being bounded over every scenario now.
 
     Returns
     -------
@@ -304,6 +324,8 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
         scenarios = screening_scenarios(problem, coarse=True)
     bound = np.empty(len(sets))
     reason = np.empty(len(sets), dtype=np.int64)
+    partial = None if defer is None else np.zeros(len(sets), dtype=bool)
+    priority = np.full(len(sets), np.inf)
     n = sets.shape[1]
     # sets per chunk: the gains (and the dual's null-space slopes) stay within FLOATS each
     chunk = max(1, min(CHUNK, FLOATS // (len(scenarios[0]) * n * (2 * n if dual else n))))
@@ -319,11 +341,22 @@ def screen(problem, sets=None, cranes=None, coarse=None, dual=False, target=np.i
                 continue
         # collinear sets give singular statics (inf, nan): they are marked, not used
         with np.errstate(divide="ignore", invalid="ignore"):
+            flags = None if partial is None else np.asarray(defer, dtype=bool)[part]
+            order = np.full(len(part), np.nan)
             bound[part], reason[part] = _screen_chunk(
-                problem, sets[part], cranes[part], scenarios, dual, target
+                problem, sets[part], cranes[part], scenarios, dual, target, flags, order
             )
+            priority[part] = np.where(np.isnan(order), bound[part], order)
+            if partial is not None:
+                partial[part] = flags  # _screen_chunk left True only the rows it deferred
     return Screening(
-        sets=sets, cranes=cranes, bound=bound, reason=reason, exact=problem.cranes <= 4 and not coarse
+        sets=sets,
+        cranes=cranes,
+        bound=bound,
+        reason=reason,
+        exact=problem.cranes <= 4 and not coarse,
+        partial=partial,
+        priority=priority,
     )
 
 
@@ -362,7 +395,14 @@ def screening_scenarios(problem, coarse=False, corners=False):
     return x, np.repeat(offsets, len(grid), axis=0)
 
 
-def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
+def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf, defer=None, order=None):
+    """Bound and rule-out code of each row of a chunk.
+
+    ``defer`` (N,) bool, optional, changed in place: on entry the rows the dual bound may
+    defer (:func:`~liftplan.planner.search.dual.staged_lp_bound`), on return the rows it did.
+    ``order`` (N,) float, optional, filled in place where the rows' refinement order is not
+    their bound (:attr:`Screening.priority`; NaN elsewhere).
+    """
     count, n = sets.shape
     weight = problem.body.weight
     fleet = problem.fleet
@@ -453,11 +493,15 @@ def _screen_chunk(problem, sets, cranes, scenarios, dual=False, target=np.inf):
             reserve,
             dual,
             target,
+            defer,
+            order,
         )
         if reserve:  # every scenario carries W on the ropes: max T_i / SWL_i >= W / sum SWL_i
             bound = np.where(np.isfinite(bound), np.maximum(bound, weight / swl.sum(axis=1)), bound)
     bound[collinear] = np.inf
     reason[collinear] = COLLINEAR
+    if defer is not None:
+        defer &= np.isfinite(bound) & (n >= 5) & dual
     return bound, reason
 
 
@@ -470,7 +514,8 @@ def _hook_margins(problem, cranes, gain, scale):
     Returns
     -------
     margin : (N, m, n)  [t]   sum_j |G_ij| delta_j
-    pair : (N, m, n, n)  [t or -]   sum_j |s_a G_aj - s_b G_bj| delta_j for every pair (a, b)
+    pair : PairWidening   sum_j |s_a G_aj - s_b G_bj| delta_j for every pair (a, b) at
+        each scenario, (N, m, n, n), worked out for the scenarios asked only
     """
     delta = np.array(
         [problem.hook_tolerance if c.hook_tolerance is None else c.hook_tolerance for c in problem.fleet]
@@ -478,23 +523,7 @@ def _hook_margins(problem, cranes, gain, scale):
     if not np.any(delta > 0.0):
         return None
     margin = np.einsum("kmij,kj->kmi", np.abs(gain), delta)
-    pair = _pair_widening(gain * scale[:, None, :, None], delta)
-    return margin, pair
-
-
-def _pair_widening(scaled, delta):
-    """sum_j |s_a G_aj - s_b G_bj| delta_j for every ordered pair (a, b), (N, m, n, n): one
-    hook at a time (no (N, m, n, n, n) array), each unordered pair once (it is symmetric)."""
-    n = scaled.shape[2]
-    first, second = np.triu_indices(n, 1)
-    upper = np.zeros(scaled.shape[:2] + (len(first),))
-    for j in range(scaled.shape[3]):
-        column = scaled[..., j]
-        upper += np.abs(column[..., first] - column[..., second]) * delta[:, j, None, None]
-    pair = np.zeros(scaled.shape[:3] + (n,))
-    pair[..., first, second] = upper
-    pair[..., second, first] = upper
-    return pair
+    return margin, PairWidening(gain * scale[:, None, :, None], delta)
 
 
 def value_ceiling(scale, high, low, reserve=False):
@@ -595,8 +624,9 @@ def _interval(alpha, beta, low, high, lo, hi):
     return lo, hi
 
 
-def _golden(f, lo, hi, lipschitz):
-    """Vectorised golden-section minimum of convex f on [lo, hi]; returns a lower bound."""
+def _golden(f, lo, hi, lipschitz, where=False):
+    """Vectorised golden-section minimum of convex f on [lo, hi]; returns a lower bound (and
+    with ``where`` the point of the bracket where f was least)."""
     a, b = lo.copy(), hi.copy()
     c = b - _GOLDEN * (b - a)
     d = a + _GOLDEN * (b - a)
@@ -610,7 +640,8 @@ def _golden(f, lo, hi, lipschitz):
         c, d = np.where(left, new, d), np.where(left, c, new)
         fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
     # the minimiser stays in [a, b]; f(x*) >= f(c) - L |c - x*|
-    return np.minimum(fc, fd) - lipschitz * (b - a)
+    bound = np.minimum(fc, fd) - lipschitz * (b - a)
+    return (bound, np.where(fc <= fd, c, d)) if where else bound
 
 
 def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale, hook, reserve=False):
@@ -622,7 +653,7 @@ def _screen_fixed(preload, q, gain, inside, limits, preload_range, scale, hook, 
     elif hook is None:
         bound = row_spread(scale[:, None, :] * tensions).max(axis=1)
     else:
-        bound = _worst_pairs(scale[:, None, :] * tensions, hook[1])
+        bound = _worst_pairs(scale[:, None, :] * tensions, hook[1].full())
     return np.where(reason == FEASIBLE, bound, np.inf), reason
 
 
@@ -673,7 +704,7 @@ def _screen_line(particular, null, q, gain, inside, limits, preload_range, scale
     if np.any(ok):
         sc = scale[ok][:, None, :]
         al, be = sc * alpha[ok], sc * beta[ok]
-        pair = None if hook is None else hook[1][ok]
+        pair = None if hook is None else hook[1].subset(ok).full()
         lift = 0.0 if hook is None else sc * hook[0][ok]  # reserve: s_i x the hook errors' rise
 
         def worst(t):
@@ -704,14 +735,21 @@ def _screen_pairs(
     reserve=False,
     dual=False,
     target=np.inf,
+    defer=None,
+    order=None,
 ):
+    """n >= 5: the pair bound, or with ``dual`` the preload LP's dual bound (``defer``,
+    ``order``: as :func:`_screen_chunk`)."""
     count, m, n = q.shape
     reason = np.where(inside, FEASIBLE, CG_OUTSIDE)
     reason = np.where(inside & (weight > limits[1].sum(axis=1)), LEVEL_SWL, reason)
     reason = np.where((reason == FEASIBLE) & (weight > limits[2].sum(axis=1)), CODE_MARGIN, reason)
     ok = reason == FEASIBLE
     bound = np.full(count, np.inf)
+    deferred = np.zeros(count, dtype=bool)
     if not np.any(ok):
+        if defer is not None:
+            defer &= deferred
         return bound, reason
     part, P, qq, z = particular[ok], gain[ok], q[ok], heights[ok]
     null = np.linalg.svd(a_level[ok])[2][:, 3:, :].transpose(0, 2, 1)  # (N, n, n-3)
@@ -734,20 +772,23 @@ def _screen_pairs(
     lo = np.where(coplanar, 0.0, lo)
     hi = np.where(coplanar, 0.0, hi)
 
-    if hook is None:
-        up = down = np.zeros_like(g)
-    else:  # the hook errors' widening of each pair, both ways
-        up, down = hook[1][ok][..., first, second], hook[1][ok][..., second, first]
-
-    def half_range(u):
-        # spread_k >= d_k + c + up_k and >= -(d_k + c) + down_k for the pair's unknown
-        # preload offset c; the least over c of the largest is half their sum
-        values = g + u[:, None, None] * h
-        return 0.5 * ((values + up).max(axis=1) + (down - values).max(axis=1)).max(axis=1)
-
     if not dual:
+        # the hook errors' widening of each pair, both ways (symmetric: (a, b) as (b, a))
+        up = down = 0.0 if hook is None else hook[1].subset(ok).upper_triangle()
+
+        def half_range(u, widen=True):
+            # spread_k >= d_k + c + up_k and >= -(d_k + c) + down_k for the pair's unknown
+            # preload offset c; the least over c of the largest is half their sum
+            values = g + u[:, None, None] * h
+            if not widen:
+                return 0.5 * (values.max(axis=1) - values.min(axis=1)).max(axis=1)
+            return 0.5 * ((values + up).max(axis=1) + (down - values).max(axis=1)).max(axis=1)
+
         lipschitz = 0.5 * np.ptp(h, axis=1).max(axis=1)
-        bound[ok] = np.maximum(_golden(half_range, lo, hi, lipschitz), 0.0)
+        bound[ok], where = _golden(half_range, lo, hi, lipschitz, where=True)
+        bound[ok] = np.maximum(bound[ok], 0.0)
+        if hook is not None and order is not None:  # the order: the bound without the widening
+            order[ok] = half_range(where, widen=False)
         return bound, reason
     # the LP over the screening scenarios, bounded through its dual (planner/search/dual.py)
     big = 100.0 * weight  # as the LP clips "no limit"
@@ -765,7 +806,21 @@ def _screen_pairs(
         if reserve:
             alpha = alpha + margin
         else:
-            pair = hook[1][ok]
+            pair = hook[1].subset(ok)
     # the caller keeps the larger of this and the pair bound
-    bound[ok] = preload_lp_bound(part, null, alpha, beta, low, high, tension_limits, reserve, target, pair)
+    bound[ok], deferred[ok] = staged_lp_bound(
+        part,
+        null,
+        alpha,
+        beta,
+        low,
+        high,
+        tension_limits,
+        reserve,
+        target,
+        pair,
+        False if defer is None else defer[ok],
+    )
+    if defer is not None:
+        defer &= deferred
     return bound, reason
