@@ -56,3 +56,19 @@ def test_a_huge_count_reads_as_a_power_of_ten():
     # was "768759815833950334240 lug sets" (hull154)
     assert count_text(1820) == "1820" and count_text(999_999_999) == "999999999"
     assert count_text(768759815833950334240) == "7.69 x 10^20"
+
+
+def test_design_loads_not_computed_read_as_dashes_not_nan(tmp_path):
+    # was "nan nan FAIL" in the console's crane table and "nan nan" in the report's checks
+    # (no CG envelope and no [rules] cog_factor: the rules' chain cannot be computed)
+    from liftplan.planner.output.console.summary import summary
+
+    text = (EXAMPLES / "tanker_plan.toml").read_text()
+    text = re.sub(r"cog_tolerance = \[[^]]*\]", "cog_tolerance = [0.0, 0.0, 0.0]", text)
+    path = tmp_path / "plan.toml"
+    path.write_text(text)
+    planned = plan(load_problem(path))
+    assert not planned.design_loads.ok
+    console, page = summary(planned), render_html(planned)
+    assert "FAIL design_loads all cranes: not computed: rules.cog_factor: missing" in console
+    assert "nan" not in console and ">nan<" not in page

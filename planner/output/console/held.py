@@ -70,10 +70,13 @@ def plan_table(plan):
         radius = "-" if c.radius is None else f"{c.radius:.1f}"
         tilt = "-" if c.tilt is None else f"{c.tilt.load:.2f}"
         ok = c.design is not None and c.design.check.ok
+        computed = c.design is not None and c.design.check.computed  # else "-", not "nan"
+        hook_text = f"{c.design_hook_load:.2f}" if computed else "-"
+        util_text = f"{100 * c.utilisation:.1f}" if computed else "-"
         rows.append(
             f"{c.label:<5}{c.lug[:9]:<10}{c.crane[:10]:<11}{radius:>7}{c.swl:>8.1f}"
             f"{plan.boom_heights[c.label]:>9.3f}{c.nominal:>9.2f}{c.worst:>9.2f}{tilt:>9}"
-            f"{c.design_hook_load:>9.2f}{100 * c.utilisation:>7.1f}  {'ok' if ok else 'FAIL'}"
+            f"{hook_text:>9}{util_text:>7}  {'ok' if ok else 'FAIL'}"
         )
     lines += grouped(rows)
     lines.append(

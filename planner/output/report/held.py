@@ -394,7 +394,7 @@ def _checks(plan):
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
         [
-            (c.title, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL", c.note)
+            (c.title, c.subject, c.shown("value"), c.shown("limit"), c.unit, "ok" if c.ok else "FAIL", c.note)
             for c in plan.checks
         ],
         "Every check of the plan",
@@ -600,7 +600,7 @@ def _fleet_rows(problem):
             f"{rope:.0f}",
             *(series if floating else ()),
             f"{c.rope_length:.2f}",
-            f"{c.boom_min:g} to {c.boom_max:g}",
+            report_page.range_text(c.boom_min, c.boom_max),
         )
         if rows and rows[-1][1] == values and values[0] == "-":
             rows[-1][0].append(c.name)

@@ -256,7 +256,7 @@ def render_html(plan, today=None):
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
         [
-            (c.title, c.subject, f"{c.value:.4g}", f"{c.limit:.4g}", c.unit, "ok" if c.ok else "FAIL", c.note)
+            (c.title, c.subject, c.shown("value"), c.shown("limit"), c.unit, "ok" if c.ok else "FAIL", c.note)
             for c in plan.checks
         ],
         "Every check of the plan",

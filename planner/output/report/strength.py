@@ -531,7 +531,7 @@ def render_html(plan, today=None):
     checks = _table(
         ["check", "subject", "value", "limit", "unit", "result", "what the value is"],
         [
-            (k.title, k.subject, f"{k.value:.4g}", f"{k.limit:.4g}", k.unit, "ok" if k.ok else "FAIL", k.note)
+            (k.title, k.subject, k.shown("value"), k.shown("limit"), k.unit, "ok" if k.ok else "FAIL", k.note)
             for k in plan.checks
         ],
         "Every check of the plan",
