@@ -223,6 +223,11 @@ def test_json_console_and_report_say_which_hull_governed(planned, tmp_path):
     assert "flexible hull governs" in page
     # its section is named for what the file gave (it read "... and the start in water")
     assert "<h3>Flexible hull</h3>" in page and "start in water" not in page
+    # the Alternatives table shows the value each set is ranked on, not only the rigid spreads
+    assert (
+        "value ranked on (governing model) [t]" in page
+        and f"{out['ranking'][1]['governing_value']:.4g}" in page
+    )
     # the assumptions say the hull is flexible, not "the body is rigid"
     assert "The hull is flexible ([hull] EI, GJ)" in page and "the body is rigid" not in page
     assert "left out of it" in page and "hull flexibility, which lowers skew loads, is ignored" not in page

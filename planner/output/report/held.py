@@ -452,12 +452,15 @@ def _alternatives(plan):
     """5: the ranking of lug sets."""
     unequal = not plan.problem.equal_cranes
     girder = bool(plan.girder)
+    governing = plan.hull_search is not None  # [hull] EI or [water]: ranked on another value
+    unit = "-" if plan.problem.goal.per_swl or plan.problem.goal.peak else "t"
     ranking = _table(
         [
             "rank",
             "lugs (crane)" if unequal else "lugs",
             "nominal spread [t]",
             "worst spread [t]",
+            *([f"value ranked on (governing model) [{unit}]"] if governing else []),
             "worst utilisation spread [%]",
             "worst at heel, trim [deg]",
             "... with the CG at x, y, z [m]",
@@ -475,6 +478,7 @@ def _alternatives(plan):
                 ),
                 f"{r.nominal_spread:.2f}",
                 f"{r.worst_spread:.2f}",
+                *([f"{plan.hull_search.values[k]:.4g}"] if governing else []),
                 f"{100 * r.worst_utilisation_spread:.1f}",
                 *_where(plan, r.worst),
                 f"{100 * r.max_utilisation:.1f}",
@@ -488,7 +492,14 @@ def _alternatives(plan):
         f"Ranking of lug sets (the best {len(plan.ranking)} of {plan.stats.sets}; rank 1 is the "
         "recommendation; the sets that fail a design check"
         + (" or overload the hull girder" if girder else "")
-        + " are ranked after those that meet them)"
+        + " are ranked after those that meet them"
+        + (
+            "; the sets are ranked on their value on the model that governs ([hull] EI or "
+            "[water]); the spreads beside it are the rigid hull's in air"
+            if governing
+            else ""
+        )
+        + ")"
         + (f". {plan.design_note[0].upper()}{plan.design_note[1:]}." if plan.design_note else ""),
         text_columns=(1,),
     )
