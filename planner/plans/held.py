@@ -962,23 +962,30 @@ def design_first(plan):
     def pick(items):
         return None if items is None else [items[k] for k in order]
 
-    changes = {"designs": pick(designs), "girders": pick(list(girders))}
+    if order == sorted(order):
+        return dataclasses.replace(plan, designs=list(designs), girders=list(girders))
+    # every per-set list in the same new order (a set that fails moves below one that meets
+    # them, even where the plan itself stays: the designs must stay beside their sets)
+    ranking = pick(plan.ranking)
+    changes = {
+        "designs": pick(designs),
+        "girders": pick(list(girders)),
+        "ranking": ranking,
+        "hull_models": pick(plan.hull_models),
+    }
+    values = None if plan.hull_search is None else pick(plan.hull_search.values)
+    if values is not None:
+        changes["hull_search"] = dataclasses.replace(plan.hull_search, values=values)
     if order[0] != 0:  # the search's best fails a check: the best that meets them is the plan
-        ranking = pick(plan.ranking)
         changes |= {
-            "ranking": ranking,
-            "hull_models": pick(plan.hull_models),
             "passed_over": plan.passed_over + order[0],
             "stats": girder_stats(plan.stats, plan.ranking, ranking),
         }
         if plan.hull_search is not None or plan.lengths is not None:  # ranked on other values
-            values = None if plan.hull_search is None else pick(plan.hull_search.values)
             best = float(ranking[0].worst_value) if values is None else values[0]
             changes["stats"] = dataclasses.replace(
                 plan.stats, best=best, lower_bound=min(plan.stats.lower_bound, best)
             )
-            if values is not None:
-                changes["hull_search"] = dataclasses.replace(plan.hull_search, values=values)
         if uses_vessels(plan.problem):  # each floating crane in series at the new plan's lugs
             given = tuple(c.given if c.given is not None else c for c in plan.problem.fleet)
             base = dataclasses.replace(plan.problem, fleet=given)
