@@ -987,35 +987,13 @@ class StrengthPlan(InFileFrame):
         }
 
     def _set_json(self, s, stats):
-        def peak(pk):
-            state = dict(s.states[pk.state])
-            state["cog_offset"] = list(self.in_file_frame(state["cog_offset"]))
-            return {"value": pk.value, "ratio": pk.ratio, "x": pk.x, "state": state}
-
         return {
             "lugs": dict(zip(self.labels, s.names)),
             "tensions": dict(zip(self.labels, s.preload.tolist())),
             "boom_heights": (
                 None if s.boom_heights is None else dict(zip(self.labels, s.boom_heights.tolist()))
             ),
-            "max_bending_moment": peak(s.bending),
-            "max_shear_force": peak(s.shear),
-            "spread": s.spread,
-            "worst_spread": s.worst_spread,
-            "objective_value": s.value,
-            "tension_range": list(s.tension_range),
-            "search": {
-                "method": stats.method,
-                "lower_bound": stats.lower_bound,
-                "gap": stats.gap,
-                "relative_gap": stats.relative_gap,
-                "stopped": stats.stopped,
-                "certified": stats.certified,
-                "seconds": stats.seconds,
-                "mip_solves": stats.rounds,
-                "sets_evaluated": stats.evaluated,
-            },
-        }
+        } | strength_set_json(s, stats, self.in_file_frame)
 
     def to_json(self):
         """``liftplan plan --json`` for a strength objective: the contract's keys (lugs,
@@ -1119,6 +1097,37 @@ def free_three(points):
         if value > area:
             best, area = trio, value
     return best
+
+
+def strength_set_json(s, stats, in_file_frame):
+    """A strength search's set in ``plan --json`` after its lugs or hooks: the peaks of |M| and
+    |Q| / allowable (each with its state, the CG offset in the file's frame via
+    ``in_file_frame``), the spreads, the objective and the search's stats."""
+
+    def peak(pk):
+        state = dict(s.states[pk.state])
+        state["cog_offset"] = list(in_file_frame(state["cog_offset"]))
+        return {"value": pk.value, "ratio": pk.ratio, "x": pk.x, "state": state}
+
+    return {
+        "max_bending_moment": peak(s.bending),
+        "max_shear_force": peak(s.shear),
+        "spread": s.spread,
+        "worst_spread": s.worst_spread,
+        "objective_value": s.value,
+        "tension_range": list(s.tension_range),
+        "search": {
+            "method": stats.method,
+            "lower_bound": stats.lower_bound,
+            "gap": stats.gap,
+            "relative_gap": stats.relative_gap,
+            "stopped": stats.stopped,
+            "certified": stats.certified,
+            "seconds": stats.seconds,
+            "mip_solves": stats.rounds,
+            "sets_evaluated": stats.evaluated,
+        },
+    }
 
 
 def plan_strength(problem, top=None, context=None, wrap=None):

@@ -48,6 +48,7 @@ from liftplan.planner.plans.strength import (
     StrengthStats,
     objective_weights,
     plan_strength,
+    strength_set_json,
 )
 from liftplan.planner.search.evaluator import SetResult
 from liftplan.planner.search.scenarios import LugSet, Scenario
@@ -292,33 +293,12 @@ class StrengthSlingPlan(ApexSlingPlan):
             )
         ]
 
-    def _peak_json(self, s, peak):
-        state = dict(s.states[peak.state])
-        state["cog_offset"] = list(self.in_file_frame(state["cog_offset"]))
-        return {"value": peak.value, "ratio": peak.ratio, "x": peak.x, "state": state}
-
     def _set_json(self, s, stats):
         return {
             "hooks": {crane: name.split("+") for crane, name in zip(s.crane_names, s.names)},
             "hook_tensions": dict(zip(s.crane_names, np.asarray(s.preload, dtype=float).tolist())),
             "boom_heights": dict(zip(s.crane_names, np.asarray(s.boom_heights, dtype=float).tolist())),
-            "max_bending_moment": self._peak_json(s, s.bending),
-            "max_shear_force": self._peak_json(s, s.shear),
-            "spread": s.spread,
-            "worst_spread": s.worst_spread,
-            "objective_value": s.value,
-            "tension_range": list(s.tension_range),
-            "search": {
-                "method": stats.method,
-                "lower_bound": stats.lower_bound,
-                "gap": stats.gap,
-                "relative_gap": stats.relative_gap,
-                "stopped": stats.stopped,
-                "seconds": stats.seconds,
-                "mip_solves": stats.rounds,
-                "sets_evaluated": stats.evaluated,
-            },
-        }
+        } | strength_set_json(s, stats, self.in_file_frame)
 
     def to_json(self):
         """The sling plan's JSON, then the strength search's: ``objective``, ``control``,
