@@ -103,9 +103,12 @@ class Check:
         return math.isfinite(self.value) and math.isfinite(self.limit)
 
     def shown(self, key):
-        """``value`` or ``limit`` for a table: 4 significant digits, ``-`` where not computed."""
+        """``value`` or ``limit`` for a table: 4 significant digits (whole numbers from 10 000
+        on, not ``2.969e+04``), ``-`` where not computed."""
         number = getattr(self, key)
-        return f"{number:.4g}" if math.isfinite(number) else "-"
+        if not math.isfinite(number):
+            return "-"
+        return f"{number:.0f}" if abs(number) >= 1e4 else f"{number:.4g}"
 
     def line(self):
         """One console line, ``FAIL swl L2: 452.1 t > 400 t (note)`` or ``ok ...``; a check

@@ -949,7 +949,8 @@ class StrengthPlan(InFileFrame):
                         peak.value,
                         peak.value / peak.ratio,
                         unit,
-                        note="the worst over the states, exactly along the body",
+                        note="at the section and state where value / allowable is worst, "
+                        "exactly along the body",
                     )
                 )
         out.append(

@@ -21,3 +21,9 @@ def test_a_check_not_computed_fails_and_says_why_without_nan():
     assert "nan" not in Check.lower("taut", "L1", math.nan, 0.0, "t").line()
     assert (check.shown("value"), check.shown("limit")) == ("-", "-")
     assert check.to_json()["value"] is None
+
+
+def test_a_large_limit_reads_as_a_whole_number():
+    # was "2.969e+04" in the ferry report's checks table
+    check = Check.upper("bending_moment", "x = 23.9 m", 821.2, 29690.4, "t m")
+    assert (check.shown("value"), check.shown("limit")) == ("821.2", "29690")
